@@ -1,0 +1,311 @@
+//! The hybrid automaton of the rocking body (MODEL.md section 6): its modes, the right-hand side
+//! of eq. 16 in each mode, the guards between modes and the angular-momentum resets at them.
+//!
+//! This is the only place where the model's dynamics are written down. It knows nothing about
+//! integrators: the adaptive diffsol driver and the fixed-step Newmark solver both drive it.
+
+use serde::Serialize;
+
+use crate::constants::Constants;
+
+/// A discrete mode of the body.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Mode {
+    /// Both toes on the floor, |q| < s_n: a linear damped oscillator.
+    PreUplift,
+    /// Rocking about the right (+x) toe, q > s_n.
+    RockRight,
+    /// Rocking about the left (-x) toe, q < -s_n.
+    RockLeft,
+    /// |q| reached B, where the restoring force vanishes: the body falls over. Terminal.
+    Overturned,
+}
+
+impl Mode {
+    pub fn name(self) -> &'static str {
+        match self {
+            Mode::PreUplift => "pre-uplift",
+            Mode::RockRight => "rock-right",
+            Mode::RockLeft => "rock-left",
+            Mode::Overturned => "overturned",
+        }
+    }
+
+    /// +1 rocking right, -1 rocking left, 0 otherwise.
+    fn rocking_sign(self) -> f64 {
+        match self {
+            Mode::RockRight => 1.0,
+            Mode::RockLeft => -1.0,
+            Mode::PreUplift | Mode::Overturned => 0.0,
+        }
+    }
+}
+
+/// What happens at a mode change.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum EventKind {
+    Uplift,
+    Landing,
+    Overturn,
+}
+
+impl EventKind {
+    pub fn name(self) -> &'static str {
+        match self {
+            EventKind::Uplift => "uplift",
+            EventKind::Landing => "landing",
+            EventKind::Overturn => "overturn",
+        }
+    }
+}
+
+/// A guard: the surface q = `level`, which the body leaves its mode through when q moves in
+/// `direction` (+1 rising, -1 falling).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Guard {
+    pub level: f64,
+    pub direction: f64,
+    pub kind: EventKind,
+    pub to: Mode,
+}
+
+impl Guard {
+    /// Signed distance past the guard: negative inside the mode, zero on the guard, positive beyond.
+    pub fn overshoot(&self, q: f64) -> f64 {
+        self.direction * (q - self.level)
+    }
+}
+
+/// The automaton, built once from the derived constants.
+#[derive(Debug, Clone)]
+pub struct Automaton {
+    me: f64,
+    ke: f64,
+    damping_coefficient: f64,
+    s_n: f64,
+    width: f64,
+    beta1: f64,
+    nu2: f64,
+    beta2: f64,
+    zeta_uplift: f64,
+    zeta_landing: f64,
+}
+
+impl Automaton {
+    pub fn new(constants: &Constants) -> Self {
+        Automaton {
+            me: constants.generalised_mass,
+            ke: constants.generalised_stiffness,
+            damping_coefficient: constants.damping_coefficient,
+            s_n: constants.uplift_displacement,
+            width: constants.width,
+            beta1: constants.beta1,
+            nu2: constants.nu2,
+            beta2: constants.beta2,
+            zeta_uplift: constants.zeta_uplift,
+            zeta_landing: constants.zeta_landing,
+        }
+    }
+
+    pub fn generalised_mass(&self) -> f64 {
+        self.me
+    }
+
+    pub fn uplift_displacement(&self) -> f64 {
+        self.s_n
+    }
+
+    pub fn width(&self) -> f64 {
+        self.width
+    }
+
+    /// The mode a body starts in: rocking about the matching toe when |q0| > s_n.
+    pub fn initial_mode(&self, q0: f64) -> Mode {
+        if q0 > self.s_n {
+            Mode::RockRight
+        } else if q0 < -self.s_n {
+            Mode::RockLeft
+        } else {
+            Mode::PreUplift
+        }
+    }
+
+    /// The guards of `mode`, in a fixed order (the index is used by solvers to name a guard).
+    pub fn guards(&self, mode: Mode) -> &'static [GuardSlot] {
+        match mode {
+            Mode::PreUplift => &[GuardSlot::UpliftRight, GuardSlot::UpliftLeft],
+            Mode::RockRight | Mode::RockLeft => &[GuardSlot::Landing, GuardSlot::Overturn],
+            Mode::Overturned => &[],
+        }
+    }
+
+    /// The guard behind a slot of `mode`.
+    pub fn guard(&self, mode: Mode, slot: GuardSlot) -> Guard {
+        let side = mode.rocking_sign();
+        match slot {
+            GuardSlot::UpliftRight => Guard {
+                level: self.s_n,
+                direction: 1.0,
+                kind: EventKind::Uplift,
+                to: Mode::RockRight,
+            },
+            GuardSlot::UpliftLeft => Guard {
+                level: -self.s_n,
+                direction: -1.0,
+                kind: EventKind::Uplift,
+                to: Mode::RockLeft,
+            },
+            GuardSlot::Landing => Guard {
+                level: side * self.s_n,
+                direction: -side,
+                kind: EventKind::Landing,
+                to: Mode::PreUplift,
+            },
+            GuardSlot::Overturn => Guard {
+                level: side * self.width,
+                direction: side,
+                kind: EventKind::Overturn,
+                to: Mode::Overturned,
+            },
+        }
+    }
+
+    /// A guard of `mode` that the state (q, q') has crossed, or sits on while moving across it.
+    /// A state on a guard but moving back into its mode does not trigger it.
+    pub fn crossed_guard(&self, mode: Mode, q: f64, qdot: f64) -> Option<Guard> {
+        self.guards(mode)
+            .iter()
+            .map(|&slot| self.guard(mode, slot))
+            .find(|g| {
+                let past = g.overshoot(q);
+                past > 0.0 || (past == 0.0 && g.direction * qdot > 0.0)
+            })
+    }
+
+    /// The reset of q' at an event (eqs. 21-22): uplift q' -> zetaU q', landing q' -> q'/zetaL.
+    pub fn reset_velocity(&self, kind: EventKind, qdot: f64) -> f64 {
+        match kind {
+            EventKind::Uplift => self.zeta_uplift * qdot,
+            EventKind::Landing => qdot / self.zeta_landing,
+            EventKind::Overturn => qdot,
+        }
+    }
+
+    /// Effectiveness factor nu of the mode.
+    pub fn effectiveness(&self, mode: Mode) -> f64 {
+        match mode {
+            Mode::PreUplift => 1.0,
+            _ => self.nu2,
+        }
+    }
+
+    /// Participation factor beta of the mode.
+    pub fn participation(&self, mode: Mode) -> f64 {
+        match mode {
+            Mode::PreUplift => self.beta1,
+            _ => self.beta2,
+        }
+    }
+
+    /// Restoring force F(q) (the base shear, eq. 17) on the branch that belongs to `mode`.
+    pub fn restoring_force(&self, mode: Mode, q: f64) -> f64 {
+        match mode {
+            Mode::PreUplift => self.ke * q,
+            Mode::RockRight | Mode::RockLeft => {
+                let side = mode.rocking_sign();
+                side * self.ke * self.s_n * (self.width - side * q) / (self.width - self.s_n)
+            }
+            Mode::Overturned => 0.0,
+        }
+    }
+
+    /// F'(q) on the branch of `mode` (negative while rocking).
+    pub fn restoring_stiffness(&self, mode: Mode) -> f64 {
+        match mode {
+            Mode::PreUplift => self.ke,
+            Mode::RockRight | Mode::RockLeft => -self.ke * self.s_n / (self.width - self.s_n),
+            Mode::Overturned => 0.0,
+        }
+    }
+
+    /// Coefficient of q' in eq. 16, (gamma/E) nu F'(q). Negative while rocking: as in the paper,
+    /// the strain-rate damping then feeds energy into q.
+    pub fn damping(&self, mode: Mode) -> f64 {
+        self.damping_coefficient * self.effectiveness(mode) * self.restoring_stiffness(mode)
+    }
+
+    /// q'' from eq. 16: Me q'' + (gamma/E) nu F' q' + nu F(q) = -beta Me a.
+    pub fn acceleration(&self, mode: Mode, q: f64, qdot: f64, floor_acc: f64) -> f64 {
+        if mode == Mode::Overturned {
+            return 0.0;
+        }
+        let nu = self.effectiveness(mode);
+        -(self.damping(mode) * qdot + nu * self.restoring_force(mode, q)) / self.me
+            - self.participation(mode) * floor_acc
+    }
+
+    /// Partial derivatives of q'' with respect to q and q' (constant within a mode).
+    pub fn acceleration_jacobian(&self, mode: Mode) -> (f64, f64) {
+        if mode == Mode::Overturned {
+            return (0.0, 0.0);
+        }
+        let nu = self.effectiveness(mode);
+        (
+            -nu * self.restoring_stiffness(mode) / self.me,
+            -self.damping(mode) / self.me,
+        )
+    }
+
+    /// Potential V(q) of the effective restoring force: V' = nu F on the mode's branch and V is
+    /// continuous at |q| = s_n, so that Me q'^2/2 + V(q) is the SDOF energy.
+    pub fn potential_energy(&self, mode: Mode, q: f64) -> f64 {
+        match mode {
+            Mode::PreUplift => 0.5 * self.ke * q * q,
+            Mode::RockRight | Mode::RockLeft | Mode::Overturned => {
+                let x = q.abs();
+                let slope = self.ke * self.s_n / (self.width - self.s_n);
+                0.5 * self.ke * self.s_n * self.s_n
+                    + self.nu2
+                        * slope
+                        * (self.width * (x - self.s_n) - 0.5 * (x * x - self.s_n * self.s_n))
+            }
+        }
+    }
+
+    /// Power fed into the SDOF energy by the floor, -beta Me a q'.
+    pub fn input_power(&self, mode: Mode, qdot: f64, floor_acc: f64) -> f64 {
+        -self.participation(mode) * self.me * floor_acc * qdot
+    }
+
+    /// Power dissipated by the damping term, (gamma/E) nu F' q'^2 (negative while rocking).
+    pub fn damping_power(&self, mode: Mode, qdot: f64) -> f64 {
+        self.damping(mode) * qdot * qdot
+    }
+
+    /// Flexural part s of q (eq. 9).
+    pub fn flexural_part(&self, mode: Mode, q: f64) -> f64 {
+        match mode {
+            Mode::PreUplift => q,
+            _ => {
+                let side = if q >= 0.0 { 1.0 } else { -1.0 };
+                side * self.s_n * (self.width - side * q) / (self.width - self.s_n)
+            }
+        }
+    }
+
+    /// Rocking part r = q - s of q (eq. 9).
+    pub fn rocking_part(&self, mode: Mode, q: f64) -> f64 {
+        q - self.flexural_part(mode, q)
+    }
+}
+
+/// Names of the guards, so that a solver can refer to "the i-th guard of this mode".
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum GuardSlot {
+    UpliftRight,
+    UpliftLeft,
+    Landing,
+    Overturn,
+}

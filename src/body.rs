@@ -1,0 +1,106 @@
+//! The physical body: a prismatic slender elastic body standing on a rigid floor.
+
+use serde::Serialize;
+
+use crate::error::{Error, Result};
+
+/// Which set of mode-shape constants to use (MODEL.md section 2).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ConstantSet {
+    /// Constants computed exactly from the cantilever mode shape.
+    Exact,
+    /// The rounded values printed in Ichinose (1986), for reproducing the paper digit by digit.
+    Paper,
+}
+
+impl ConstantSet {
+    pub fn name(self) -> &'static str {
+        match self {
+            ConstantSet::Exact => "exact",
+            ConstantSet::Paper => "paper",
+        }
+    }
+}
+
+/// A validated body. All quantities in SI units.
+#[derive(Debug, Clone, Serialize)]
+pub struct Body {
+    /// H, m.
+    pub height: f64,
+    /// B, in-plane width, m.
+    pub width: f64,
+    /// D, out-of-plane depth, m.
+    pub depth: f64,
+    /// M, total mass, kg.
+    pub mass: f64,
+    /// EI, flexural rigidity of the section, N m^2.
+    pub flexural_rigidity: f64,
+    /// h, damping ratio before uplift.
+    pub damping_ratio: f64,
+    /// g, m/s^2.
+    pub gravity: f64,
+    pub constant_set: ConstantSet,
+}
+
+impl Body {
+    /// Checks the rules that do not need the derived constants; `Constants::new` checks the rest
+    /// (stability under self-weight, slenderness).
+    pub fn new(
+        height: f64,
+        width: f64,
+        depth: f64,
+        mass: f64,
+        flexural_rigidity: f64,
+        damping_ratio: f64,
+        gravity: f64,
+        constant_set: ConstantSet,
+    ) -> Result<Self> {
+        positive("body.height", height)?;
+        positive("body.width", width)?;
+        positive("body.depth", depth)?;
+        positive("body.mass", mass)?;
+        positive("body.flexural_rigidity", flexural_rigidity)?;
+        positive("body.gravity", gravity)?;
+        if !(0.0..1.0).contains(&damping_ratio) {
+            return Err(Error::invalid(
+                "body.damping_ratio",
+                damping_ratio,
+                "the damping ratio must lie in [0, 1)",
+            ));
+        }
+        if width >= height {
+            return Err(Error::invalid(
+                "body.width",
+                width,
+                &format!(
+                    "the width must be less than the height ({height} m): the model is for slender bodies"
+                ),
+            ));
+        }
+        Ok(Body {
+            height,
+            width,
+            depth,
+            mass,
+            flexural_rigidity,
+            damping_ratio,
+            gravity,
+            constant_set,
+        })
+    }
+
+    /// Mass per unit height, kg/m.
+    pub fn mass_per_height(&self) -> f64 {
+        self.mass / self.height
+    }
+}
+
+/// Rejects zero, negative, NaN and infinite values.
+pub(crate) fn positive(key: &str, value: f64) -> Result<()> {
+    if value.is_finite() && value > 0.0 {
+        Ok(())
+    } else {
+        Err(Error::invalid(key, value, "must be a finite number greater than 0"))
+    }
+}

@@ -1,0 +1,183 @@
+//! Derived constants of the SDOF model (MODEL.md sections 2-5 and 7a).
+
+use serde::Serialize;
+
+use crate::body::{Body, ConstantSet};
+use crate::error::{Error, Result};
+
+/// First root of cos L cosh L = -1 (first cantilever mode).
+pub const MODE_ROOT: f64 = 1.875_104_068_711_961;
+
+/// Value of M g H^2 / EI at which a uniform cantilever buckles under its own weight.
+pub const SELF_WEIGHT_BUCKLING_PARAMETER: f64 = 7.837;
+
+/// The mode-shape numbers the model is built from: either exact, or as printed in the paper.
+#[derive(Debug, Clone, Copy, Serialize)]
+pub struct ModeShapeIntegrals {
+    /// lambda: U''(0) = lambda^2 / H^2; int U xi = 1 / lambda^2.
+    pub lambda: f64,
+    /// int_0^1 U dxi.
+    pub int_u: f64,
+    /// int_0^1 U^2 dxi.
+    pub int_u2: f64,
+    /// beta1 = int U / int U^2.
+    pub beta1: f64,
+    /// Ke = stiffness_coefficient * EI / H^3.
+    pub stiffness_coefficient: f64,
+}
+
+impl ModeShapeIntegrals {
+    pub fn exact() -> Self {
+        let l = MODE_ROOT;
+        let sigma = (l.cosh() + l.cos()) / (l.sinh() + l.sin());
+        let int_u = sigma / l;
+        let int_u2 = 0.25;
+        ModeShapeIntegrals {
+            lambda: l,
+            int_u,
+            int_u2,
+            beta1: int_u / int_u2,
+            stiffness_coefficient: l.powi(3) * sigma,
+        }
+    }
+
+    /// The rounded values printed in the paper: lambda = 1.8751, int U = 0.3915 (Me = 0.3915 M),
+    /// int U^2 = 0.2503, beta1 = 1.564, Ke = 4.840 EI/H^3.
+    pub fn paper() -> Self {
+        ModeShapeIntegrals {
+            lambda: 1.8751,
+            int_u: 0.3915,
+            int_u2: 0.2503,
+            beta1: 1.564,
+            stiffness_coefficient: 4.840,
+        }
+    }
+
+    pub fn for_set(set: ConstantSet) -> Self {
+        match set {
+            ConstantSet::Exact => Self::exact(),
+            ConstantSet::Paper => Self::paper(),
+        }
+    }
+}
+
+/// Every constant the automaton and the reports need, derived once from a [`Body`].
+#[derive(Debug, Clone, Serialize)]
+pub struct Constants {
+    pub constant_set: ConstantSet,
+    pub mode_shape: ModeShapeIntegrals,
+    /// Me, generalised mass, kg.
+    pub generalised_mass: f64,
+    /// Ke, generalised stiffness, N/m.
+    pub generalised_stiffness: f64,
+    /// omega, pre-uplift circular frequency, rad/s.
+    pub omega: f64,
+    /// T, pre-uplift period, s.
+    pub period: f64,
+    /// gamma/E = 2 h / omega, strain-rate damping coefficient, s.
+    pub damping_coefficient: f64,
+    /// s_n, top displacement at which uplift starts, m.
+    pub uplift_displacement: f64,
+    /// nu1 = 1, effectiveness factor before uplift.
+    pub nu1: f64,
+    /// beta1, participation factor before uplift.
+    pub beta1: f64,
+    /// nu2, effectiveness factor while rocking.
+    pub nu2: f64,
+    /// beta2, participation factor while rocking.
+    pub beta2: f64,
+    /// zetaU: velocity ratio at uplift (q' -> zetaU q').
+    pub zeta_uplift: f64,
+    /// zetaL: velocity ratio at landing (q' -> q' / zetaL).
+    pub zeta_landing: f64,
+    /// Floor acceleration that starts uplift quasi-statically: omega^2 s_n / beta1, m/s^2.
+    pub quasi_static_uplift_acceleration: f64,
+    /// M g H^2 / EI: the size of the self-weight effect the model leaves out of bending.
+    pub gravity_parameter: f64,
+    /// gravity_parameter / 7.837 (1 = buckling under self-weight).
+    pub gravity_parameter_ratio: f64,
+    /// Width B, m; the overturning limit of q.
+    pub width: f64,
+}
+
+impl Constants {
+    /// Derives the constants and rejects bodies for which the model has no meaning.
+    pub fn new(body: &Body) -> Result<Self> {
+        let shape = ModeShapeIntegrals::for_set(body.constant_set);
+        let l2 = shape.lambda * shape.lambda;
+        let (h, b) = (body.height, body.width);
+        let mg = body.mass * body.gravity;
+
+        let me = body.mass * shape.int_u;
+        let ke = shape.stiffness_coefficient * body.flexural_rigidity / h.powi(3);
+        let omega = (ke / me).sqrt();
+        let gravity_parameter = mg * h * h / body.flexural_rigidity;
+
+        // Eq. 8: base bending moment EI (lambda/H)^2 s equals the gravity moment about the toe.
+        let s_n = b / (2.0 * body.flexural_rigidity * l2 / (mg * h * h) + 2.0 * shape.int_u);
+        if s_n >= b {
+            return Err(Error::invalid(
+                "body",
+                format!("s_n = {s_n} m >= B = {b} m"),
+                "the body is unstable under its own weight (uplift displacement s_n must be less than the width B)",
+            ));
+        }
+        let d = b - s_n;
+
+        // Eq. 13 (per unit H): integrals of the rocking velocity shape V = (-s_n U + B xi)/d.
+        let int_uv = (-s_n * shape.int_u2 + b / l2) / d;
+        let int_v = (-s_n * shape.int_u + b / 2.0) / d;
+        let int_v2 = (s_n * s_n * shape.int_u2 - 2.0 * b * s_n / l2 + b * b / 3.0) / (d * d);
+        let nu2 = int_uv / int_v2;
+        let beta2 = int_v / int_v2;
+
+        // Eqs. 19-22: angular momentum about the pivot toe (uplift) and the landing edge.
+        let int_uy = h * h / l2;
+        let int_vy = h * h * (b / 3.0 - s_n / l2) / d;
+        let rotary = b * b / 12.0;
+        let vertical = (b * b / 4.0) * b / d;
+        let zeta_uplift = (int_uy + rotary) / (int_vy + rotary + vertical);
+        let zeta_landing = (int_uy + rotary) / (int_vy + rotary - vertical);
+        if !(zeta_landing > 0.0 && zeta_landing < 1.0) {
+            return Err(Error::invalid(
+                "body",
+                format!("zetaL = {zeta_landing} (H = {h} m, B = {b} m)"),
+                "the body is too squat for the slender-body model (the landing ratio zetaL must lie in (0, 1))",
+            ));
+        }
+
+        Ok(Constants {
+            constant_set: body.constant_set,
+            mode_shape: shape,
+            generalised_mass: me,
+            generalised_stiffness: ke,
+            omega,
+            period: 2.0 * std::f64::consts::PI / omega,
+            damping_coefficient: 2.0 * body.damping_ratio / omega,
+            uplift_displacement: s_n,
+            nu1: 1.0,
+            beta1: shape.beta1,
+            nu2,
+            beta2,
+            zeta_uplift,
+            zeta_landing,
+            quasi_static_uplift_acceleration: omega * omega * s_n / shape.beta1,
+            gravity_parameter,
+            gravity_parameter_ratio: gravity_parameter / SELF_WEIGHT_BUCKLING_PARAMETER,
+            width: b,
+        })
+    }
+
+    /// Flexural rigidity that gives the pre-uplift period `period` for a body of the given mass and
+    /// height under the constant set `set` (inverse of omega = sqrt(Ke/Me)).
+    pub fn flexural_rigidity_for_period(
+        period: f64,
+        mass: f64,
+        height: f64,
+        set: ConstantSet,
+    ) -> f64 {
+        let shape = ModeShapeIntegrals::for_set(set);
+        let omega = 2.0 * std::f64::consts::PI / period;
+        omega * omega * mass * shape.int_u * height.powi(3) / shape.stiffness_coefficient
+    }
+}

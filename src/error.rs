@@ -1,0 +1,76 @@
+//! Typed errors of the library. Every message names the thing, the value and the rule.
+
+use std::path::PathBuf;
+
+/// Everything that can go wrong in flexrock, from reading a model file to writing results.
+#[derive(Debug, thiserror::Error)]
+pub enum Error {
+    /// A parameter breaks a rule of the model (`key` is the model-file key, e.g. `body.width`).
+    #[error("{key} = {value}: {rule}")]
+    InvalidParameter {
+        key: String,
+        value: String,
+        rule: String,
+    },
+
+    /// The model file could not be read at all.
+    #[error("{path}: cannot read the model file: {source}")]
+    ReadModel {
+        path: PathBuf,
+        #[source]
+        source: std::io::Error,
+    },
+
+    /// The model file is not valid TOML or does not follow the schema (unknown key, wrong type).
+    #[error("{path}: {message}")]
+    ParseModel { path: PathBuf, message: String },
+
+    /// A parameter in a model file breaks a rule; `path` says which file.
+    #[error("{path}: {source}")]
+    InModel {
+        path: PathBuf,
+        #[source]
+        source: Box<Error>,
+    },
+
+    /// The integrator could not continue.
+    #[error("the {method} solver failed at t = {t} s: {message}")]
+    Solver {
+        method: String,
+        t: f64,
+        message: String,
+    },
+
+    /// An output file could not be written.
+    #[error("cannot write {path}: {source}")]
+    Write {
+        path: PathBuf,
+        #[source]
+        source: std::io::Error,
+    },
+}
+
+impl Error {
+    /// Shorthand for [`Error::InvalidParameter`].
+    pub fn invalid(key: &str, value: impl std::fmt::Display, rule: &str) -> Self {
+        Error::InvalidParameter {
+            key: key.to_string(),
+            value: value.to_string(),
+            rule: rule.to_string(),
+        }
+    }
+
+    /// True for errors caused by the user's input rather than by the computation or the disk.
+    pub fn is_input_error(&self) -> bool {
+        matches!(
+            self,
+            Error::InvalidParameter { .. }
+                | Error::ReadModel { .. }
+                | Error::ParseModel { .. }
+                | Error::InModel { .. }
+        )
+    }
+}
+
+/// Result type of the library.
+pub type Result<T> = std::result::Result<T, Error>;

@@ -1,0 +1,139 @@
+//! Floor motions. Every solver sees an excitation only through the [`FloorMotion`] trait, so new
+//! kinds (recorded ground motions, pulses) need no change in any solver.
+
+use std::f64::consts::PI;
+
+use serde::Serialize;
+
+/// A prescribed horizontal floor acceleration a(t) = u0''(t).
+pub trait FloorMotion: Send + Sync {
+    /// Floor acceleration at time `t` (s), m/s^2.
+    fn acceleration(&self, t: f64) -> f64;
+
+    /// Times (s, increasing) at which a(t) or one of its derivatives jumps. Adaptive solvers stop
+    /// and restart there so that their order is not spoiled by integrating across a kink.
+    fn breakpoints(&self) -> &[f64] {
+        &[]
+    }
+
+    /// A short name for reports, e.g. `paper-sine`.
+    fn kind(&self) -> &'static str;
+
+    /// The parameters as understood (including derived ones), for result files.
+    fn parameters(&self) -> serde_json::Value;
+}
+
+/// No floor motion: free vibration or free rocking from the initial state.
+#[derive(Debug, Clone, Serialize)]
+pub struct Free;
+
+impl FloorMotion for Free {
+    fn acceleration(&self, _t: f64) -> f64 {
+        0.0
+    }
+    fn kind(&self) -> &'static str {
+        "free"
+    }
+    fn parameters(&self) -> serde_json::Value {
+        serde_json::json!({ "kind": self.kind() })
+    }
+}
+
+/// a(t) = A sin(2 pi t / Tp) from t = 0 (the floor starts with velocity -A Tp / 2 pi).
+#[derive(Debug, Clone, Serialize)]
+pub struct Harmonic {
+    pub amplitude: f64,
+    pub period: f64,
+}
+
+impl FloorMotion for Harmonic {
+    fn acceleration(&self, t: f64) -> f64 {
+        self.amplitude * (2.0 * PI * t / self.period).sin()
+    }
+    fn kind(&self) -> &'static str {
+        "harmonic"
+    }
+    fn parameters(&self) -> serde_json::Value {
+        serde_json::json!({ "kind": self.kind(), "amplitude": self.amplitude, "period": self.period })
+    }
+}
+
+/// The paper's excitation (MODEL.md section 8): a sine whose first `ramp` seconds are replaced by
+/// a cubic c1 t + c2 t^2 + c3 t^3 chosen so that the floor starts at rest and its acceleration,
+/// velocity and displacement join those of the pure sine at t = ramp.
+#[derive(Debug, Clone, Serialize)]
+pub struct PaperSine {
+    pub amplitude: f64,
+    pub period: f64,
+    pub ramp: f64,
+    /// [c1, c2, c3], computed by [`PaperSine::new`].
+    pub ramp_coefficients: [f64; 3],
+    #[serde(skip)]
+    breakpoints: [f64; 1],
+}
+
+impl PaperSine {
+    pub fn new(amplitude: f64, period: f64, ramp: f64) -> Self {
+        PaperSine {
+            amplitude,
+            period,
+            ramp,
+            ramp_coefficients: ramp_cubic(amplitude, period, ramp),
+            breakpoints: [ramp],
+        }
+    }
+}
+
+impl FloorMotion for PaperSine {
+    fn acceleration(&self, t: f64) -> f64 {
+        if t < self.ramp {
+            let [c1, c2, c3] = self.ramp_coefficients;
+            t * (c1 + t * (c2 + t * c3))
+        } else {
+            self.amplitude * (2.0 * PI * t / self.period).sin()
+        }
+    }
+    fn breakpoints(&self) -> &[f64] {
+        &self.breakpoints
+    }
+    fn kind(&self) -> &'static str {
+        "paper-sine"
+    }
+    fn parameters(&self) -> serde_json::Value {
+        serde_json::json!({
+            "kind": self.kind(),
+            "amplitude": self.amplitude,
+            "period": self.period,
+            "ramp": self.ramp,
+            "ramp_coefficients": self.ramp_coefficients,
+        })
+    }
+}
+
+/// Solves for c1..c3 such that, at t = ramp, the cubic's acceleration, velocity (from rest) and
+/// displacement (from rest) equal the sine's A sin(wt), -(A/w) cos(wt) and -(A/w^2) sin(wt).
+fn ramp_cubic(amplitude: f64, period: f64, ramp: f64) -> [f64; 3] {
+    let w = 2.0 * PI / period;
+    let t = ramp;
+    let (s, c) = ((w * t).sin(), (w * t).cos());
+    // Rows: acceleration, velocity, displacement of c1 t + c2 t^2 + c3 t^3 at t.
+    let m = nalgebra::Matrix3::new(
+        t,
+        t * t,
+        t.powi(3),
+        t * t / 2.0,
+        t.powi(3) / 3.0,
+        t.powi(4) / 4.0,
+        t.powi(3) / 6.0,
+        t.powi(4) / 12.0,
+        t.powi(5) / 20.0,
+    );
+    let rhs = nalgebra::Vector3::new(
+        amplitude * s,
+        -amplitude / w * c,
+        -amplitude / (w * w) * s,
+    );
+    // The matrix is regular for any t > 0 (its determinant is t^9 / 8640), which validation ensures.
+    let x = m.lu().solve(&rhs).unwrap_or_else(nalgebra::Vector3::zeros);
+    [x[0], x[1], x[2]]
+}

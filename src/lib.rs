@@ -1,0 +1,22 @@
+//! flexrock: reference solutions of the Ichinose (1986) model of a slender elastic body rocking
+//! on a rigid floor.
+//!
+//! The pieces, each in its own module:
+//! - [`body`]: the physical body; [`constants`]: everything derived from it (MODEL.md 2-5);
+//! - [`automaton`]: the hybrid automaton (modes, right-hand sides, guards, resets);
+//! - [`excitation`]: floor motions behind the [`excitation::FloorMotion`] trait;
+//! - [`solver`]: solvers that drive the automaton; [`solution`]: what they return;
+//! - [`model`]: the TOML model file; [`output`]: CSV/JSON writers; [`run`]: the commands.
+
+pub mod automaton;
+pub mod body;
+pub mod constants;
+pub mod error;
+pub mod excitation;
+pub mod model;
+pub mod output;
+pub mod run;
+pub mod solution;
+pub mod solver;
+
+pub use error::{Error, Result};

@@ -1,0 +1,225 @@
+//! The commands behind the binary, as library functions: `props` and `run`.
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+use serde::Serialize;
+
+use crate::automaton::{Automaton, EventKind};
+use crate::body::Body;
+use crate::constants::Constants;
+use crate::error::Result;
+use crate::model::{Model, ModelFile};
+use crate::output;
+use crate::solution::{Solution, SolverStats};
+use crate::solver::adaptive::{self, AdaptiveSettings};
+use crate::solver::InitialState;
+
+/// Version of flexrock that made a result.
+pub const VERSION: &str = env!("CARGO_PKG_VERSION");
+
+/// Solves a model with the solver its settings name.
+pub fn simulate(model: &Model) -> Result<Solution> {
+    let automaton = Automaton::new(&model.constants);
+    adaptive::solve(
+        &automaton,
+        model.floor.as_ref(),
+        model.initial,
+        model.duration,
+        &model.solver,
+    )
+}
+
+/// What `flexrock props` prints: the body as understood and its derived constants.
+#[derive(Debug, Serialize)]
+pub struct Properties<'a> {
+    pub flexrock_version: &'static str,
+    pub model_file: Option<String>,
+    pub body: &'a Body,
+    pub constants: &'a Constants,
+}
+
+pub fn properties(model: &Model) -> Properties<'_> {
+    Properties {
+        flexrock_version: VERSION,
+        model_file: model.path.as_ref().map(|p| p.display().to_string()),
+        body: &model.body,
+        constants: &model.constants,
+    }
+}
+
+/// The human-readable table of `flexrock props`.
+pub fn properties_table(model: &Model) -> String {
+    let b = &model.body;
+    let c = &model.constants;
+    let mut t = String::new();
+    let mut row = |name: &str, value: String, unit: &str, note: &str| {
+        let _ = writeln!(t, "  {name:<34} {value:>14} {unit:<7} {note}");
+    };
+    row("height H", fmt(b.height), "m", "");
+    row("width B", fmt(b.width), "m", "");
+    row("depth D", fmt(b.depth), "m", "");
+    row("mass M", fmt(b.mass), "kg", "");
+    row("flexural rigidity EI", fmt(b.flexural_rigidity), "N m^2", "");
+    row("damping ratio h", fmt(b.damping_ratio), "", "before uplift");
+    row("gravity g", fmt(b.gravity), "m/s^2", "");
+    row(
+        "constant set",
+        c.constant_set.name().to_string(),
+        "",
+        "\"exact\" or the paper's rounded values",
+    );
+    row("generalised mass Me", fmt(c.generalised_mass), "kg", "");
+    row("generalised stiffness Ke", fmt(c.generalised_stiffness), "N/m", "");
+    row("circular frequency omega", fmt(c.omega), "rad/s", "pre-uplift");
+    row("period T", fmt(c.period), "s", "pre-uplift");
+    row("damping coefficient gamma/E", fmt(c.damping_coefficient), "s", "2 h / omega");
+    row("uplift displacement s_n", fmt(c.uplift_displacement), "m", "top displacement at uplift");
+    row("nu1", fmt(c.nu1), "", "effectiveness, pre-uplift");
+    row("beta1", fmt(c.beta1), "", "participation, pre-uplift");
+    row("nu2", fmt(c.nu2), "", "effectiveness, rocking");
+    row("beta2", fmt(c.beta2), "", "participation, rocking");
+    row("zetaU", fmt(c.zeta_uplift), "", "q' -> zetaU q' at uplift");
+    row("zetaL", fmt(c.zeta_landing), "", "q' -> q'/zetaL at landing");
+    row(
+        "quasi-static uplift acceleration",
+        fmt(c.quasi_static_uplift_acceleration),
+        "m/s^2",
+        "omega^2 s_n / beta1",
+    );
+    row("gravity parameter M g H^2/EI", fmt(c.gravity_parameter), "", "");
+    row(
+        "  ratio to 7.837 (buckling)",
+        fmt(c.gravity_parameter_ratio),
+        "",
+        "self-weight left out of bending; see README",
+    );
+    t
+}
+
+fn fmt(x: f64) -> String {
+    if x != 0.0 && (x.abs() >= 1e6 || x.abs() < 1e-3) {
+        format!("{x:.6e}")
+    } else {
+        format!("{x:.6}")
+    }
+}
+
+/// summary.json of `flexrock run`.
+#[derive(Debug, Serialize)]
+pub struct RunSummary<'a> {
+    pub flexrock_version: &'static str,
+    pub model_file: Option<String>,
+    pub max_q: f64,
+    pub t_max_q: f64,
+    pub min_q: f64,
+    pub t_min_q: f64,
+    pub n_uplift: usize,
+    pub n_landing: usize,
+    pub overturned: bool,
+    pub t_overturn: Option<f64>,
+    pub s_n: f64,
+    #[serde(rename = "T")]
+    pub period: f64,
+    pub max_energy_residual: f64,
+    pub final_time: f64,
+    pub final_mode: &'static str,
+    pub solver: &'a AdaptiveSettings,
+    pub statistics: &'a SolverStats,
+    pub constants: &'a Constants,
+    pub body: &'a Body,
+    pub excitation: serde_json::Value,
+    pub initial_state: InitialState,
+    pub duration: f64,
+    pub inputs: &'a ModelFile,
+}
+
+pub fn summary<'a>(model: &'a Model, solution: &'a Solution) -> RunSummary<'a> {
+    RunSummary {
+        flexrock_version: VERSION,
+        model_file: model.path.as_ref().map(|p| p.display().to_string()),
+        max_q: solution.max_q.value,
+        t_max_q: solution.max_q.t,
+        min_q: solution.min_q.value,
+        t_min_q: solution.min_q.t,
+        n_uplift: solution.count(EventKind::Uplift),
+        n_landing: solution.count(EventKind::Landing),
+        overturned: solution.overturned,
+        t_overturn: solution.t_overturn,
+        s_n: model.constants.uplift_displacement,
+        period: model.constants.period,
+        max_energy_residual: solution.max_energy_residual,
+        final_time: solution.final_time,
+        final_mode: solution.final_mode.name(),
+        solver: &model.solver,
+        statistics: &solution.stats,
+        constants: &model.constants,
+        body: &model.body,
+        excitation: model.floor.parameters(),
+        initial_state: model.initial,
+        duration: model.duration,
+        inputs: &model.file,
+    }
+}
+
+/// Result of `flexrock run`.
+pub struct RunReport {
+    pub solution: Solution,
+    pub files: Vec<PathBuf>,
+}
+
+/// Solves a model and writes history.csv, events.csv and summary.json into `out_dir`.
+pub fn run(model: &Model, out_dir: &Path) -> Result<RunReport> {
+    let solution = simulate(model)?;
+    let files = output::write_atomically(
+        out_dir,
+        &[
+            ("history.csv", output::history_csv(&solution.samples)),
+            ("events.csv", output::events_csv(&solution.events)),
+            ("summary.json", output::json_bytes(&summary(model, &solution))),
+        ],
+    )?;
+    Ok(RunReport { solution, files })
+}
+
+/// The short human summary printed after a run.
+pub fn run_report_text(model: &Model, report: &RunReport) -> String {
+    let s = &report.solution;
+    let mut t = String::new();
+    let _ = writeln!(
+        t,
+        "flexrock {VERSION}: {} solution over {} s ({} excitation), T = {:.4} s, s_n = {:.6} m",
+        s.stats.method,
+        model.duration,
+        model.floor.kind(),
+        model.constants.period,
+        model.constants.uplift_displacement
+    );
+    let _ = writeln!(
+        t,
+        "  max q = {:.9} m at t = {:.9} s; min q = {:.9} m at t = {:.9} s",
+        s.max_q.value, s.max_q.t, s.min_q.value, s.min_q.t
+    );
+    let _ = writeln!(
+        t,
+        "  {} uplifts, {} landings{}",
+        s.count(EventKind::Uplift),
+        s.count(EventKind::Landing),
+        match s.t_overturn {
+            Some(to) => format!(", overturned at t = {to:.9} s"),
+            None => ", no overturning".to_string(),
+        }
+    );
+    let _ = writeln!(
+        t,
+        "  {} steps, {} right-hand-side evaluations, {:.3} ms; max energy residual {:.3e} J",
+        s.stats.steps,
+        s.stats.rhs_evaluations,
+        s.stats.wall_time_s * 1e3,
+        s.max_energy_residual
+    );
+    for f in &report.files {
+        let _ = writeln!(t, "  wrote {}", f.display());
+    }
+    t
+}

@@ -1,0 +1,216 @@
+//! What a solver returns, whichever solver it is: sampled history, event log, peaks, energy
+//! balance and statistics. [`Recorder`] builds it, so that every solver books results the same way.
+
+use serde::Serialize;
+
+use crate::automaton::{Automaton, EventKind, Mode};
+
+/// One row of the history.
+#[derive(Debug, Clone, Serialize)]
+pub struct Sample {
+    pub t: f64,
+    pub q: f64,
+    pub qdot: f64,
+    /// Flexural part of q.
+    pub s: f64,
+    /// Rocking part of q.
+    pub r: f64,
+    pub mode: Mode,
+    pub floor_acc: f64,
+    /// Restoring force (base shear) F(q), N.
+    pub restoring_force: f64,
+    /// Energy balance error, J: see [`Recorder`].
+    pub energy_residual: f64,
+}
+
+/// One mode change.
+#[derive(Debug, Clone, Serialize)]
+pub struct Event {
+    pub index: usize,
+    pub t: f64,
+    pub kind: EventKind,
+    pub from: Mode,
+    pub to: Mode,
+    pub q: f64,
+    pub qdot_before: f64,
+    pub qdot_after: f64,
+}
+
+/// A peak of q and when it happened.
+#[derive(Debug, Clone, Copy, Serialize)]
+pub struct Extremum {
+    pub value: f64,
+    pub t: f64,
+}
+
+/// Cost of a solution.
+#[derive(Debug, Clone, Default, Serialize)]
+pub struct SolverStats {
+    pub method: String,
+    /// Accepted steps.
+    pub steps: usize,
+    pub error_test_failures: usize,
+    pub nonlinear_iterations: usize,
+    pub jacobian_evaluations: usize,
+    pub rhs_evaluations: usize,
+    pub wall_time_s: f64,
+}
+
+/// A complete solution of one run.
+#[derive(Debug, Clone, Serialize)]
+pub struct Solution {
+    pub samples: Vec<Sample>,
+    pub events: Vec<Event>,
+    pub max_q: Extremum,
+    pub min_q: Extremum,
+    pub overturned: bool,
+    pub t_overturn: Option<f64>,
+    pub final_time: f64,
+    pub final_mode: Mode,
+    /// Largest |energy_residual| over the samples, J.
+    pub max_energy_residual: f64,
+    pub stats: SolverStats,
+}
+
+impl Solution {
+    pub fn count(&self, kind: EventKind) -> usize {
+        self.events.iter().filter(|e| e.kind == kind).count()
+    }
+}
+
+/// Books samples, events, peaks and the energy balance as a solver advances.
+///
+/// Energy balance: with E = Me q'^2/2 + V(q) (see [`Automaton::potential_energy`]), eq. 16 gives
+/// dE/dt = input power - damping power between events, and E jumps at events by the resets.
+/// The solver integrates the two powers; the residual
+/// `E(t) - E(0) - W_input(t) + W_damping(t) - sum of jumps` is zero for the exact solution, so its
+/// size measures the integration error.
+pub struct Recorder<'a> {
+    automaton: &'a Automaton,
+    samples: Vec<Sample>,
+    events: Vec<Event>,
+    max_q: Extremum,
+    min_q: Extremum,
+    initial_energy: f64,
+    event_jumps: f64,
+    max_energy_residual: f64,
+    t_overturn: Option<f64>,
+}
+
+impl<'a> Recorder<'a> {
+    pub fn new(automaton: &'a Automaton, t0: f64, q0: f64, qdot0: f64, mode: Mode) -> Self {
+        Recorder {
+            automaton,
+            samples: Vec::new(),
+            events: Vec::new(),
+            max_q: Extremum { value: q0, t: t0 },
+            min_q: Extremum { value: q0, t: t0 },
+            initial_energy: Self::energy(automaton, mode, q0, qdot0),
+            event_jumps: 0.0,
+            max_energy_residual: 0.0,
+            t_overturn: None,
+        }
+    }
+
+    fn energy(automaton: &Automaton, mode: Mode, q: f64, qdot: f64) -> f64 {
+        0.5 * automaton.generalised_mass() * qdot * qdot + automaton.potential_energy(mode, q)
+    }
+
+    /// Records a state; `work_input` and `work_damping` are the integrals (J) of
+    /// [`Automaton::input_power`] and [`Automaton::damping_power`] from the start.
+    #[allow(clippy::too_many_arguments)]
+    pub fn sample(
+        &mut self,
+        t: f64,
+        mode: Mode,
+        q: f64,
+        qdot: f64,
+        floor_acc: f64,
+        work_input: f64,
+        work_damping: f64,
+    ) {
+        let a = self.automaton;
+        let residual = Self::energy(a, mode, q, qdot)
+            - self.initial_energy
+            - work_input
+            + work_damping
+            - self.event_jumps;
+        self.max_energy_residual = self.max_energy_residual.max(residual.abs());
+        self.peak_candidate(t, q);
+        self.samples.push(Sample {
+            t,
+            q,
+            qdot,
+            s: a.flexural_part(mode, q),
+            r: a.rocking_part(mode, q),
+            mode,
+            floor_acc,
+            restoring_force: a.restoring_force(mode, q),
+            energy_residual: residual,
+        });
+    }
+
+    /// Offers a state at which q may be extremal (a root of q', an event, an end point).
+    pub fn peak_candidate(&mut self, t: f64, q: f64) {
+        if q > self.max_q.value {
+            self.max_q = Extremum { value: q, t };
+        }
+        if q < self.min_q.value {
+            self.min_q = Extremum { value: q, t };
+        }
+    }
+
+    /// Records a mode change and the states on both sides of it.
+    #[allow(clippy::too_many_arguments)]
+    pub fn event(
+        &mut self,
+        t: f64,
+        kind: EventKind,
+        from: Mode,
+        to: Mode,
+        q: f64,
+        qdot_before: f64,
+        qdot_after: f64,
+        floor_acc: f64,
+        work_input: f64,
+        work_damping: f64,
+    ) {
+        self.sample(t, from, q, qdot_before, floor_acc, work_input, work_damping);
+        let a = self.automaton;
+        self.event_jumps +=
+            Self::energy(a, to, q, qdot_after) - Self::energy(a, from, q, qdot_before);
+        self.events.push(Event {
+            index: self.events.len(),
+            t,
+            kind,
+            from,
+            to,
+            q,
+            qdot_before,
+            qdot_after,
+        });
+        if kind == EventKind::Overturn {
+            self.t_overturn = Some(t);
+        }
+        self.sample(t, to, q, qdot_after, floor_acc, work_input, work_damping);
+    }
+
+    pub fn events(&self) -> &[Event] {
+        &self.events
+    }
+
+    pub fn finish(self, final_time: f64, final_mode: Mode, stats: SolverStats) -> Solution {
+        Solution {
+            samples: self.samples,
+            events: self.events,
+            max_q: self.max_q,
+            min_q: self.min_q,
+            overturned: self.t_overturn.is_some(),
+            t_overturn: self.t_overturn,
+            final_time,
+            final_mode,
+            max_energy_residual: self.max_energy_residual,
+            stats,
+        }
+    }
+}

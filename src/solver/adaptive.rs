@@ -1,0 +1,427 @@
+//! Adaptive implicit integration of the automaton with diffsol (BDF, ESDIRK34, TR-BDF2).
+//!
+//! How events are found: diffsol's root finding watches three functions of the active mode,
+//! q' (so that every extremum of q is a stop and the peaks are located to solver accuracy) and the
+//! mode's two guards. Between two roots of q', q is monotone, so a guard can be crossed at most
+//! once there; a guard crossed and re-crossed inside one step therefore shows up as a root of q'
+//! first, after which the state at the end of the step is checked against the guards and a
+//! crossing the root finder passed over is located by bisection on diffsol's dense output.
+//! At an event the solver is moved back to the event time, q is placed exactly on the guard, the
+//! angular-momentum reset is applied to q', and the method restarts in the new mode. A state that
+//! starts on a guard and moves back into its mode does not trigger it (a zero guard value at the
+//! start of a step is not a sign change). Breakpoints of the floor motion are stop times where the
+//! method restarts, so that no step straddles a kink of a(t).
+
+use std::cell::Cell;
+use std::time::Instant;
+
+use diffsol::{
+    NalgebraLU, NalgebraMat, OdeBuilder, OdeEquations, OdeSolverMethod, OdeSolverStopReason,
+};
+use serde::Serialize;
+
+use crate::automaton::{Automaton, Guard, Mode};
+use crate::error::{Error, Result};
+use crate::excitation::FloorMotion;
+use crate::solution::{Recorder, Solution, SolverStats};
+use crate::solver::{InitialState, OutputGrid};
+
+type Matrix = NalgebraMat<f64>;
+type LinearSolver = NalgebraLU<f64>;
+
+/// Number of state components: q, q', and the two energy integrals (per unit Me).
+const NSTATES: usize = 4;
+/// Number of root functions: q' and the active mode's two guards.
+const NROOTS: usize = 3;
+
+/// The implicit methods diffsol offers.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum AdaptiveMethod {
+    Bdf,
+    Esdirk34,
+    TrBdf2,
+}
+
+impl AdaptiveMethod {
+    pub fn name(self) -> &'static str {
+        match self {
+            AdaptiveMethod::Bdf => "bdf",
+            AdaptiveMethod::Esdirk34 => "esdirk34",
+            AdaptiveMethod::TrBdf2 => "tr-bdf2",
+        }
+    }
+
+    pub fn from_name(name: &str) -> Option<Self> {
+        match name {
+            "bdf" => Some(AdaptiveMethod::Bdf),
+            "esdirk34" => Some(AdaptiveMethod::Esdirk34),
+            "tr-bdf2" => Some(AdaptiveMethod::TrBdf2),
+            _ => None,
+        }
+    }
+}
+
+/// Settings of an adaptive run.
+#[derive(Debug, Clone, Copy, Serialize)]
+pub struct AdaptiveSettings {
+    pub method: AdaptiveMethod,
+    pub rtol: f64,
+    pub atol: f64,
+    /// Spacing of the sampled history, s.
+    pub output_dt: f64,
+}
+
+/// Integrates the automaton from `initial` over [0, duration].
+pub fn solve(
+    automaton: &Automaton,
+    floor: &dyn FloorMotion,
+    initial: InitialState,
+    duration: f64,
+    settings: &AdaptiveSettings,
+) -> Result<Solution> {
+    let started = Instant::now();
+    let mode = Cell::new(automaton.initial_mode(initial.q));
+    let rhs_evaluations = Cell::new(0usize);
+    let me = automaton.generalised_mass();
+
+    let solver_error = |t: f64, e: &dyn std::fmt::Display| Error::Solver {
+        method: settings.method.name().to_string(),
+        t,
+        message: e.to_string(),
+    };
+
+    let problem = OdeBuilder::<Matrix>::new()
+        .t0(0.0)
+        .rtol(settings.rtol)
+        .atol([settings.atol; NSTATES])
+        .rhs_implicit(
+            |x, _p, t, y| {
+                rhs_evaluations.set(rhs_evaluations.get() + 1);
+                right_hand_side(automaton, mode.get(), floor.acceleration(t), x, y);
+            },
+            |x, _p, t, v, y| {
+                let m = mode.get();
+                let (d_q, d_qdot) = automaton.acceleration_jacobian(m);
+                let a = floor.acceleration(t);
+                y[0] = v[1];
+                y[1] = d_q * v[0] + d_qdot * v[1];
+                y[2] = automaton.input_power(m, v[1], a) / me;
+                y[3] = 2.0 * automaton.damping(m) * x[1] * v[1] / me;
+            },
+        )
+        .init(
+            |_p, _t, y| {
+                y[0] = initial.q;
+                y[1] = initial.qdot;
+                y[2] = 0.0;
+                y[3] = 0.0;
+            },
+            NSTATES,
+        )
+        .root(
+            |x, _p, _t, y| {
+                y[0] = x[1];
+                let m = mode.get();
+                let slots = automaton.guards(m);
+                for i in 0..NROOTS - 1 {
+                    // Unused slots (the overturned mode has no guards) never change sign.
+                    y[i + 1] = slots
+                        .get(i)
+                        .map_or(1.0, |&slot| automaton.guard(m, slot).overshoot(x[0]));
+                }
+            },
+            NROOTS,
+        )
+        .build()
+        .map_err(|e| solver_error(0.0, &e))?;
+
+    let driver = Driver {
+        automaton,
+        floor,
+        mode: &mode,
+        duration,
+        settings,
+    };
+    let (recorder, final_time, mut stats) = match settings.method {
+        AdaptiveMethod::Bdf => driver.run(
+            problem
+                .bdf::<LinearSolver>()
+                .map_err(|e| solver_error(0.0, &e))?,
+        ),
+        AdaptiveMethod::Esdirk34 => driver.run(
+            problem
+                .esdirk34::<LinearSolver>()
+                .map_err(|e| solver_error(0.0, &e))?,
+        ),
+        AdaptiveMethod::TrBdf2 => driver.run(
+            problem
+                .tr_bdf2::<LinearSolver>()
+                .map_err(|e| solver_error(0.0, &e))?,
+        ),
+    }?;
+    stats.rhs_evaluations = rhs_evaluations.get();
+    stats.wall_time_s = started.elapsed().as_secs_f64();
+    Ok(recorder.finish(final_time, mode.get(), stats))
+}
+
+/// The first-order system: q, q', and the energy integrals per unit Me.
+fn right_hand_side(automaton: &Automaton, mode: Mode, floor_acc: f64, x: &[f64], y: &mut [f64]) {
+    let me = automaton.generalised_mass();
+    y[0] = x[1];
+    y[1] = automaton.acceleration(mode, x[0], x[1], floor_acc);
+    y[2] = automaton.input_power(mode, x[1], floor_acc) / me;
+    y[3] = automaton.damping_power(mode, x[1]) / me;
+}
+
+/// The event loop, written once for every diffsol method.
+struct Driver<'d> {
+    automaton: &'d Automaton,
+    floor: &'d dyn FloorMotion,
+    mode: &'d Cell<Mode>,
+    duration: f64,
+    settings: &'d AdaptiveSettings,
+}
+
+impl<'d> Driver<'d> {
+    fn error(&self, t: f64, e: impl std::fmt::Display) -> Error {
+        Error::Solver {
+            method: self.settings.method.name().to_string(),
+            t,
+            message: e.to_string(),
+        }
+    }
+
+    fn run<'a, Eqn, S>(&self, mut solver: S) -> Result<(Recorder<'d>, f64, SolverStats)>
+    where
+        Eqn: OdeEquations<T = f64, V = diffsol::NalgebraVec<f64>> + 'a,
+        S: OdeSolverMethod<'a, Eqn>,
+    {
+        let automaton = self.automaton;
+        let end = self.duration;
+
+        // Stop times: the floor motion's breakpoints inside (0, end), then the end.
+        let mut stops: Vec<f64> = self
+            .floor
+            .breakpoints()
+            .iter()
+            .copied()
+            .filter(|&b| b > 0.0 && b < end * (1.0 - 1e-12))
+            .collect();
+        stops.push(end);
+        let mut stop_index = 0;
+        solver
+            .set_stop_time(stops[0])
+            .map_err(|e| self.error(0.0, e))?;
+
+        let y0 = solver.state().y.clone();
+        let mut recorder = Recorder::new(automaton, 0.0, y0[0], y0[1], self.mode.get());
+        let mut grid = OutputGrid::new(end, self.settings.output_dt);
+        self.emit(&solver, &mut recorder, &mut grid, 0.0, true)?;
+
+        // A start on a guard, moving across it, is an event at t = 0.
+        if let Some(guard) = automaton.crossed_guard(self.mode.get(), y0[0], y0[1]) {
+            if self.apply_event(&mut solver, &mut recorder, 0.0, guard, false)? {
+                return Ok((recorder, 0.0, self.stats(&solver)));
+            }
+        }
+
+        let mut step_start = 0.0;
+        loop {
+            let reason = solver.step().map_err(|e| self.error(step_start, e))?;
+            let step_end = solver.state().t;
+            let (peak, guard_root) = match reason {
+                OdeSolverStopReason::RootFound(t, 0) => (Some(t), None),
+                OdeSolverStopReason::RootFound(t, i) => (None, Some((t, i - 1))),
+                _ => (None, None),
+            };
+
+            let mode = self.mode.get();
+            let crossing = match guard_root {
+                Some((t, i)) => Some((t, automaton.guard(mode, automaton.guards(mode)[i]))),
+                None => {
+                    // A guard the root finder passed over leaves the state beyond it.
+                    let y = &solver.state().y;
+                    match automaton.crossed_guard(mode, y[0], y[1]) {
+                        Some(g) if g.overshoot(y[0]) > 0.0 => {
+                            Some((self.locate(&solver, g, step_start, step_end)?, g))
+                        }
+                        _ => None,
+                    }
+                }
+            };
+
+            if let Some(t_peak) = peak {
+                if crossing.is_none_or(|(t, _)| t_peak < t) {
+                    let y = solver.interpolate(t_peak).map_err(|e| self.error(t_peak, e))?;
+                    recorder.peak_candidate(t_peak, y[0]);
+                }
+            }
+
+            if let Some((t_event, guard)) = crossing {
+                self.emit(&solver, &mut recorder, &mut grid, t_event, false)?;
+                if self.apply_event(&mut solver, &mut recorder, t_event, guard, true)? {
+                    return Ok((recorder, t_event, self.stats(&solver)));
+                }
+                step_start = t_event;
+            } else {
+                self.emit(&solver, &mut recorder, &mut grid, step_end, true)?;
+                step_start = step_end;
+            }
+
+            // At a stop time: finish, or restart the method past a breakpoint of a(t).
+            let stop = stops[stop_index];
+            if (step_start - stop).abs() <= 1e-12 * stop.abs().max(1.0) {
+                if stop_index + 1 == stops.len() {
+                    let y = &solver.state().y;
+                    recorder.peak_candidate(step_start, y[0]);
+                    return Ok((recorder, step_start, self.stats(&solver)));
+                }
+                stop_index += 1;
+                let _ = solver.state_mut();
+                solver
+                    .set_stop_time(stops[stop_index])
+                    .map_err(|e| self.error(step_start, e))?;
+            }
+        }
+    }
+
+    /// Samples the history at every grid time up to `until` (inclusive when `inclusive`).
+    fn emit<'a, Eqn, S>(
+        &self,
+        solver: &S,
+        recorder: &mut Recorder<'d>,
+        grid: &mut OutputGrid,
+        until: f64,
+        inclusive: bool,
+    ) -> Result<()>
+    where
+        Eqn: OdeEquations<T = f64, V = diffsol::NalgebraVec<f64>> + 'a,
+        S: OdeSolverMethod<'a, Eqn>,
+    {
+        let me = self.automaton.generalised_mass();
+        while let Some(t) = grid.peek() {
+            if t > until || (!inclusive && t == until) {
+                break;
+            }
+            let y = if t == solver.state().t {
+                solver.state().y.clone()
+            } else {
+                solver.interpolate(t).map_err(|e| self.error(t, e))?
+            };
+            recorder.sample(
+                t,
+                self.mode.get(),
+                y[0],
+                y[1],
+                self.floor.acceleration(t),
+                me * y[2],
+                me * y[3],
+            );
+            grid.advance();
+        }
+        Ok(())
+    }
+
+    /// Finds the time in [lo, hi] at which q crosses `guard`, by bisection on the dense output.
+    fn locate<'a, Eqn, S>(&self, solver: &S, guard: Guard, mut lo: f64, mut hi: f64) -> Result<f64>
+    where
+        Eqn: OdeEquations<T = f64, V = diffsol::NalgebraVec<f64>> + 'a,
+        S: OdeSolverMethod<'a, Eqn>,
+    {
+        // 60 halvings shrink any step to below the spacing of doubles around it.
+        for _ in 0..60 {
+            let mid = 0.5 * (lo + hi);
+            if mid <= lo || mid >= hi {
+                break;
+            }
+            let y = solver.interpolate(mid).map_err(|e| self.error(mid, e))?;
+            if guard.overshoot(y[0]) > 0.0 {
+                hi = mid;
+            } else {
+                lo = mid;
+            }
+        }
+        Ok(hi)
+    }
+
+    /// Moves the solver to `t`, books the event, applies the reset and switches the mode.
+    /// Returns true when the new mode is terminal.
+    fn apply_event<'a, Eqn, S>(
+        &self,
+        solver: &mut S,
+        recorder: &mut Recorder<'d>,
+        t: f64,
+        guard: Guard,
+        move_back: bool,
+    ) -> Result<bool>
+    where
+        Eqn: OdeEquations<T = f64, V = diffsol::NalgebraVec<f64>> + 'a,
+        S: OdeSolverMethod<'a, Eqn>,
+    {
+        let automaton = self.automaton;
+        let me = automaton.generalised_mass();
+        if move_back {
+            solver.state_mut_back(t).map_err(|e| self.error(t, e))?;
+        }
+        let mut guard = guard;
+        // A reset can leave the state on a guard of the new mode moving across it only in
+        // degenerate grazing cases; follow such a chain, but never forever.
+        for _ in 0..4 {
+            let from = self.mode.get();
+            let y = solver.state().y.clone();
+            let qdot_before = y[1];
+            // Place q exactly on the guard: the event was located to solver accuracy.
+            let q = guard.level;
+            let qdot_after = automaton.reset_velocity(guard.kind, qdot_before);
+            let floor_acc = self.floor.acceleration(t);
+            recorder.event(
+                t,
+                guard.kind,
+                from,
+                guard.to,
+                q,
+                qdot_before,
+                qdot_after,
+                floor_acc,
+                me * y[2],
+                me * y[3],
+            );
+            self.mode.set(guard.to);
+            if guard.to == Mode::Overturned {
+                return Ok(true);
+            }
+            let state = solver.state_mut();
+            state.y[0] = q;
+            state.y[1] = qdot_after;
+            let x = [q, qdot_after, y[2], y[3]];
+            let mut dy = [0.0; NSTATES];
+            right_hand_side(automaton, guard.to, floor_acc, &x, &mut dy);
+            for (i, value) in dy.iter().enumerate() {
+                state.dy[i] = *value;
+            }
+            match automaton.crossed_guard(guard.to, q, qdot_after) {
+                Some(next) => guard = next,
+                None => return Ok(false),
+            }
+        }
+        Err(self.error(t, "endless chain of events at one instant"))
+    }
+
+    fn stats<'a, Eqn, S>(&self, solver: &S) -> SolverStats
+    where
+        Eqn: OdeEquations<T = f64, V = diffsol::NalgebraVec<f64>> + 'a,
+        S: OdeSolverMethod<'a, Eqn>,
+    {
+        let s = solver.get_statistics();
+        SolverStats {
+            method: self.settings.method.name().to_string(),
+            steps: s.number_of_steps,
+            error_test_failures: s.number_of_error_test_failures,
+            nonlinear_iterations: s.number_of_nonlinear_solver_iterations,
+            jacobian_evaluations: s.number_of_linear_solver_setups,
+            rhs_evaluations: 0,
+            wall_time_s: 0.0,
+        }
+    }
+}

@@ -1,0 +1,61 @@
+//! Solvers that drive the hybrid automaton. They share the initial state, the output grid and the
+//! result type ([`crate::solution::Solution`]).
+
+pub mod adaptive;
+
+use serde::Serialize;
+
+/// The state a run starts from, at t = 0.
+#[derive(Debug, Clone, Copy, Serialize)]
+pub struct InitialState {
+    /// q0, m.
+    pub q: f64,
+    /// q'0, m/s.
+    pub qdot: f64,
+}
+
+/// The times at which the history is sampled: every `output_dt` from 0, and the final time.
+#[derive(Debug, Clone)]
+pub struct OutputGrid {
+    output_dt: f64,
+    count: usize,
+    end: f64,
+    next: usize,
+}
+
+impl OutputGrid {
+    pub fn new(end: f64, output_dt: f64) -> Self {
+        // Points closer to `end` than a millionth of a step merge with it.
+        let count = (end / output_dt * (1.0 + 1e-12) + 1e-6).floor() as usize + 1;
+        OutputGrid {
+            output_dt,
+            count,
+            end,
+            next: 0,
+        }
+    }
+
+    fn time(&self, index: usize) -> f64 {
+        if index + 1 >= self.count {
+            // Clamp to the end; the last point is always the final time.
+            (index as f64 * self.output_dt).min(self.end)
+        } else {
+            index as f64 * self.output_dt
+        }
+    }
+
+    /// The next grid time not yet emitted, if any.
+    pub fn peek(&self) -> Option<f64> {
+        if self.next < self.count {
+            Some(self.time(self.next))
+        } else if self.next == self.count && self.time(self.count - 1) < self.end {
+            Some(self.end)
+        } else {
+            None
+        }
+    }
+
+    pub fn advance(&mut self) {
+        self.next += 1;
+    }
+}
