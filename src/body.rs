@@ -101,6 +101,10 @@ pub(crate) fn positive(key: &str, value: f64) -> Result<()> {
     if value.is_finite() && value > 0.0 {
         Ok(())
     } else {
-        Err(Error::invalid(key, value, "must be a finite number greater than 0"))
+        Err(Error::invalid(
+            key,
+            value,
+            "must be a finite number greater than 0",
+        ))
     }
 }

@@ -117,9 +117,12 @@ impl Constants {
         let s_n = b / (2.0 * body.flexural_rigidity * l2 / (mg * h * h) + 2.0 * shape.int_u);
         if s_n >= b {
             return Err(Error::invalid(
-                "body",
-                format!("s_n = {s_n} m >= B = {b} m"),
-                "the body is unstable under its own weight (uplift displacement s_n must be less than the width B)",
+                "derived uplift displacement s_n",
+                format!("{s_n} m"),
+                &format!(
+                    "the body is unstable under its own weight: s_n must be less than the width B = {b} m \
+                     (s_n grows as the flexural rigidity falls and the weight rises)"
+                ),
             ));
         }
         let d = b - s_n;
@@ -140,9 +143,11 @@ impl Constants {
         let zeta_landing = (int_uy + rotary) / (int_vy + rotary - vertical);
         if !(zeta_landing > 0.0 && zeta_landing < 1.0) {
             return Err(Error::invalid(
-                "body",
-                format!("zetaL = {zeta_landing} (H = {h} m, B = {b} m)"),
-                "the body is too squat for the slender-body model (the landing ratio zetaL must lie in (0, 1))",
+                "derived landing ratio zetaL",
+                zeta_landing,
+                &format!(
+                    "the body (H = {h} m, B = {b} m) is too squat for the slender-body model: zetaL must lie in (0, 1)"
+                ),
             ));
         }
 

@@ -128,11 +128,7 @@ fn ramp_cubic(amplitude: f64, period: f64, ramp: f64) -> [f64; 3] {
         t.powi(4) / 12.0,
         t.powi(5) / 20.0,
     );
-    let rhs = nalgebra::Vector3::new(
-        amplitude * s,
-        -amplitude / w * c,
-        -amplitude / (w * w) * s,
-    );
+    let rhs = nalgebra::Vector3::new(amplitude * s, -amplitude / w * c, -amplitude / (w * w) * s);
     // The matrix is regular for any t > 0 (its determinant is t^9 / 8640), which validation ensures.
     let x = m.lu().solve(&rhs).unwrap_or_else(nalgebra::Vector3::zeros);
     [x[0], x[1], x[2]]

@@ -7,7 +7,11 @@ use clap::{Parser, Subcommand};
 use flexrock::model::{Model, Overrides};
 
 #[derive(Parser)]
-#[command(name = "flexrock", version, about = "Slender elastic body rocking on a rigid floor (Ichinose 1986): event-driven reference solutions")]
+#[command(
+    name = "flexrock",
+    version,
+    about = "Slender elastic body rocking on a rigid floor (Ichinose 1986): event-driven reference solutions"
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -70,7 +74,13 @@ fn execute(command: Command) -> flexrock::Result<()> {
         Command::Props { model, json } => {
             let model = Model::load(&model, &Overrides::default())?;
             if json {
-                println!("{}", String::from_utf8_lossy(&flexrock::output::json_bytes(&flexrock::run::properties(&model))).trim_end());
+                println!(
+                    "{}",
+                    String::from_utf8_lossy(&flexrock::output::json_bytes(
+                        &flexrock::run::properties(&model)
+                    ))
+                    .trim_end()
+                );
             } else {
                 print!("{}", flexrock::run::properties_table(&model));
             }

@@ -118,6 +118,15 @@ impl Model {
         Ok(model)
     }
 
+    /// Parses and validates the text of a model file (`source` names it in messages).
+    pub fn from_toml_str(text: &str, overrides: &Overrides) -> Result<Model> {
+        let file: ModelFile = toml::from_str(text).map_err(|e| Error::ParseModel {
+            path: PathBuf::from("(model text)"),
+            message: e.to_string().trim_end().to_string(),
+        })?;
+        Model::from_file(file, overrides)
+    }
+
     /// Validates a parsed model file.
     pub fn from_file(mut file: ModelFile, overrides: &Overrides) -> Result<Model> {
         if let Some(m) = &overrides.method {
@@ -324,7 +333,11 @@ fn initial_from_section(s: &SimulationSection, body: &Body) -> Result<InitialSta
         ));
     }
     if !qdot.is_finite() {
-        return Err(Error::invalid("simulation.qdot0", qdot, "must be a finite number"));
+        return Err(Error::invalid(
+            "simulation.qdot0",
+            qdot,
+            "must be a finite number",
+        ));
     }
     Ok(InitialState { q, qdot })
 }

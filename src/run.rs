@@ -60,7 +60,12 @@ pub fn properties_table(model: &Model) -> String {
     row("width B", fmt(b.width), "m", "");
     row("depth D", fmt(b.depth), "m", "");
     row("mass M", fmt(b.mass), "kg", "");
-    row("flexural rigidity EI", fmt(b.flexural_rigidity), "N m^2", "");
+    row(
+        "flexural rigidity EI",
+        fmt(b.flexural_rigidity),
+        "N m^2",
+        "",
+    );
     row("damping ratio h", fmt(b.damping_ratio), "", "before uplift");
     row("gravity g", fmt(b.gravity), "m/s^2", "");
     row(
@@ -70,24 +75,54 @@ pub fn properties_table(model: &Model) -> String {
         "\"exact\" or the paper's rounded values",
     );
     row("generalised mass Me", fmt(c.generalised_mass), "kg", "");
-    row("generalised stiffness Ke", fmt(c.generalised_stiffness), "N/m", "");
-    row("circular frequency omega", fmt(c.omega), "rad/s", "pre-uplift");
+    row(
+        "generalised stiffness Ke",
+        fmt(c.generalised_stiffness),
+        "N/m",
+        "",
+    );
+    row(
+        "circular frequency omega",
+        fmt(c.omega),
+        "rad/s",
+        "pre-uplift",
+    );
     row("period T", fmt(c.period), "s", "pre-uplift");
-    row("damping coefficient gamma/E", fmt(c.damping_coefficient), "s", "2 h / omega");
-    row("uplift displacement s_n", fmt(c.uplift_displacement), "m", "top displacement at uplift");
+    row(
+        "damping coefficient gamma/E",
+        fmt(c.damping_coefficient),
+        "s",
+        "2 h / omega",
+    );
+    row(
+        "uplift displacement s_n",
+        fmt(c.uplift_displacement),
+        "m",
+        "top displacement at uplift",
+    );
     row("nu1", fmt(c.nu1), "", "effectiveness, pre-uplift");
     row("beta1", fmt(c.beta1), "", "participation, pre-uplift");
     row("nu2", fmt(c.nu2), "", "effectiveness, rocking");
     row("beta2", fmt(c.beta2), "", "participation, rocking");
     row("zetaU", fmt(c.zeta_uplift), "", "q' -> zetaU q' at uplift");
-    row("zetaL", fmt(c.zeta_landing), "", "q' -> q'/zetaL at landing");
+    row(
+        "zetaL",
+        fmt(c.zeta_landing),
+        "",
+        "q' -> q'/zetaL at landing",
+    );
     row(
         "quasi-static uplift acceleration",
         fmt(c.quasi_static_uplift_acceleration),
         "m/s^2",
         "omega^2 s_n / beta1",
     );
-    row("gravity parameter M g H^2/EI", fmt(c.gravity_parameter), "", "");
+    row(
+        "gravity parameter M g H^2/EI",
+        fmt(c.gravity_parameter),
+        "",
+        "",
+    );
     row(
         "  ratio to 7.837 (buckling)",
         fmt(c.gravity_parameter_ratio),
@@ -176,7 +211,10 @@ pub fn run(model: &Model, out_dir: &Path) -> Result<RunReport> {
         &[
             ("history.csv", output::history_csv(&solution.samples)),
             ("events.csv", output::events_csv(&solution.events)),
-            ("summary.json", output::json_bytes(&summary(model, &solution))),
+            (
+                "summary.json",
+                output::json_bytes(&summary(model, &solution)),
+            ),
         ],
     )?;
     Ok(RunReport { solution, files })

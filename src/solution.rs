@@ -130,9 +130,7 @@ impl<'a> Recorder<'a> {
         work_damping: f64,
     ) {
         let a = self.automaton;
-        let residual = Self::energy(a, mode, q, qdot)
-            - self.initial_energy
-            - work_input
+        let residual = Self::energy(a, mode, q, qdot) - self.initial_energy - work_input
             + work_damping
             - self.event_jumps;
         self.max_energy_residual = self.max_energy_residual.max(residual.abs());

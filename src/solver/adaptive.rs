@@ -253,7 +253,9 @@ impl<'d> Driver<'d> {
 
             if let Some(t_peak) = peak {
                 if crossing.is_none_or(|(t, _)| t_peak < t) {
-                    let y = solver.interpolate(t_peak).map_err(|e| self.error(t_peak, e))?;
+                    let y = solver
+                        .interpolate(t_peak)
+                        .map_err(|e| self.error(t_peak, e))?;
                     recorder.peak_candidate(t_peak, y[0]);
                 }
             }

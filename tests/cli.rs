@@ -1,0 +1,329 @@
+//! The command line: the end-to-end run and every bad-input rule (message, exit code, no output).
+
+mod common;
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn flexrock(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_flexrock"))
+        .args(args)
+        .output()
+        .expect("the binary runs")
+}
+
+fn reference_model() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("models/ichinose1986.toml")
+}
+
+#[test]
+fn run_writes_the_three_files_with_their_schemas() {
+    let out = common::scratch_dir("cli-run").join("result");
+    let o = flexrock(&[
+        "run",
+        reference_model().to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(stdout.contains("uplifts"), "{stdout}");
+
+    let history = std::fs::read_to_string(out.join("history.csv")).unwrap();
+    let mut lines = history.lines();
+    assert_eq!(
+        lines.next().unwrap(),
+        "t,q,qdot,s,r,mode,floor_acc,F,energy_residual"
+    );
+    let rows: Vec<&str> = lines.collect();
+    // Every 0.005 s over 6 s (1201 points) plus both states at every event.
+    assert!(rows.len() > 1201);
+    assert!(rows[0].starts_with("0,0,0,"));
+
+    let events = std::fs::read_to_string(out.join("events.csv")).unwrap();
+    let mut lines = events.lines();
+    assert_eq!(
+        lines.next().unwrap(),
+        "index,t,kind,from,to,q,qdot_before,qdot_after"
+    );
+    let first: Vec<&str> = lines.next().unwrap().split(',').collect();
+    assert_eq!(first[0], "0");
+    assert_eq!(first[2], "uplift");
+    assert_eq!(first[3], "pre-uplift");
+    assert!(first[4] == "rock-left" || first[4] == "rock-right");
+
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    for key in [
+        "max_q",
+        "t_max_q",
+        "min_q",
+        "t_min_q",
+        "n_uplift",
+        "n_landing",
+        "overturned",
+        "t_overturn",
+        "s_n",
+        "T",
+        "max_energy_residual",
+        "statistics",
+        "constants",
+        "inputs",
+        "solver",
+        "flexrock_version",
+    ] {
+        assert!(summary.get(key).is_some(), "summary.json lacks {key}");
+    }
+    assert_eq!(summary["overturned"], false);
+    assert!(summary["statistics"]["steps"].as_u64().unwrap() > 0);
+    assert!(summary["statistics"]["rhs_evaluations"].as_u64().unwrap() > 0);
+    assert!(summary["statistics"]["wall_time_s"].as_f64().unwrap() > 0.0);
+    assert_eq!(summary["inputs"]["body"]["height"], 4.0);
+    assert_eq!(
+        summary["n_uplift"].as_u64().unwrap() as usize,
+        events.lines().filter(|l| l.contains(",uplift,")).count()
+    );
+    // No temporary files are left behind.
+    let names: Vec<String> = std::fs::read_dir(&out)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    assert_eq!(names.len(), 3, "{names:?}");
+}
+
+#[test]
+fn props_prints_table_and_json() {
+    let o = flexrock(&["props", reference_model().to_str().unwrap()]);
+    assert!(o.status.success());
+    let table = String::from_utf8_lossy(&o.stdout);
+    assert!(table.contains("uplift displacement s_n"));
+    assert!(table.contains("0.152365"));
+    let o = flexrock(&["props", reference_model().to_str().unwrap(), "--json"]);
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let t = v["constants"]["period"].as_f64().unwrap();
+    assert!((t - 1.55).abs() < 1e-4);
+    assert!(v["constants"]["gravity_parameter_ratio"].as_f64().is_some());
+}
+
+const GOOD: &str = "[body]\nheight = 4.0\nwidth = 0.7\ndensity = 600.0\nyoungs_modulus = 5.0e6\n\
+damping_ratio = 0.05\n\n[excitation]\nkind = \"paper-sine\"\namplitude = 5.0\nperiod = 1.0\nramp = 0.412\n\n\
+[simulation]\nduration = 1.0\n";
+
+/// Runs a model text that must be refused; returns stderr after checking exit code and outputs.
+fn refused(name: &str, model_text: &str) -> String {
+    let dir = common::scratch_dir(&format!("bad-{name}"));
+    let model = dir.join("model.toml");
+    std::fs::write(&model, model_text).unwrap();
+    let out = dir.join("out");
+    let o = flexrock(&[
+        "run",
+        model.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let stderr = String::from_utf8_lossy(&o.stderr).into_owned();
+    assert_eq!(o.status.code(), Some(2), "{name}: {stderr}");
+    assert!(!out.exists(), "{name}: output directory was created");
+    assert!(!stderr.contains("panicked"), "{name}: {stderr}");
+    assert!(
+        stderr.contains("model.toml"),
+        "{name}: message does not name the file: {stderr}"
+    );
+    stderr
+}
+
+fn assert_mentions(stderr: &str, words: &[&str]) {
+    for w in words {
+        assert!(stderr.contains(w), "expected {w:?} in: {stderr}");
+    }
+}
+
+#[test]
+fn the_good_model_runs() {
+    let dir = common::scratch_dir("good");
+    let model = dir.join("model.toml");
+    std::fs::write(&model, GOOD).unwrap();
+    let o = flexrock(&[
+        "run",
+        model.to_str().unwrap(),
+        "--out",
+        dir.join("out").to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+}
+
+#[test]
+fn non_positive_sizes_densities_and_moduli() {
+    for (key, from, to) in [
+        ("body.height", "height = 4.0", "height = 0.0"),
+        ("body.width", "width = 0.7", "width = -0.7"),
+        ("body.density", "density = 600.0", "density = 0.0"),
+        (
+            "body.youngs_modulus",
+            "youngs_modulus = 5.0e6",
+            "youngs_modulus = -5.0e6",
+        ),
+        ("body.depth", "height = 4.0", "height = 4.0\ndepth = 0.0"),
+        ("body.mass", "density = 600.0", "mass = -3.0"),
+        (
+            "body.flexural_rigidity",
+            "youngs_modulus = 5.0e6",
+            "flexural_rigidity = 0.0",
+        ),
+        ("body.period", "youngs_modulus = 5.0e6", "period = -1.0"),
+        ("simulation.duration", "duration = 1.0", "duration = 0.0"),
+        ("excitation.period", "period = 1.0", "period = 0.0"),
+        ("excitation.ramp", "ramp = 0.412", "ramp = -0.1"),
+    ] {
+        let stderr = refused(key, &GOOD.replacen(from, to, 1));
+        assert_mentions(&stderr, &[key, "greater than 0"]);
+    }
+}
+
+#[test]
+fn damping_outside_the_unit_interval() {
+    for value in ["1.0", "-0.01", "1.5"] {
+        let stderr = refused(
+            &format!("damping{value}"),
+            &GOOD.replace("damping_ratio = 0.05", &format!("damping_ratio = {value}")),
+        );
+        assert_mentions(&stderr, &["body.damping_ratio", "[0, 1)"]);
+    }
+}
+
+#[test]
+fn width_not_less_than_height() {
+    let stderr = refused("squat-width", &GOOD.replace("width = 0.7", "width = 4.0"));
+    assert_mentions(&stderr, &["body.width", "4", "less than the height"]);
+}
+
+#[test]
+fn unstable_under_its_own_weight() {
+    let stderr = refused(
+        "unstable",
+        &GOOD.replace("youngs_modulus = 5.0e6", "youngs_modulus = 1.0e3"),
+    );
+    assert_mentions(&stderr, &["s_n", "unstable under its own weight"]);
+}
+
+#[test]
+fn too_squat_for_the_model() {
+    let stderr = refused(
+        "squat",
+        &GOOD
+            .replace("height = 4.0", "height = 1.0")
+            .replace("width = 0.7", "width = 0.5")
+            .replace("5.0e6", "5.0e9"),
+    );
+    assert_mentions(&stderr, &["zetaL", "too squat"]);
+}
+
+#[test]
+fn alternatives_both_or_neither() {
+    let both = refused(
+        "both-mass",
+        &GOOD.replace("density = 600.0", "density = 600.0\nmass = 1680.0"),
+    );
+    assert_mentions(&both, &["body.density", "body.mass", "exactly one"]);
+    let neither = refused("no-mass", &GOOD.replace("density = 600.0\n", ""));
+    assert_mentions(&neither, &["body.density", "missing", "exactly one"]);
+    let both = refused(
+        "both-stiffness",
+        &GOOD.replace(
+            "youngs_modulus = 5.0e6",
+            "youngs_modulus = 5.0e6\nperiod = 1.5",
+        ),
+    );
+    assert_mentions(
+        &both,
+        &["body.youngs_modulus", "body.period", "exactly one"],
+    );
+    let neither = refused(
+        "no-stiffness",
+        &GOOD.replace("youngs_modulus = 5.0e6\n", ""),
+    );
+    assert_mentions(
+        &neither,
+        &[
+            "body.youngs_modulus",
+            "body.flexural_rigidity",
+            "body.period",
+        ],
+    );
+}
+
+#[test]
+fn unknown_keys_and_values() {
+    let stderr = refused(
+        "unknown-key",
+        &GOOD.replace("height = 4.0", "height = 4.0\nheigth = 4.0"),
+    );
+    assert_mentions(&stderr, &["heigth"]);
+    let stderr = refused(
+        "unknown-section",
+        &format!("{GOOD}\n[solvr]\nrtol = 1e-6\n"),
+    );
+    assert_mentions(&stderr, &["solvr"]);
+    let stderr = refused("kind", &GOOD.replace("\"paper-sine\"", "\"sine\""));
+    assert_mentions(&stderr, &["excitation.kind", "\"sine\"", "paper-sine"]);
+    let stderr = refused(
+        "ramp-harmonic",
+        &GOOD.replace("\"paper-sine\"", "\"harmonic\""),
+    );
+    assert_mentions(&stderr, &["excitation.ramp", "not a parameter"]);
+    let stderr = refused("no-amplitude", &GOOD.replace("amplitude = 5.0\n", ""));
+    assert_mentions(&stderr, &["excitation.amplitude", "missing"]);
+    let stderr = refused("method", &format!("{GOOD}\n[solver]\nmethod = \"rk4\"\n"));
+    assert_mentions(&stderr, &["solver.method", "rk4", "bdf"]);
+    let stderr = refused("rtol", &format!("{GOOD}\n[solver]\nrtol = 2.0\n"));
+    assert_mentions(&stderr, &["solver.rtol", "(0, 1)"]);
+    let stderr = refused(
+        "constants",
+        &GOOD.replace("height = 4.0", "height = 4.0\nconstants = \"rounded\""),
+    );
+    assert_mentions(&stderr, &["body.constants", "rounded"]);
+    let stderr = refused(
+        "q0",
+        &GOOD.replace("duration = 1.0", "duration = 1.0\nq0 = 0.7"),
+    );
+    assert_mentions(&stderr, &["simulation.q0", "0.7", "|q0| < B"]);
+    let stderr = refused("not-toml", "this is not toml");
+    assert!(!stderr.is_empty());
+    let stderr = refused(
+        "string-for-number",
+        &GOOD.replace("height = 4.0", "height = \"tall\""),
+    );
+    assert_mentions(&stderr, &["height"]);
+}
+
+#[test]
+fn unreadable_file() {
+    let dir = common::scratch_dir("missing");
+    let out = dir.join("out");
+    let o = flexrock(&[
+        "run",
+        dir.join("nope.toml").to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_mentions(&stderr, &["nope.toml", "cannot read"]);
+    assert!(!out.exists());
+}
+
+#[test]
+fn command_line_overrides_are_checked_too() {
+    let dir = common::scratch_dir("override");
+    let out = dir.join("out");
+    let o = flexrock(&[
+        "run",
+        reference_model().to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--rtol=-1",
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert_mentions(&String::from_utf8_lossy(&o.stderr), &["solver.rtol", "-1"]);
+    assert!(!out.exists());
+}
