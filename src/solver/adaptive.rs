@@ -17,6 +17,7 @@ use std::time::Instant;
 
 use diffsol::{
     NalgebraLU, NalgebraMat, OdeBuilder, OdeEquations, OdeSolverMethod, OdeSolverStopReason,
+    Vector as _,
 };
 use serde::Serialize;
 
@@ -28,9 +29,12 @@ use crate::solver::{InitialState, OutputGrid};
 
 type Matrix = NalgebraMat<f64>;
 type LinearSolver = NalgebraLU<f64>;
+type Vector = diffsol::NalgebraVec<f64>;
 
-/// Number of state components: q, q', and the two energy integrals (per unit Me).
-const NSTATES: usize = 4;
+/// Number of state components: q and q'.
+const NSTATES: usize = 2;
+/// Number of integrated outputs: the input and damping work, per unit Me.
+const NOUT: usize = 2;
 /// Number of root functions: q' and the active mode's two guards.
 const NROOTS: usize = 3;
 
@@ -91,6 +95,20 @@ pub fn solve(
         message: e.to_string(),
     };
 
+    // The floor acceleration is asked for several times at one t (right-hand side, Jacobian,
+    // energy integrands); evaluate it once.
+    let floor_cache = Cell::new((f64::NAN, 0.0));
+    let floor_acc = |t: f64| {
+        let (t_cached, a_cached) = floor_cache.get();
+        if t == t_cached {
+            a_cached
+        } else {
+            let a = floor.acceleration(t);
+            floor_cache.set((t, a));
+            a
+        }
+    };
+
     let problem = OdeBuilder::<Matrix>::new()
         .t0(0.0)
         .rtol(settings.rtol)
@@ -98,27 +116,35 @@ pub fn solve(
         .rhs_implicit(
             |x, _p, t, y| {
                 rhs_evaluations.set(rhs_evaluations.get() + 1);
-                right_hand_side(automaton, mode.get(), floor.acceleration(t), x, y);
+                let a = floor_acc(t);
+                y[0] = x[1];
+                y[1] = automaton.acceleration(mode.get(), x[0], x[1], a);
             },
-            |x, _p, t, v, y| {
-                let m = mode.get();
-                let (d_q, d_qdot) = automaton.acceleration_jacobian(m);
-                let a = floor.acceleration(t);
+            |_x, _p, _t, v, y| {
+                let (d_q, d_qdot) = automaton.acceleration_jacobian(mode.get());
                 y[0] = v[1];
                 y[1] = d_q * v[0] + d_qdot * v[1];
-                y[2] = automaton.input_power(m, v[1], a) / me;
-                y[3] = 2.0 * automaton.damping(m) * x[1] * v[1] / me;
             },
         )
         .init(
             |_p, _t, y| {
                 y[0] = initial.q;
                 y[1] = initial.qdot;
-                y[2] = 0.0;
-                y[3] = 0.0;
             },
             NSTATES,
         )
+        // The energy integrals ride along as quadratures of the accepted steps: they are not
+        // part of the implicit solve and do not steer the step size.
+        .out_implicit(
+            |x, _p, t, y| energy_integrands(automaton, mode.get(), floor_acc(t), x, y),
+            |x, _p, t, v, y| {
+                let m = mode.get();
+                y[0] = automaton.input_power(m, v[1], floor_acc(t)) / me;
+                y[1] = 2.0 * automaton.damping(m) * x[1] * v[1] / me;
+            },
+            NOUT,
+        )
+        .integrate_out(true)
         .root(
             |x, _p, _t, y| {
                 y[0] = x[1];
@@ -165,13 +191,17 @@ pub fn solve(
     Ok(recorder.finish(final_time, mode.get(), stats))
 }
 
-/// The first-order system: q, q', and the energy integrals per unit Me.
+/// The first-order system (q, q').
 fn right_hand_side(automaton: &Automaton, mode: Mode, floor_acc: f64, x: &[f64], y: &mut [f64]) {
-    let me = automaton.generalised_mass();
     y[0] = x[1];
     y[1] = automaton.acceleration(mode, x[0], x[1], floor_acc);
-    y[2] = automaton.input_power(mode, x[1], floor_acc) / me;
-    y[3] = automaton.damping_power(mode, x[1]) / me;
+}
+
+/// Integrands of the energy books, per unit Me: input power and damping power.
+fn energy_integrands(automaton: &Automaton, mode: Mode, floor_acc: f64, x: &[f64], y: &mut [f64]) {
+    let me = automaton.generalised_mass();
+    y[0] = automaton.input_power(mode, x[1], floor_acc) / me;
+    y[1] = automaton.damping_power(mode, x[1]) / me;
 }
 
 /// The event loop, written once for every diffsol method.
@@ -194,7 +224,7 @@ impl<'d> Driver<'d> {
 
     fn run<'a, Eqn, S>(&self, mut solver: S) -> Result<(Recorder<'d>, f64, SolverStats)>
     where
-        Eqn: OdeEquations<T = f64, V = diffsol::NalgebraVec<f64>> + 'a,
+        Eqn: OdeEquations<T = f64, V = Vector> + 'a,
         S: OdeSolverMethod<'a, Eqn>,
     {
         let automaton = self.automaton;
@@ -215,9 +245,19 @@ impl<'d> Driver<'d> {
             .map_err(|e| self.error(0.0, e))?;
 
         let y0 = solver.state().y.clone();
+        // Buffers for dense output, allocated once.
+        let mut y_buf = y0.clone();
+        let mut work_buf = solver.state().g.clone();
         let mut recorder = Recorder::new(automaton, 0.0, y0[0], y0[1], self.mode.get());
         let mut grid = OutputGrid::new(end, self.settings.output_dt);
-        self.emit(&solver, &mut recorder, &mut grid, 0.0, true)?;
+        self.emit(
+            &solver,
+            &mut recorder,
+            &mut grid,
+            (&mut y_buf, &mut work_buf),
+            0.0,
+            true,
+        )?;
 
         // A start on a guard, moving across it, is an event at t = 0.
         if let Some(guard) = automaton.crossed_guard(self.mode.get(), y0[0], y0[1]) {
@@ -261,13 +301,27 @@ impl<'d> Driver<'d> {
             }
 
             if let Some((t_event, guard)) = crossing {
-                self.emit(&solver, &mut recorder, &mut grid, t_event, false)?;
+                self.emit(
+                    &solver,
+                    &mut recorder,
+                    &mut grid,
+                    (&mut y_buf, &mut work_buf),
+                    t_event,
+                    false,
+                )?;
                 if self.apply_event(&mut solver, &mut recorder, t_event, guard, true)? {
                     return Ok((recorder, t_event, self.stats(&solver)));
                 }
                 step_start = t_event;
             } else {
-                self.emit(&solver, &mut recorder, &mut grid, step_end, true)?;
+                self.emit(
+                    &solver,
+                    &mut recorder,
+                    &mut grid,
+                    (&mut y_buf, &mut work_buf),
+                    step_end,
+                    true,
+                )?;
                 step_start = step_end;
             }
 
@@ -294,31 +348,39 @@ impl<'d> Driver<'d> {
         solver: &S,
         recorder: &mut Recorder<'d>,
         grid: &mut OutputGrid,
+        buffers: (&mut Vector, &mut Vector),
         until: f64,
         inclusive: bool,
     ) -> Result<()>
     where
-        Eqn: OdeEquations<T = f64, V = diffsol::NalgebraVec<f64>> + 'a,
+        Eqn: OdeEquations<T = f64, V = Vector> + 'a,
         S: OdeSolverMethod<'a, Eqn>,
     {
         let me = self.automaton.generalised_mass();
+        let (y, work) = buffers;
         while let Some(t) = grid.peek() {
             if t > until || (!inclusive && t == until) {
                 break;
             }
-            let y = if t == solver.state().t {
-                solver.state().y.clone()
+            if t == solver.state().t {
+                y.copy_from(solver.state().y);
+                work.copy_from(solver.state().g);
             } else {
-                solver.interpolate(t).map_err(|e| self.error(t, e))?
-            };
+                solver
+                    .interpolate_inplace(t, y)
+                    .map_err(|e| self.error(t, e))?;
+                solver
+                    .interpolate_out_inplace(t, work)
+                    .map_err(|e| self.error(t, e))?;
+            }
             recorder.sample(
                 t,
                 self.mode.get(),
                 y[0],
                 y[1],
                 self.floor.acceleration(t),
-                me * y[2],
-                me * y[3],
+                me * work[0],
+                me * work[1],
             );
             grid.advance();
         }
@@ -328,7 +390,7 @@ impl<'d> Driver<'d> {
     /// Finds the time in [lo, hi] at which q crosses `guard`, by bisection on the dense output.
     fn locate<'a, Eqn, S>(&self, solver: &S, guard: Guard, mut lo: f64, mut hi: f64) -> Result<f64>
     where
-        Eqn: OdeEquations<T = f64, V = diffsol::NalgebraVec<f64>> + 'a,
+        Eqn: OdeEquations<T = f64, V = Vector> + 'a,
         S: OdeSolverMethod<'a, Eqn>,
     {
         // 60 halvings shrink any step to below the spacing of doubles around it.
@@ -358,7 +420,7 @@ impl<'d> Driver<'d> {
         move_back: bool,
     ) -> Result<bool>
     where
-        Eqn: OdeEquations<T = f64, V = diffsol::NalgebraVec<f64>> + 'a,
+        Eqn: OdeEquations<T = f64, V = Vector> + 'a,
         S: OdeSolverMethod<'a, Eqn>,
     {
         let automaton = self.automaton;
@@ -372,6 +434,7 @@ impl<'d> Driver<'d> {
         for _ in 0..4 {
             let from = self.mode.get();
             let y = solver.state().y.clone();
+            let work = solver.state().g.clone();
             let qdot_before = y[1];
             // Place q exactly on the guard: the event was located to solver accuracy.
             let q = guard.level;
@@ -386,8 +449,8 @@ impl<'d> Driver<'d> {
                 qdot_before,
                 qdot_after,
                 floor_acc,
-                me * y[2],
-                me * y[3],
+                me * work[0],
+                me * work[1],
             );
             self.mode.set(guard.to);
             if guard.to == Mode::Overturned {
@@ -396,11 +459,17 @@ impl<'d> Driver<'d> {
             let state = solver.state_mut();
             state.y[0] = q;
             state.y[1] = qdot_after;
-            let x = [q, qdot_after, y[2], y[3]];
+            // Derivatives consistent with the new mode, from which the method restarts.
+            let x = [q, qdot_after];
             let mut dy = [0.0; NSTATES];
             right_hand_side(automaton, guard.to, floor_acc, &x, &mut dy);
-            for (i, value) in dy.iter().enumerate() {
-                state.dy[i] = *value;
+            let mut dg = [0.0; NOUT];
+            energy_integrands(automaton, guard.to, floor_acc, &x, &mut dg);
+            for i in 0..NSTATES {
+                state.dy[i] = dy[i];
+            }
+            for i in 0..NOUT {
+                state.dg[i] = dg[i];
             }
             match automaton.crossed_guard(guard.to, q, qdot_after) {
                 Some(next) => guard = next,
@@ -412,7 +481,7 @@ impl<'d> Driver<'d> {
 
     fn stats<'a, Eqn, S>(&self, solver: &S) -> SolverStats
     where
-        Eqn: OdeEquations<T = f64, V = diffsol::NalgebraVec<f64>> + 'a,
+        Eqn: OdeEquations<T = f64, V = Vector> + 'a,
         S: OdeSolverMethod<'a, Eqn>,
     {
         let s = solver.get_statistics();
