@@ -325,7 +325,7 @@ impl<'d> Driver<'d> {
                 step_start = step_end;
             }
 
-            // At a stop time: finish, or restart the method past a breakpoint of a(t).
+            // At a stop time: finish, or go on towards the next one.
             let stop = stops[stop_index];
             if (step_start - stop).abs() <= 1e-12 * stop.abs().max(1.0) {
                 if stop_index + 1 == stops.len() {
@@ -334,9 +334,14 @@ impl<'d> Driver<'d> {
                     return Ok((recorder, step_start, self.stats(&solver)));
                 }
                 stop_index += 1;
-                let _ = solver.state_mut();
                 solver
                     .set_stop_time(stops[stop_index])
+                    .map_err(|e| self.error(step_start, e))?;
+            } else if peak.is_some() && crossing.is_none() {
+                // diffsol returns a root before it shortens the next step to meet the stop
+                // time; setting the stop time again makes it do so.
+                solver
+                    .set_stop_time(stop)
                     .map_err(|e| self.error(step_start, e))?;
             }
         }

@@ -133,3 +133,9 @@ fn ramp_cubic(amplitude: f64, period: f64, ramp: f64) -> [f64; 3] {
     let x = m.lu().solve(&rhs).unwrap_or_else(nalgebra::Vector3::zeros);
     [x[0], x[1], x[2]]
 }
+
+mod pulse;
+mod recorded;
+
+pub use pulse::{PulseShape, Ricker, SinePulse};
+pub use recorded::RecordedMotion;

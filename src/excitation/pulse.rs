@@ -1,0 +1,110 @@
+//! Idealised pulses of the rocking literature.
+
+use std::f64::consts::PI;
+
+use serde::Serialize;
+
+use super::FloorMotion;
+
+/// Shape of a [`SinePulse`] over its cycles.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum PulseShape {
+    /// a = A sin(2 pi t/Tp): antisymmetric about the middle of each cycle; the floor velocity
+    /// is one-sided and returns to zero after each cycle (the "type-A", forward pulse).
+    Antisymmetric,
+    /// a = A cos(2 pi t/Tp): symmetric about the middle of each cycle (the "type-B" pulse).
+    Symmetric,
+}
+
+/// A whole number of sine (or cosine) cycles of acceleration starting at t = 0, then rest:
+/// the one-sine and one-cosine acceleration pulses with which Zhang & Makris (2001, "Rocking
+/// response of free-standing blocks under cycloidal pulses", J. Eng. Mech. 127(5)) and Makris &
+/// Roussos (2000, Geotechnique 50(3)) idealise near-source ground motions. `cycles` = 1 gives
+/// their single pulse; more cycles give the n-cycle variants.
+#[derive(Debug, Clone, Serialize)]
+pub struct SinePulse {
+    pub amplitude: f64,
+    pub period: f64,
+    pub cycles: f64,
+    pub shape: PulseShape,
+    #[serde(skip)]
+    breakpoints: [f64; 1],
+}
+
+impl SinePulse {
+    pub fn new(amplitude: f64, period: f64, cycles: f64, shape: PulseShape) -> Self {
+        SinePulse {
+            amplitude,
+            period,
+            cycles,
+            shape,
+            breakpoints: [cycles * period],
+        }
+    }
+
+    fn end(&self) -> f64 {
+        self.breakpoints[0]
+    }
+}
+
+impl FloorMotion for SinePulse {
+    fn acceleration(&self, t: f64) -> f64 {
+        if !(0.0..self.end()).contains(&t) {
+            return 0.0;
+        }
+        let phase = 2.0 * PI * t / self.period;
+        self.amplitude
+            * match self.shape {
+                PulseShape::Antisymmetric => phase.sin(),
+                PulseShape::Symmetric => phase.cos(),
+            }
+    }
+    fn breakpoints(&self) -> &[f64] {
+        &self.breakpoints
+    }
+    fn kind(&self) -> &'static str {
+        "sine-pulse"
+    }
+    fn parameters(&self) -> serde_json::Value {
+        serde_json::json!({
+            "kind": self.kind(),
+            "amplitude": self.amplitude,
+            "period": self.period,
+            "cycles": self.cycles,
+            "shape": self.shape,
+            "end": self.end(),
+        })
+    }
+}
+
+/// The Ricker wavelet (second derivative of a Gaussian) as floor acceleration:
+/// a(t) = A (1 - 2 pi^2 f^2 (t - tc)^2) exp(-pi^2 f^2 (t - tc)^2), f = 1/Tp the peak
+/// frequency of its spectrum. Ricker (1943, Geophysics 8(3)) introduced it for seismic
+/// wavelets; Vassiliou & Makris (2011, Earthq. Eng. Struct. Dyn. 40(10)) use it for near-source
+/// pulses acting on rocking blocks. Its peak, A, is at tc.
+#[derive(Debug, Clone, Serialize)]
+pub struct Ricker {
+    pub amplitude: f64,
+    pub period: f64,
+    pub center: f64,
+}
+
+impl FloorMotion for Ricker {
+    fn acceleration(&self, t: f64) -> f64 {
+        let x = PI * (t - self.center) / self.period;
+        let x2 = x * x;
+        self.amplitude * (1.0 - 2.0 * x2) * (-x2).exp()
+    }
+    fn kind(&self) -> &'static str {
+        "ricker"
+    }
+    fn parameters(&self) -> serde_json::Value {
+        serde_json::json!({
+            "kind": self.kind(),
+            "amplitude": self.amplitude,
+            "period": self.period,
+            "center": self.center,
+        })
+    }
+}

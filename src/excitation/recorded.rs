@@ -1,0 +1,89 @@
+//! A recorded ground motion: samples at a fixed interval, piecewise linear between them.
+
+use serde::Serialize;
+
+use super::FloorMotion;
+
+/// Floor acceleration given by samples a_k at t_k = k dt (k = 0..n-1, already in m/s^2 and
+/// trimmed), linear between samples and zero after the last one: after the record the floor is
+/// at rest. Every sample time is a breakpoint, so adaptive solvers never step across a kink.
+#[derive(Debug, Clone, Serialize)]
+pub struct RecordedMotion {
+    pub source: String,
+    pub dt: f64,
+    #[serde(skip)]
+    values: Vec<f64>,
+    #[serde(skip)]
+    sample_times: Vec<f64>,
+}
+
+impl RecordedMotion {
+    /// `values` in m/s^2, first sample at t = 0.
+    pub fn new(source: String, dt: f64, values: Vec<f64>) -> Self {
+        let sample_times = (0..values.len()).map(|k| k as f64 * dt).collect();
+        RecordedMotion {
+            source,
+            dt,
+            values,
+            sample_times,
+        }
+    }
+
+    /// Time of the last sample, s.
+    pub fn end(&self) -> f64 {
+        self.sample_times.last().copied().unwrap_or(0.0)
+    }
+
+    pub fn values(&self) -> &[f64] {
+        &self.values
+    }
+
+    /// Largest |a| and its time.
+    pub fn peak(&self) -> (f64, f64) {
+        self.values
+            .iter()
+            .enumerate()
+            .fold((0.0, 0.0), |(best, tb), (k, &a)| {
+                if a.abs() > best {
+                    (a.abs(), self.sample_times[k])
+                } else {
+                    (best, tb)
+                }
+            })
+    }
+}
+
+impl FloorMotion for RecordedMotion {
+    fn acceleration(&self, t: f64) -> f64 {
+        let n = self.values.len();
+        if n == 0 || t < 0.0 || t > self.end() {
+            return 0.0;
+        }
+        let x = t / self.dt;
+        // The index is clamped so that t = end (and rounding just below it) stays in range.
+        let k = (x.floor() as usize).min(n.saturating_sub(2));
+        if n == 1 {
+            return self.values[0];
+        }
+        let frac = x - k as f64;
+        self.values[k] + frac * (self.values[k + 1] - self.values[k])
+    }
+    fn breakpoints(&self) -> &[f64] {
+        &self.sample_times
+    }
+    fn kind(&self) -> &'static str {
+        "record"
+    }
+    fn parameters(&self) -> serde_json::Value {
+        let (peak, t_peak) = self.peak();
+        serde_json::json!({
+            "kind": self.kind(),
+            "source": self.source,
+            "dt": self.dt,
+            "points": self.values.len(),
+            "duration": self.end(),
+            "pga": peak,
+            "t_pga": t_peak,
+        })
+    }
+}
