@@ -33,6 +33,14 @@ pub enum Error {
         source: Box<Error>,
     },
 
+    /// A ground-motion record could not be read; `key` is the model-file key that named it.
+    #[error("{key}: {source}")]
+    Record {
+        key: String,
+        #[source]
+        source: crate::record::RecordError,
+    },
+
     /// The integrator could not continue.
     #[error("the {method} solver failed at t = {t} s: {message}")]
     Solver {
@@ -68,6 +76,7 @@ impl Error {
                 | Error::ReadModel { .. }
                 | Error::ParseModel { .. }
                 | Error::InModel { .. }
+                | Error::Record { .. }
         )
     }
 }

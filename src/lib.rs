@@ -15,6 +15,8 @@ pub mod error;
 pub mod excitation;
 pub mod model;
 pub mod output;
+pub mod record;
+pub mod record_tools;
 pub mod run;
 pub mod solution;
 pub mod solver;

@@ -5,6 +5,7 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 use flexrock::model::{Model, Overrides};
+use flexrock::record_tools;
 
 #[derive(Parser)]
 #[command(
@@ -47,6 +48,43 @@ enum Command {
         #[arg(long)]
         duration: Option<f64>,
     },
+    /// Look at a ground-motion record before using it.
+    Record {
+        #[command(subcommand)]
+        command: RecordCommand,
+    },
+}
+
+#[derive(Subcommand)]
+enum RecordCommand {
+    /// Print what the reader understood: header, points, dt, duration, PGA and its time.
+    Info {
+        file: PathBuf,
+        #[command(flatten)]
+        options: RecordOptions,
+    },
+    /// Convert to CSV with columns t,acc_m_s2 (to standard output, or --out FILE).
+    Csv {
+        file: PathBuf,
+        #[command(flatten)]
+        options: RecordOptions,
+        /// Write to this file (atomically) instead of standard output.
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
+}
+
+#[derive(clap::Args)]
+struct RecordOptions {
+    /// peer-at2 or csv [default: from the extension].
+    #[arg(long)]
+    format: Option<String>,
+    /// Units of the values: g, m/s2 or cm/s2 [default: g].
+    #[arg(long, default_value = "g")]
+    units: String,
+    /// Sampling interval of a one-column CSV file, s.
+    #[arg(long)]
+    dt: Option<f64>,
 }
 
 /// Exit code for bad input (model file, parameters).
@@ -104,6 +142,23 @@ fn execute(command: Command) -> flexrock::Result<()> {
             let report = flexrock::run::run(&model, &out)?;
             print!("{}", flexrock::run::run_report_text(&model, &report));
         }
+        Command::Record { command } => match command {
+            RecordCommand::Info { file, options } => {
+                let record = record_tools::load(&file, options.format.as_deref(), options.dt)?;
+                print!("{}", record_tools::info_text(&record, &options.units)?);
+            }
+            RecordCommand::Csv { file, options, out } => {
+                let record = record_tools::load(&file, options.format.as_deref(), options.dt)?;
+                let bytes = record_tools::csv_bytes(&record, &options.units)?;
+                match out {
+                    Some(path) => flexrock::output::write_file_atomically(&path, &bytes)?,
+                    None => {
+                        use std::io::Write;
+                        let _ = std::io::stdout().write_all(&bytes);
+                    }
+                }
+            }
+        },
     }
     Ok(())
 }

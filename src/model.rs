@@ -10,7 +10,10 @@ use serde::{Deserialize, Serialize};
 use crate::body::{positive, Body, ConstantSet};
 use crate::constants::Constants;
 use crate::error::{Error, Result};
-use crate::excitation::{FloorMotion, Free, Harmonic, PaperSine};
+use crate::excitation::{
+    FloorMotion, Free, Harmonic, PaperSine, PulseShape, RecordedMotion, Ricker, SinePulse,
+};
+use crate::record::{read_record, RecordFormat};
 use crate::solver::adaptive::{AdaptiveMethod, AdaptiveSettings};
 use crate::solver::InitialState;
 
@@ -48,12 +51,34 @@ pub struct ExcitationSection {
     pub amplitude: Option<f64>,
     pub period: Option<f64>,
     pub ramp: Option<f64>,
+    /// sine-pulse: number of cycles.
+    pub cycles: Option<f64>,
+    /// sine-pulse: "antisymmetric" (sine) or "symmetric" (cosine).
+    pub shape: Option<String>,
+    /// ricker: time of the peak, s.
+    pub center: Option<f64>,
+    /// record: file, relative to the model file.
+    pub path: Option<String>,
+    /// record: "peer-at2" or "csv".
+    pub format: Option<String>,
+    /// record: "g", "m/s2" or "cm/s2".
+    pub units: Option<String>,
+    /// record: factor applied to the values.
+    pub scale: Option<f64>,
+    /// record: first and last record time used, s.
+    pub start: Option<f64>,
+    pub end: Option<f64>,
+    /// record: free vibration after the record when the duration is not given, s.
+    pub tail: Option<f64>,
+    /// record: sampling interval of a one-column CSV file, s.
+    pub dt: Option<f64>,
 }
 
 #[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct SimulationSection {
-    pub duration: f64,
+    /// Required, except for records, where it defaults to the record length plus `tail`.
+    pub duration: Option<f64>,
     pub q0: Option<f64>,
     pub qdot0: Option<f64>,
 }
@@ -110,10 +135,12 @@ impl Model {
             path: path.to_path_buf(),
             message: e.to_string().trim_end().to_string(),
         })?;
-        let mut model = Model::from_file(file, overrides).map_err(|e| Error::InModel {
-            path: path.to_path_buf(),
-            source: Box::new(e),
-        })?;
+        let base_dir = path.parent().unwrap_or(Path::new("."));
+        let mut model =
+            Model::from_file(file, overrides, base_dir).map_err(|e| Error::InModel {
+                path: path.to_path_buf(),
+                source: Box::new(e),
+            })?;
         model.path = Some(path.to_path_buf());
         Ok(model)
     }
@@ -124,11 +151,11 @@ impl Model {
             path: PathBuf::from("(model text)"),
             message: e.to_string().trim_end().to_string(),
         })?;
-        Model::from_file(file, overrides)
+        Model::from_file(file, overrides, Path::new("."))
     }
 
-    /// Validates a parsed model file.
-    pub fn from_file(mut file: ModelFile, overrides: &Overrides) -> Result<Model> {
+    /// Validates a parsed model file; record paths are relative to `base_dir`.
+    pub fn from_file(mut file: ModelFile, overrides: &Overrides, base_dir: &Path) -> Result<Model> {
         if let Some(m) = &overrides.method {
             file.solver.method = Some(m.clone());
         }
@@ -139,14 +166,26 @@ impl Model {
             file.solver.atol = Some(a);
         }
         if let Some(d) = overrides.duration {
-            file.simulation.duration = d;
+            file.simulation.duration = Some(d);
         }
 
         let body = body_from_section(&file.body)?;
         let constants = Constants::new(&body)?;
-        let duration = file.simulation.duration;
+        let (floor, natural_duration) = floor_from_section(&file.excitation, base_dir)?;
+        let duration = match (file.simulation.duration, natural_duration) {
+            (Some(d), _) | (None, Some(d)) => d,
+            (None, None) => {
+                return Err(Error::invalid(
+                    "simulation.duration",
+                    "(missing)",
+                    &format!(
+                        "required for kind = \"{}\" (only records have a natural length)",
+                        file.excitation.kind
+                    ),
+                ))
+            }
+        };
         positive("simulation.duration", duration)?;
-        let floor = floor_from_section(&file.excitation)?;
         let initial = initial_from_section(&file.simulation, &body)?;
         let solver = solver_from_section(&file.solver, duration)?;
         Ok(Model {
@@ -257,35 +296,72 @@ fn body_from_section(s: &BodySection) -> Result<Body> {
     )
 }
 
-fn floor_from_section(s: &ExcitationSection) -> Result<Box<dyn FloorMotion>> {
+/// Which keys each excitation kind takes (all others are errors).
+const EXCITATION_KEYS: &[(&str, &[&str])] = &[
+    ("paper-sine", &["amplitude", "period", "ramp"]),
+    ("harmonic", &["amplitude", "period"]),
+    ("sine-pulse", &["amplitude", "period", "cycles", "shape"]),
+    ("ricker", &["amplitude", "period", "center"]),
+    (
+        "record",
+        &[
+            "path", "format", "units", "scale", "start", "end", "tail", "dt",
+        ],
+    ),
+    ("free", &[]),
+];
+
+/// Keys that must be given for a kind (the others have defaults).
+const REQUIRED_EXCITATION_KEYS: &[&str] = &["amplitude", "period", "ramp", "center", "path"];
+
+/// The floor motion of the `[excitation]` section, and its natural length if it has one.
+fn floor_from_section(
+    s: &ExcitationSection,
+    base_dir: &Path,
+) -> Result<(Box<dyn FloorMotion>, Option<f64>)> {
     let kind = s.kind.as_str();
-    let keys = [
-        ("amplitude", s.amplitude),
-        ("period", s.period),
-        ("ramp", s.ramp),
-    ];
-    let allowed: &[&str] = match kind {
-        "paper-sine" => &["amplitude", "period", "ramp"],
-        "harmonic" => &["amplitude", "period"],
-        "free" => &[],
-        other => {
-            return Err(Error::invalid(
+    let allowed = EXCITATION_KEYS
+        .iter()
+        .find(|(k, _)| *k == kind)
+        .map(|(_, keys)| *keys)
+        .ok_or_else(|| {
+            let kinds: Vec<String> = EXCITATION_KEYS
+                .iter()
+                .map(|(k, _)| format!("\"{k}\""))
+                .collect();
+            Error::invalid(
                 "excitation.kind",
-                format!("\"{other}\""),
-                "must be \"paper-sine\", \"harmonic\" or \"free\"",
-            ))
-        }
-    };
-    for (key, value) in keys {
-        match (value, allowed.contains(&key)) {
-            (Some(v), false) => {
+                format!("\"{kind}\""),
+                &format!("must be one of {}", kinds.join(", ")),
+            )
+        })?;
+    let given: [(&str, Option<String>); 14] = [
+        ("amplitude", s.amplitude.map(|v| v.to_string())),
+        ("period", s.period.map(|v| v.to_string())),
+        ("ramp", s.ramp.map(|v| v.to_string())),
+        ("cycles", s.cycles.map(|v| v.to_string())),
+        ("shape", s.shape.clone()),
+        ("center", s.center.map(|v| v.to_string())),
+        ("path", s.path.clone()),
+        ("format", s.format.clone()),
+        ("units", s.units.clone()),
+        ("scale", s.scale.map(|v| v.to_string())),
+        ("start", s.start.map(|v| v.to_string())),
+        ("end", s.end.map(|v| v.to_string())),
+        ("tail", s.tail.map(|v| v.to_string())),
+        ("dt", s.dt.map(|v| v.to_string())),
+    ];
+    for (key, value) in &given {
+        let wanted = allowed.contains(key);
+        match value {
+            Some(v) if !wanted => {
                 return Err(Error::invalid(
                     &format!("excitation.{key}"),
                     v,
                     &format!("not a parameter of kind = \"{kind}\""),
                 ))
             }
-            (None, true) => {
+            None if wanted && REQUIRED_EXCITATION_KEYS.contains(key) => {
                 return Err(Error::invalid(
                     &format!("excitation.{key}"),
                     "(missing)",
@@ -303,20 +379,174 @@ fn floor_from_section(s: &ExcitationSection) -> Result<Box<dyn FloorMotion>> {
             "must be a finite number",
         ));
     }
-    Ok(match kind {
+    let period = s.period.unwrap_or(1.0);
+    if allowed.contains(&"period") {
+        positive("excitation.period", period)?;
+    }
+    let floor: Box<dyn FloorMotion> = match kind {
         "paper-sine" => {
-            let (period, ramp) = (s.period.unwrap_or(0.0), s.ramp.unwrap_or(0.0));
-            positive("excitation.period", period)?;
+            let ramp = s.ramp.unwrap_or(0.0);
             positive("excitation.ramp", ramp)?;
             Box::new(PaperSine::new(amplitude, period, ramp))
         }
-        "harmonic" => {
-            let period = s.period.unwrap_or(0.0);
-            positive("excitation.period", period)?;
-            Box::new(Harmonic { amplitude, period })
+        "harmonic" => Box::new(Harmonic { amplitude, period }),
+        "sine-pulse" => {
+            let cycles = s.cycles.unwrap_or(1.0);
+            positive("excitation.cycles", cycles)?;
+            let shape = match s.shape.as_deref().unwrap_or("antisymmetric") {
+                "antisymmetric" => PulseShape::Antisymmetric,
+                "symmetric" => PulseShape::Symmetric,
+                other => {
+                    return Err(Error::invalid(
+                        "excitation.shape",
+                        format!("\"{other}\""),
+                        "must be \"antisymmetric\" (sine) or \"symmetric\" (cosine)",
+                    ))
+                }
+            };
+            Box::new(SinePulse::new(amplitude, period, cycles, shape))
+        }
+        "ricker" => {
+            let center = s.center.unwrap_or(0.0);
+            if !center.is_finite() {
+                return Err(Error::invalid(
+                    "excitation.center",
+                    center,
+                    "must be a finite number",
+                ));
+            }
+            Box::new(Ricker {
+                amplitude,
+                period,
+                center,
+            })
+        }
+        "record" => {
+            let (record, tail) = recorded_motion(s, base_dir)?;
+            let length = record.end() + tail;
+            return Ok((Box::new(record), Some(length)));
         }
         _ => Box::new(Free),
-    })
+    };
+    Ok((floor, None))
+}
+
+/// Standard gravity, for records in units of g (independent of the body's `gravity`).
+pub const STANDARD_GRAVITY: f64 = 9.80665;
+
+/// Reads and trims the record of a `kind = "record"` section; returns it with the tail length.
+fn recorded_motion(s: &ExcitationSection, base_dir: &Path) -> Result<(RecordedMotion, f64)> {
+    let relative = s.path.clone().unwrap_or_default();
+    let path = base_dir.join(&relative);
+    let format = match s.format.as_deref() {
+        None => None,
+        Some("peer-at2") => Some(RecordFormat::PeerAt2),
+        Some("csv") => Some(RecordFormat::Csv),
+        Some(other) => {
+            return Err(Error::invalid(
+                "excitation.format",
+                format!("\"{other}\""),
+                "must be \"peer-at2\" or \"csv\"",
+            ))
+        }
+    };
+    if let Some(dt) = s.dt {
+        positive("excitation.dt", dt)?;
+    }
+    let record = read_record(&path, format, s.dt).map_err(|e| Error::Record {
+        key: "excitation.path".to_string(),
+        source: e,
+    })?;
+    let is_at2 = matches!(format, Some(RecordFormat::PeerAt2))
+        || (format.is_none() && record_format_of(&path) == Some(RecordFormat::PeerAt2));
+    let units = match (s.units.as_deref(), is_at2) {
+        (Some(u), _) => u,
+        (None, true) => "g",
+        (None, false) => {
+            return Err(Error::invalid(
+                "excitation.units",
+                "(missing)",
+                "required for CSV records: \"g\", \"m/s2\" or \"cm/s2\"",
+            ))
+        }
+    };
+    let unit_factor = match units {
+        "g" => STANDARD_GRAVITY,
+        "m/s2" => 1.0,
+        "cm/s2" => 0.01,
+        other => {
+            return Err(Error::invalid(
+                "excitation.units",
+                format!("\"{other}\""),
+                "must be \"g\", \"m/s2\" or \"cm/s2\"",
+            ))
+        }
+    };
+    let scale = s.scale.unwrap_or(1.0);
+    if !scale.is_finite() {
+        return Err(Error::invalid(
+            "excitation.scale",
+            scale,
+            "must be a finite number",
+        ));
+    }
+    let record_length = record.duration();
+    let start = s.start.unwrap_or(0.0);
+    let end = s.end.unwrap_or(record_length);
+    if !(start.is_finite() && start >= 0.0 && start < record_length) {
+        return Err(Error::invalid(
+            "excitation.start",
+            start,
+            &format!("must lie in [0, {record_length}) s, the record's length"),
+        ));
+    }
+    if !(end.is_finite() && end > start && end <= record_length * (1.0 + 1e-12)) {
+        return Err(Error::invalid(
+            "excitation.end",
+            end,
+            &format!("must lie in ({start}, {record_length}] s"),
+        ));
+    }
+    let tail = s.tail.unwrap_or(0.0);
+    if !(tail.is_finite() && tail >= 0.0) {
+        return Err(Error::invalid("excitation.tail", tail, "must be 0 or more"));
+    }
+    // Trimming keeps whole samples: the first at or after `start`, the last at or before `end`.
+    let first = (start / record.dt - 1e-9).ceil().max(0.0) as usize;
+    let last = ((end / record.dt + 1e-9).floor() as usize).min(record.values.len() - 1);
+    if last <= first {
+        return Err(Error::invalid(
+            "excitation.end",
+            end,
+            "leaves fewer than two samples of the record",
+        ));
+    }
+    let values = record.values[first..=last]
+        .iter()
+        .map(|v| v * unit_factor * scale)
+        .collect();
+    Ok((
+        RecordedMotion::new(
+            format!(
+                "{} (samples {}..={} of {})",
+                relative,
+                first,
+                last,
+                record.values.len()
+            ),
+            record.dt,
+            values,
+        ),
+        tail,
+    ))
+}
+
+fn record_format_of(path: &Path) -> Option<RecordFormat> {
+    match path.extension()?.to_str()?.to_ascii_lowercase().as_str() {
+        "at2" => Some(RecordFormat::PeerAt2),
+        "csv" => Some(RecordFormat::Csv),
+        _ => None,
+    }
 }
 
 fn initial_from_section(s: &SimulationSection, body: &Body) -> Result<InitialState> {
