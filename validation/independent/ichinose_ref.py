@@ -2,7 +2,7 @@
 """Independent reference implementation of the Ichinose (1986) SDOF rocking model.
 
 T. Ichinose (1986), "Rocking motion of slender elastic body on rigid floor",
-Bull. NZ Soc. Earthq. Eng. 19(1), 18-27, as restated in /work/shared/MODEL.md
+Bull. NZ Soc. Earthq. Eng. 19(1), 18-27, as restated in the project's model description (MODEL.md)
 (sections 2-6).  Written from MODEL.md only (Python + numpy + scipy); it shares no
 code with the Rust crate and is used to produce expected values for its tests.
 
@@ -50,7 +50,7 @@ Numerics
   every sample time (0, 0.25, 0.5, ... s), so that samples are step end points,
   not interpolated values.
 
-Run from /work/main:
+Run from the repository root:
 
     python3 validation/independent/ichinose_ref.py          # everything
     python3 validation/independent/ichinose_ref.py --quick  # skip the LSODA timing
