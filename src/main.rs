@@ -40,9 +40,57 @@ enum Command {
         /// Absolute tolerance (overrides solver.atol).
         #[arg(long)]
         atol: Option<f64>,
-        /// Integration method: bdf, esdirk34 or tr-bdf2 (overrides solver.method).
+        /// Integration method: bdf, esdirk34, tr-bdf2 or newmark (overrides solver.method).
         #[arg(long)]
         method: Option<String>,
+        /// Newmark time step, s (overrides solver.dt; needs method newmark).
+        #[arg(long)]
+        dt: Option<f64>,
+        /// Newmark variant at events: compensate or substep (overrides solver.newmark_variant).
+        #[arg(long)]
+        variant: Option<String>,
+        /// Simulated time, s (overrides simulation.duration).
+        #[arg(long)]
+        duration: Option<f64>,
+    },
+    /// Compare Newmark at the paper's dt with a tight adaptive reference; write compare.csv,
+    /// compare_history.csv, compare.json and compare.svg.
+    Compare {
+        /// Model file (TOML).
+        model: PathBuf,
+        /// Output directory [default: out/<model file stem>-compare].
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Newmark time step, s [default: the file's solver.dt, else 0.02].
+        #[arg(long)]
+        dt: Option<f64>,
+        /// Newmark variant at events: compensate or substep [default: the file's, else compensate].
+        #[arg(long)]
+        variant: Option<String>,
+        /// Relative tolerance of the adaptive reference.
+        #[arg(long, default_value_t = flexrock::compare::DEFAULT_REFERENCE_RTOL)]
+        reference_rtol: f64,
+        /// Simulated time, s (overrides simulation.duration).
+        #[arg(long)]
+        duration: Option<f64>,
+    },
+    /// Convergence study: Newmark at each dt and each adaptive method at each tolerance against
+    /// a reference; write convergence.csv, convergence.json and two SVG figures.
+    Converge {
+        /// Model file (TOML).
+        model: PathBuf,
+        /// Output directory [default: out/<model file stem>-converge].
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Newmark time steps, s.
+        #[arg(long, value_delimiter = ',', default_values_t = flexrock::converge::DEFAULT_DTS)]
+        dt: Vec<f64>,
+        /// Relative tolerances of the adaptive methods.
+        #[arg(long, value_delimiter = ',', default_values_t = flexrock::converge::DEFAULT_RTOLS)]
+        rtol: Vec<f64>,
+        /// Relative tolerance of the reference.
+        #[arg(long, default_value_t = flexrock::compare::DEFAULT_REFERENCE_RTOL)]
+        reference_rtol: f64,
         /// Simulated time, s (overrides simulation.duration).
         #[arg(long)]
         duration: Option<f64>,
@@ -91,6 +139,8 @@ fn execute(command: Command) -> flexrock::Result<()> {
             rtol,
             atol,
             method,
+            dt,
+            variant,
             duration,
         } => {
             let overrides = Overrides {
@@ -98,20 +148,66 @@ fn execute(command: Command) -> flexrock::Result<()> {
                 rtol,
                 atol,
                 duration,
+                dt,
+                newmark_variant: variant,
             };
             let model = Model::load(&path, &overrides)?;
-            let out = out.unwrap_or_else(|| default_out_dir(&path));
+            let out = out.unwrap_or_else(|| default_out_dir(&path, ""));
             let report = flexrock::run::run(&model, &out)?;
             print!("{}", flexrock::run::run_report_text(&model, &report));
+        }
+        Command::Compare {
+            model: path,
+            out,
+            dt,
+            variant,
+            reference_rtol,
+            duration,
+        } => {
+            let overrides = Overrides {
+                duration,
+                ..Overrides::default()
+            };
+            let model = Model::load(&path, &overrides)?;
+            let options = flexrock::compare::CompareOptions {
+                reference_rtol,
+                dt,
+                variant,
+            };
+            let out = out.unwrap_or_else(|| default_out_dir(&path, "-compare"));
+            let report = flexrock::compare::run_compare(&model, &options, &out)?;
+            print!("{}", flexrock::compare::compare_text(&model, &report));
+        }
+        Command::Converge {
+            model: path,
+            out,
+            dt,
+            rtol,
+            reference_rtol,
+            duration,
+        } => {
+            let overrides = Overrides {
+                duration,
+                ..Overrides::default()
+            };
+            let model = Model::load(&path, &overrides)?;
+            let options = flexrock::converge::ConvergeOptions {
+                dts: dt,
+                rtols: rtol,
+                reference_rtol,
+            };
+            let out = out.unwrap_or_else(|| default_out_dir(&path, "-converge"));
+            let report = flexrock::converge::run_converge(&model, &options, &out)?;
+            print!("{}", flexrock::converge::converge_text(&report));
         }
     }
     Ok(())
 }
 
-fn default_out_dir(model: &std::path::Path) -> PathBuf {
+fn default_out_dir(model: &std::path::Path, suffix: &str) -> PathBuf {
     let stem = model
         .file_stem()
         .map(|s| s.to_string_lossy().into_owned())
         .unwrap_or_else(|| "run".to_string());
-    PathBuf::from("out").join(stem)
+    PathBuf::from("out").join(format!("{stem}{suffix}"))
 }
