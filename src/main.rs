@@ -40,7 +40,8 @@ enum Command {
         /// Absolute tolerance (overrides solver.atol).
         #[arg(long)]
         atol: Option<f64>,
-        /// Integration method: bdf, esdirk34, tr-bdf2 or newmark (overrides solver.method).
+        /// Integration method: bdf, esdirk34, tr-bdf2 or newmark (overrides solver.method; switching
+        /// between newmark and the adaptive methods sets aside the file's keys of the other).
         #[arg(long)]
         method: Option<String>,
         /// Newmark time step, s (overrides solver.dt; needs method newmark).

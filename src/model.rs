@@ -146,6 +146,16 @@ impl Model {
     /// Validates a parsed model file.
     pub fn from_file(mut file: ModelFile, overrides: &Overrides) -> Result<Model> {
         if let Some(m) = &overrides.method {
+            // Switching between Newmark and the adaptive methods on the command line sets aside
+            // the file's keys of the other family: they were written for the file's method.
+            let newmark = |name: Option<&str>| name == Some("newmark");
+            if newmark(Some(m)) != newmark(file.solver.method.as_deref()) {
+                let keep_output_dt = file.solver.output_dt;
+                file.solver = SolverSection {
+                    output_dt: keep_output_dt,
+                    ..SolverSection::default()
+                };
+            }
             file.solver.method = Some(m.clone());
         }
         if let Some(r) = overrides.rtol {
