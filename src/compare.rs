@@ -13,7 +13,7 @@ use crate::error::Result;
 use crate::findings::{self, Findings};
 use crate::model::Model;
 use crate::output::{self, number, Table};
-use crate::plot::{self, Panel, Series};
+use crate::plot::{self, Legend, Panel, Series};
 use crate::run::{simulate_with, VERSION};
 use crate::solution::{Event, Extremum, Sample, Solution, SolverStats};
 use crate::solver::{OutputGrid, SolverSettings};
@@ -372,7 +372,7 @@ pub fn max_event_shift(model: &Model) -> f64 {
 }
 
 /// Runs the reference and Newmark, compares them, writes compare.csv, compare_history.csv,
-/// compare.json and compare.svg into `out_dir`.
+/// compare.json, compare.svg and compare_relations.svg into `out_dir`.
 pub fn run_compare(
     model: &Model,
     options: &CompareOptions,
@@ -400,6 +400,7 @@ pub fn run_compare(
         comparison: &comparison,
     };
     let figure = compare_figure(model, &reference, &newmark, &newmark_settings.label())?;
+    let relations = relations_figure(&reference, &newmark, &newmark_settings.label())?;
     let files = output::write_atomically(
         out_dir,
         &[
@@ -410,6 +411,7 @@ pub fn run_compare(
             ),
             ("compare.json", output::json_bytes(&summary)),
             ("compare.svg", figure.into_bytes()),
+            ("compare_relations.svg", relations.into_bytes()),
         ],
     )?;
     Ok(CompareReport {
@@ -516,6 +518,26 @@ fn compare_figure(
         panel("top velocity q'", "q' (m/s)", |x| x.qdot, false),
     ];
     plot::figure("compare.svg", &panels, 1, (900, 300))
+}
+
+/// The paper's Figs. 12-13: q against r and s against r, both solutions.
+fn relations_figure(reference: &Solution, other: &Solution, label: &str) -> Result<String> {
+    let panel = |title: &str, x_label: &str, y_label: &str, xy: fn(&Sample) -> (f64, f64)| Panel {
+        title: title.to_string(),
+        x_label: x_label.to_string(),
+        y_label: y_label.to_string(),
+        series: vec![
+            Series::line("reference", reference.samples.iter().map(xy).collect(), 0),
+            Series::line(label, other.samples.iter().map(xy).collect(), 1),
+        ],
+        legend: Legend::LowerRight,
+        ..Panel::default()
+    };
+    let panels = [
+        panel("q against r (Fig. 12)", "r (m)", "q (m)", |x| (x.r, x.q)),
+        panel("s against r (Fig. 13)", "r (m)", "s (m)", |x| (x.r, x.s)),
+    ];
+    plot::figure("compare_relations.svg", &panels, 2, (520, 460))
 }
 
 /// The printed table of `flexrock compare`.

@@ -13,7 +13,7 @@ use crate::compare::{compare, max_event_shift};
 use crate::error::Result;
 use crate::model::Model;
 use crate::output::{self, number, Table};
-use crate::plot::{self, Panel, Series};
+use crate::plot::{self, Legend, Panel, Series};
 use crate::run::{simulate_with, VERSION};
 use crate::solution::SolverStats;
 use crate::solver::adaptive::AdaptiveMethod;
@@ -380,6 +380,7 @@ fn figures(summary: &ConvergeSummary) -> Result<(String, String)> {
             series: dt_series,
             log_x: true,
             log_y: true,
+            legend: Legend::LowerRight,
         });
         work_panels.push(Panel {
             title: format!("{title} against work"),
@@ -388,6 +389,7 @@ fn figures(summary: &ConvergeSummary) -> Result<(String, String)> {
             series: work_series,
             log_x: true,
             log_y: true,
+            legend: Legend::UpperRight,
         });
     }
     Ok((

@@ -8,7 +8,8 @@
 //! - [`solver`]: solvers that drive the automaton; [`solution`]: what they return;
 //! - [`model`]: the TOML model file; [`output`]: CSV/JSON writers; [`run`]: the commands;
 //! - [`compare`], [`converge`]: Newmark against the adaptive reference; [`findings`]: the paper's
-//!   qualitative findings in numbers; [`plot`]: SVG figures from series.
+//!   qualitative findings in numbers; [`plot`]: SVG figures from series; [`report`]: the
+//!   validation report assembled from their files.
 
 pub mod automaton;
 pub mod body;
@@ -21,6 +22,7 @@ pub mod findings;
 pub mod model;
 pub mod output;
 pub mod plot;
+pub mod report;
 pub mod run;
 pub mod solution;
 pub mod solver;

@@ -55,7 +55,7 @@ enum Command {
         duration: Option<f64>,
     },
     /// Compare Newmark at the paper's dt with a tight adaptive reference; write compare.csv,
-    /// compare_history.csv, compare.json and compare.svg.
+    /// compare_history.csv, compare.json, compare.svg and compare_relations.svg.
     Compare {
         /// Model file (TOML).
         model: PathBuf,
@@ -95,6 +95,27 @@ enum Command {
         /// Simulated time, s (overrides simulation.duration).
         #[arg(long)]
         duration: Option<f64>,
+    },
+    /// Assemble the validation report (markdown) from the output directories of compare (both
+    /// variants), converge and a run of the rigid-limit model.
+    Report {
+        #[arg(long)]
+        compare_compensate: PathBuf,
+        #[arg(long)]
+        compare_substep: PathBuf,
+        #[arg(long)]
+        converge: PathBuf,
+        #[arg(long)]
+        rigid: PathBuf,
+        /// Directory of the figures, as the report links them (relative to the report).
+        #[arg(long, default_value = "figures")]
+        figures: String,
+        /// The regenerating command, quoted in the report.
+        #[arg(long, default_value = "validation/regenerate.sh")]
+        command: String,
+        /// The report file to write.
+        #[arg(long)]
+        out: PathBuf,
     },
 }
 
@@ -200,6 +221,26 @@ fn execute(command: Command) -> flexrock::Result<()> {
             let out = out.unwrap_or_else(|| default_out_dir(&path, "-converge"));
             let report = flexrock::converge::run_converge(&model, &options, &out)?;
             print!("{}", flexrock::converge::converge_text(&report));
+        }
+        Command::Report {
+            compare_compensate,
+            compare_substep,
+            converge,
+            rigid,
+            figures,
+            command,
+            out,
+        } => {
+            let inputs = flexrock::report::ReportInputs {
+                compare_compensate,
+                compare_substep,
+                converge,
+                rigid,
+                figures_dir: figures,
+                command,
+            };
+            let written = flexrock::report::write_report(&inputs, &out)?;
+            println!("wrote {}", written.display());
         }
     }
     Ok(())

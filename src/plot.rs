@@ -42,6 +42,18 @@ pub struct Panel {
     /// Logarithmic axes (decades); non-positive values are left out.
     pub log_x: bool,
     pub log_y: bool,
+    /// Where the legend goes, so that it hides no data.
+    pub legend: Legend,
+}
+
+/// Corner of a panel for its legend.
+#[derive(Debug, Clone, Copy, Default)]
+pub enum Legend {
+    #[default]
+    UpperRight,
+    LowerRight,
+    UpperLeft,
+    LowerLeft,
 }
 
 const PALETTE: [RGBColor; 7] = [
@@ -182,7 +194,12 @@ fn draw_panel(
         .configure_series_labels()
         .background_style(WHITE.mix(0.85))
         .border_style(RGBColor(180, 180, 180))
-        .position(SeriesLabelPosition::UpperRight)
+        .position(match panel.legend {
+            Legend::UpperRight => SeriesLabelPosition::UpperRight,
+            Legend::LowerRight => SeriesLabelPosition::LowerRight,
+            Legend::UpperLeft => SeriesLabelPosition::UpperLeft,
+            Legend::LowerLeft => SeriesLabelPosition::LowerLeft,
+        })
         .draw()?;
     Ok(())
 }
