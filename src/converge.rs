@@ -184,6 +184,9 @@ fn orders(cases: &[Case]) -> Vec<ObservedOrder> {
     orders
 }
 
+/// One case to run: method label, dt, rtol, and its settings (or why they are invalid).
+type Configuration = (String, Option<f64>, Option<f64>, Result<SolverSettings>);
+
 /// Runs the reference, every Newmark variant at every dt and every adaptive method at every
 /// tolerance; writes convergence.csv, convergence.json and the figures into `out_dir`.
 pub fn run_converge(
@@ -197,8 +200,7 @@ pub fn run_converge(
     let output_dt = model.solver.output_dt();
     let max_shift = max_event_shift(model);
 
-    let mut configurations: Vec<(String, Option<f64>, Option<f64>, Result<SolverSettings>)> =
-        Vec::new();
+    let mut configurations: Vec<Configuration> = Vec::new();
     for variant in [NewmarkVariant::Compensate, NewmarkVariant::Substep] {
         for &dt in &options.dts {
             let settings = model
