@@ -49,6 +49,14 @@ pub enum Error {
         message: String,
     },
 
+    /// A figure could not be drawn.
+    #[error("cannot draw the figure {name}: {message}")]
+    Plot { name: String, message: String },
+
+    /// An input file of a command (a result written earlier) could not be read or understood.
+    #[error("{path}: {message}")]
+    ReadResult { path: PathBuf, message: String },
+
     /// An output file could not be written.
     #[error("cannot write {path}: {source}")]
     Write {

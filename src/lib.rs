@@ -6,17 +6,25 @@
 //! - [`automaton`]: the hybrid automaton (modes, right-hand sides, guards, resets);
 //! - [`excitation`]: floor motions behind the [`excitation::FloorMotion`] trait;
 //! - [`solver`]: solvers that drive the automaton; [`solution`]: what they return;
-//! - [`model`]: the TOML model file; [`output`]: CSV/JSON writers; [`run`]: the commands.
+//! - [`model`]: the TOML model file; [`output`]: CSV/JSON writers; [`run`]: the commands;
+//! - [`compare`], [`converge`]: Newmark against the adaptive reference; [`findings`]: the paper's
+//!   qualitative findings in numbers; [`plot`]: SVG figures from series; [`report`]: the
+//!   validation report assembled from their files.
 
 pub mod automaton;
 pub mod body;
+pub mod compare;
 pub mod constants;
+pub mod converge;
 pub mod error;
 pub mod excitation;
+pub mod findings;
 pub mod model;
 pub mod output;
+pub mod plot;
 pub mod record;
 pub mod record_tools;
+pub mod report;
 pub mod run;
 pub mod solution;
 pub mod solver;

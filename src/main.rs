@@ -41,9 +41,16 @@ enum Command {
         /// Absolute tolerance (overrides solver.atol).
         #[arg(long)]
         atol: Option<f64>,
-        /// Integration method: bdf, esdirk34 or tr-bdf2 (overrides solver.method).
+        /// Integration method: bdf, esdirk34, tr-bdf2 or newmark (overrides solver.method; switching
+        /// between newmark and the adaptive methods sets aside the file's keys of the other).
         #[arg(long)]
         method: Option<String>,
+        /// Newmark time step, s (overrides solver.dt; needs method newmark).
+        #[arg(long)]
+        dt: Option<f64>,
+        /// Newmark variant at events: compensate or substep (overrides solver.newmark_variant).
+        #[arg(long)]
+        variant: Option<String>,
         /// Simulated time, s (overrides simulation.duration).
         #[arg(long)]
         duration: Option<f64>,
@@ -52,6 +59,69 @@ enum Command {
     Record {
         #[command(subcommand)]
         command: RecordCommand,
+    },
+    /// Compare Newmark at the paper's dt with a tight adaptive reference; write compare.csv,
+    /// compare_history.csv, compare.json, compare.svg and compare_relations.svg.
+    Compare {
+        /// Model file (TOML).
+        model: PathBuf,
+        /// Output directory [default: out/<model file stem>-compare].
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Newmark time step, s [default: the file's solver.dt, else 0.02].
+        #[arg(long)]
+        dt: Option<f64>,
+        /// Newmark variant at events: compensate or substep [default: the file's, else compensate].
+        #[arg(long)]
+        variant: Option<String>,
+        /// Relative tolerance of the adaptive reference.
+        #[arg(long, default_value_t = flexrock::compare::DEFAULT_REFERENCE_RTOL)]
+        reference_rtol: f64,
+        /// Simulated time, s (overrides simulation.duration).
+        #[arg(long)]
+        duration: Option<f64>,
+    },
+    /// Convergence study: Newmark at each dt and each adaptive method at each tolerance against
+    /// a reference; write convergence.csv, convergence.json and two SVG figures.
+    Converge {
+        /// Model file (TOML).
+        model: PathBuf,
+        /// Output directory [default: out/<model file stem>-converge].
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Newmark time steps, s.
+        #[arg(long, value_delimiter = ',', default_values_t = flexrock::converge::DEFAULT_DTS)]
+        dt: Vec<f64>,
+        /// Relative tolerances of the adaptive methods.
+        #[arg(long, value_delimiter = ',', default_values_t = flexrock::converge::DEFAULT_RTOLS)]
+        rtol: Vec<f64>,
+        /// Relative tolerance of the reference.
+        #[arg(long, default_value_t = flexrock::compare::DEFAULT_REFERENCE_RTOL)]
+        reference_rtol: f64,
+        /// Simulated time, s (overrides simulation.duration).
+        #[arg(long)]
+        duration: Option<f64>,
+    },
+    /// Assemble the validation report (markdown) from the output directories of compare (both
+    /// variants), converge and a run of the rigid-limit model.
+    Report {
+        #[arg(long)]
+        compare_compensate: PathBuf,
+        #[arg(long)]
+        compare_substep: PathBuf,
+        #[arg(long)]
+        converge: PathBuf,
+        #[arg(long)]
+        rigid: PathBuf,
+        /// Directory of the figures, as the report links them (relative to the report).
+        #[arg(long, default_value = "figures")]
+        figures: String,
+        /// The regenerating command, quoted in the report.
+        #[arg(long, default_value = "validation/regenerate.sh")]
+        command: String,
+        /// The report file to write.
+        #[arg(long)]
+        out: PathBuf,
     },
 }
 
@@ -129,6 +199,8 @@ fn execute(command: Command) -> flexrock::Result<()> {
             rtol,
             atol,
             method,
+            dt,
+            variant,
             duration,
         } => {
             let overrides = Overrides {
@@ -136,9 +208,11 @@ fn execute(command: Command) -> flexrock::Result<()> {
                 rtol,
                 atol,
                 duration,
+                dt,
+                newmark_variant: variant,
             };
             let model = Model::load(&path, &overrides)?;
-            let out = out.unwrap_or_else(|| default_out_dir(&path));
+            let out = out.unwrap_or_else(|| default_out_dir(&path, ""));
             let report = flexrock::run::run(&model, &out)?;
             print!("{}", flexrock::run::run_report_text(&model, &report));
         }
@@ -159,14 +233,78 @@ fn execute(command: Command) -> flexrock::Result<()> {
                 }
             }
         },
+        Command::Compare {
+            model: path,
+            out,
+            dt,
+            variant,
+            reference_rtol,
+            duration,
+        } => {
+            let overrides = Overrides {
+                duration,
+                ..Overrides::default()
+            };
+            let model = Model::load(&path, &overrides)?;
+            let options = flexrock::compare::CompareOptions {
+                reference_rtol,
+                dt,
+                variant,
+            };
+            let out = out.unwrap_or_else(|| default_out_dir(&path, "-compare"));
+            let report = flexrock::compare::run_compare(&model, &options, &out)?;
+            print!("{}", flexrock::compare::compare_text(&model, &report));
+        }
+        Command::Converge {
+            model: path,
+            out,
+            dt,
+            rtol,
+            reference_rtol,
+            duration,
+        } => {
+            let overrides = Overrides {
+                duration,
+                ..Overrides::default()
+            };
+            let model = Model::load(&path, &overrides)?;
+            let options = flexrock::converge::ConvergeOptions {
+                dts: dt,
+                rtols: rtol,
+                reference_rtol,
+            };
+            let out = out.unwrap_or_else(|| default_out_dir(&path, "-converge"));
+            let report = flexrock::converge::run_converge(&model, &options, &out)?;
+            print!("{}", flexrock::converge::converge_text(&report));
+        }
+        Command::Report {
+            compare_compensate,
+            compare_substep,
+            converge,
+            rigid,
+            figures,
+            command,
+            out,
+        } => {
+            let inputs = flexrock::report::ReportInputs {
+                compare_compensate,
+                compare_substep,
+                converge,
+                rigid,
+                figures_dir: figures,
+                command,
+            };
+            let written = flexrock::report::write_report(&inputs, &out)?;
+            println!("wrote {}", written.display());
+        }
     }
     Ok(())
 }
 
-fn default_out_dir(model: &std::path::Path) -> PathBuf {
+fn default_out_dir(model: &std::path::Path, suffix: &str) -> PathBuf {
     let stem = model
         .file_stem()
         .map(|s| s.to_string_lossy().into_owned())
         .unwrap_or_else(|| "run".to_string());
-    PathBuf::from("out").join(stem)
+    PathBuf::from("out").join(format!("{stem}{suffix}"))
 }

@@ -15,7 +15,8 @@ use crate::excitation::{
 };
 use crate::record::{read_record, RecordFormat};
 use crate::solver::adaptive::{AdaptiveMethod, AdaptiveSettings};
-use crate::solver::InitialState;
+use crate::solver::newmark::{critical_omega_dt, NewmarkSettings, NewmarkVariant};
+use crate::solver::{InitialState, SolverSettings};
 
 /// The model file as written.
 #[derive(Debug, Clone, Deserialize, Serialize)]
@@ -90,6 +91,10 @@ pub struct SolverSection {
     pub rtol: Option<f64>,
     pub atol: Option<f64>,
     pub output_dt: Option<f64>,
+    pub dt: Option<f64>,
+    pub newmark_beta: Option<f64>,
+    pub newmark_gamma: Option<f64>,
+    pub newmark_variant: Option<String>,
 }
 
 /// Command-line values that take precedence over the file.
@@ -99,6 +104,10 @@ pub struct Overrides {
     pub rtol: Option<f64>,
     pub atol: Option<f64>,
     pub duration: Option<f64>,
+    /// Newmark time step (solver.dt).
+    pub dt: Option<f64>,
+    /// Newmark variant (solver.newmark_variant).
+    pub newmark_variant: Option<String>,
 }
 
 pub const DEFAULT_DEPTH: f64 = 1.0;
@@ -107,6 +116,13 @@ pub const DEFAULT_GRAVITY: f64 = 9.81;
 pub const DEFAULT_RTOL: f64 = 1e-10;
 pub const DEFAULT_ATOL: f64 = 1e-12;
 pub const DEFAULT_OUTPUT_DT: f64 = 0.005;
+/// The paper's time step (section 2.5).
+pub const DEFAULT_NEWMARK_DT: f64 = 0.02;
+/// Linear acceleration, the paper's choice.
+pub const DEFAULT_NEWMARK_BETA: f64 = 1.0 / 6.0;
+pub const DEFAULT_NEWMARK_GAMMA: f64 = 0.5;
+/// More Newmark steps than this is a mistake in dt, not a wish.
+const MAX_NEWMARK_STEPS: f64 = 1e8;
 /// More history rows than this is a mistake in output_dt, not a wish.
 const MAX_SAMPLES: f64 = 1e7;
 
@@ -121,7 +137,7 @@ pub struct Model {
     pub floor: Box<dyn FloorMotion>,
     pub initial: InitialState,
     pub duration: f64,
-    pub solver: AdaptiveSettings,
+    pub solver: SolverSettings,
 }
 
 impl Model {
@@ -157,6 +173,16 @@ impl Model {
     /// Validates a parsed model file; record paths are relative to `base_dir`.
     pub fn from_file(mut file: ModelFile, overrides: &Overrides, base_dir: &Path) -> Result<Model> {
         if let Some(m) = &overrides.method {
+            // Switching between Newmark and the adaptive methods on the command line sets aside
+            // the file's keys of the other family: they were written for the file's method.
+            let newmark = |name: Option<&str>| name == Some("newmark");
+            if newmark(Some(m)) != newmark(file.solver.method.as_deref()) {
+                let keep_output_dt = file.solver.output_dt;
+                file.solver = SolverSection {
+                    output_dt: keep_output_dt,
+                    ..SolverSection::default()
+                };
+            }
             file.solver.method = Some(m.clone());
         }
         if let Some(r) = overrides.rtol {
@@ -167,6 +193,12 @@ impl Model {
         }
         if let Some(d) = overrides.duration {
             file.simulation.duration = Some(d);
+        }
+        if let Some(dt) = overrides.dt {
+            file.solver.dt = Some(dt);
+        }
+        if let Some(v) = &overrides.newmark_variant {
+            file.solver.newmark_variant = Some(v.clone());
         }
 
         let body = body_from_section(&file.body)?;
@@ -187,7 +219,7 @@ impl Model {
         };
         positive("simulation.duration", duration)?;
         let initial = initial_from_section(&file.simulation, &body)?;
-        let solver = solver_from_section(&file.solver, duration)?;
+        let solver = solver_from_section(&file.solver, duration, constants.omega)?;
         Ok(Model {
             path: None,
             file,
@@ -198,6 +230,59 @@ impl Model {
             duration,
             solver,
         })
+    }
+}
+
+impl Model {
+    /// Settings of a tight adaptive reference: the file's adaptive method (BDF when the file
+    /// names Newmark) at `rtol`, with atol = rtol / 100 (q is of order 0.1 m), on the model's
+    /// output grid.
+    pub fn reference_settings(&self, rtol: f64) -> Result<AdaptiveSettings> {
+        if !(rtol > 0.0 && rtol < 1.0) {
+            return Err(Error::invalid(
+                "rtol",
+                rtol,
+                "the relative tolerance must lie in (0, 1)",
+            ));
+        }
+        let method = match self.solver {
+            SolverSettings::Adaptive(a) => a.method,
+            SolverSettings::Newmark(_) => AdaptiveMethod::Bdf,
+        };
+        Ok(AdaptiveSettings {
+            method,
+            rtol,
+            atol: rtol * 1e-2,
+            output_dt: self.solver.output_dt(),
+        })
+    }
+
+    /// Newmark settings for this model: the file's Newmark keys when it names Newmark, the
+    /// paper's otherwise, with `dt` and `variant` taking precedence. Checked like the file.
+    pub fn newmark_settings(
+        &self,
+        dt: Option<f64>,
+        variant: Option<&str>,
+    ) -> Result<NewmarkSettings> {
+        let mut section = match &self.file.solver.method {
+            Some(m) if m == "newmark" => self.file.solver.clone(),
+            _ => SolverSection {
+                output_dt: self.file.solver.output_dt,
+                ..SolverSection::default()
+            },
+        };
+        if dt.is_some() {
+            section.dt = dt;
+        }
+        if let Some(v) = variant {
+            section.newmark_variant = Some(v.to_string());
+        }
+        newmark_from_section(
+            &section,
+            self.duration,
+            self.constants.omega,
+            self.solver.output_dt(),
+        )
     }
 }
 
@@ -572,25 +657,38 @@ fn initial_from_section(s: &SimulationSection, body: &Body) -> Result<InitialSta
     Ok(InitialState { q, qdot })
 }
 
-fn solver_from_section(s: &SolverSection, duration: f64) -> Result<AdaptiveSettings> {
+fn solver_from_section(s: &SolverSection, duration: f64, omega: f64) -> Result<SolverSettings> {
     let name = s.method.as_deref().unwrap_or("bdf");
-    let method = AdaptiveMethod::from_name(name).ok_or_else(|| {
-        Error::invalid(
+    let is_newmark = name == "newmark";
+    let adaptive = AdaptiveMethod::from_name(name);
+    if adaptive.is_none() && !is_newmark {
+        return Err(Error::invalid(
             "solver.method",
             format!("\"{name}\""),
-            "must be \"bdf\", \"esdirk34\" or \"tr-bdf2\"",
-        )
-    })?;
-    let rtol = s.rtol.unwrap_or(DEFAULT_RTOL);
-    if !(rtol > 0.0 && rtol < 1.0) {
-        return Err(Error::invalid(
-            "solver.rtol",
-            rtol,
-            "the relative tolerance must lie in (0, 1)",
+            "must be \"bdf\", \"esdirk34\", \"tr-bdf2\" or \"newmark\"",
         ));
     }
-    let atol = s.atol.unwrap_or(DEFAULT_ATOL);
-    positive("solver.atol", atol)?;
+    // Keys of the other family of methods are mistakes, not silently ignored settings.
+    let foreign: [(&str, Option<String>); 6] = [
+        ("rtol", s.rtol.map(|v| v.to_string())),
+        ("atol", s.atol.map(|v| v.to_string())),
+        ("dt", s.dt.map(|v| v.to_string())),
+        ("newmark_beta", s.newmark_beta.map(|v| v.to_string())),
+        ("newmark_gamma", s.newmark_gamma.map(|v| v.to_string())),
+        ("newmark_variant", s.newmark_variant.clone()),
+    ];
+    for (i, (key, value)) in foreign.iter().enumerate() {
+        let belongs_to_newmark = i >= 2;
+        if let Some(v) = value {
+            if belongs_to_newmark != is_newmark {
+                return Err(Error::invalid(
+                    &format!("solver.{key}"),
+                    v,
+                    &format!("not a parameter of method = \"{name}\""),
+                ));
+            }
+        }
+    }
     let output_dt = s.output_dt.unwrap_or(DEFAULT_OUTPUT_DT);
     positive("solver.output_dt", output_dt)?;
     if duration / output_dt > MAX_SAMPLES {
@@ -600,10 +698,90 @@ fn solver_from_section(s: &SolverSection, duration: f64) -> Result<AdaptiveSetti
             &format!("gives more than {MAX_SAMPLES:e} history rows over {duration} s; choose a larger spacing"),
         ));
     }
-    Ok(AdaptiveSettings {
-        method,
-        rtol,
-        atol,
+    match adaptive {
+        Some(method) => {
+            let rtol = s.rtol.unwrap_or(DEFAULT_RTOL);
+            if !(rtol > 0.0 && rtol < 1.0) {
+                return Err(Error::invalid(
+                    "solver.rtol",
+                    rtol,
+                    "the relative tolerance must lie in (0, 1)",
+                ));
+            }
+            let atol = s.atol.unwrap_or(DEFAULT_ATOL);
+            positive("solver.atol", atol)?;
+            Ok(SolverSettings::Adaptive(AdaptiveSettings {
+                method,
+                rtol,
+                atol,
+                output_dt,
+            }))
+        }
+        None => newmark_from_section(s, duration, omega, output_dt).map(SolverSettings::Newmark),
+    }
+}
+
+fn newmark_from_section(
+    s: &SolverSection,
+    duration: f64,
+    omega: f64,
+    output_dt: f64,
+) -> Result<NewmarkSettings> {
+    let dt = s.dt.unwrap_or(DEFAULT_NEWMARK_DT);
+    positive("solver.dt", dt)?;
+    if duration / dt > MAX_NEWMARK_STEPS {
+        return Err(Error::invalid(
+            "solver.dt",
+            dt,
+            &format!("gives more than {MAX_NEWMARK_STEPS:e} steps over {duration} s; choose a larger step"),
+        ));
+    }
+    let gamma = s.newmark_gamma.unwrap_or(DEFAULT_NEWMARK_GAMMA);
+    if !(0.5..=1.0).contains(&gamma) {
+        return Err(Error::invalid(
+            "solver.newmark_gamma",
+            gamma,
+            "must lie in [1/2, 1] (below 1/2 Newmark's method amplifies every oscillation)",
+        ));
+    }
+    let beta = s.newmark_beta.unwrap_or(DEFAULT_NEWMARK_BETA);
+    if !(0.0..=0.5).contains(&beta) {
+        return Err(Error::invalid(
+            "solver.newmark_beta",
+            beta,
+            "must lie in [0, 1/2]",
+        ));
+    }
+    let variant_name = s.newmark_variant.as_deref().unwrap_or("compensate");
+    let variant = NewmarkVariant::from_name(variant_name).ok_or_else(|| {
+        Error::invalid(
+            "solver.newmark_variant",
+            format!("\"{variant_name}\""),
+            "must be \"compensate\" or \"substep\"",
+        )
+    })?;
+    // Only the pre-uplift omega can make the method unstable: see critical_omega_dt.
+    if let Some(limit) = critical_omega_dt(beta, gamma) {
+        let dt_limit = limit / omega;
+        if dt >= dt_limit {
+            let period = 2.0 * std::f64::consts::PI / omega;
+            return Err(Error::invalid(
+                "solver.dt",
+                dt,
+                &format!(
+                    "Newmark with beta = {beta:.6}, gamma = {gamma} is stable only for dt < {dt_limit:.6} s \
+                     = {:.4} T (pre-uplift period T = {period:.6} s): omega dt must stay below 1/sqrt(gamma/2 - beta) = {limit:.6}; \
+                     choose a smaller dt, or beta >= gamma/2 (e.g. 1/4) for unconditional stability",
+                    dt_limit / period
+                ),
+            ));
+        }
+    }
+    Ok(NewmarkSettings {
+        dt,
+        beta,
+        gamma,
+        variant,
         output_dt,
     })
 }

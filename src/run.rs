@@ -12,22 +12,25 @@ use crate::error::Result;
 use crate::model::{Model, ModelFile};
 use crate::output;
 use crate::solution::{Solution, SolverStats};
-use crate::solver::adaptive::{self, AdaptiveSettings};
-use crate::solver::InitialState;
+use crate::solver::{adaptive, newmark};
+use crate::solver::{InitialState, SolverSettings};
 
 /// Version of flexrock that made a result.
 pub const VERSION: &str = env!("CARGO_PKG_VERSION");
 
 /// Solves a model with the solver its settings name.
 pub fn simulate(model: &Model) -> Result<Solution> {
+    simulate_with(model, &model.solver)
+}
+
+/// Solves a model with the given solver settings instead of its own.
+pub fn simulate_with(model: &Model, settings: &SolverSettings) -> Result<Solution> {
     let automaton = Automaton::new(&model.constants);
-    adaptive::solve(
-        &automaton,
-        model.floor.as_ref(),
-        model.initial,
-        model.duration,
-        &model.solver,
-    )
+    let (floor, initial, duration) = (model.floor.as_ref(), model.initial, model.duration);
+    match settings {
+        SolverSettings::Adaptive(s) => adaptive::solve(&automaton, floor, initial, duration, s),
+        SolverSettings::Newmark(s) => newmark::solve(&automaton, floor, initial, duration, s),
+    }
 }
 
 /// What `flexrock props` prints: the body as understood and its derived constants.
@@ -159,7 +162,7 @@ pub struct RunSummary<'a> {
     pub max_energy_residual: f64,
     pub final_time: f64,
     pub final_mode: &'static str,
-    pub solver: &'a AdaptiveSettings,
+    pub solver: &'a SolverSettings,
     pub statistics: &'a SolverStats,
     pub constants: &'a Constants,
     pub body: &'a Body,

@@ -2,6 +2,7 @@
 //! result type ([`crate::solution::Solution`]).
 
 pub mod adaptive;
+pub mod newmark;
 
 use serde::Serialize;
 
@@ -57,5 +58,67 @@ impl OutputGrid {
 
     pub fn advance(&mut self) {
         self.next += 1;
+    }
+
+    /// Every time of the grid over [0, end], as every solver samples it.
+    pub fn times(end: f64, output_dt: f64) -> Vec<f64> {
+        let mut grid = OutputGrid::new(end, output_dt);
+        let mut times = Vec::new();
+        while let Some(t) = grid.peek() {
+            times.push(t);
+            grid.advance();
+        }
+        times
+    }
+}
+
+/// Which solver a model runs with, and its settings.
+#[derive(Debug, Clone, Copy)]
+pub enum SolverSettings {
+    Adaptive(adaptive::AdaptiveSettings),
+    Newmark(newmark::NewmarkSettings),
+}
+
+impl SolverSettings {
+    /// The method's name in statistics and tables, e.g. "bdf" or "newmark-compensate".
+    pub fn label(&self) -> String {
+        match self {
+            SolverSettings::Adaptive(a) => a.method.name().to_string(),
+            SolverSettings::Newmark(n) => n.label(),
+        }
+    }
+
+    pub fn output_dt(&self) -> f64 {
+        match self {
+            SolverSettings::Adaptive(a) => a.output_dt,
+            SolverSettings::Newmark(n) => n.output_dt,
+        }
+    }
+}
+
+/// Serialised with the model file's key names, so that summary.json reads like `[solver]`.
+impl Serialize for SolverSettings {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        #[derive(Serialize)]
+        struct NewmarkKeys {
+            method: &'static str,
+            dt: f64,
+            newmark_beta: f64,
+            newmark_gamma: f64,
+            newmark_variant: &'static str,
+            output_dt: f64,
+        }
+        match self {
+            SolverSettings::Adaptive(a) => a.serialize(serializer),
+            SolverSettings::Newmark(n) => NewmarkKeys {
+                method: "newmark",
+                dt: n.dt,
+                newmark_beta: n.beta,
+                newmark_gamma: n.gamma,
+                newmark_variant: n.variant.name(),
+                output_dt: n.output_dt,
+            }
+            .serialize(serializer),
+        }
     }
 }

@@ -1,0 +1,474 @@
+//! `flexrock converge`: how Newmark converges as dt shrinks, and what each adaptive method costs
+//! for a given accuracy, all measured against one tight adaptive reference.
+//!
+//! Cases run one after another (not in parallel) so that their wall times do not disturb each
+//! other on a small machine.
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+use serde::Serialize;
+
+use crate::compare::{compare, max_event_shift};
+use crate::error::Result;
+use crate::model::Model;
+use crate::output::{self, number, Table};
+use crate::plot::{self, Legend, Panel, Series};
+use crate::run::{simulate_with, VERSION};
+use crate::solution::SolverStats;
+use crate::solver::adaptive::AdaptiveMethod;
+use crate::solver::newmark::NewmarkVariant;
+use crate::solver::SolverSettings;
+
+/// Column names of convergence.csv (a contract).
+pub const CONVERGENCE_COLUMNS: [&str; 13] = [
+    "method",
+    "dt",
+    "rtol",
+    "max_q_error",
+    "max_event_time_error",
+    "peak_error",
+    "event_count_difference",
+    "unmatched_events",
+    "steps",
+    "rhs_evaluations",
+    "wall_time_s",
+    "max_energy_residual",
+    "status",
+];
+
+pub const DEFAULT_DTS: [f64; 8] = [
+    0.04, 0.02, 0.01, 0.005, 0.0025, 0.00125, 0.000625, 0.0003125,
+];
+pub const DEFAULT_RTOLS: [f64; 9] = [1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11];
+
+/// Options of `flexrock converge`.
+#[derive(Debug, Clone)]
+pub struct ConvergeOptions {
+    pub dts: Vec<f64>,
+    pub rtols: Vec<f64>,
+    pub reference_rtol: f64,
+}
+
+impl Default for ConvergeOptions {
+    fn default() -> Self {
+        ConvergeOptions {
+            dts: DEFAULT_DTS.to_vec(),
+            rtols: DEFAULT_RTOLS.to_vec(),
+            reference_rtol: crate::compare::DEFAULT_REFERENCE_RTOL,
+        }
+    }
+}
+
+/// One solver configuration measured against the reference.
+#[derive(Debug, Clone, Serialize)]
+pub struct Case {
+    pub method: String,
+    pub dt: Option<f64>,
+    pub rtol: Option<f64>,
+    /// Largest |q - q_reference| on the common output grid, m.
+    pub max_q_error: f64,
+    /// Largest |t - t_reference| over matched events, s.
+    pub max_event_time_error: f64,
+    /// Larger of the errors of max q and min q, m.
+    pub peak_error: f64,
+    /// Number of events minus the reference's.
+    pub event_count_difference: i64,
+    /// Events of either solution without a partner in the other.
+    pub unmatched_events: usize,
+    pub steps: usize,
+    pub rhs_evaluations: usize,
+    pub wall_time_s: f64,
+    pub max_energy_residual: f64,
+    /// "ok", or why the case has no result.
+    pub status: String,
+}
+
+/// A least-squares slope of log(error) against log(dt) or log(work).
+#[derive(Debug, Clone, Serialize)]
+pub struct ObservedOrder {
+    pub method: String,
+    /// "max_q_error", "max_event_time_error" or "peak_error".
+    pub metric: String,
+    /// "dt" (slope = order) or "rhs_evaluations" (slope = -order per unit work).
+    pub against: String,
+    pub slope: f64,
+    /// Cases in the fit (those with every event matched and a positive error).
+    pub points: usize,
+}
+
+/// convergence.json.
+#[derive(Debug, Serialize)]
+pub struct ConvergeSummary {
+    pub flexrock_version: &'static str,
+    pub model_file: Option<String>,
+    pub reference_method: String,
+    pub reference_rtol: f64,
+    pub reference_statistics: SolverStats,
+    pub reference_events: usize,
+    pub output_dt: f64,
+    pub cases: Vec<Case>,
+    pub orders: Vec<ObservedOrder>,
+}
+
+/// Result of `flexrock converge`.
+pub struct ConvergeReport {
+    pub summary: ConvergeSummary,
+    pub files: Vec<PathBuf>,
+}
+
+const METRICS: [&str; 3] = ["max_q_error", "max_event_time_error", "peak_error"];
+
+fn metric(case: &Case, name: &str) -> f64 {
+    match name {
+        "max_q_error" => case.max_q_error,
+        "max_event_time_error" => case.max_event_time_error,
+        _ => case.peak_error,
+    }
+}
+
+/// Slope of the least-squares line through (log x, log y).
+fn log_log_slope(points: &[(f64, f64)]) -> f64 {
+    let n = points.len() as f64;
+    let (mx, my) = points.iter().fold((0.0, 0.0), |(a, b), (x, y)| {
+        (a + x.ln() / n, b + y.ln() / n)
+    });
+    let (sxy, sxx) = points.iter().fold((0.0, 0.0), |(a, b), (x, y)| {
+        let dx = x.ln() - mx;
+        (a + dx * (y.ln() - my), b + dx * dx)
+    });
+    sxy / sxx
+}
+
+fn orders(cases: &[Case]) -> Vec<ObservedOrder> {
+    let mut methods: Vec<&str> = Vec::new();
+    for c in cases {
+        if !methods.contains(&c.method.as_str()) {
+            methods.push(&c.method);
+        }
+    }
+    let mut orders = Vec::new();
+    for method in methods {
+        for name in METRICS {
+            let good: Vec<&Case> = cases
+                .iter()
+                .filter(|c| c.method == method && c.status == "ok" && c.unmatched_events == 0)
+                .filter(|c| metric(c, name) > 0.0 && metric(c, name).is_finite())
+                .collect();
+            if good.len() < 2 {
+                continue;
+            }
+            let (against, points): (&str, Vec<(f64, f64)>) = match good[0].dt {
+                Some(_) => (
+                    "dt",
+                    good.iter()
+                        .map(|c| (c.dt.unwrap_or(f64::NAN), metric(c, name)))
+                        .collect(),
+                ),
+                None => (
+                    "rhs_evaluations",
+                    good.iter()
+                        .map(|c| (c.rhs_evaluations as f64, metric(c, name)))
+                        .collect(),
+                ),
+            };
+            orders.push(ObservedOrder {
+                method: method.to_string(),
+                metric: name.to_string(),
+                against: against.to_string(),
+                slope: log_log_slope(&points),
+                points: points.len(),
+            });
+        }
+    }
+    orders
+}
+
+/// One case to run: method label, dt, rtol, and its settings (or why they are invalid).
+type Configuration = (String, Option<f64>, Option<f64>, Result<SolverSettings>);
+
+/// Runs the reference, every Newmark variant at every dt and every adaptive method at every
+/// tolerance; writes convergence.csv, convergence.json and the figures into `out_dir`.
+pub fn run_converge(
+    model: &Model,
+    options: &ConvergeOptions,
+    out_dir: &Path,
+) -> Result<ConvergeReport> {
+    let reference_settings =
+        SolverSettings::Adaptive(model.reference_settings(options.reference_rtol)?);
+    let reference = simulate_with(model, &reference_settings)?;
+    let output_dt = model.solver.output_dt();
+    let max_shift = max_event_shift(model);
+
+    let mut configurations: Vec<Configuration> = Vec::new();
+    for variant in [NewmarkVariant::Compensate, NewmarkVariant::Substep] {
+        for &dt in &options.dts {
+            let settings = model
+                .newmark_settings(Some(dt), Some(variant.name()))
+                .map(SolverSettings::Newmark);
+            configurations.push((
+                format!("newmark-{}", variant.name()),
+                Some(dt),
+                None,
+                settings,
+            ));
+        }
+    }
+    for method in [
+        AdaptiveMethod::Bdf,
+        AdaptiveMethod::Esdirk34,
+        AdaptiveMethod::TrBdf2,
+    ] {
+        for &rtol in &options.rtols {
+            let settings = model.reference_settings(rtol).map(|mut a| {
+                a.method = method;
+                SolverSettings::Adaptive(a)
+            });
+            configurations.push((method.name().to_string(), None, Some(rtol), settings));
+        }
+    }
+
+    let mut cases = Vec::new();
+    for (method, dt, rtol, settings) in configurations {
+        let failed = |status: String| Case {
+            method: method.clone(),
+            dt,
+            rtol,
+            max_q_error: f64::NAN,
+            max_event_time_error: f64::NAN,
+            peak_error: f64::NAN,
+            event_count_difference: 0,
+            unmatched_events: 0,
+            steps: 0,
+            rhs_evaluations: 0,
+            wall_time_s: 0.0,
+            max_energy_residual: f64::NAN,
+            status,
+        };
+        let solution = match settings.and_then(|s| simulate_with(model, &s)) {
+            Ok(s) => s,
+            Err(e) => {
+                cases.push(failed(e.to_string()));
+                continue;
+            }
+        };
+        let c = compare(&reference, &solution, output_dt, max_shift);
+        cases.push(Case {
+            method: method.clone(),
+            dt,
+            rtol,
+            max_q_error: c.grid.max_abs_q_difference,
+            max_event_time_error: c.events.max_abs_time_difference,
+            peak_error: c.peaks.peak_error,
+            event_count_difference: solution.events.len() as i64 - reference.events.len() as i64,
+            unmatched_events: c.events.n_missed + c.events.n_spurious,
+            steps: solution.stats.steps,
+            rhs_evaluations: solution.stats.rhs_evaluations,
+            wall_time_s: solution.stats.wall_time_s,
+            max_energy_residual: solution.max_energy_residual,
+            status: "ok".to_string(),
+        });
+    }
+    let orders = orders(&cases);
+    let summary = ConvergeSummary {
+        flexrock_version: VERSION,
+        model_file: model.path.as_ref().map(|p| p.display().to_string()),
+        reference_method: reference_settings.label(),
+        reference_rtol: options.reference_rtol,
+        reference_statistics: reference.stats.clone(),
+        reference_events: reference.events.len(),
+        output_dt,
+        cases,
+        orders,
+    };
+    let (by_dt, by_work) = figures(&summary)?;
+    let files = output::write_atomically(
+        out_dir,
+        &[
+            ("convergence.csv", cases_table(&summary.cases)),
+            ("convergence.json", output::json_bytes(&summary)),
+            ("convergence_dt.svg", by_dt.into_bytes()),
+            ("convergence_work.svg", by_work.into_bytes()),
+        ],
+    )?;
+    Ok(ConvergeReport { summary, files })
+}
+
+fn cases_table(cases: &[Case]) -> Vec<u8> {
+    let mut table = Table::new(&CONVERGENCE_COLUMNS);
+    let optional = |x: Option<f64>| x.map(number).unwrap_or_default();
+    for c in cases {
+        table.row([
+            c.method.clone(),
+            optional(c.dt),
+            optional(c.rtol),
+            number(c.max_q_error),
+            number(c.max_event_time_error),
+            number(c.peak_error),
+            c.event_count_difference.to_string(),
+            c.unmatched_events.to_string(),
+            c.steps.to_string(),
+            c.rhs_evaluations.to_string(),
+            number(c.wall_time_s),
+            number(c.max_energy_residual),
+            c.status.clone(),
+        ]);
+    }
+    table.into_bytes()
+}
+
+/// Error against dt (Newmark, with slope-1 and slope-2 guides) and error against work (all).
+fn figures(summary: &ConvergeSummary) -> Result<(String, String)> {
+    let ok = |c: &&Case| c.status == "ok";
+    let methods: Vec<String> = {
+        let mut m: Vec<String> = Vec::new();
+        for c in &summary.cases {
+            if !m.contains(&c.method) {
+                m.push(c.method.clone());
+            }
+        }
+        m
+    };
+    let titles = [
+        ("max_q_error", "max |q error| on the grid", "m"),
+        ("max_event_time_error", "max event-time error", "s"),
+        ("peak_error", "peak error of q", "m"),
+    ];
+    let mut dt_panels = Vec::new();
+    let mut work_panels = Vec::new();
+    for (name, title, unit) in titles {
+        let mut dt_series = Vec::new();
+        let mut work_series = Vec::new();
+        for (i, method) in methods.iter().enumerate() {
+            let cases: Vec<&Case> = summary
+                .cases
+                .iter()
+                .filter(|c| &c.method == method)
+                .filter(ok)
+                .collect();
+            let work: Vec<(f64, f64)> = cases
+                .iter()
+                .map(|c| (c.rhs_evaluations as f64, metric(c, name)))
+                .collect();
+            work_series.push(Series::line(method, work, i + 1).with_markers());
+            if cases.first().is_some_and(|c| c.dt.is_some()) {
+                let points: Vec<(f64, f64)> = cases
+                    .iter()
+                    .map(|c| (c.dt.unwrap_or(f64::NAN), metric(c, name)))
+                    .collect();
+                dt_series.push(Series::line(method, points, i + 1).with_markers());
+            }
+        }
+        // Guides through the first compensate point: slopes 1 and 2.
+        if let Some(anchor) = summary
+            .cases
+            .iter()
+            .find(|c| c.dt.is_some() && c.status == "ok" && metric(c, name) > 0.0)
+        {
+            let (x0, y0) = (anchor.dt.unwrap_or(1.0), metric(anchor, name));
+            let x1 = summary.cases.iter().filter_map(|c| c.dt).fold(x0, f64::min);
+            for (order, color) in [(1.0, 5), (2.0, 6)] {
+                dt_series.push(Series::line(
+                    &format!("slope {order}"),
+                    vec![(x0, y0), (x1, y0 * (x1 / x0).powf(order))],
+                    color,
+                ));
+            }
+        }
+        dt_panels.push(Panel {
+            title: format!("Newmark: {title} against dt"),
+            x_label: "dt (s)".to_string(),
+            y_label: format!("{title} ({unit})"),
+            series: dt_series,
+            log_x: true,
+            log_y: true,
+            legend: Legend::LowerRight,
+        });
+        work_panels.push(Panel {
+            title: format!("{title} against work"),
+            x_label: "right-hand-side evaluations".to_string(),
+            y_label: format!("{title} ({unit})"),
+            series: work_series,
+            log_x: true,
+            log_y: true,
+            legend: Legend::UpperRight,
+        });
+    }
+    Ok((
+        plot::figure("convergence_dt.svg", &dt_panels, 1, (800, 380))?,
+        plot::figure("convergence_work.svg", &work_panels, 1, (800, 380))?,
+    ))
+}
+
+/// The printed table and observed orders of `flexrock converge`.
+pub fn converge_text(report: &ConvergeReport) -> String {
+    let s = &report.summary;
+    let mut t = String::new();
+    let _ = writeln!(
+        t,
+        "flexrock {VERSION} converge: reference {} at rtol = {:e} ({} events, {} steps)",
+        s.reference_method, s.reference_rtol, s.reference_events, s.reference_statistics.steps
+    );
+    let _ = writeln!(
+        t,
+        "  {:<19} {:>10} {:>7} {:>11} {:>11} {:>11} {:>6} {:>8} {:>9} {:>9}",
+        "method",
+        "dt",
+        "rtol",
+        "q error",
+        "t_event err",
+        "peak error",
+        "n diff",
+        "steps",
+        "rhs evals",
+        "ms"
+    );
+    let optional = |x: Option<f64>, f: &dyn Fn(f64) -> String| x.map_or("-".to_string(), f);
+    for c in &s.cases {
+        if c.status != "ok" {
+            let _ = writeln!(
+                t,
+                "  {:<19} {:>10} {:>7}  failed: {}",
+                c.method,
+                optional(c.dt, &|v| format!("{v}")),
+                optional(c.rtol, &|v| format!("{v:.0e}")),
+                c.status
+            );
+            continue;
+        }
+        let _ = writeln!(
+            t,
+            "  {:<19} {:>10} {:>7} {:>11.3e} {:>11.3e} {:>11.3e} {:>+6} {:>8} {:>9} {:>9.2}",
+            c.method,
+            optional(c.dt, &|v| format!("{v}")),
+            optional(c.rtol, &|v| format!("{v:.0e}")),
+            c.max_q_error,
+            c.max_event_time_error,
+            c.peak_error,
+            c.event_count_difference,
+            c.steps,
+            c.rhs_evaluations,
+            c.wall_time_s * 1e3
+        );
+    }
+    let _ = writeln!(
+        t,
+        "observed orders (least-squares slopes over cases with every event matched):"
+    );
+    for o in &s.orders {
+        let meaning = if o.against == "dt" {
+            format!("error ~ dt^{:.2}", o.slope)
+        } else {
+            format!("error ~ work^{:.2}", o.slope)
+        };
+        let _ = writeln!(
+            t,
+            "  {:<19} {:<21} {meaning:<20} ({} points)",
+            o.method, o.metric, o.points
+        );
+    }
+    for f in &report.files {
+        let _ = writeln!(t, "wrote {}", f.display());
+    }
+    t
+}

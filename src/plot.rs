@@ -1,0 +1,205 @@
+//! SVG figures from series of points. Knows nothing about solvers or models: callers hand it
+//! panels of named (x, y) series and get the SVG text back, to be written atomically.
+
+use plotters::prelude::*;
+
+use crate::error::{Error, Result};
+
+/// One line of a panel.
+#[derive(Debug, Clone)]
+pub struct Series {
+    pub name: String,
+    pub points: Vec<(f64, f64)>,
+    /// Index into the palette; 0 is black (for references).
+    pub color: usize,
+    /// Draw markers at the points (for convergence studies with few points).
+    pub markers: bool,
+}
+
+impl Series {
+    pub fn line(name: &str, points: Vec<(f64, f64)>, color: usize) -> Self {
+        Series {
+            name: name.to_string(),
+            points,
+            color,
+            markers: false,
+        }
+    }
+
+    pub fn with_markers(mut self) -> Self {
+        self.markers = true;
+        self
+    }
+}
+
+/// One chart of a figure.
+#[derive(Debug, Clone, Default)]
+pub struct Panel {
+    pub title: String,
+    pub x_label: String,
+    pub y_label: String,
+    pub series: Vec<Series>,
+    /// Logarithmic axes (decades); non-positive values are left out.
+    pub log_x: bool,
+    pub log_y: bool,
+    /// Where the legend goes, so that it hides no data.
+    pub legend: Legend,
+}
+
+/// Corner of a panel for its legend.
+#[derive(Debug, Clone, Copy, Default)]
+pub enum Legend {
+    #[default]
+    UpperRight,
+    LowerRight,
+    UpperLeft,
+    LowerLeft,
+}
+
+const PALETTE: [RGBColor; 7] = [
+    RGBColor(0, 0, 0),
+    RGBColor(214, 39, 40),
+    RGBColor(31, 119, 180),
+    RGBColor(44, 160, 44),
+    RGBColor(255, 127, 14),
+    RGBColor(148, 103, 189),
+    RGBColor(140, 86, 75),
+];
+
+/// Draws `panels` in a grid of `columns` columns, each panel `size` pixels; returns the SVG text.
+pub fn figure(name: &str, panels: &[Panel], columns: usize, size: (u32, u32)) -> Result<String> {
+    let columns = columns.max(1);
+    let rows = panels.len().div_ceil(columns).max(1);
+    let mut svg = String::new();
+    {
+        let root =
+            SVGBackend::with_string(&mut svg, (size.0 * columns as u32, size.1 * rows as u32))
+                .into_drawing_area();
+        let fail = |e: &dyn std::fmt::Display| Error::Plot {
+            name: name.to_string(),
+            message: e.to_string(),
+        };
+        root.fill(&WHITE).map_err(|e| fail(&e))?;
+        let areas = root.split_evenly((rows, columns));
+        for (panel, area) in panels.iter().zip(areas.iter()) {
+            draw_panel(panel, area).map_err(|e| fail(&e))?;
+        }
+        root.present().map_err(|e| fail(&e))?;
+    }
+    Ok(svg)
+}
+
+type Area<'a> = DrawingArea<SVGBackend<'a>, plotters::coord::Shift>;
+
+fn draw_panel(
+    panel: &Panel,
+    area: &Area<'_>,
+) -> std::result::Result<(), Box<dyn std::error::Error>> {
+    // Log axes are drawn as linear axes of log10 values, labelled with powers of ten.
+    let transform = |(x, y): (f64, f64)| -> Option<(f64, f64)> {
+        let x = if panel.log_x {
+            (x > 0.0).then(|| x.log10())?
+        } else {
+            x
+        };
+        let y = if panel.log_y {
+            (y > 0.0).then(|| y.log10())?
+        } else {
+            y
+        };
+        (x.is_finite() && y.is_finite()).then_some((x, y))
+    };
+    let series: Vec<(&Series, Vec<(f64, f64)>)> = panel
+        .series
+        .iter()
+        .map(|s| (s, s.points.iter().filter_map(|&p| transform(p)).collect()))
+        .collect();
+    let (mut x0, mut x1, mut y0, mut y1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
+    for (_, points) in &series {
+        for &(x, y) in points {
+            x0 = x0.min(x);
+            x1 = x1.max(x);
+            y0 = y0.min(y);
+            y1 = y1.max(y);
+        }
+    }
+    if x0 > x1 {
+        (x0, x1, y0, y1) = (0.0, 1.0, 0.0, 1.0);
+    }
+    let pad = |lo: f64, hi: f64, fraction: f64| {
+        let span = if hi > lo { hi - lo } else { lo.abs().max(1.0) };
+        (lo - fraction * span, hi + fraction * span)
+    };
+    let (x0, x1) = if panel.log_x {
+        pad(x0, x1, 0.03)
+    } else {
+        (x0, x1)
+    };
+    let (y0, y1) = pad(y0, y1, 0.05);
+
+    let mut chart = ChartBuilder::on(area)
+        .caption(&panel.title, ("sans-serif", 18))
+        .margin(12)
+        .x_label_area_size(38)
+        .y_label_area_size(70)
+        .build_cartesian_2d(x0..x1, y0..y1)?;
+    let log_label = |v: &f64| {
+        if (v - v.round()).abs() < 1e-9 {
+            format!("1e{}", v.round() as i64)
+        } else {
+            format!("{:.1e}", 10f64.powf(*v))
+        }
+    };
+    let linear_label = |v: &f64| {
+        let a = v.abs();
+        if a != 0.0 && !(1e-3..1e4).contains(&a) {
+            format!("{v:.0e}")
+        } else {
+            format!("{}", (v * 1e6).round() / 1e6)
+        }
+    };
+    chart
+        .configure_mesh()
+        .x_desc(panel.x_label.as_str())
+        .y_desc(panel.y_label.as_str())
+        .x_labels(8)
+        .y_labels(8)
+        .x_label_formatter(if panel.log_x {
+            &log_label
+        } else {
+            &linear_label
+        })
+        .y_label_formatter(if panel.log_y {
+            &log_label
+        } else {
+            &linear_label
+        })
+        .light_line_style(RGBColor(235, 235, 235))
+        .draw()?;
+
+    for (s, points) in series {
+        let color = PALETTE[s.color % PALETTE.len()];
+        let style = color.stroke_width(if s.color == 0 { 2 } else { 1 });
+        chart
+            .draw_series(LineSeries::new(points.iter().copied(), style))?
+            .label(s.name.as_str())
+            .legend(move |(x, y)| {
+                PathElement::new(vec![(x, y), (x + 18, y)], color.stroke_width(2))
+            });
+        if s.markers {
+            chart.draw_series(points.iter().map(|&p| Circle::new(p, 3, color.filled())))?;
+        }
+    }
+    chart
+        .configure_series_labels()
+        .background_style(WHITE.mix(0.85))
+        .border_style(RGBColor(180, 180, 180))
+        .position(match panel.legend {
+            Legend::UpperRight => SeriesLabelPosition::UpperRight,
+            Legend::LowerRight => SeriesLabelPosition::LowerRight,
+            Legend::UpperLeft => SeriesLabelPosition::UpperLeft,
+            Legend::LowerLeft => SeriesLabelPosition::LowerLeft,
+        })
+        .draw()?;
+    Ok(())
+}
