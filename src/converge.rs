@@ -218,6 +218,7 @@ pub fn run_converge(
         AdaptiveMethod::Bdf,
         AdaptiveMethod::Esdirk34,
         AdaptiveMethod::TrBdf2,
+        AdaptiveMethod::Tsit45,
     ] {
         for &rtol in &options.rtols {
             let settings = model.reference_settings(rtol).map(|mut a| {

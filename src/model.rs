@@ -665,7 +665,7 @@ fn solver_from_section(s: &SolverSection, duration: f64, omega: f64) -> Result<S
         return Err(Error::invalid(
             "solver.method",
             format!("\"{name}\""),
-            "must be \"bdf\", \"esdirk34\", \"tr-bdf2\" or \"newmark\"",
+            "must be \"bdf\", \"esdirk34\", \"tr-bdf2\", \"tsit45\" or \"newmark\"",
         ));
     }
     // Keys of the other family of methods are mistakes, not silently ignored settings.

@@ -213,7 +213,7 @@ fn all_methods_agree() {
          [simulation]\nduration = 6.0\n[solver]\nmethod = \"METHOD\"\nrtol = 1e-9\natol = 1e-11\n",
     );
     let reference = common::solve(&base.replace("METHOD", "bdf"));
-    for method in ["esdirk34", "tr-bdf2"] {
+    for method in ["esdirk34", "tr-bdf2", "tsit45"] {
         let other = common::solve(&base.replace("METHOD", method));
         assert_eq!(other.events.len(), reference.events.len(), "{method}");
         for (a, b) in other.events.iter().zip(&reference.events) {

@@ -25,7 +25,16 @@ fn field(v: &Value, key: &str) -> f64 {
 }
 
 #[test]
-fn matches_the_independent_solution() {
+fn bdf_matches_the_independent_solution() {
+    matches_the_independent_solution("bdf");
+}
+
+#[test]
+fn tsit45_matches_the_independent_solution() {
+    matches_the_independent_solution("tsit45");
+}
+
+fn matches_the_independent_solution(method: &str) {
     let cases = cases();
     assert!(
         cases.len() >= 8,
@@ -39,7 +48,11 @@ fn matches_the_independent_solution() {
             &std::fs::read_to_string(case.with_extension("expected.json")).unwrap(),
         )
         .unwrap();
-        let model = Model::load(case, &Overrides::default()).unwrap();
+        let overrides = Overrides {
+            method: Some(method.to_string()),
+            ..Overrides::default()
+        };
+        let model = Model::load(case, &overrides).unwrap();
         let sol = flexrock::run::simulate(&model).unwrap();
 
         // Constants.
@@ -117,7 +130,7 @@ fn matches_the_independent_solution() {
             }
         }
         assert!(worst_q < 1e-6, "{name}: q off by {worst_q:e}");
-        report.push(format!("{name}: {} events, worst event time {worst_t:.1e} s, peaks {dmax:.1e}/{dmin:.1e} m, q {worst_q:.1e} m", sol.events.len()));
+        report.push(format!("{method} {name}: {} events, worst event time {worst_t:.1e} s, peaks {dmax:.1e}/{dmin:.1e} m, q {worst_q:.1e} m", sol.events.len()));
     }
     println!("{}", report.join("\n"));
 }

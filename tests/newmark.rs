@@ -326,9 +326,9 @@ fn converge_writes_its_files_with_stable_columns() {
         lines.next().unwrap(),
         "method,dt,rtol,max_q_error,max_event_time_error,peak_error,event_count_difference,unmatched_events,steps,rhs_evaluations,wall_time_s,max_energy_residual,status"
     );
-    // 2 Newmark variants x 2 steps + 3 adaptive methods x 2 tolerances.
+    // 2 Newmark variants x 2 steps + 4 adaptive methods x 2 tolerances.
     let rows: Vec<&str> = lines.collect();
-    assert_eq!(rows.len(), 10, "{table}");
+    assert_eq!(rows.len(), 12, "{table}");
     assert!(rows[0].starts_with("newmark-compensate,0.02,,"));
     assert!(rows.iter().all(|r| r.ends_with(",ok")), "{table}");
     for name in [

@@ -1,16 +1,19 @@
-//! Adaptive implicit integration of the automaton with diffsol (BDF, ESDIRK34, TR-BDF2).
+//! Adaptive integration of the automaton with diffsol (BDF, ESDIRK34, TR-BDF2; Tsit45).
 //!
-//! How events are found: diffsol's root finding watches three functions of the active mode,
-//! q' (so that every extremum of q is a stop and the peaks are located to solver accuracy) and the
-//! mode's two guards. Between two roots of q', q is monotone, so a guard can be crossed at most
-//! once there; a guard crossed and re-crossed inside one step therefore shows up as a root of q'
-//! first, after which the state at the end of the step is checked against the guards and a
-//! crossing the root finder passed over is located by bisection on diffsol's dense output.
+//! How events are found. diffsol's root finding watches the active mode's two guards; a root is
+//! always an event, after which the state is changed (and diffsol restarts its root search).
+//! After every step the driver also looks for a sign change of q' over the step; a root of q' is
+//! located on diffsol's dense output, and it is both a peak of q (so max q and min q are located
+//! to solver accuracy) and a check point: between two roots of q', q is monotone, so a guard
+//! crossed and re-crossed inside one step leaves q beyond the guard at the root of q' between the
+//! two crossings, and the crossing is then located on the dense output. The state at the end of
+//! every step is checked against the guards too.
+//!
 //! At an event the solver is moved back to the event time, q is placed exactly on the guard, the
 //! angular-momentum reset is applied to q', and the method restarts in the new mode. A state that
 //! starts on a guard and moves back into its mode does not trigger it (a zero guard value at the
-//! start of a step is not a sign change). Breakpoints of the floor motion are stop times where the
-//! method restarts, so that no step straddles a kink of a(t).
+//! start of a step is not a sign change); a state on a guard moving across it does, at once.
+//! Breakpoints of the floor motion are stop times, so that no step straddles a kink of a(t).
 
 use std::cell::Cell;
 use std::time::Instant;
@@ -35,8 +38,8 @@ type Vector = diffsol::NalgebraVec<f64>;
 const NSTATES: usize = 2;
 /// Number of integrated outputs: the input and damping work, per unit Me.
 const NOUT: usize = 2;
-/// Number of root functions: q' and the active mode's two guards.
-const NROOTS: usize = 3;
+/// Number of root functions: the active mode's two guards.
+const NROOTS: usize = 2;
 
 /// The implicit methods diffsol offers.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -45,6 +48,9 @@ pub enum AdaptiveMethod {
     Bdf,
     Esdirk34,
     TrBdf2,
+    /// Tsitouras 5(4), explicit: the model is not stiff (its frequencies are those of the body),
+    /// and a fifth-order one-step method keeps its order between the samples of a record.
+    Tsit45,
 }
 
 impl AdaptiveMethod {
@@ -53,6 +59,7 @@ impl AdaptiveMethod {
             AdaptiveMethod::Bdf => "bdf",
             AdaptiveMethod::Esdirk34 => "esdirk34",
             AdaptiveMethod::TrBdf2 => "tr-bdf2",
+            AdaptiveMethod::Tsit45 => "tsit45",
         }
     }
 
@@ -61,6 +68,7 @@ impl AdaptiveMethod {
             "bdf" => Some(AdaptiveMethod::Bdf),
             "esdirk34" => Some(AdaptiveMethod::Esdirk34),
             "tr-bdf2" => Some(AdaptiveMethod::TrBdf2),
+            "tsit45" => Some(AdaptiveMethod::Tsit45),
             _ => None,
         }
     }
@@ -147,12 +155,11 @@ pub fn solve(
         .integrate_out(true)
         .root(
             |x, _p, _t, y| {
-                y[0] = x[1];
                 let m = mode.get();
                 let slots = automaton.guards(m);
-                for i in 0..NROOTS - 1 {
+                for (i, value) in y.iter_mut().enumerate().take(NROOTS) {
                     // Unused slots (the overturned mode has no guards) never change sign.
-                    y[i + 1] = slots
+                    *value = slots
                         .get(i)
                         .map_or(1.0, |&slot| automaton.guard(m, slot).overshoot(x[0]));
                 }
@@ -185,6 +192,7 @@ pub fn solve(
                 .tr_bdf2::<LinearSolver>()
                 .map_err(|e| solver_error(0.0, &e))?,
         ),
+        AdaptiveMethod::Tsit45 => driver.run(problem.tsit45().map_err(|e| solver_error(0.0, &e))?),
     }?;
     stats.rhs_evaluations = rhs_evaluations.get();
     stats.wall_time_s = started.elapsed().as_secs_f64();
@@ -267,36 +275,47 @@ impl<'d> Driver<'d> {
         }
 
         let mut step_start = 0.0;
+        let mut qdot_at_start = y0[1];
         loop {
             let reason = solver.step().map_err(|e| self.error(step_start, e))?;
             let step_end = solver.state().t;
-            let (peak, guard_root) = match reason {
-                OdeSolverStopReason::RootFound(t, 0) => (Some(t), None),
-                OdeSolverStopReason::RootFound(t, i) => (None, Some((t, i - 1))),
-                _ => (None, None),
-            };
-
             let mode = self.mode.get();
-            let crossing = match guard_root {
-                Some((t, i)) => Some((t, automaton.guard(mode, automaton.guards(mode)[i]))),
-                None => {
-                    // A guard the root finder passed over leaves the state beyond it.
-                    let y = &solver.state().y;
-                    match automaton.crossed_guard(mode, y[0], y[1]) {
-                        Some(g) if g.overshoot(y[0]) > 0.0 => {
-                            Some((self.locate(&solver, g, step_start, step_end)?, g))
-                        }
-                        _ => None,
-                    }
+            let guard_root = match reason {
+                OdeSolverStopReason::RootFound(t, i) => {
+                    Some((t, automaton.guard(mode, automaton.guards(mode)[i])))
                 }
+                _ => None,
+            };
+            // The part of the step that belongs to this mode, and q' at its end.
+            let until = guard_root.map_or(step_end, |(t, _)| t);
+            let qdot_at_end = if until == step_end {
+                solver.state().y[1]
+            } else {
+                self.state_at(&solver, until)?[1]
             };
 
-            if let Some(t_peak) = peak {
-                if crossing.is_none_or(|(t, _)| t_peak < t) {
-                    let y = solver
-                        .interpolate(t_peak)
-                        .map_err(|e| self.error(t_peak, e))?;
-                    recorder.peak_candidate(t_peak, y[0]);
+            // A root of q' inside: a peak of q, and a point where q must still be in its mode.
+            let mut crossing = guard_root;
+            if qdot_at_start * qdot_at_end < 0.0 {
+                let t_peak = self.locate(&solver, step_start, until, |y| y[1])?;
+                let q_peak = self.state_at(&solver, t_peak)?[0];
+                match automaton.crossed_guard(mode, q_peak, 0.0) {
+                    Some(g) => {
+                        let t = self.locate(&solver, step_start, t_peak, |y| g.overshoot(y[0]))?;
+                        crossing = Some((t, g));
+                    }
+                    None => recorder.peak_candidate(t_peak, q_peak),
+                }
+            }
+            // A guard the root finder passed over leaves the state beyond it.
+            if crossing.is_none() {
+                let y = &solver.state().y;
+                if let Some(g) = automaton.crossed_guard(mode, y[0], y[1]) {
+                    if g.overshoot(y[0]) > 0.0 {
+                        let t =
+                            self.locate(&solver, step_start, step_end, |y| g.overshoot(y[0]))?;
+                        crossing = Some((t, g));
+                    }
                 }
             }
 
@@ -324,6 +343,7 @@ impl<'d> Driver<'d> {
                 )?;
                 step_start = step_end;
             }
+            qdot_at_start = solver.state().y[1];
 
             // At a stop time: finish, or go on towards the next one.
             let stop = stops[stop_index];
@@ -337,14 +357,22 @@ impl<'d> Driver<'d> {
                 solver
                     .set_stop_time(stops[stop_index])
                     .map_err(|e| self.error(step_start, e))?;
-            } else if peak.is_some() && crossing.is_none() {
-                // diffsol returns a root before it shortens the next step to meet the stop
-                // time; setting the stop time again makes it do so.
-                solver
-                    .set_stop_time(stop)
-                    .map_err(|e| self.error(step_start, e))?;
             }
         }
+    }
+
+    /// The state (q, q') at `t` inside the current step, from the dense output.
+    fn state_at<'a, Eqn, S>(&self, solver: &S, t: f64) -> Result<[f64; 2]>
+    where
+        Eqn: OdeEquations<T = f64, V = Vector> + 'a,
+        S: OdeSolverMethod<'a, Eqn>,
+    {
+        if t == solver.state().t {
+            let y = &solver.state().y;
+            return Ok([y[0], y[1]]);
+        }
+        let y = solver.interpolate(t).map_err(|e| self.error(t, e))?;
+        Ok([y[0], y[1]])
     }
 
     /// Samples the history at every grid time up to `until` (inclusive when `inclusive`).
@@ -392,23 +420,55 @@ impl<'d> Driver<'d> {
         Ok(())
     }
 
-    /// Finds the time in [lo, hi] at which q crosses `guard`, by bisection on the dense output.
-    fn locate<'a, Eqn, S>(&self, solver: &S, guard: Guard, mut lo: f64, mut hi: f64) -> Result<f64>
+    /// Finds the time in [lo, hi] at which `f` of the dense-output state changes sign (f(lo) <= 0
+    /// < f(hi) or the reverse), by the Illinois variant of regula falsi, to a few ulps of t.
+    fn locate<'a, Eqn, S>(
+        &self,
+        solver: &S,
+        mut lo: f64,
+        mut hi: f64,
+        f: impl Fn([f64; 2]) -> f64,
+    ) -> Result<f64>
     where
         Eqn: OdeEquations<T = f64, V = Vector> + 'a,
         S: OdeSolverMethod<'a, Eqn>,
     {
-        // 60 halvings shrink any step to below the spacing of doubles around it.
-        for _ in 0..60 {
-            let mid = 0.5 * (lo + hi);
-            if mid <= lo || mid >= hi {
+        let mut f_lo = f(self.state_at(solver, lo)?);
+        let mut f_hi = f(self.state_at(solver, hi)?);
+        if f_lo * f_hi > 0.0 {
+            // No sign change: nothing to refine (only reachable through rounding at the ends).
+            return Ok(hi);
+        }
+        let mut last_side = 0i8;
+        for _ in 0..200 {
+            if hi - lo <= 4.0 * f64::EPSILON * hi.abs().max(lo.abs()) || f_hi == 0.0 {
                 break;
             }
-            let y = solver.interpolate(mid).map_err(|e| self.error(mid, e))?;
-            if guard.overshoot(y[0]) > 0.0 {
-                hi = mid;
+            let secant = hi - f_hi * (hi - lo) / (f_hi - f_lo);
+            // Fall back to bisection when the secant leaves the bracket or stalls at its ends.
+            let mid = if secant > lo && secant < hi {
+                secant
             } else {
+                0.5 * (lo + hi)
+            };
+            let f_mid = f(self.state_at(solver, mid)?);
+            if f_mid == 0.0 {
+                return Ok(mid);
+            }
+            if (f_mid < 0.0) == (f_lo < 0.0) {
                 lo = mid;
+                f_lo = f_mid;
+                if last_side == -1 {
+                    f_hi *= 0.5;
+                }
+                last_side = -1;
+            } else {
+                hi = mid;
+                f_hi = f_mid;
+                if last_side == 1 {
+                    f_lo *= 0.5;
+                }
+                last_side = 1;
             }
         }
         Ok(hi)
