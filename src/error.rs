@@ -41,6 +41,10 @@ pub enum Error {
         message: String,
     },
 
+    /// The finite element analysis could not be set up or did not finish.
+    #[error("finite element analysis: {0}")]
+    Fem(#[from] crate::fem::FemError),
+
     /// An output file could not be written.
     #[error("cannot write {path}: {source}")]
     Write {
@@ -68,6 +72,7 @@ impl Error {
                 | Error::ReadModel { .. }
                 | Error::ParseModel { .. }
                 | Error::InModel { .. }
+                | Error::Fem(crate::fem::FemError::InvalidParameter { .. })
         )
     }
 }

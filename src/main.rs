@@ -4,7 +4,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
-use flexrock::model::{Model, Overrides};
+use flexrock::model::{FemOverrides, Model, Overrides};
 
 #[derive(Parser)]
 #[command(
@@ -46,6 +46,33 @@ enum Command {
         /// Simulated time, s (overrides simulation.duration).
         #[arg(long)]
         duration: Option<f64>,
+    },
+    /// Plane-stress finite element analysis of the body (the paper's Section 3): writes
+    /// fem_history.csv, fem_events.csv, fem_summary.json and SVG figures.
+    Fem {
+        /// Model file (TOML); its optional [fem] section holds the settings.
+        model: PathBuf,
+        /// Output directory [default: out/<model file stem>-fem].
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Elements across the width (overrides fem.nx).
+        #[arg(long)]
+        nx: Option<usize>,
+        /// Elements up the height (overrides fem.ny).
+        #[arg(long)]
+        ny: Option<usize>,
+        /// linear-acceleration, average-acceleration or wilson-theta (overrides fem.scheme).
+        #[arg(long)]
+        scheme: Option<String>,
+        /// Time step, s (overrides fem.dt).
+        #[arg(long)]
+        dt: Option<f64>,
+        /// Also solve the SDOF model and compare the two (table, compare.csv, figures).
+        #[arg(long, conflicts_with = "modes")]
+        compare: bool,
+        /// Only print the fixed-base natural periods of the mesh against the SDOF period T.
+        #[arg(long)]
+        modes: bool,
     },
 }
 
@@ -104,14 +131,47 @@ fn execute(command: Command) -> flexrock::Result<()> {
             let report = flexrock::run::run(&model, &out)?;
             print!("{}", flexrock::run::run_report_text(&model, &report));
         }
+        Command::Fem {
+            model: path,
+            out,
+            nx,
+            ny,
+            scheme,
+            dt,
+            compare,
+            modes,
+        } => {
+            use flexrock::fem::run as fem;
+            let model = Model::load(&path, &Overrides::default())?;
+            let setup = model.fem_with(&FemOverrides { nx, ny, scheme, dt })?;
+            if modes {
+                print!("{}", fem::modes_text(&fem::modes(&model, &setup)?));
+                return Ok(());
+            }
+            let out = out.unwrap_or_else(|| {
+                default_out_dir(&path).with_file_name(format!("{}-fem", stem(&path)))
+            });
+            let report = if compare {
+                fem::compare(&model, &setup, &out)?
+            } else {
+                fem::fem(&model, &setup, &out)?
+            };
+            for warning in &report.analysis.warnings {
+                eprintln!("warning: {warning}");
+            }
+            print!("{}", fem::report_text(&report));
+        }
     }
     Ok(())
 }
 
 fn default_out_dir(model: &std::path::Path) -> PathBuf {
-    let stem = model
+    PathBuf::from("out").join(stem(model))
+}
+
+fn stem(model: &std::path::Path) -> String {
+    model
         .file_stem()
         .map(|s| s.to_string_lossy().into_owned())
-        .unwrap_or_else(|| "run".to_string());
-    PathBuf::from("out").join(stem)
+        .unwrap_or_else(|| "run".to_string())
 }

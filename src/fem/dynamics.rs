@@ -6,9 +6,9 @@ use std::f64::consts::PI;
 use super::banded::{BandedLdl, BandedSym};
 use super::model::Model;
 use super::{
+    critical_time_step, decompose, highest_frequency_of, validate_body, validate_settings,
     ContactEvent, ContactState, FemBody, FemError, FemResult, FemSettings, FemStep, Snapshot,
-    TimeScheme, critical_time_step, decompose, highest_frequency_of, validate_body,
-    validate_settings,
+    TimeScheme,
 };
 
 /// Most friction re-solves within one step.

@@ -7,8 +7,8 @@
 
 use nalgebra::{DMatrix, SymmetricEigen};
 
-use super::FemError;
 use super::banded::{BandedLdl, BandedSym};
+use super::FemError;
 
 /// Free-dof count above which subspace iteration finds the lowest modes.
 pub(crate) const DENSE_LIMIT: usize = 1200;
@@ -82,7 +82,11 @@ pub(crate) fn power_iteration(
                 0.0
             } else {
                 let node = d / 2;
-                if (node + d) % 2 == 0 { 1.0 } else { -0.7 }
+                if (node + d) % 2 == 0 {
+                    1.0
+                } else {
+                    -0.7
+                }
             }
         })
         .collect();

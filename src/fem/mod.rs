@@ -110,9 +110,11 @@ mod banded;
 mod dynamics;
 mod eigen;
 mod element;
+pub mod figures;
 mod mesh;
 mod model;
 mod pushover;
+pub mod run;
 #[cfg(test)]
 mod tests;
 

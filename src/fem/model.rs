@@ -2,11 +2,11 @@
 
 use nalgebra::SMatrix;
 
+use super::banded::{BandedLdl, BandedSym};
+use super::element::{plane_stress_matrix, Qm6};
+use super::mesh::Mesh;
 use super::FemBody;
 use super::FemError;
-use super::banded::{BandedLdl, BandedSym};
-use super::element::{Qm6, plane_stress_matrix};
-use super::mesh::Mesh;
 
 /// The discretised body: lumped masses, elastic and geometric stiffness, gravity state.
 #[derive(Debug, Clone)]

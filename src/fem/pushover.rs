@@ -5,8 +5,8 @@ use std::collections::HashMap;
 use super::banded::BandedLdl;
 use super::model::Model;
 use super::{
-    FemBody, FemError, PushoverPoint, cantilever_mode, decompose, invalid, validate_body,
-    validate_mesh,
+    cantilever_mode, decompose, invalid, validate_body, validate_mesh, FemBody, FemError,
+    PushoverPoint,
 };
 
 /// Displacement-controlled static pushover from the gravity state.

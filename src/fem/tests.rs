@@ -5,7 +5,7 @@ use std::f64::consts::PI;
 use nalgebra::{DMatrix, DVector, SMatrix, Vector3};
 
 use super::banded::{BandedLdl, BandedSym};
-use super::element::{Qm6, plane_stress_matrix};
+use super::element::{plane_stress_matrix, Qm6};
 use super::model::Model;
 use super::*;
 
