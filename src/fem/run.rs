@@ -403,7 +403,7 @@ fn deformed_shapes(a: &FemAnalysis) -> Chart {
         lines.extend((0..=s.nx).map(|i| (0..=s.ny).map(|j| point(node(i, j))).collect()));
         for (l, points) in lines.into_iter().enumerate() {
             let label = if l == 0 {
-                format!("t = {:.2} s", snap.t)
+                format!("t = {:.3} s", snap.t)
             } else {
                 String::new()
             };
