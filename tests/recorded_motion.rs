@@ -57,14 +57,8 @@ fn sampled_motion_matches_the_exact_piecewise_linear_response() {
             atol: 1e-12,
             output_dt: dt,
         };
-        let sol = solve(
-            &automaton,
-            &record,
-            InitialState { q: 0.0, qdot: 0.0 },
-            8.0,
-            &settings,
-        )
-        .unwrap();
+        let sol = solve(&automaton, &record, InitialState { q: 0.0, qdot: 0.0 }, 8.0, &settings)
+            .unwrap();
         assert!(sol.events.is_empty(), "weak enough not to uplift");
         let mut worst: f64 = 0.0;
         for (s, (t, q)) in sol.samples.iter().zip(&exact) {
