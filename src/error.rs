@@ -57,6 +57,10 @@ pub enum Error {
     #[error("{path}: {message}")]
     ReadResult { path: PathBuf, message: String },
 
+    /// The finite element analysis could not be set up or did not finish.
+    #[error("finite element analysis: {0}")]
+    Fem(#[from] crate::fem::FemError),
+
     /// An output file could not be written.
     #[error("cannot write {path}: {source}")]
     Write {
@@ -85,6 +89,7 @@ impl Error {
                 | Error::ParseModel { .. }
                 | Error::InModel { .. }
                 | Error::Record { .. }
+                | Error::Fem(crate::fem::FemError::InvalidParameter { .. })
         )
     }
 }

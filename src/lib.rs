@@ -6,6 +6,7 @@
 //! - [`automaton`]: the hybrid automaton (modes, right-hand sides, guards, resets);
 //! - [`excitation`]: floor motions behind the [`excitation::FloorMotion`] trait;
 //! - [`solver`]: solvers that drive the automaton; [`solution`]: what they return;
+//! - [`fem`]: the plane-stress finite element check of the paper's Section 3;
 //! - [`model`]: the TOML model file; [`output`]: CSV/JSON writers; [`run`]: the commands;
 //! - [`compare`], [`converge`]: Newmark against the adaptive reference; [`findings`]: the paper's
 //!   qualitative findings in numbers; [`plot`]: SVG figures from series; [`report`]: the
@@ -18,6 +19,7 @@ pub mod constants;
 pub mod converge;
 pub mod error;
 pub mod excitation;
+pub mod fem;
 pub mod findings;
 pub mod model;
 pub mod output;

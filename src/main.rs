@@ -4,7 +4,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
-use flexrock::model::{Model, Overrides};
+use flexrock::model::{FemOverrides, Model, Overrides};
 use flexrock::record_tools;
 
 #[derive(Parser)]
@@ -122,6 +122,33 @@ enum Command {
         /// The report file to write.
         #[arg(long)]
         out: PathBuf,
+    },
+    /// Plane-stress finite element analysis of the body (the paper's Section 3): writes
+    /// fem_history.csv, fem_events.csv, fem_summary.json and SVG figures.
+    Fem {
+        /// Model file (TOML); its optional [fem] section holds the settings.
+        model: PathBuf,
+        /// Output directory [default: out/<model file stem>-fem].
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Elements across the width (overrides fem.nx).
+        #[arg(long)]
+        nx: Option<usize>,
+        /// Elements up the height (overrides fem.ny).
+        #[arg(long)]
+        ny: Option<usize>,
+        /// linear-acceleration, average-acceleration or wilson-theta (overrides fem.scheme).
+        #[arg(long)]
+        scheme: Option<String>,
+        /// Time step, s (overrides fem.dt).
+        #[arg(long)]
+        dt: Option<f64>,
+        /// Also solve the SDOF model and compare the two (table, compare.csv, figures).
+        #[arg(long, conflicts_with = "modes")]
+        compare: bool,
+        /// Only print the fixed-base natural periods of the mesh against the SDOF period T.
+        #[arg(long)]
+        modes: bool,
     },
 }
 
@@ -296,6 +323,34 @@ fn execute(command: Command) -> flexrock::Result<()> {
             };
             let written = flexrock::report::write_report(&inputs, &out)?;
             println!("wrote {}", written.display());
+        }
+        Command::Fem {
+            model: path,
+            out,
+            nx,
+            ny,
+            scheme,
+            dt,
+            compare,
+            modes,
+        } => {
+            use flexrock::fem::run as fem;
+            let model = Model::load(&path, &Overrides::default())?;
+            let setup = model.fem_with(&FemOverrides { nx, ny, scheme, dt })?;
+            if modes {
+                print!("{}", fem::modes_text(&fem::modes(&model, &setup)?));
+                return Ok(());
+            }
+            let out = out.unwrap_or_else(|| default_out_dir(&path, "-fem"));
+            let report = if compare {
+                fem::compare(&model, &setup, &out)?
+            } else {
+                fem::fem(&model, &setup, &out)?
+            };
+            for warning in &report.analysis.warnings {
+                eprintln!("warning: {warning}");
+            }
+            print!("{}", fem::report_text(&report));
         }
     }
     Ok(())

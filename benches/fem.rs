@@ -1,0 +1,49 @@
+//! Speed of the finite element analysis over the paper's 6 s (docs/README-fem.md reports these).
+
+use std::path::Path;
+
+use criterion::{criterion_group, criterion_main, Criterion};
+use flexrock::fem::{simulate, TimeScheme};
+use flexrock::model::{Model, Overrides};
+
+fn fem_runs(c: &mut Criterion) {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("models/ichinose1986.toml");
+    let model = Model::load(&path, &Overrides::default()).expect("the reference model loads");
+    let floor = |t: f64| model.floor.acceleration(t);
+    let mut group = c.benchmark_group("fem 6 s");
+    group.sample_size(10);
+    for (nx, ny, scheme, name) in [
+        (
+            2,
+            5,
+            TimeScheme::linear_acceleration(),
+            "linear-acceleration",
+        ),
+        (
+            2,
+            5,
+            TimeScheme::average_acceleration(),
+            "average-acceleration",
+        ),
+        (
+            8,
+            40,
+            TimeScheme::average_acceleration(),
+            "average-acceleration",
+        ),
+    ] {
+        let mut settings = model.fem.settings.clone();
+        settings.nx = nx;
+        settings.ny = ny;
+        settings.scheme = scheme;
+        group.bench_function(format!("{nx}x{ny} {name} dt=0.0071"), |b| {
+            b.iter(|| {
+                simulate(&model.fem.body, std::hint::black_box(&settings), &floor).expect("runs")
+            })
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, fem_runs);
+criterion_main!(benches);

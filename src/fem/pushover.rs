@@ -1,0 +1,198 @@
+//! Static pushover with unilateral base contact.
+
+use std::collections::HashMap;
+
+use super::banded::BandedLdl;
+use super::model::Model;
+use super::{
+    cantilever_mode, decompose, invalid, validate_body, validate_mesh, FemBody, FemError,
+    PushoverPoint,
+};
+
+/// Displacement-controlled static pushover from the gravity state.
+///
+/// Lateral loads λ m_i U(y_i/H) on the x dofs of every node (U the first cantilever mode,
+/// U(1) = 1) are scaled so that the mean ux of the top nodes equals each requested q
+/// (the contact problem is elastic and without friction losses, so the solution does not
+/// depend on the path; each point starts from the previous point's contact set). Base nodes in contact have ux = uy = 0 (no sliding,
+/// no penetration); a node leaves contact when its vertical reaction would be tensile and
+/// returns when it would penetrate (active-set iteration, releasing all tensile and
+/// re-adding all penetrating nodes per pass).
+pub fn pushover(
+    body: &FemBody,
+    nx: usize,
+    ny: usize,
+    p_delta: bool,
+    top_displacements: &[f64],
+) -> Result<Vec<PushoverPoint>, FemError> {
+    validate_body(body)?;
+    validate_mesh(nx, ny)?;
+    if let Some(q) = top_displacements.iter().find(|q| !q.is_finite()) {
+        return Err(invalid("top_displacements", q, "must be finite"));
+    }
+    let model = Model::build(body, nx, ny)?;
+    let mesh = &model.mesh;
+    let n = mesh.dof_count();
+    let base_nodes = nx + 1;
+    let tangent = model.tangent(p_delta);
+    let constant_load = model.constant_load(p_delta);
+    let pattern: Vec<f64> = (0..n)
+        .map(|d| {
+            if d % 2 == 0 {
+                model.mass[d] * cantilever_mode(mesh.coords[d / 2][1] / body.height)
+            } else {
+                0.0
+            }
+        })
+        .collect();
+    let pattern_sum: f64 = pattern.iter().sum();
+    let top = mesh.top_nodes();
+    let mean_top = |u: &[f64]| top.iter().map(|&k| u[2 * k]).sum::<f64>() / top.len() as f64;
+    let tension_tolerance = 1e-9 * model.total_mass * body.gravity.max(1.0);
+    let penetration_tolerance = 1e-12 * body.height;
+
+    let mut factors: HashMap<Vec<bool>, BandedLdl> = HashMap::new();
+    // Solution for a given contact set: (u, λ, worst penetration, worst tension).
+    // None when the set leaves the body unstable (singular tangent).
+    let mut solve_with = |contact: &[bool], q: f64| -> Option<ContactTrial> {
+        let constrained: Vec<bool> = (0..n)
+            .map(|d| d / 2 < base_nodes && contact[d / 2])
+            .collect();
+        if !factors.contains_key(contact) {
+            let f = BandedLdl::factor(&tangent.with_identity_rows(&constrained)).ok()?;
+            factors.insert(contact.to_vec(), f);
+        }
+        let factor = &factors[contact];
+        let solve = |rhs: &[f64]| {
+            let mut x: Vec<f64> = rhs
+                .iter()
+                .zip(&constrained)
+                .map(|(r, c)| if *c { 0.0 } else { *r })
+                .collect();
+            factor.solve_in_place(&mut x);
+            x
+        };
+        let u_gravity = solve(&constant_load);
+        let u_pattern = solve(&pattern);
+        let load_factor = (q - mean_top(&u_gravity)) / mean_top(&u_pattern);
+        let u: Vec<f64> = u_gravity
+            .iter()
+            .zip(&u_pattern)
+            .map(|(g, p)| g + load_factor * p)
+            .collect();
+        let mut internal = vec![0.0; n];
+        tangent.mul_vec(&u, &mut internal);
+        let mut trial = ContactTrial {
+            u,
+            load_factor,
+            penetration: None,
+            tension: None,
+        };
+        for (i, &in_contact) in contact.iter().enumerate() {
+            let d = 2 * i + 1;
+            let ry = internal[d] - constant_load[d] - load_factor * pattern[d];
+            if in_contact && ry < -tension_tolerance {
+                if trial.tension.is_none_or(|(_, r)| ry < r) {
+                    trial.tension = Some((i, ry));
+                }
+            } else if !in_contact
+                && trial.u[d] < -penetration_tolerance
+                && trial.penetration.is_none_or(|(_, v)| trial.u[d] < v)
+            {
+                trial.penetration = Some((i, trial.u[d]));
+            }
+        }
+        Some(trial)
+    };
+
+    let mut contact = vec![true; base_nodes];
+    let mut points = Vec::with_capacity(top_displacements.len());
+    for &q in top_displacements {
+        // active set from the previous point: one change per pass, re-adding the most
+        // penetrating node first, else releasing the most tensile one
+        let mut converged = None;
+        for _ in 0..(2 * base_nodes + 4) {
+            let Some(trial) = solve_with(&contact, q) else {
+                break;
+            };
+            if let Some((i, _)) = trial.penetration {
+                contact[i] = true;
+            } else if let Some((i, _)) = trial.tension {
+                contact[i] = false;
+            } else {
+                converged = Some(trial);
+                break;
+            }
+            if !contact.contains(&true) {
+                break;
+            }
+        }
+        // The discrete node-to-floor contact with P-Delta softening can leave no exactly
+        // admissible contact set at a prescribed q (a node sits on the floor with neither a
+        // compressive reaction nor a gap while the zone shrinks from two nodes to one) and the
+        // iteration then cycles. Fall back to the contact zones progressive uplift produces
+        // (contiguous, ending at the toe q leans to) and take the least violating one, if its
+        // violation (penetration / |q|, tension / weight) is below 1 %.
+        let mut approximate = false;
+        if converged.is_none() {
+            let weight = model.total_mass * body.gravity.max(1e-12);
+            let mut best: Option<(f64, Vec<bool>, ContactTrial)> = None;
+            for size in (1..=base_nodes).rev() {
+                let zone: Vec<bool> = (0..base_nodes)
+                    .map(|i| {
+                        if q >= 0.0 {
+                            i + size >= base_nodes
+                        } else {
+                            i < size
+                        }
+                    })
+                    .collect();
+                let Some(trial) = solve_with(&zone, q) else {
+                    continue;
+                };
+                let violation = trial
+                    .penetration
+                    .map_or(0.0, |(_, v)| -v / q.abs().max(1e-6 * body.height))
+                    .max(trial.tension.map_or(0.0, |(_, r)| -r / weight));
+                if best.as_ref().is_none_or(|(b, _, _)| violation < *b) {
+                    best = Some((violation, zone, trial));
+                }
+            }
+            if let Some((violation, zone, trial)) = best.filter(|(v, _, _)| *v <= 0.01) {
+                contact = zone;
+                converged = Some(trial);
+                approximate = violation > 0.0;
+            }
+        }
+        let ContactTrial { u, load_factor, .. } =
+            converged.ok_or_else(|| FemError::ContactNotConverged {
+                context: format!("pushover at q = {q} m"),
+            })?;
+        let [_, rocking, _, flexural, shearing] = decompose(mesh, &u);
+        let contact_nodes = contact.iter().filter(|c| **c).count();
+        let corner_only = contact_nodes == 1 && (contact[0] || contact[base_nodes - 1]);
+        points.push(PushoverPoint {
+            q,
+            base_shear: load_factor * pattern_sum,
+            load_factor,
+            uplift: corner_only && base_nodes > 1,
+            heel_lifted: !(contact[0] && contact[base_nodes - 1]),
+            contact_nodes,
+            flexural,
+            rocking,
+            shearing,
+            approximate_contact: approximate,
+        });
+    }
+    Ok(points)
+}
+
+/// Static solution for one trial contact set.
+struct ContactTrial {
+    u: Vec<f64>,
+    load_factor: f64,
+    /// Most penetrating lifted node (index, uy).
+    penetration: Option<(usize, f64)>,
+    /// Most tensile node in contact (index, Ry).
+    tension: Option<(usize, f64)>,
+}
