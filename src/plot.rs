@@ -150,30 +150,27 @@ fn draw_panel(
             format!("{:.1e}", 10f64.powf(*v))
         }
     };
-    let linear_label = |v: &f64| {
+    // Tick values are sums of float steps: one that is zero but for rounding reads as 0.
+    let linear_label = |v: &f64, span: f64| {
         let a = v.abs();
-        if a != 0.0 && !(1e-3..1e4).contains(&a) {
+        if a <= 1e-9 * span {
+            "0".to_string()
+        } else if !(1e-3..1e4).contains(&a) {
             format!("{v:.0e}")
         } else {
             format!("{}", (v * 1e6).round() / 1e6)
         }
     };
+    let x_label = |v: &f64| linear_label(v, (x1 - x0).abs());
+    let y_label = |v: &f64| linear_label(v, (y1 - y0).abs());
     chart
         .configure_mesh()
         .x_desc(panel.x_label.as_str())
         .y_desc(panel.y_label.as_str())
         .x_labels(8)
         .y_labels(8)
-        .x_label_formatter(if panel.log_x {
-            &log_label
-        } else {
-            &linear_label
-        })
-        .y_label_formatter(if panel.log_y {
-            &log_label
-        } else {
-            &linear_label
-        })
+        .x_label_formatter(if panel.log_x { &log_label } else { &x_label })
+        .y_label_formatter(if panel.log_y { &log_label } else { &y_label })
         .light_line_style(RGBColor(235, 235, 235))
         .draw()?;
 
