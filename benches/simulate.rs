@@ -33,7 +33,7 @@ fn reference_case(c: &mut Criterion) {
 /// The reference body through the whole 31.16 s El Centro record (every one of its 1559 samples
 /// a stop time), rtol = 1e-8, atol = 1e-10, with each method.
 fn el_centro(c: &mut Criterion) {
-    for method in ["bdf", "esdirk34", "tr-bdf2"] {
+    for method in ["bdf", "esdirk34", "tr-bdf2", "tsit45"] {
         let model = load(
             "models/elcentro1940.toml",
             Overrides {
@@ -48,5 +48,22 @@ fn el_centro(c: &mut Criterion) {
     }
 }
 
-criterion_group!(benches, reference_case, el_centro);
+/// The reference case at rtol = 1e-8 with the other methods.
+fn reference_case_methods(c: &mut Criterion) {
+    for method in ["esdirk34", "tr-bdf2", "tsit45"] {
+        let model = load(
+            "models/ichinose1986.toml",
+            Overrides {
+                method: Some(method.to_string()),
+                ..tolerances(1e-8, 1e-10)
+            },
+        );
+        c.bench_function(
+            &format!("ichinose1986 6 s {method} rtol=1e-8 atol=1e-10"),
+            |b| b.iter(|| flexrock::run::simulate(std::hint::black_box(&model)).expect("solves")),
+        );
+    }
+}
+
+criterion_group!(benches, reference_case, reference_case_methods, el_centro);
 criterion_main!(benches);
