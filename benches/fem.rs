@@ -1,4 +1,4 @@
-//! Speed of the finite element analysis over the paper's 6 s (docs/README-fem.md reports these).
+//! Speed of the finite element analysis over the paper's 6 s (the README reports these).
 
 use std::path::Path;
 
