@@ -2,19 +2,7 @@
 
 mod common;
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-
-fn flexrock(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_flexrock"))
-        .args(args)
-        .output()
-        .expect("the binary runs")
-}
-
-fn reference_model() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("models/ichinose1986.toml")
-}
+use common::{flexrock, reference_model};
 
 #[test]
 fn run_writes_the_three_files_with_their_schemas() {
@@ -111,20 +99,7 @@ damping_ratio = 0.05\n\n[excitation]\nkind = \"paper-sine\"\namplitude = 5.0\npe
 
 /// Runs a model text that must be refused; returns stderr after checking exit code and outputs.
 fn refused(name: &str, model_text: &str) -> String {
-    let dir = common::scratch_dir(&format!("bad-{name}"));
-    let model = dir.join("model.toml");
-    std::fs::write(&model, model_text).unwrap();
-    let out = dir.join("out");
-    let o = flexrock(&[
-        "run",
-        model.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-    ]);
-    let stderr = String::from_utf8_lossy(&o.stderr).into_owned();
-    assert_eq!(o.status.code(), Some(2), "{name}: {stderr}");
-    assert!(!out.exists(), "{name}: output directory was created");
-    assert!(!stderr.contains("panicked"), "{name}: {stderr}");
+    let stderr = common::refused("run", name, model_text);
     assert!(
         stderr.contains("model.toml"),
         "{name}: message does not name the file: {stderr}"

@@ -27,19 +27,7 @@ fn weak_harmonic_matches_the_damped_oscillator() {
 
     // q'' + 2 h w q' + w^2 q = -beta1 A sin(W t), q(0) = q'(0) = 0: closed form.
     let c = &model.constants;
-    let (w, h, big_w) = (c.omega, 0.05, 2.0 * std::f64::consts::PI);
-    let f0 = -c.beta1 * 0.3;
-    let den = (w * w - big_w * big_w).powi(2) + (2.0 * h * w * big_w).powi(2);
-    let xs = f0 * (w * w - big_w * big_w) / den;
-    let xc = -f0 * 2.0 * h * w * big_w / den;
-    let wd = w * (1.0 - h * h).sqrt();
-    let e = -xc;
-    let g = (h * w * e - big_w * xs) / wd;
-    let exact = |t: f64| {
-        xs * (big_w * t).sin()
-            + xc * (big_w * t).cos()
-            + (-h * w * t).exp() * (e * (wd * t).cos() + g * (wd * t).sin())
-    };
+    let exact = common::damped_oscillator_response(c.omega, 0.05, c.beta1, 0.3, 1.0);
     let mut worst: f64 = 0.0;
     for s in &sol.samples {
         worst = worst.max((s.q - exact(s.t)).abs());

@@ -3,28 +3,7 @@
 
 mod common;
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-
-fn flexrock(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_flexrock"))
-        .args(args)
-        .output()
-        .expect("the binary runs")
-}
-
-fn reference_model() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("models/ichinose1986.toml")
-}
-
-fn file_names(dir: &Path) -> Vec<String> {
-    let mut names: Vec<String> = std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .collect();
-    names.sort();
-    names
-}
+use common::{file_names, flexrock, reference_model};
 
 #[test]
 fn fem_writes_history_events_summary_and_figures() {
@@ -230,25 +209,11 @@ fn modes_lists_periods_against_the_sdof_period() {
 
 /// A model with `[fem]` text that must be refused: exit 2, the key named, nothing written.
 fn refused(name: &str, body_extra: &str, fem: &str) -> String {
-    let dir = common::scratch_dir(&format!("fem-bad-{name}"));
-    let model = dir.join("model.toml");
     let text = common::reference_body(&format!(
         "[excitation]\nkind = \"free\"\n\n[simulation]\nduration = 1.0\n\n[fem]\n{fem}\n"
     ))
     .replace("gravity = 9.81\n", &format!("gravity = 9.81\n{body_extra}"));
-    std::fs::write(&model, text).unwrap();
-    let out = dir.join("out");
-    let o = flexrock(&[
-        "fem",
-        model.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-    ]);
-    let stderr = String::from_utf8_lossy(&o.stderr).into_owned();
-    assert_eq!(o.status.code(), Some(2), "{name}: {stderr}");
-    assert!(!out.exists(), "{name}: output directory was created");
-    assert!(!stderr.contains("panicked"), "{name}: {stderr}");
-    stderr
+    common::refused("fem", name, &text)
 }
 
 #[test]

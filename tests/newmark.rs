@@ -3,23 +3,13 @@
 
 mod common;
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use common::{flexrock, reference_model};
+
+use std::path::Path;
 
 use flexrock::compare::compare;
 use flexrock::model::{Model, Overrides};
 use flexrock::solver::SolverSettings;
-
-fn flexrock(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_flexrock"))
-        .args(args)
-        .output()
-        .expect("the binary runs")
-}
-
-fn reference_model() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("models/ichinose1986.toml")
-}
 
 /// Max |q - closed form| over the step ends of a Newmark run on a harmonic too weak to uplift.
 fn closed_form_error(beta: f64, dt: f64) -> f64 {
@@ -34,19 +24,7 @@ fn closed_form_error(beta: f64, dt: f64) -> f64 {
 
     // q'' + 2 h w q' + w^2 q = -beta1 A sin(W t), q(0) = q'(0) = 0: closed form.
     let c = &model.constants;
-    let (w, h, big_w) = (c.omega, 0.05, 2.0 * std::f64::consts::PI);
-    let f0 = -c.beta1 * 0.3;
-    let den = (w * w - big_w * big_w).powi(2) + (2.0 * h * w * big_w).powi(2);
-    let xs = f0 * (w * w - big_w * big_w) / den;
-    let xc = -f0 * 2.0 * h * w * big_w / den;
-    let wd = w * (1.0 - h * h).sqrt();
-    let e = -xc;
-    let g = (h * w * e - big_w * xs) / wd;
-    let exact = |t: f64| {
-        xs * (big_w * t).sin()
-            + xc * (big_w * t).cos()
-            + (-h * w * t).exp() * (e * (wd * t).cos() + g * (wd * t).sin())
-    };
+    let exact = common::damped_oscillator_response(c.omega, 0.05, c.beta1, 0.3, 1.0);
     sol.samples
         .iter()
         .map(|s| (s.q - exact(s.t)).abs())

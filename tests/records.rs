@@ -3,22 +3,12 @@
 
 mod common;
 
+use common::{flexrock, repo};
+
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 
 use flexrock::excitation::{FloorMotion, PulseShape, Ricker, SinePulse};
 use flexrock::model::{Model, Overrides};
-
-fn repo(path: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join(path)
-}
-
-fn flexrock(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_flexrock"))
-        .args(args)
-        .output()
-        .expect("the binary runs")
-}
 
 /// A model in `dir` whose excitation is the given record section.
 fn record_model(dir: &Path, excitation: &str, simulation: &str) -> PathBuf {

@@ -31,3 +31,75 @@ pub fn scratch_dir(name: &str) -> std::path::PathBuf {
     std::fs::create_dir_all(&dir).expect("scratch dir");
     dir
 }
+
+/// Runs the `flexrock` binary.
+pub fn flexrock(args: &[&str]) -> std::process::Output {
+    std::process::Command::new(env!("CARGO_BIN_EXE_flexrock"))
+        .args(args)
+        .output()
+        .expect("the binary runs")
+}
+
+/// A path inside the repository.
+pub fn repo(path: &str) -> std::path::PathBuf {
+    std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(path)
+}
+
+/// The paper's example.
+pub fn reference_model() -> std::path::PathBuf {
+    repo("models/ichinose1986.toml")
+}
+
+/// Runs `flexrock SUBCOMMAND model --out DIR` on a model text that must be refused: exit code 2,
+/// no output directory, no panic. Returns the error message.
+pub fn refused(subcommand: &str, name: &str, model_text: &str) -> String {
+    let dir = scratch_dir(&format!("refused-{subcommand}-{name}"));
+    let model = dir.join("model.toml");
+    std::fs::write(&model, model_text).unwrap();
+    let out = dir.join("out");
+    let o = flexrock(&[
+        subcommand,
+        model.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let stderr = String::from_utf8_lossy(&o.stderr).into_owned();
+    assert_eq!(o.status.code(), Some(2), "{name}: {stderr}");
+    assert!(!out.exists(), "{name}: output directory was created");
+    assert!(!stderr.contains("panicked"), "{name}: {stderr}");
+    stderr
+}
+
+/// The sorted names of the files in a directory.
+pub fn file_names(dir: &std::path::Path) -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    names
+}
+
+/// Closed-form response of q'' + 2 h w q' + w^2 q = -beta1 A sin(W t) from rest, W = 2 pi / Tp:
+/// the pre-uplift motion under a harmonic floor acceleration.
+pub fn damped_oscillator_response(
+    omega: f64,
+    damping_ratio: f64,
+    beta1: f64,
+    amplitude: f64,
+    period: f64,
+) -> impl Fn(f64) -> f64 {
+    let (w, h, big_w) = (omega, damping_ratio, 2.0 * std::f64::consts::PI / period);
+    let f0 = -beta1 * amplitude;
+    let den = (w * w - big_w * big_w).powi(2) + (2.0 * h * w * big_w).powi(2);
+    let xs = f0 * (w * w - big_w * big_w) / den;
+    let xc = -f0 * 2.0 * h * w * big_w / den;
+    let wd = w * (1.0 - h * h).sqrt();
+    let e = -xc;
+    let g = (h * w * e - big_w * xs) / wd;
+    move |t: f64| {
+        xs * (big_w * t).sin()
+            + xc * (big_w * t).cos()
+            + (-h * w * t).exp() * (e * (wd * t).cos() + g * (wd * t).sin())
+    }
+}
