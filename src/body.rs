@@ -46,16 +46,17 @@ pub struct Body {
 impl Body {
     /// Checks the rules that do not need the derived constants; `Constants::new` checks the rest
     /// (stability under self-weight, slenderness).
-    pub fn new(
-        height: f64,
-        width: f64,
-        depth: f64,
-        mass: f64,
-        flexural_rigidity: f64,
-        damping_ratio: f64,
-        gravity: f64,
-        constant_set: ConstantSet,
-    ) -> Result<Self> {
+    pub fn validated(self) -> Result<Self> {
+        let Body {
+            height,
+            width,
+            depth,
+            mass,
+            flexural_rigidity,
+            damping_ratio,
+            gravity,
+            ..
+        } = self;
         positive("body.height", height)?;
         positive("body.width", width)?;
         positive("body.depth", depth)?;
@@ -78,16 +79,7 @@ impl Body {
                 ),
             ));
         }
-        Ok(Body {
-            height,
-            width,
-            depth,
-            mass,
-            flexural_rigidity,
-            damping_ratio,
-            gravity,
-            constant_set,
-        })
+        Ok(self)
     }
 
     /// Mass per unit height, kg/m.

@@ -530,11 +530,11 @@ impl<'d> Driver<'d> {
             right_hand_side(automaton, guard.to, floor_acc, &x, &mut dy);
             let mut dg = [0.0; NOUT];
             energy_integrands(automaton, guard.to, floor_acc, &x, &mut dg);
-            for i in 0..NSTATES {
-                state.dy[i] = dy[i];
+            for (i, value) in dy.into_iter().enumerate() {
+                state.dy[i] = value;
             }
-            for i in 0..NOUT {
-                state.dg[i] = dg[i];
+            for (i, value) in dg.into_iter().enumerate() {
+                state.dg[i] = value;
             }
             match automaton.crossed_guard(guard.to, q, qdot_after) {
                 Some(next) => guard = next,

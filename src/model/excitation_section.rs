@@ -1,0 +1,264 @@
+//! Rules of the `[excitation]` section: which keys each kind takes, and the floor motion it makes.
+
+use std::path::Path;
+
+use super::ExcitationSection;
+use crate::body::positive;
+use crate::error::{Error, Result};
+use crate::excitation::{
+    FloorMotion, Free, Harmonic, PaperSine, PulseShape, RecordedMotion, Ricker, SinePulse,
+};
+use crate::record::{read_record, RecordFormat};
+
+/// Which keys each excitation kind takes (all others are errors).
+const EXCITATION_KEYS: &[(&str, &[&str])] = &[
+    ("paper-sine", &["amplitude", "period", "ramp"]),
+    ("harmonic", &["amplitude", "period"]),
+    ("sine-pulse", &["amplitude", "period", "cycles", "shape"]),
+    ("ricker", &["amplitude", "period", "center"]),
+    (
+        "record",
+        &[
+            "path", "format", "units", "scale", "start", "end", "tail", "dt",
+        ],
+    ),
+    ("free", &[]),
+];
+
+/// Keys that must be given for a kind (the others have defaults).
+const REQUIRED_EXCITATION_KEYS: &[&str] = &["amplitude", "period", "ramp", "center", "path"];
+
+/// The floor motion of the `[excitation]` section, and its natural length if it has one.
+pub(super) fn floor_from_section(
+    s: &ExcitationSection,
+    base_dir: &Path,
+) -> Result<(Box<dyn FloorMotion>, Option<f64>)> {
+    let kind = s.kind.as_str();
+    let allowed = EXCITATION_KEYS
+        .iter()
+        .find(|(k, _)| *k == kind)
+        .map(|(_, keys)| *keys)
+        .ok_or_else(|| {
+            let kinds: Vec<String> = EXCITATION_KEYS
+                .iter()
+                .map(|(k, _)| format!("\"{k}\""))
+                .collect();
+            Error::invalid(
+                "excitation.kind",
+                format!("\"{kind}\""),
+                &format!("must be one of {}", kinds.join(", ")),
+            )
+        })?;
+    let given: [(&str, Option<String>); 14] = [
+        ("amplitude", s.amplitude.map(|v| v.to_string())),
+        ("period", s.period.map(|v| v.to_string())),
+        ("ramp", s.ramp.map(|v| v.to_string())),
+        ("cycles", s.cycles.map(|v| v.to_string())),
+        ("shape", s.shape.clone()),
+        ("center", s.center.map(|v| v.to_string())),
+        ("path", s.path.clone()),
+        ("format", s.format.clone()),
+        ("units", s.units.clone()),
+        ("scale", s.scale.map(|v| v.to_string())),
+        ("start", s.start.map(|v| v.to_string())),
+        ("end", s.end.map(|v| v.to_string())),
+        ("tail", s.tail.map(|v| v.to_string())),
+        ("dt", s.dt.map(|v| v.to_string())),
+    ];
+    for (key, value) in &given {
+        let wanted = allowed.contains(key);
+        match value {
+            Some(v) if !wanted => {
+                return Err(Error::invalid(
+                    &format!("excitation.{key}"),
+                    v,
+                    &format!("not a parameter of kind = \"{kind}\""),
+                ))
+            }
+            None if wanted && REQUIRED_EXCITATION_KEYS.contains(key) => {
+                return Err(Error::invalid(
+                    &format!("excitation.{key}"),
+                    "(missing)",
+                    &format!("required for kind = \"{kind}\""),
+                ))
+            }
+            _ => {}
+        }
+    }
+    let amplitude = s.amplitude.unwrap_or(0.0);
+    if !amplitude.is_finite() {
+        return Err(Error::invalid(
+            "excitation.amplitude",
+            amplitude,
+            "must be a finite number",
+        ));
+    }
+    let period = s.period.unwrap_or(1.0);
+    if allowed.contains(&"period") {
+        positive("excitation.period", period)?;
+    }
+    let floor: Box<dyn FloorMotion> = match kind {
+        "paper-sine" => {
+            let ramp = s.ramp.unwrap_or(0.0);
+            positive("excitation.ramp", ramp)?;
+            Box::new(PaperSine::new(amplitude, period, ramp))
+        }
+        "harmonic" => Box::new(Harmonic { amplitude, period }),
+        "sine-pulse" => {
+            let cycles = s.cycles.unwrap_or(1.0);
+            positive("excitation.cycles", cycles)?;
+            let shape = match s.shape.as_deref().unwrap_or("antisymmetric") {
+                "antisymmetric" => PulseShape::Antisymmetric,
+                "symmetric" => PulseShape::Symmetric,
+                other => {
+                    return Err(Error::invalid(
+                        "excitation.shape",
+                        format!("\"{other}\""),
+                        "must be \"antisymmetric\" (sine) or \"symmetric\" (cosine)",
+                    ))
+                }
+            };
+            Box::new(SinePulse::new(amplitude, period, cycles, shape))
+        }
+        "ricker" => {
+            let center = s.center.unwrap_or(0.0);
+            if !center.is_finite() {
+                return Err(Error::invalid(
+                    "excitation.center",
+                    center,
+                    "must be a finite number",
+                ));
+            }
+            Box::new(Ricker {
+                amplitude,
+                period,
+                center,
+            })
+        }
+        "record" => {
+            let (record, tail) = recorded_motion(s, base_dir)?;
+            let length = record.end() + tail;
+            return Ok((Box::new(record), Some(length)));
+        }
+        _ => Box::new(Free),
+    };
+    Ok((floor, None))
+}
+
+/// Standard gravity, for records in units of g (independent of the body's `gravity`).
+pub const STANDARD_GRAVITY: f64 = 9.80665;
+
+/// Reads and trims the record of a `kind = "record"` section; returns it with the tail length.
+fn recorded_motion(s: &ExcitationSection, base_dir: &Path) -> Result<(RecordedMotion, f64)> {
+    let relative = s.path.clone().unwrap_or_default();
+    let path = base_dir.join(&relative);
+    let format = match s.format.as_deref() {
+        None => None,
+        Some("peer-at2") => Some(RecordFormat::PeerAt2),
+        Some("csv") => Some(RecordFormat::Csv),
+        Some(other) => {
+            return Err(Error::invalid(
+                "excitation.format",
+                format!("\"{other}\""),
+                "must be \"peer-at2\" or \"csv\"",
+            ))
+        }
+    };
+    if let Some(dt) = s.dt {
+        positive("excitation.dt", dt)?;
+    }
+    let record = read_record(&path, format, s.dt).map_err(|e| Error::Record {
+        key: "excitation.path".to_string(),
+        source: e,
+    })?;
+    let is_at2 = matches!(format, Some(RecordFormat::PeerAt2))
+        || (format.is_none() && record_format_of(&path) == Some(RecordFormat::PeerAt2));
+    let units = match (s.units.as_deref(), is_at2) {
+        (Some(u), _) => u,
+        (None, true) => "g",
+        (None, false) => {
+            return Err(Error::invalid(
+                "excitation.units",
+                "(missing)",
+                "required for CSV records: \"g\", \"m/s2\" or \"cm/s2\"",
+            ))
+        }
+    };
+    let unit_factor = match units {
+        "g" => STANDARD_GRAVITY,
+        "m/s2" => 1.0,
+        "cm/s2" => 0.01,
+        other => {
+            return Err(Error::invalid(
+                "excitation.units",
+                format!("\"{other}\""),
+                "must be \"g\", \"m/s2\" or \"cm/s2\"",
+            ))
+        }
+    };
+    let scale = s.scale.unwrap_or(1.0);
+    if !scale.is_finite() {
+        return Err(Error::invalid(
+            "excitation.scale",
+            scale,
+            "must be a finite number",
+        ));
+    }
+    let record_length = record.duration();
+    let start = s.start.unwrap_or(0.0);
+    let end = s.end.unwrap_or(record_length);
+    if !(start.is_finite() && start >= 0.0 && start < record_length) {
+        return Err(Error::invalid(
+            "excitation.start",
+            start,
+            &format!("must lie in [0, {record_length}) s, the record's length"),
+        ));
+    }
+    if !(end.is_finite() && end > start && end <= record_length * (1.0 + 1e-12)) {
+        return Err(Error::invalid(
+            "excitation.end",
+            end,
+            &format!("must lie in ({start}, {record_length}] s"),
+        ));
+    }
+    let tail = s.tail.unwrap_or(0.0);
+    if !(tail.is_finite() && tail >= 0.0) {
+        return Err(Error::invalid("excitation.tail", tail, "must be 0 or more"));
+    }
+    // Trimming keeps whole samples: the first at or after `start`, the last at or before `end`.
+    let first = (start / record.dt - 1e-9).ceil().max(0.0) as usize;
+    let last = ((end / record.dt + 1e-9).floor() as usize).min(record.values.len() - 1);
+    if last <= first {
+        return Err(Error::invalid(
+            "excitation.end",
+            end,
+            "leaves fewer than two samples of the record",
+        ));
+    }
+    let values = record.values[first..=last]
+        .iter()
+        .map(|v| v * unit_factor * scale)
+        .collect();
+    Ok((
+        RecordedMotion::new(
+            format!(
+                "{} (samples {}..={} of {})",
+                relative,
+                first,
+                last,
+                record.values.len()
+            ),
+            record.dt,
+            values,
+        ),
+        tail,
+    ))
+}
+
+fn record_format_of(path: &Path) -> Option<RecordFormat> {
+    match path.extension()?.to_str()?.to_ascii_lowercase().as_str() {
+        "at2" => Some(RecordFormat::PeerAt2),
+        "csv" => Some(RecordFormat::Csv),
+        _ => None,
+    }
+}

@@ -1,0 +1,153 @@
+//! Rules of the `[fem]` section and `body.poisson_ratio`: the finite element analysis.
+
+use serde::Serialize;
+
+use super::{FemSection, ModelFile};
+use crate::body::{positive, Body};
+use crate::constants::Constants;
+use crate::error::{Error, Result};
+use crate::fem::{FemBody, FemSettings, TimeScheme};
+
+pub const DEFAULT_POISSON_RATIO: f64 = 0.25;
+
+/// A validated finite element analysis: the plane-stress body and the run settings.
+#[derive(Debug, Clone, Serialize)]
+pub struct FemSetup {
+    pub body: FemBody,
+    pub settings: FemSettings,
+    /// The scheme's name as written in the model file.
+    pub scheme_name: &'static str,
+}
+
+pub const DEFAULT_FEM_NX: usize = 2;
+pub const DEFAULT_FEM_NY: usize = 5;
+pub const DEFAULT_FEM_DT: f64 = 0.0071;
+pub const DEFAULT_FEM_THETA: f64 = 1.4;
+pub const DEFAULT_FEM_MU_S: f64 = 0.8;
+pub const DEFAULT_FEM_MU_K: f64 = 0.4;
+/// Deformed shapes are stored at these times (the paper's Fig. 9), s.
+pub const FEM_SNAPSHOT_TIMES: [f64; 6] = [0.9, 1.0, 1.1, 1.2, 1.3, 1.4];
+
+/// Builds the finite element analysis from `[body]` and `[fem]`. The plane-stress body takes
+/// E = 12 EI/(D B^3) and the density M/(H B D) from the validated body, so every way of giving
+/// the stiffness and the mass works; the damping period defaults to the pre-uplift period T.
+pub fn fem_from_section(
+    file: &ModelFile,
+    body: &Body,
+    constants: &Constants,
+    simulation_duration: f64,
+) -> Result<FemSetup> {
+    let default = FemSection::default();
+    let s = file.fem.as_ref().unwrap_or(&default);
+    let poisson_ratio = file.body.poisson_ratio.unwrap_or(DEFAULT_POISSON_RATIO);
+    if !(poisson_ratio.is_finite() && (0.0..0.5).contains(&poisson_ratio)) {
+        return Err(Error::invalid(
+            "body.poisson_ratio",
+            poisson_ratio,
+            "Poisson's ratio must lie in [0, 0.5)",
+        ));
+    }
+    let nx = s.nx.unwrap_or(DEFAULT_FEM_NX);
+    let ny = s.ny.unwrap_or(DEFAULT_FEM_NY);
+    for (key, n) in [("fem.nx", nx), ("fem.ny", ny)] {
+        if !(1..=1000).contains(&n) {
+            return Err(Error::invalid(
+                key,
+                n,
+                "the number of elements must lie in 1..=1000",
+            ));
+        }
+    }
+    if nx * ny > 200_000 {
+        return Err(Error::invalid(
+            "fem.nx",
+            format!("{nx} (with fem.ny = {ny})"),
+            "the mesh must have at most 200000 elements",
+        ));
+    }
+    let dt = s.dt.unwrap_or(DEFAULT_FEM_DT);
+    positive("fem.dt", dt)?;
+    let duration = s.duration.unwrap_or(simulation_duration);
+    positive("fem.duration", duration)?;
+    if duration / dt > 1e7 {
+        return Err(Error::invalid(
+            "fem.dt",
+            dt,
+            &format!("gives more than 1e7 steps over {duration} s; choose a larger step"),
+        ));
+    }
+    let name = s.scheme.as_deref().unwrap_or("linear-acceleration");
+    let (scheme, scheme_name) = match name {
+        "linear-acceleration" => (TimeScheme::linear_acceleration(), "linear-acceleration"),
+        "average-acceleration" => (TimeScheme::average_acceleration(), "average-acceleration"),
+        "wilson-theta" => {
+            let theta = s.theta.unwrap_or(DEFAULT_FEM_THETA);
+            if !(theta.is_finite() && (1.0..=3.0).contains(&theta)) {
+                return Err(Error::invalid("fem.theta", theta, "must lie in [1, 3]"));
+            }
+            (TimeScheme::WilsonTheta { theta }, "wilson-theta")
+        }
+        other => {
+            return Err(Error::invalid(
+                "fem.scheme",
+                format!("\"{other}\""),
+                "must be \"linear-acceleration\", \"average-acceleration\" or \"wilson-theta\"",
+            ))
+        }
+    };
+    if let (Some(theta), false) = (s.theta, scheme_name == "wilson-theta") {
+        return Err(Error::invalid(
+            "fem.theta",
+            theta,
+            &format!("not a parameter of scheme = \"{scheme_name}\" (only of \"wilson-theta\")"),
+        ));
+    }
+    let mu_s = s.mu_s.unwrap_or(DEFAULT_FEM_MU_S);
+    let mu_k = s.mu_k.unwrap_or(DEFAULT_FEM_MU_K);
+    for (key, mu) in [("fem.mu_s", mu_s), ("fem.mu_k", mu_k)] {
+        if !(mu.is_finite() && mu >= 0.0) {
+            return Err(Error::invalid(
+                key,
+                mu,
+                "a friction coefficient must be finite and >= 0",
+            ));
+        }
+    }
+    if mu_k > mu_s {
+        return Err(Error::invalid(
+            "fem.mu_k",
+            mu_k,
+            &format!("kinetic friction cannot exceed static friction (fem.mu_s = {mu_s})"),
+        ));
+    }
+    let damping_period = s.damping_period.unwrap_or(constants.period);
+    positive("fem.damping_period", damping_period)?;
+    let fem_body = FemBody {
+        height: body.height,
+        width: body.width,
+        depth: body.depth,
+        density: body.mass / (body.height * body.width * body.depth),
+        youngs_modulus: 12.0 * body.flexural_rigidity / (body.depth * body.width.powi(3)),
+        poisson_ratio,
+        damping_ratio: body.damping_ratio,
+        damping_period,
+        gravity: body.gravity,
+    };
+    let settings = FemSettings {
+        nx,
+        ny,
+        dt,
+        duration,
+        scheme,
+        mu_s,
+        mu_k,
+        p_delta: s.p_delta.unwrap_or(true),
+        snapshot_times: FEM_SNAPSHOT_TIMES.to_vec(),
+        initial_rotation: 0.0,
+    };
+    Ok(FemSetup {
+        body: fem_body,
+        settings,
+        scheme_name,
+    })
+}

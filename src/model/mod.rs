@@ -1,0 +1,456 @@
+//! The TOML model file: its schema (key names are a contract), defaults and validation.
+//!
+//! A model file is read into [`ModelFile`] exactly as written (unknown keys are errors), then
+//! [`Model::from_file`] applies the defaults, checks every rule and derives the constants.
+//! Each section's rules live in a file of their own: `excitation_section.rs`,
+//! `solver_section.rs`, `fem_section.rs`; the body and the initial state are checked here.
+
+mod excitation_section;
+mod fem_section;
+mod solver_section;
+
+use excitation_section::floor_from_section;
+pub use excitation_section::STANDARD_GRAVITY;
+pub use fem_section::{
+    fem_from_section, FemSetup, DEFAULT_FEM_DT, DEFAULT_FEM_MU_K, DEFAULT_FEM_MU_S, DEFAULT_FEM_NX,
+    DEFAULT_FEM_NY, DEFAULT_FEM_THETA, DEFAULT_POISSON_RATIO, FEM_SNAPSHOT_TIMES,
+};
+use solver_section::{newmark_from_section, solver_from_section};
+pub use solver_section::{DEFAULT_NEWMARK_BETA, DEFAULT_NEWMARK_DT, DEFAULT_NEWMARK_GAMMA};
+
+use std::path::{Path, PathBuf};
+
+use serde::{Deserialize, Serialize};
+
+use crate::body::{positive, Body, ConstantSet};
+use crate::constants::Constants;
+use crate::error::{Error, Result};
+use crate::excitation::FloorMotion;
+use crate::solver::adaptive::{AdaptiveMethod, AdaptiveSettings};
+use crate::solver::newmark::NewmarkSettings;
+use crate::solver::{InitialState, SolverSettings};
+
+/// The model file as written.
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct ModelFile {
+    pub body: BodySection,
+    pub excitation: ExcitationSection,
+    pub simulation: SimulationSection,
+    #[serde(default)]
+    pub solver: SolverSection,
+    /// Settings of `flexrock fem` (optional; see [`fem_from_section`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub fem: Option<FemSection>,
+}
+
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct BodySection {
+    pub height: f64,
+    pub width: f64,
+    pub depth: Option<f64>,
+    pub density: Option<f64>,
+    pub mass: Option<f64>,
+    pub youngs_modulus: Option<f64>,
+    pub flexural_rigidity: Option<f64>,
+    pub period: Option<f64>,
+    pub damping_ratio: Option<f64>,
+    pub gravity: Option<f64>,
+    pub constants: Option<String>,
+    /// Poisson's ratio, used only by the finite element analysis.
+    pub poisson_ratio: Option<f64>,
+}
+
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct ExcitationSection {
+    pub kind: String,
+    pub amplitude: Option<f64>,
+    pub period: Option<f64>,
+    pub ramp: Option<f64>,
+    /// sine-pulse: number of cycles.
+    pub cycles: Option<f64>,
+    /// sine-pulse: "antisymmetric" (sine) or "symmetric" (cosine).
+    pub shape: Option<String>,
+    /// ricker: time of the peak, s.
+    pub center: Option<f64>,
+    /// record: file, relative to the model file.
+    pub path: Option<String>,
+    /// record: "peer-at2" or "csv".
+    pub format: Option<String>,
+    /// record: "g", "m/s2" or "cm/s2".
+    pub units: Option<String>,
+    /// record: factor applied to the values.
+    pub scale: Option<f64>,
+    /// record: first and last record time used, s.
+    pub start: Option<f64>,
+    pub end: Option<f64>,
+    /// record: free vibration after the record when the duration is not given, s.
+    pub tail: Option<f64>,
+    /// record: sampling interval of a one-column CSV file, s.
+    pub dt: Option<f64>,
+}
+
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct SimulationSection {
+    /// Required, except for records, where it defaults to the record length plus `tail`.
+    pub duration: Option<f64>,
+    pub q0: Option<f64>,
+    pub qdot0: Option<f64>,
+}
+
+#[derive(Debug, Clone, Default, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct SolverSection {
+    pub method: Option<String>,
+    pub rtol: Option<f64>,
+    pub atol: Option<f64>,
+    pub output_dt: Option<f64>,
+    pub dt: Option<f64>,
+    pub newmark_beta: Option<f64>,
+    pub newmark_gamma: Option<f64>,
+    pub newmark_variant: Option<String>,
+}
+
+/// The `[fem]` section: the finite element analysis of `flexrock fem`.
+#[derive(Debug, Clone, Default, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct FemSection {
+    pub nx: Option<usize>,
+    pub ny: Option<usize>,
+    pub dt: Option<f64>,
+    pub scheme: Option<String>,
+    pub theta: Option<f64>,
+    pub mu_s: Option<f64>,
+    pub mu_k: Option<f64>,
+    pub p_delta: Option<bool>,
+    pub damping_period: Option<f64>,
+    pub duration: Option<f64>,
+}
+
+/// Command-line values of `flexrock fem` that take precedence over the `[fem]` section.
+#[derive(Debug, Clone, Default)]
+pub struct FemOverrides {
+    pub nx: Option<usize>,
+    pub ny: Option<usize>,
+    pub scheme: Option<String>,
+    pub dt: Option<f64>,
+}
+
+/// Command-line values that take precedence over the file.
+#[derive(Debug, Clone, Default)]
+pub struct Overrides {
+    pub method: Option<String>,
+    pub rtol: Option<f64>,
+    pub atol: Option<f64>,
+    pub duration: Option<f64>,
+    /// Newmark time step (solver.dt).
+    pub dt: Option<f64>,
+    /// Newmark variant (solver.newmark_variant).
+    pub newmark_variant: Option<String>,
+}
+
+pub const DEFAULT_DEPTH: f64 = 1.0;
+pub const DEFAULT_DAMPING_RATIO: f64 = 0.05;
+pub const DEFAULT_GRAVITY: f64 = 9.81;
+pub const DEFAULT_RTOL: f64 = 1e-10;
+pub const DEFAULT_ATOL: f64 = 1e-12;
+pub const DEFAULT_OUTPUT_DT: f64 = 0.005;
+
+/// A validated model, ready to run.
+pub struct Model {
+    /// The file it came from, if any.
+    pub path: Option<PathBuf>,
+    /// The file as read, with command-line overrides applied.
+    pub file: ModelFile,
+    pub body: Body,
+    pub constants: Constants,
+    pub floor: Box<dyn FloorMotion>,
+    pub initial: InitialState,
+    pub duration: f64,
+    pub solver: SolverSettings,
+    /// The finite element analysis as the `[fem]` section (or its defaults) describes it.
+    pub fem: FemSetup,
+}
+
+impl Model {
+    /// Reads, parses and validates a model file.
+    pub fn load(path: &Path, overrides: &Overrides) -> Result<Model> {
+        let text = std::fs::read_to_string(path).map_err(|source| Error::ReadModel {
+            path: path.to_path_buf(),
+            source,
+        })?;
+        let file: ModelFile = toml::from_str(&text).map_err(|e| Error::ParseModel {
+            path: path.to_path_buf(),
+            message: e.to_string().trim_end().to_string(),
+        })?;
+        let base_dir = path.parent().unwrap_or(Path::new("."));
+        let mut model =
+            Model::from_file(file, overrides, base_dir).map_err(|e| Error::InModel {
+                path: path.to_path_buf(),
+                source: Box::new(e),
+            })?;
+        model.path = Some(path.to_path_buf());
+        Ok(model)
+    }
+
+    /// Parses and validates the text of a model file (`source` names it in messages).
+    pub fn from_toml_str(text: &str, overrides: &Overrides) -> Result<Model> {
+        let file: ModelFile = toml::from_str(text).map_err(|e| Error::ParseModel {
+            path: PathBuf::from("(model text)"),
+            message: e.to_string().trim_end().to_string(),
+        })?;
+        Model::from_file(file, overrides, Path::new("."))
+    }
+
+    /// Validates a parsed model file; record paths are relative to `base_dir`.
+    pub fn from_file(mut file: ModelFile, overrides: &Overrides, base_dir: &Path) -> Result<Model> {
+        if let Some(m) = &overrides.method {
+            // Switching between Newmark and the adaptive methods on the command line sets aside
+            // the file's keys of the other family: they were written for the file's method.
+            let newmark = |name: Option<&str>| name == Some("newmark");
+            if newmark(Some(m)) != newmark(file.solver.method.as_deref()) {
+                let keep_output_dt = file.solver.output_dt;
+                file.solver = SolverSection {
+                    output_dt: keep_output_dt,
+                    ..SolverSection::default()
+                };
+            }
+            file.solver.method = Some(m.clone());
+        }
+        if let Some(r) = overrides.rtol {
+            file.solver.rtol = Some(r);
+        }
+        if let Some(a) = overrides.atol {
+            file.solver.atol = Some(a);
+        }
+        if let Some(d) = overrides.duration {
+            file.simulation.duration = Some(d);
+        }
+        if let Some(dt) = overrides.dt {
+            file.solver.dt = Some(dt);
+        }
+        if let Some(v) = &overrides.newmark_variant {
+            file.solver.newmark_variant = Some(v.clone());
+        }
+
+        let body = body_from_section(&file.body)?;
+        let constants = Constants::new(&body)?;
+        let (floor, natural_duration) = floor_from_section(&file.excitation, base_dir)?;
+        let duration = match (file.simulation.duration, natural_duration) {
+            (Some(d), _) | (None, Some(d)) => d,
+            (None, None) => {
+                return Err(Error::invalid(
+                    "simulation.duration",
+                    "(missing)",
+                    &format!(
+                        "required for kind = \"{}\" (only records have a natural length)",
+                        file.excitation.kind
+                    ),
+                ))
+            }
+        };
+        positive("simulation.duration", duration)?;
+        let initial = initial_from_section(&file.simulation, &body)?;
+        let solver = solver_from_section(&file.solver, duration, constants.omega)?;
+        let fem = fem_from_section(&file, &body, &constants, duration)?;
+        Ok(Model {
+            path: None,
+            file,
+            body,
+            constants,
+            floor,
+            initial,
+            duration,
+            solver,
+            fem,
+        })
+    }
+
+    /// The finite element setup with command-line overrides applied (checked like the file).
+    pub fn fem_with(&self, overrides: &FemOverrides) -> Result<FemSetup> {
+        let mut file = self.file.clone();
+        let section = file.fem.get_or_insert_with(FemSection::default);
+        section.nx = overrides.nx.or(section.nx);
+        section.ny = overrides.ny.or(section.ny);
+        section.dt = overrides.dt.or(section.dt);
+        if let Some(scheme) = &overrides.scheme {
+            section.scheme = Some(scheme.clone());
+        }
+        fem_from_section(&file, &self.body, &self.constants, self.duration)
+    }
+}
+
+impl Model {
+    /// Settings of a tight adaptive reference: the file's adaptive method (BDF when the file
+    /// names Newmark) at `rtol`, with atol = rtol / 100 (q is of order 0.1 m), on the model's
+    /// output grid.
+    pub fn reference_settings(&self, rtol: f64) -> Result<AdaptiveSettings> {
+        if !(rtol > 0.0 && rtol < 1.0) {
+            return Err(Error::invalid(
+                "rtol",
+                rtol,
+                "the relative tolerance must lie in (0, 1)",
+            ));
+        }
+        let method = match self.solver {
+            SolverSettings::Adaptive(a) => a.method,
+            SolverSettings::Newmark(_) => AdaptiveMethod::Bdf,
+        };
+        Ok(AdaptiveSettings {
+            method,
+            rtol,
+            atol: rtol * 1e-2,
+            output_dt: self.solver.output_dt(),
+        })
+    }
+
+    /// Newmark settings for this model: the file's Newmark keys when it names Newmark, the
+    /// paper's otherwise, with `dt` and `variant` taking precedence. Checked like the file.
+    pub fn newmark_settings(
+        &self,
+        dt: Option<f64>,
+        variant: Option<&str>,
+    ) -> Result<NewmarkSettings> {
+        let mut section = match &self.file.solver.method {
+            Some(m) if m == "newmark" => self.file.solver.clone(),
+            _ => SolverSection {
+                output_dt: self.file.solver.output_dt,
+                ..SolverSection::default()
+            },
+        };
+        if dt.is_some() {
+            section.dt = dt;
+        }
+        if let Some(v) = variant {
+            section.newmark_variant = Some(v.to_string());
+        }
+        newmark_from_section(
+            &section,
+            self.duration,
+            self.constants.omega,
+            self.solver.output_dt(),
+        )
+    }
+}
+
+/// Exactly one of a set of alternative keys must be given.
+fn exactly_one(section: &str, alternatives: &[(&str, Option<f64>)]) -> Result<(usize, f64)> {
+    let given: Vec<(usize, &str, f64)> = alternatives
+        .iter()
+        .enumerate()
+        .filter_map(|(i, (k, v))| v.map(|v| (i, *k, v)))
+        .collect();
+    let names = alternatives
+        .iter()
+        .map(|(k, _)| format!("{section}.{k}"))
+        .collect::<Vec<_>>()
+        .join(", ");
+    match given.as_slice() {
+        [(i, _, v)] => Ok((*i, *v)),
+        [] => Err(Error::invalid(
+            &format!("{section}.{}", alternatives[0].0),
+            "(missing)",
+            &format!("give exactly one of {names}"),
+        )),
+        [(_, k1, v1), (_, k2, v2), ..] => Err(Error::invalid(
+            &format!("{section}.{k1}"),
+            format!("{v1} (and {section}.{k2} = {v2})"),
+            &format!("give exactly one of {names}, not several"),
+        )),
+    }
+}
+
+fn body_from_section(s: &BodySection) -> Result<Body> {
+    let constant_set = match s.constants.as_deref().unwrap_or("exact") {
+        "exact" => ConstantSet::Exact,
+        "paper" => ConstantSet::Paper,
+        other => {
+            return Err(Error::invalid(
+                "body.constants",
+                format!("\"{other}\""),
+                "must be \"exact\" or \"paper\"",
+            ))
+        }
+    };
+    positive("body.height", s.height)?;
+    positive("body.width", s.width)?;
+    let depth = s.depth.unwrap_or(DEFAULT_DEPTH);
+    positive("body.depth", depth)?;
+
+    let mass = match exactly_one("body", &[("density", s.density), ("mass", s.mass)])? {
+        (0, density) => {
+            positive("body.density", density)?;
+            density * s.height * s.width * depth
+        }
+        (_, mass) => {
+            positive("body.mass", mass)?;
+            mass
+        }
+    };
+    let flexural_rigidity = match exactly_one(
+        "body",
+        &[
+            ("youngs_modulus", s.youngs_modulus),
+            ("flexural_rigidity", s.flexural_rigidity),
+            ("period", s.period),
+        ],
+    )? {
+        (0, e) => {
+            positive("body.youngs_modulus", e)?;
+            e * depth * s.width.powi(3) / 12.0
+        }
+        (1, ei) => {
+            positive("body.flexural_rigidity", ei)?;
+            ei
+        }
+        (_, period) => {
+            positive("body.period", period)?;
+            Constants::flexural_rigidity_for_period(period, mass, s.height, constant_set)
+        }
+    };
+    let damping_ratio = s.damping_ratio.unwrap_or(DEFAULT_DAMPING_RATIO);
+    if !damping_ratio.is_finite() {
+        return Err(Error::invalid(
+            "body.damping_ratio",
+            damping_ratio,
+            "the damping ratio must lie in [0, 1)",
+        ));
+    }
+    Body {
+        height: s.height,
+        width: s.width,
+        depth,
+        mass,
+        flexural_rigidity,
+        damping_ratio,
+        gravity: s.gravity.unwrap_or(DEFAULT_GRAVITY),
+        constant_set,
+    }
+    .validated()
+}
+
+fn initial_from_section(s: &SimulationSection, body: &Body) -> Result<InitialState> {
+    let q = s.q0.unwrap_or(0.0);
+    let qdot = s.qdot0.unwrap_or(0.0);
+    if !(q.is_finite() && q.abs() < body.width) {
+        return Err(Error::invalid(
+            "simulation.q0",
+            q,
+            &format!(
+                "the initial top displacement must satisfy |q0| < B = {} m (at |q0| >= B the body has already overturned)",
+                body.width
+            ),
+        ));
+    }
+    if !qdot.is_finite() {
+        return Err(Error::invalid(
+            "simulation.qdot0",
+            qdot,
+            "must be a finite number",
+        ));
+    }
+    Ok(InitialState { q, qdot })
+}

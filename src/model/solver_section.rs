@@ -1,0 +1,151 @@
+//! Rules of the `[solver]` section: the adaptive methods' tolerances and Newmark's step.
+
+use super::{SolverSection, DEFAULT_ATOL, DEFAULT_OUTPUT_DT, DEFAULT_RTOL};
+use crate::body::positive;
+use crate::error::{Error, Result};
+use crate::solver::adaptive::{AdaptiveMethod, AdaptiveSettings};
+use crate::solver::newmark::{critical_omega_dt, NewmarkSettings, NewmarkVariant};
+use crate::solver::SolverSettings;
+
+/// The paper's time step (section 2.5).
+pub const DEFAULT_NEWMARK_DT: f64 = 0.02;
+/// Linear acceleration, the paper's choice.
+pub const DEFAULT_NEWMARK_BETA: f64 = 1.0 / 6.0;
+pub const DEFAULT_NEWMARK_GAMMA: f64 = 0.5;
+/// More Newmark steps than this is a mistake in dt, not a wish.
+const MAX_NEWMARK_STEPS: f64 = 1e8;
+/// More history rows than this is a mistake in output_dt, not a wish.
+const MAX_SAMPLES: f64 = 1e7;
+
+pub(super) fn solver_from_section(
+    s: &SolverSection,
+    duration: f64,
+    omega: f64,
+) -> Result<SolverSettings> {
+    let name = s.method.as_deref().unwrap_or("bdf");
+    let is_newmark = name == "newmark";
+    let adaptive = AdaptiveMethod::from_name(name);
+    if adaptive.is_none() && !is_newmark {
+        return Err(Error::invalid(
+            "solver.method",
+            format!("\"{name}\""),
+            "must be \"bdf\", \"esdirk34\", \"tr-bdf2\", \"tsit45\" or \"newmark\"",
+        ));
+    }
+    // Keys of the other family of methods are mistakes, not silently ignored settings.
+    let foreign: [(&str, Option<String>); 6] = [
+        ("rtol", s.rtol.map(|v| v.to_string())),
+        ("atol", s.atol.map(|v| v.to_string())),
+        ("dt", s.dt.map(|v| v.to_string())),
+        ("newmark_beta", s.newmark_beta.map(|v| v.to_string())),
+        ("newmark_gamma", s.newmark_gamma.map(|v| v.to_string())),
+        ("newmark_variant", s.newmark_variant.clone()),
+    ];
+    for (i, (key, value)) in foreign.iter().enumerate() {
+        let belongs_to_newmark = i >= 2;
+        if let Some(v) = value {
+            if belongs_to_newmark != is_newmark {
+                return Err(Error::invalid(
+                    &format!("solver.{key}"),
+                    v,
+                    &format!("not a parameter of method = \"{name}\""),
+                ));
+            }
+        }
+    }
+    let output_dt = s.output_dt.unwrap_or(DEFAULT_OUTPUT_DT);
+    positive("solver.output_dt", output_dt)?;
+    if duration / output_dt > MAX_SAMPLES {
+        return Err(Error::invalid(
+            "solver.output_dt",
+            output_dt,
+            &format!("gives more than {MAX_SAMPLES:e} history rows over {duration} s; choose a larger spacing"),
+        ));
+    }
+    match adaptive {
+        Some(method) => {
+            let rtol = s.rtol.unwrap_or(DEFAULT_RTOL);
+            if !(rtol > 0.0 && rtol < 1.0) {
+                return Err(Error::invalid(
+                    "solver.rtol",
+                    rtol,
+                    "the relative tolerance must lie in (0, 1)",
+                ));
+            }
+            let atol = s.atol.unwrap_or(DEFAULT_ATOL);
+            positive("solver.atol", atol)?;
+            Ok(SolverSettings::Adaptive(AdaptiveSettings {
+                method,
+                rtol,
+                atol,
+                output_dt,
+            }))
+        }
+        None => newmark_from_section(s, duration, omega, output_dt).map(SolverSettings::Newmark),
+    }
+}
+
+pub(super) fn newmark_from_section(
+    s: &SolverSection,
+    duration: f64,
+    omega: f64,
+    output_dt: f64,
+) -> Result<NewmarkSettings> {
+    let dt = s.dt.unwrap_or(DEFAULT_NEWMARK_DT);
+    positive("solver.dt", dt)?;
+    if duration / dt > MAX_NEWMARK_STEPS {
+        return Err(Error::invalid(
+            "solver.dt",
+            dt,
+            &format!("gives more than {MAX_NEWMARK_STEPS:e} steps over {duration} s; choose a larger step"),
+        ));
+    }
+    let gamma = s.newmark_gamma.unwrap_or(DEFAULT_NEWMARK_GAMMA);
+    if !(0.5..=1.0).contains(&gamma) {
+        return Err(Error::invalid(
+            "solver.newmark_gamma",
+            gamma,
+            "must lie in [1/2, 1] (below 1/2 Newmark's method amplifies every oscillation)",
+        ));
+    }
+    let beta = s.newmark_beta.unwrap_or(DEFAULT_NEWMARK_BETA);
+    if !(0.0..=0.5).contains(&beta) {
+        return Err(Error::invalid(
+            "solver.newmark_beta",
+            beta,
+            "must lie in [0, 1/2]",
+        ));
+    }
+    let variant_name = s.newmark_variant.as_deref().unwrap_or("compensate");
+    let variant = NewmarkVariant::from_name(variant_name).ok_or_else(|| {
+        Error::invalid(
+            "solver.newmark_variant",
+            format!("\"{variant_name}\""),
+            "must be \"compensate\" or \"substep\"",
+        )
+    })?;
+    // Only the pre-uplift omega can make the method unstable: see critical_omega_dt.
+    if let Some(limit) = critical_omega_dt(beta, gamma) {
+        let dt_limit = limit / omega;
+        if dt >= dt_limit {
+            let period = 2.0 * std::f64::consts::PI / omega;
+            return Err(Error::invalid(
+                "solver.dt",
+                dt,
+                &format!(
+                    "Newmark with beta = {beta:.6}, gamma = {gamma} is stable only for dt < {dt_limit:.6} s \
+                     = {:.4} T (pre-uplift period T = {period:.6} s): omega dt must stay below 1/sqrt(gamma/2 - beta) = {limit:.6}; \
+                     choose a smaller dt, or beta >= gamma/2 (e.g. 1/4) for unconditional stability",
+                    dt_limit / period
+                ),
+            ));
+        }
+    }
+    Ok(NewmarkSettings {
+        dt,
+        beta,
+        gamma,
+        variant,
+        output_dt,
+    })
+}
