@@ -384,6 +384,7 @@ fn figures(summary: &ConvergeSummary) -> Result<(String, String)> {
             log_x: true,
             log_y: true,
             legend: Legend::LowerRight,
+            ..Panel::default()
         });
         work_panels.push(Panel {
             title: format!("{title} against work"),
@@ -393,6 +394,7 @@ fn figures(summary: &ConvergeSummary) -> Result<(String, String)> {
             log_x: true,
             log_y: true,
             legend: Legend::UpperRight,
+            ..Panel::default()
         });
     }
     Ok((

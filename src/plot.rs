@@ -10,7 +10,8 @@ use crate::error::{Error, Result};
 pub struct Series {
     pub name: String,
     pub points: Vec<(f64, f64)>,
-    /// Index into the palette; 0 is black (for references).
+    /// Index into the palette; 0 is black (for references). An empty name keeps the series out
+    /// of the legend.
     pub color: usize,
     /// Draw markers at the points (for convergence studies with few points).
     pub markers: bool,
@@ -44,6 +45,26 @@ pub struct Panel {
     pub log_y: bool,
     /// Where the legend goes, so that it hides no data.
     pub legend: Legend,
+    /// Same length per unit on both axes (drawings of shapes).
+    pub equal_aspect: bool,
+    /// Horizontal lines drawn in grey (e.g. +-s_n), with their legend text (empty: none).
+    pub reference_lines: Vec<(f64, String)>,
+}
+
+impl Panel {
+    pub fn new(title: &str, x_label: &str, y_label: &str) -> Self {
+        Panel {
+            title: title.to_string(),
+            x_label: x_label.to_string(),
+            y_label: y_label.to_string(),
+            ..Panel::default()
+        }
+    }
+
+    pub fn with(mut self, series: Series) -> Self {
+        self.series.push(series);
+        self
+    }
 }
 
 /// Corner of a panel for its legend.
@@ -56,7 +77,7 @@ pub enum Legend {
     LowerLeft,
 }
 
-const PALETTE: [RGBColor; 7] = [
+const PALETTE: [RGBColor; 8] = [
     RGBColor(0, 0, 0),
     RGBColor(214, 39, 40),
     RGBColor(31, 119, 180),
@@ -64,6 +85,7 @@ const PALETTE: [RGBColor; 7] = [
     RGBColor(255, 127, 14),
     RGBColor(148, 103, 189),
     RGBColor(140, 86, 75),
+    RGBColor(23, 190, 207),
 ];
 
 /// Draws `panels` in a grid of `columns` columns, each panel `size` pixels; returns the SVG text.
@@ -91,6 +113,12 @@ pub fn figure(name: &str, panels: &[Panel], columns: usize, size: (u32, u32)) ->
 
 type Area<'a> = DrawingArea<SVGBackend<'a>, plotters::coord::Shift>;
 
+const MARGIN: u32 = 12;
+const X_LABEL_AREA: u32 = 38;
+const Y_LABEL_AREA: u32 = 70;
+/// Height of the title line, for the equal-aspect layout.
+const CAPTION: u32 = 30;
+
 fn draw_panel(
     panel: &Panel,
     area: &Area<'_>,
@@ -109,19 +137,35 @@ fn draw_panel(
         };
         (x.is_finite() && y.is_finite()).then_some((x, y))
     };
-    let series: Vec<(&Series, Vec<(f64, f64)>)> = panel
+    // A point that cannot be drawn (non-finite, or not positive on a log axis) breaks the curve.
+    let series: Vec<(&Series, Vec<Vec<(f64, f64)>>)> = panel
         .series
         .iter()
-        .map(|s| (s, s.points.iter().filter_map(|&p| transform(p)).collect()))
+        .map(|s| {
+            let mut pieces = vec![Vec::new()];
+            for &p in &s.points {
+                match (transform(p), pieces.last_mut()) {
+                    (Some(q), Some(piece)) => piece.push(q),
+                    _ => pieces.push(Vec::new()),
+                }
+            }
+            pieces.retain(|piece| !piece.is_empty());
+            (s, pieces)
+        })
         .collect();
     let (mut x0, mut x1, mut y0, mut y1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
-    for (_, points) in &series {
-        for &(x, y) in points {
-            x0 = x0.min(x);
-            x1 = x1.max(x);
-            y0 = y0.min(y);
-            y1 = y1.max(y);
-        }
+    for &(x, y) in series
+        .iter()
+        .flat_map(|(_, pieces)| pieces.iter().flatten())
+    {
+        x0 = x0.min(x);
+        x1 = x1.max(x);
+        y0 = y0.min(y);
+        y1 = y1.max(y);
+    }
+    for &(level, _) in &panel.reference_lines {
+        y0 = y0.min(level);
+        y1 = y1.max(level);
     }
     if x0 > x1 {
         (x0, x1, y0, y1) = (0.0, 1.0, 0.0, 1.0);
@@ -130,18 +174,32 @@ fn draw_panel(
         let span = if hi > lo { hi - lo } else { lo.abs().max(1.0) };
         (lo - fraction * span, hi + fraction * span)
     };
-    let (x0, x1) = if panel.log_x {
+    let (mut x0, mut x1) = if panel.log_x || panel.equal_aspect {
         pad(x0, x1, 0.03)
     } else {
         (x0, x1)
     };
-    let (y0, y1) = pad(y0, y1, 0.05);
+    let (mut y0, mut y1) = pad(y0, y1, 0.05);
+    if panel.equal_aspect {
+        // Widen one range so that a metre is as long across as up, in the plotting area.
+        let (width, height) = area.dim_in_pixel();
+        let plot_w = f64::from(width.saturating_sub(Y_LABEL_AREA + 2 * MARGIN).max(1));
+        let plot_h = f64::from(
+            height
+                .saturating_sub(X_LABEL_AREA + 2 * MARGIN + CAPTION)
+                .max(1),
+        );
+        let scale = ((x1 - x0) / plot_w).max((y1 - y0) / plot_h);
+        let (xc, yc) = (0.5 * (x0 + x1), 0.5 * (y0 + y1));
+        (x0, x1) = (xc - 0.5 * scale * plot_w, xc + 0.5 * scale * plot_w);
+        (y0, y1) = (yc - 0.5 * scale * plot_h, yc + 0.5 * scale * plot_h);
+    }
 
     let mut chart = ChartBuilder::on(area)
         .caption(&panel.title, ("sans-serif", 18))
-        .margin(12)
-        .x_label_area_size(38)
-        .y_label_area_size(70)
+        .margin(MARGIN)
+        .x_label_area_size(X_LABEL_AREA)
+        .y_label_area_size(Y_LABEL_AREA)
         .build_cartesian_2d(x0..x1, y0..y1)?;
     let log_label = |v: &f64| {
         if (v - v.round()).abs() < 1e-9 {
@@ -174,18 +232,37 @@ fn draw_panel(
         .light_line_style(RGBColor(235, 235, 235))
         .draw()?;
 
-    for (s, points) in series {
+    for (level, label) in &panel.reference_lines {
+        let grey = RGBColor(150, 150, 150);
+        let line = chart.draw_series(LineSeries::new(
+            [(x0, *level), (x1, *level)],
+            grey.stroke_width(1),
+        ))?;
+        if !label.is_empty() {
+            line.label(label.as_str()).legend(move |(x, y)| {
+                PathElement::new(vec![(x, y), (x + 18, y)], grey.stroke_width(1))
+            });
+        }
+    }
+    for (s, pieces) in &series {
         let color = PALETTE[s.color % PALETTE.len()];
         let style = color.stroke_width(if s.color == 0 { 2 } else { 1 });
-        chart
-            .draw_series(LineSeries::new(points.iter().copied(), style))?
-            .label(s.name.as_str())
-            .legend(move |(x, y)| {
-                PathElement::new(vec![(x, y), (x + 18, y)], color.stroke_width(2))
-            });
-        if s.markers {
-            chart.draw_series(points.iter().map(|&p| Circle::new(p, 3, color.filled())))?;
+        for (i, points) in pieces.iter().enumerate() {
+            let line = chart.draw_series(LineSeries::new(points.iter().copied(), style))?;
+            if i == 0 && !s.name.is_empty() {
+                line.label(s.name.as_str()).legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 18, y)], color.stroke_width(2))
+                });
+            }
+            if s.markers {
+                chart.draw_series(points.iter().map(|&p| Circle::new(p, 3, color.filled())))?;
+            }
         }
+    }
+    let labelled = panel.series.iter().any(|s| !s.name.is_empty())
+        || panel.reference_lines.iter().any(|(_, l)| !l.is_empty());
+    if !labelled {
+        return Ok(());
     }
     chart
         .configure_series_labels()
@@ -199,4 +276,41 @@ fn draw_panel(
         })
         .draw()?;
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn svg_has_title_labels_and_legend() {
+        let mut panel = Panel::new("title A", "x (s)", "y (m)")
+            .with(Series::line(
+                "sine",
+                (0..50).map(|i| (i as f64, (i as f64).sin())).collect(),
+                0,
+            ))
+            .with(Series::line(
+                "broken",
+                vec![(0.0, 0.0), (1.0, f64::NAN), (2.0, 1.0), (3.0, 2.0)],
+                1,
+            ));
+        panel.reference_lines = vec![(0.5, "limit".to_string()), (-0.5, String::new())];
+        let svg = figure("a.svg", &[panel], 1, (600, 400)).unwrap();
+        assert!(svg.starts_with("<svg"));
+        for text in ["title A", "x (s)", "y (m)", "sine", "broken", "limit"] {
+            assert!(svg.contains(text), "{text}");
+        }
+    }
+
+    #[test]
+    fn empty_flat_and_equal_aspect_panels_still_draw() {
+        assert!(figure("e.svg", &[Panel::new("empty", "x", "y")], 1, (400, 300)).is_ok());
+        let flat =
+            Panel::new("flat", "x", "y").with(Series::line("", vec![(0.0, 0.0), (1.0, 0.0)], 0));
+        assert!(figure("f.svg", &[flat.clone()], 1, (400, 300)).is_ok());
+        let mut shape = flat;
+        shape.equal_aspect = true;
+        assert!(figure("s.svg", &[shape], 1, (400, 300)).is_ok());
+    }
 }

@@ -110,7 +110,6 @@ mod banded;
 mod dynamics;
 mod eigen;
 mod element;
-pub mod figures;
 mod mesh;
 mod model;
 mod pushover;

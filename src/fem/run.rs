@@ -7,7 +7,6 @@ use std::time::Instant;
 
 use serde::Serialize;
 
-use super::figures::{line_chart_svg, Chart, Series};
 use super::{
     critical_time_step, fixed_base_periods, simulate, ContactEvent, ContactState, FemResult,
     FemStep, TimeScheme,
@@ -16,6 +15,7 @@ use crate::automaton::EventKind;
 use crate::error::{Error, Result};
 use crate::model::{FemSetup, Model, ModelFile};
 use crate::output::{self, number, Table};
+use crate::plot::{self, Panel, Series};
 use crate::run::VERSION;
 use crate::solution::Solution;
 
@@ -372,12 +372,12 @@ fn sn_lines(s_n: f64) -> Vec<(f64, String)> {
 }
 
 /// Deformed shapes (x5) at the stored snapshots, side by side, relative to the floor.
-fn deformed_shapes(a: &FemAnalysis) -> Chart {
+fn deformed_shapes(a: &FemAnalysis) -> Panel {
     let s = &a.setup.settings;
     let b = &a.setup.body;
     let coords = &a.result.node_coordinates;
     let spacing = 2.0 * b.width + 2.0 * SHAPE_MAGNIFICATION * b.width;
-    let mut chart = Chart::new(
+    let mut chart = Panel::new(
         &format!(
             "Deformed shapes (x{SHAPE_MAGNIFICATION}), {} x {} mesh",
             s.nx, s.ny
@@ -386,7 +386,6 @@ fn deformed_shapes(a: &FemAnalysis) -> Chart {
         "y (m)",
     );
     chart.equal_aspect = true;
-    chart.size = (1000, 600);
     let node = |i: usize, j: usize| j * (s.nx + 1) + i;
     for (k, snap) in a.result.snapshots.iter().enumerate() {
         let offset = k as f64 * spacing;
@@ -407,81 +406,85 @@ fn deformed_shapes(a: &FemAnalysis) -> Chart {
             } else {
                 String::new()
             };
-            chart.series.push(Series::new(label, k, points));
+            chart.series.push(Series::line(&label, points, k + 2));
         }
     }
     let end = a.result.snapshots.len().max(1) as f64 * spacing;
-    chart.series.push(Series::new(
+    chart.series.push(Series::line(
         "floor",
-        7,
         vec![(-spacing / 2.0, 0.0), (end - spacing / 2.0, 0.0)],
+        0,
     ));
     chart
 }
 
 /// The figures of a run: (file name, chart).
-pub fn figures(model: &Model, a: &FemAnalysis) -> Vec<(&'static str, Chart)> {
+pub fn figures(model: &Model, a: &FemAnalysis) -> Vec<(&'static str, Panel)> {
     let steps = &a.result.steps;
     let s_n = model.constants.uplift_displacement;
-    let mut components = Chart::new(
+    let mut components = Panel::new(
         "Top displacement q and its parts (FEM)",
         "t (s)",
         "displacement relative to the floor (m)",
     )
-    .with(Series::new("q", 7, time_series(steps, |s| s.q)))
-    .with(Series::new(
+    .with(Series::line("q", time_series(steps, |s| s.q), 0))
+    .with(Series::line(
         "flexural",
-        0,
         time_series(steps, |s| s.flexural),
-    ))
-    .with(Series::new("rocking", 1, time_series(steps, |s| s.rocking)))
-    .with(Series::new(
-        "slipping",
         2,
-        time_series(steps, |s| s.slipping),
     ))
-    .with(Series::new(
-        "shearing",
+    .with(Series::line(
+        "rocking",
+        time_series(steps, |s| s.rocking),
+        1,
+    ))
+    .with(Series::line(
+        "slipping",
+        time_series(steps, |s| s.slipping),
         3,
+    ))
+    .with(Series::line(
+        "shearing",
         time_series(steps, |s| s.shearing),
+        4,
     ));
     components.reference_lines = sn_lines(s_n);
-    let q_r = Chart::new(
+    let q_r = Panel::new(
         "Top displacement q vs rocking part r (FEM)",
         "r (m)",
         "q (m)",
     )
-    .with(Series::new(
+    .with(Series::line(
         "",
-        0,
         steps.iter().map(|s| (s.rocking, s.q)).collect(),
+        2,
     ));
     let s_r =
-        Chart::new("Flexural part s vs rocking part r (FEM)", "r (m)", "s (m)").with(Series::new(
+        Panel::new("Flexural part s vs rocking part r (FEM)", "r (m)", "s (m)").with(Series::line(
             "",
-            0,
             steps.iter().map(|s| (s.rocking, s.flexural)).collect(),
+            2,
         ));
-    let velocity = Chart::new(
+    let velocity = Panel::new(
         "Top velocity relative to the floor (FEM)",
         "t (s)",
         "top velocity (m/s)",
     )
-    .with(Series::new("", 0, time_series(steps, |s| s.top_velocity)));
-    let momentum = Chart::new(
+    .with(Series::line("", time_series(steps, |s| s.top_velocity), 2));
+    let momentum = Panel::new(
         "Angular momentum about the toes (FEM), clockwise positive",
         "t (s)",
         "angular momentum (kg m^2/s)",
     )
-    .with(Series::new(
+    .with(Series::line(
         "about the left toe",
-        0,
         time_series(steps, |s| s.momentum_left_toe),
+        2,
     ))
-    .with(Series::new(
+    .with(Series::line(
         "about the right toe",
-        1,
         time_series(steps, |s| s.momentum_right_toe),
+        1,
     ));
     vec![
         ("fem_deformed_shapes.svg", deformed_shapes(a)),
@@ -493,16 +496,17 @@ pub fn figures(model: &Model, a: &FemAnalysis) -> Vec<(&'static str, Chart)> {
     ]
 }
 
-fn render(charts: Vec<(&'static str, Chart)>) -> Result<Vec<(&'static str, Vec<u8>)>> {
+fn render(charts: Vec<(&'static str, Panel)>) -> Result<Vec<(&'static str, Vec<u8>)>> {
     charts
         .into_iter()
         .map(|(name, chart)| {
-            line_chart_svg(&chart)
-                .map(|svg| (name, svg.into_bytes()))
-                .map_err(|message| Error::Write {
-                    path: PathBuf::from(name),
-                    source: std::io::Error::other(message),
-                })
+            // Drawings of shapes get more room than curves.
+            let size = if chart.equal_aspect {
+                (1000, 600)
+            } else {
+                (900, 500)
+            };
+            plot::figure(name, &[chart], 1, size).map(|svg| (name, svg.into_bytes()))
         })
         .collect()
 }
@@ -705,39 +709,39 @@ fn comparison_figures(
     model: &Model,
     sdof: &Solution,
     a: &FemAnalysis,
-) -> Vec<(&'static str, Chart)> {
+) -> Vec<(&'static str, Panel)> {
     let steps = &a.result.steps;
     let sdof_series = |f: fn(&crate::solution::Sample) -> (f64, f64)| {
-        Series::new("SDOF", 1, sdof.samples.iter().map(f).collect())
+        Series::line("SDOF", sdof.samples.iter().map(f).collect(), 1)
     };
-    let mut q = Chart::new("Top displacement q: SDOF and FEM", "t (s)", "q (m)")
+    let mut q = Panel::new("Top displacement q: SDOF and FEM", "t (s)", "q (m)")
         .with(sdof_series(|s| (s.t, s.q)))
-        .with(Series::new("FEM", 0, time_series(steps, |s| s.q)));
+        .with(Series::line("FEM", time_series(steps, |s| s.q), 2));
     q.reference_lines = sn_lines(model.constants.uplift_displacement);
-    let mut s = Chart::new("Flexural part s: SDOF and FEM", "t (s)", "s (m)")
+    let mut s = Panel::new("Flexural part s: SDOF and FEM", "t (s)", "s (m)")
         .with(sdof_series(|s| (s.t, s.s)))
-        .with(Series::new("FEM", 0, time_series(steps, |s| s.flexural)));
+        .with(Series::line("FEM", time_series(steps, |s| s.flexural), 2));
     s.reference_lines = sn_lines(model.constants.uplift_displacement);
-    let velocity = Chart::new("Top velocity: SDOF and FEM", "t (s)", "top velocity (m/s)")
+    let velocity = Panel::new("Top velocity: SDOF and FEM", "t (s)", "top velocity (m/s)")
         .with(sdof_series(|s| (s.t, s.qdot)))
-        .with(Series::new(
+        .with(Series::line(
             "FEM",
-            0,
             time_series(steps, |s| s.top_velocity),
+            2,
         ));
-    let q_r = Chart::new("q vs r: SDOF and FEM", "r (m)", "q (m)")
+    let q_r = Panel::new("q vs r: SDOF and FEM", "r (m)", "q (m)")
         .with(sdof_series(|s| (s.r, s.q)))
-        .with(Series::new(
+        .with(Series::line(
             "FEM",
-            0,
             steps.iter().map(|s| (s.rocking, s.q)).collect(),
+            2,
         ));
-    let s_r = Chart::new("s vs r: SDOF and FEM", "r (m)", "s (m)")
+    let s_r = Panel::new("s vs r: SDOF and FEM", "r (m)", "s (m)")
         .with(sdof_series(|s| (s.r, s.s)))
-        .with(Series::new(
+        .with(Series::line(
             "FEM",
-            0,
             steps.iter().map(|s| (s.rocking, s.flexural)).collect(),
+            2,
         ));
     vec![
         ("compare_q.svg", q),
