@@ -268,11 +268,7 @@ fn execute(command: Command) -> flexrock::Result<()> {
             reference_rtol,
             duration,
         } => {
-            let overrides = Overrides {
-                duration,
-                ..Overrides::default()
-            };
-            let model = Model::load(&path, &overrides)?;
+            let model = load_with_duration(&path, duration)?;
             let options = flexrock::compare::CompareOptions {
                 reference_rtol,
                 dt,
@@ -290,11 +286,7 @@ fn execute(command: Command) -> flexrock::Result<()> {
             reference_rtol,
             duration,
         } => {
-            let overrides = Overrides {
-                duration,
-                ..Overrides::default()
-            };
-            let model = Model::load(&path, &overrides)?;
+            let model = load_with_duration(&path, duration)?;
             let options = flexrock::converge::ConvergeOptions {
                 dts: dt,
                 rtols: rtol,
@@ -354,6 +346,15 @@ fn execute(command: Command) -> flexrock::Result<()> {
         }
     }
     Ok(())
+}
+
+/// A model file with only the simulated time overridden (compare, converge).
+fn load_with_duration(path: &std::path::Path, duration: Option<f64>) -> flexrock::Result<Model> {
+    let overrides = Overrides {
+        duration,
+        ..Overrides::default()
+    };
+    Model::load(path, &overrides)
 }
 
 fn default_out_dir(model: &std::path::Path, suffix: &str) -> PathBuf {
