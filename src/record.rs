@@ -7,7 +7,8 @@
 //! - lines 1-3: free text (database, event/station/component, units); kept in [`Record::title`];
 //! - line 4: the number of points and the sampling interval, as `NPTS=<count>, DT=<seconds>`
 //!   with case-insensitive keys, an optional comma and an optional unit word (`SEC`, `S`,
-//!   `SECS`, `SECOND`, `SECONDS`), e.g. `NPTS=  1559, DT= .02000 SEC`, `NPTS=   1451, dt=  .02000`;
+//!   `SECS`, `SECOND`, `SECONDS`; a trailing comma as in PEER NGA files), e.g.
+//!   `NPTS=  1559, DT= .02000 SEC`, `NPTS=   1451, dt=  .02000`, `NPTS=   7998, DT=   .0050 SEC,`;
 //!   or the older layout `<count> <seconds> NPTS, DT`, e.g. `3930 0.00500 NPTS, DT`;
 //! - lines 5 onwards: the values, any number per line, separated by whitespace (typically the
 //!   Fortran layouts 8F10.5 or 5E15.7). A line whose whitespace-separated tokens are not all
@@ -298,7 +299,9 @@ fn parse_keyed_header(line: &str) -> Option<(usize, f64)> {
         c.is_ascii_digit() || matches!(c, '.' | '+' | '-' | 'e' | 'E')
     });
     let dt = dt_text.parse::<f64>().ok()?;
+    // PEER NGA files end the line with a comma: `NPTS=   7998, DT=   .0050 SEC,`.
     let unit = unit.trim();
+    let unit = unit.strip_suffix(',').unwrap_or(unit).trim_end();
     let unit_is_seconds = ["", "S", "SEC", "SECS", "SECOND", "SECONDS"]
         .iter()
         .any(|allowed| unit.eq_ignore_ascii_case(allowed));
@@ -924,6 +927,7 @@ mod tests {
             "NPTS=6,DT=1.0E-02 seconds",
             "  6  0.01  NPTS, DT",
             "6 .01000 npts,dt",
+            "NPTS=   6, DT=   .0100 SEC,",
         ];
         for header_line in header_lines {
             let text = SMALL_AT2.replacen("NPTS=   6, DT= .01000 SEC", header_line, 1);
