@@ -100,12 +100,6 @@ impl BandedSym {
         }
         out
     }
-
-    /// Largest diagonal magnitude, used to scale the pivot tolerance.
-    fn max_diagonal(&self) -> f64 {
-        let w = self.hb + 1;
-        (0..self.n).fold(0.0_f64, |m, i| m.max(self.data[i * w].abs()))
-    }
 }
 
 /// LDLᵀ factors of a [`BandedSym`], stored in the same band layout.
@@ -117,13 +111,16 @@ pub(crate) struct BandedLdl {
     diag: Vec<f64>,
 }
 
+/// A pivot this small relative to its row's diagonal means the matrix is singular: elimination
+/// has cancelled the row to round-off.
+const PIVOT_TOLERANCE: f64 = 1e-11;
+
 impl BandedLdl {
     pub fn factor(a: &BandedSym) -> Result<Self, FemError> {
         let (n, hb) = (a.n, a.hb);
         let w = hb + 1;
         let mut lower = a.data.clone();
         let mut diag = vec![0.0; n];
-        let tolerance = 1e-13 * a.max_diagonal().max(f64::MIN_POSITIVE);
         let mut scratch = vec![0.0; w];
         for i in 0..n {
             let lo_i = i.saturating_sub(hb);
@@ -141,7 +138,11 @@ impl BandedLdl {
             for j in lo_i..i {
                 d -= scratch[j - lo_i] * lower[i * w + (i - j)];
             }
-            if !d.is_finite() || d.abs() <= tolerance {
+            // relative to the row's own diagonal, so that stiff penalty rows (the rigid base
+            // plate) and identity rows of constrained dofs do not set the scale for the others
+            if !d.is_finite()
+                || d.abs() <= PIVOT_TOLERANCE * lower[i * w].abs().max(f64::MIN_POSITIVE)
+            {
                 return Err(FemError::SingularMatrix {
                     context: format!("zero pivot {d:e} at dof {i} of {n}"),
                 });

@@ -147,6 +147,23 @@ pub struct FemBody {
     pub damping_period: f64,
     /// Gravity acceleration g, m/s².
     pub gravity: f64,
+    /// How the base meets the floor.
+    #[serde(default)]
+    pub base: BaseSupport,
+}
+
+/// How the body's base meets the floor.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum BaseSupport {
+    /// Every base node touches the floor on its own (the paper's model): the continuum's base
+    /// opens progressively from the heel.
+    #[default]
+    Flexible,
+    /// The base nodes are tied to a weightless rigid plate (ux equal, uy linear in x), the base
+    /// section of the beam-column model of MODEL.md 7a: the plate stays flat until the base
+    /// moment reaches N B/2, then pivots about a corner.
+    RigidPlate,
 }
 
 impl FemBody {
@@ -163,6 +180,7 @@ impl FemBody {
             damping_ratio: 0.05,
             damping_period: 1.55,
             gravity: 9.81,
+            base: BaseSupport::Flexible,
         }
     }
 
@@ -357,12 +375,12 @@ pub struct PushoverPoint {
     pub base_shear: f64,
     /// Load factor λ of the pattern m U(y) λ, m/s².
     pub load_factor: f64,
-    /// True when the body rocks on one toe: a single corner base node carries all the
-    /// vertical reaction (the discrete counterpart of the SDOF model's uplift).
+    /// True when the body rocks on one toe: every base node but one corner is off the floor
+    /// (the discrete counterpart of the SDOF model's uplift).
     pub uplift: bool,
-    /// True when at least one corner has lifted (the base has started to open).
+    /// True when at least one corner is off the floor (the base has started to open).
     pub heel_lifted: bool,
-    /// Number of base nodes in contact.
+    /// Number of base nodes on the floor (no gap).
     pub contact_nodes: usize,
     /// Flexural part s, m.
     pub flexural: f64,
@@ -558,7 +576,7 @@ pub fn fixed_base_periods(
         .collect()
 }
 
-/// Highest fixed-base circular frequency ω_max of the mesh (elastic K, lumped M), rad/s.
+/// Highest circular frequency ω_max of the mesh with the base free (elastic K, lumped M), rad/s.
 pub fn highest_frequency(body: &FemBody, nx: usize, ny: usize) -> Result<f64, FemError> {
     validate_body(body)?;
     validate_mesh(nx, ny)?;
@@ -566,13 +584,16 @@ pub fn highest_frequency(body: &FemBody, nx: usize, ny: usize) -> Result<f64, Fe
     highest_frequency_of(&model)
 }
 
+/// Highest natural frequency with the base free, rad/s. Holding dofs can only lower the top of
+/// the spectrum (eigenvalue interlacing), so this bounds every contact state of a run; a rigid
+/// base plate raises it by orders of magnitude once its nodes leave the floor.
 fn highest_frequency_of(model: &Model) -> Result<f64, FemError> {
-    let fixed = fixed_base_dofs(model);
-    Ok(eigen::highest_eigenvalue(&model.stiffness, &model.mass, &fixed)?.sqrt())
+    let free = vec![false; model.mesh.dof_count()];
+    Ok(eigen::highest_eigenvalue(&model.stiffness, &model.mass, &free)?.sqrt())
 }
 
 /// Stability limit of the linear acceleration method on this mesh, dt_crit = sqrt(12)/ω_max
-/// (= 0.551 T_min), s. Uses the elastic K with the base fixed; K_σ lowers ω_max slightly, so the
+/// (= 0.551 T_min), s. Uses the elastic K with the base free; K_σ lowers ω_max slightly, so the
 /// limit is on the safe side. Stiffness-proportional damping does not change it (γ = 1/2).
 pub fn stability_limit(body: &FemBody, nx: usize, ny: usize) -> Result<f64, FemError> {
     Ok(12f64.sqrt() / highest_frequency(body, nx, ny)?)

@@ -5,8 +5,8 @@ use nalgebra::SMatrix;
 use super::banded::{BandedLdl, BandedSym};
 use super::element::{plane_stress_matrix, Qm6};
 use super::mesh::Mesh;
-use super::FemBody;
 use super::FemError;
+use super::{BaseSupport, FemBody};
 
 /// The discretised body: lumped masses, elastic and geometric stiffness, gravity state.
 #[derive(Debug, Clone)]
@@ -47,6 +47,9 @@ impl Model {
                 mass[dofs[2 * a + 1]] += m;
             }
             elements.push(element);
+        }
+        if body.base == BaseSupport::RigidPlate {
+            tie_base_to_plate(&mut stiffness, nx, body);
         }
         let gravity_load: Vec<f64> = (0..n)
             .map(|d| {
@@ -122,8 +125,48 @@ impl Model {
         f
     }
 
+    /// Gap below which a base node tied to the rigid plate still counts as on the floor: the
+    /// plate's own deflection under the whole weight over its width, M g B³/EI_plate, m.
+    pub fn plate_compliance_gap(body: &FemBody) -> f64 {
+        body.mass() * body.gravity * body.width.powi(3)
+            / (PLATE_RIGIDITY_RATIO * body.flexural_rigidity())
+    }
+
     pub fn base_dof_count(&self) -> usize {
         2 * (self.mesh.nx + 1)
+    }
+}
+
+/// Rigidity of the base plate relative to the body's base section (EI_plate/EI and
+/// EA_plate/(E D B)): rigid enough that the plate's own deformation is ~1e-4 of the body's,
+/// soft enough that LDLᵀ pivots stay well above round-off.
+pub(crate) const PLATE_RIGIDITY_RATIO: f64 = 1.0e4;
+
+/// Ties the base nodes (dofs 0..2(nx+1), spacing h = B/nx) to a stiff plate by penalty springs
+/// on the plate's two deformations: stretching, EA/h on (ux_{i+1} - ux_i), and bending, EI/h³
+/// on (uy_{i-1} - 2 uy_i + uy_{i+1}) (the discrete ∫ EI w''² dx). Their null space is the
+/// plate's rigid motion (ux equal, uy linear in x), so the static gravity state, with every
+/// base node pinned, is unchanged.
+fn tie_base_to_plate(stiffness: &mut BandedSym, nx: usize, body: &FemBody) {
+    let spacing = body.width / nx as f64;
+    let axial = PLATE_RIGIDITY_RATIO * body.youngs_modulus * body.depth * body.width / spacing;
+    let bending = PLATE_RIGIDITY_RATIO * body.flexural_rigidity() / spacing.powi(3);
+    let mut spring = |k: f64, dofs: &[usize], weights: &[f64]| {
+        for (a, &da) in dofs.iter().enumerate() {
+            for (b, &db) in dofs.iter().enumerate().take(a + 1) {
+                stiffness.add(da, db, k * weights[a] * weights[b]);
+            }
+        }
+    };
+    for i in 0..nx {
+        spring(axial, &[2 * i, 2 * i + 2], &[-1.0, 1.0]);
+    }
+    for i in 1..nx {
+        spring(
+            bending,
+            &[2 * i - 1, 2 * i + 1, 2 * i + 3],
+            &[1.0, -2.0, 1.0],
+        );
     }
 }
 

@@ -4,6 +4,7 @@ use std::collections::HashMap;
 
 use super::banded::BandedLdl;
 use super::model::Model;
+use super::BaseSupport;
 use super::{
     cantilever_mode, decompose, invalid, validate_body, validate_mesh, FemBody, FemError,
     PushoverPoint,
@@ -49,7 +50,12 @@ pub fn pushover(
     let top = mesh.top_nodes();
     let mean_top = |u: &[f64]| top.iter().map(|&k| u[2 * k]).sum::<f64>() / top.len() as f64;
     let tension_tolerance = 1e-9 * model.total_mass * body.gravity.max(1.0);
-    let penetration_tolerance = 1e-12 * body.height;
+    // a node tied to the rigid plate sits off the plate's line by the plate's own compliance:
+    // that much is not a gap or a penetration
+    let penetration_tolerance = match body.base {
+        BaseSupport::Flexible => 1e-12 * body.height,
+        BaseSupport::RigidPlate => Model::plate_compliance_gap(body),
+    };
 
     let mut factors: HashMap<Vec<bool>, BandedLdl> = HashMap::new();
     // Solution for a given contact set: (u, λ, worst penetration, worst tension).
@@ -111,10 +117,12 @@ pub fn pushover(
         // active set from the previous point: one change per pass, re-adding the most
         // penetrating node first, else releasing the most tensile one
         let mut converged = None;
+        let mut any_solvable = false;
         for _ in 0..(2 * base_nodes + 4) {
             let Some(trial) = solve_with(&contact, q) else {
                 break;
             };
+            any_solvable = true;
             if let Some((i, _)) = trial.penetration {
                 contact[i] = true;
             } else if let Some((i, _)) = trial.tension {
@@ -150,6 +158,7 @@ pub fn pushover(
                 let Some(trial) = solve_with(&zone, q) else {
                     continue;
                 };
+                any_solvable = true;
                 let violation = trial
                     .penetration
                     .map_or(0.0, |(_, v)| -v / q.abs().max(1e-6 * body.height))
@@ -164,19 +173,34 @@ pub fn pushover(
                 approximate = violation > 0.0;
             }
         }
-        let ContactTrial { u, load_factor, .. } =
-            converged.ok_or_else(|| FemError::ContactNotConverged {
-                context: format!("pushover at q = {q} m"),
-            })?;
+        let Some(ContactTrial { u, load_factor, .. }) = converged else {
+            return Err(if any_solvable {
+                FemError::ContactNotConverged {
+                    context: format!("pushover at q = {q} m"),
+                }
+            } else {
+                FemError::SingularMatrix {
+                    context: format!(
+                        "pushover at q = {q} m: no contact set holds the body (without p_delta, \
+                         a body resting on one point of its base turns about it freely)"
+                    ),
+                }
+            });
+        };
         let [_, rocking, _, flexural, shearing] = decompose(mesh, &u);
-        let contact_nodes = contact.iter().filter(|c| **c).count();
-        let corner_only = contact_nodes == 1 && (contact[0] || contact[base_nodes - 1]);
+        // judged by the gaps, not by the contact set: a rigid plate holds nodes on the floor
+        // that carry no reaction
+        let on_floor: Vec<bool> = (0..base_nodes)
+            .map(|i| u[2 * i + 1] <= penetration_tolerance)
+            .collect();
+        let contact_nodes = on_floor.iter().filter(|c| **c).count();
+        let corner_only = contact_nodes == 1 && (on_floor[0] || on_floor[base_nodes - 1]);
         points.push(PushoverPoint {
             q,
             base_shear: load_factor * pattern_sum,
             load_factor,
             uplift: corner_only && base_nodes > 1,
-            heel_lifted: !(contact[0] && contact[base_nodes - 1]),
+            heel_lifted: !(on_floor[0] && on_floor[base_nodes - 1]),
             contact_nodes,
             flexural,
             rocking,

@@ -172,18 +172,18 @@ pub fn analyse(model: &Model, setup: &FemSetup) -> Result<FemAnalysis> {
     if let Some(limit) = result.critical_time_step {
         if setup.settings.dt > limit {
             warnings.push(format!(
-                "fem.dt = {} s exceeds the stability limit {:.5} s of the {} method on this {} x {} mesh \
-                 (highest frequency {:.1} rad/s, shortest period {:.5} s): the highest mode grows between \
+                "fem.dt = {} s exceeds the stability limit {} s of the {} method on this {} x {} mesh \
+                 (highest frequency {:.1} rad/s, shortest period {} s): the highest mode grows between \
                  contact changes and the base chatters; use scheme \"average-acceleration\" or \
-                 \"wilson-theta\" (--scheme), or dt <= {:.5} s",
+                 \"wilson-theta\" (--scheme), or dt <= {} s",
                 setup.settings.dt,
-                limit,
+                short_seconds(limit),
                 setup.scheme_name,
                 setup.settings.nx,
                 setup.settings.ny,
                 result.highest_frequency,
-                2.0 * std::f64::consts::PI / result.highest_frequency,
-                limit
+                short_seconds(2.0 * std::f64::consts::PI / result.highest_frequency),
+                short_seconds(limit)
             ));
         }
     }
@@ -789,8 +789,9 @@ pub fn report_text(report: &FemReport) -> String {
     );
     let _ = writeln!(
         t,
-        "  highest frequency {:.1} rad/s: linear acceleration stable for dt <= {:.5} s",
-        a.result.highest_frequency, a.linear_acceleration_limit
+        "  highest frequency {:.1} rad/s: linear acceleration stable for dt <= {} s",
+        a.result.highest_frequency,
+        short_seconds(a.linear_acceleration_limit)
     );
     let _ = writeln!(
         t,
@@ -874,8 +875,18 @@ pub fn modes_text(m: &Modes) -> String {
     }
     let _ = writeln!(
         t,
-        "  highest frequency {:.1} rad/s; linear acceleration stable for dt <= {:.5} s",
-        m.highest_frequency, m.linear_acceleration_stability_limit
+        "  highest frequency {:.1} rad/s; linear acceleration stable for dt <= {} s",
+        m.highest_frequency,
+        short_seconds(m.linear_acceleration_stability_limit)
     );
     t
+}
+
+/// A short time in seconds to three significant figures, without exponent down to 1 ms.
+fn short_seconds(t: f64) -> String {
+    if t >= 1e-3 {
+        format!("{t:.5}")
+    } else {
+        format!("{t:.2e}")
+    }
 }

@@ -6,7 +6,7 @@ use super::{FemSection, ModelFile};
 use crate::body::{positive, Body};
 use crate::constants::Constants;
 use crate::error::{Error, Result};
-use crate::fem::{FemBody, FemSettings, TimeScheme};
+use crate::fem::{BaseSupport, FemBody, FemSettings, TimeScheme};
 
 pub const DEFAULT_POISSON_RATIO: f64 = 0.25;
 
@@ -120,6 +120,16 @@ pub fn fem_from_section(
             &format!("kinetic friction cannot exceed static friction (fem.mu_s = {mu_s})"),
         ));
     }
+    let base =
+        match s.base.as_deref().unwrap_or("flexible") {
+            "flexible" => BaseSupport::Flexible,
+            "rigid-plate" => BaseSupport::RigidPlate,
+            other => return Err(Error::invalid(
+                "fem.base",
+                format!("\"{other}\""),
+                "must be \"flexible\" (base nodes touch the floor one by one) or \"rigid-plate\"",
+            )),
+        };
     let damping_period = s.damping_period.unwrap_or(constants.period);
     positive("fem.damping_period", damping_period)?;
     let fem_body = FemBody {
@@ -132,6 +142,7 @@ pub fn fem_from_section(
         damping_ratio: body.damping_ratio,
         damping_period,
         gravity: body.gravity,
+        base,
     };
     let settings = FemSettings {
         nx,

@@ -126,6 +126,7 @@ pub struct FemSection {
     pub mu_s: Option<f64>,
     pub mu_k: Option<f64>,
     pub p_delta: Option<bool>,
+    pub base: Option<String>,
     pub damping_period: Option<f64>,
     pub duration: Option<f64>,
 }
