@@ -366,6 +366,17 @@ pub struct FemResult {
     pub overturned_at: Option<f64>,
 }
 
+/// A static pushover curve.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Pushover {
+    /// One point per requested top displacement, in order, up to where the curve ended.
+    pub points: Vec<PushoverPoint>,
+    /// The first requested q at which the body, standing on one corner, turned about it
+    /// freely (no stiffness: without P-Delta the restoring moment stays at its uplift value), so
+    /// the displacement-controlled sweep stopped there.
+    pub free_rotation_at: Option<f64>,
+}
+
 /// A pushover point.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct PushoverPoint {

@@ -6,7 +6,7 @@ use super::banded::BandedLdl;
 use super::model::Model;
 use super::BaseSupport;
 use super::{
-    cantilever_mode, decompose, invalid, validate_body, validate_mesh, FemBody, FemError,
+    cantilever_mode, decompose, invalid, validate_body, validate_mesh, FemBody, FemError, Pushover,
     PushoverPoint,
 };
 
@@ -25,7 +25,7 @@ pub fn pushover(
     ny: usize,
     p_delta: bool,
     top_displacements: &[f64],
-) -> Result<Vec<PushoverPoint>, FemError> {
+) -> Result<Pushover, FemError> {
     validate_body(body)?;
     validate_mesh(nx, ny)?;
     if let Some(q) = top_displacements.iter().find(|q| !q.is_finite()) {
@@ -173,6 +173,14 @@ pub fn pushover(
                 approximate = violation > 0.0;
             }
         }
+        if converged.is_none() && !any_solvable && points.iter().any(|p: &PushoverPoint| p.uplift) {
+            // the body stands on one corner and nothing resists its turning about it: the
+            // curve has ended (without P-Delta the restoring moment stays at its uplift value)
+            return Ok(Pushover {
+                points,
+                free_rotation_at: Some(q),
+            });
+        }
         let Some(ContactTrial { u, load_factor, .. }) = converged else {
             return Err(if any_solvable {
                 FemError::ContactNotConverged {
@@ -208,7 +216,10 @@ pub fn pushover(
             approximate_contact: approximate,
         });
     }
-    Ok(points)
+    Ok(Pushover {
+        points,
+        free_rotation_at: None,
+    })
 }
 
 /// Static solution for one trial contact set.

@@ -215,7 +215,10 @@ fn highest_frequency_bounds_every_contact_state() {
         .fold(0.0, f64::max)
         .sqrt();
     let w = highest_frequency(&body, 2, 5).unwrap();
-    assert!(w >= fixed_top && w <= gershgorin, "{fixed_top} <= {w} <= {gershgorin}");
+    assert!(
+        w >= fixed_top && w <= gershgorin,
+        "{fixed_top} <= {w} <= {gershgorin}"
+    );
     let plate = FemBody {
         base: BaseSupport::RigidPlate,
         ..body
@@ -236,7 +239,7 @@ fn pushover_stiff_body_follows_sdof_rocking() {
     assert!((s_n - 1.833e-3).abs() < 1e-5);
     let b = body.width;
     let qs = [0.1 * s_n, 0.2 * b, 0.3 * b, 0.4 * b, 0.5 * b, 0.6 * b];
-    let points = pushover(&body, 8, 40, true, &qs).unwrap();
+    let points = pushover(&body, 8, 40, true, &qs).unwrap().points;
     let k0 = points[0].base_shear / points[0].q;
     assert!(!points[0].heel_lifted);
     for p in &points[1..] {
@@ -260,8 +263,8 @@ fn pushover_reference_body_stiffness() {
     let body = FemBody::reference();
     let (_, ke) = sdof_uplift(&body);
     let q = [0.02];
-    let with_weight = pushover(&body, 8, 40, true, &q).unwrap()[0].clone();
-    let without = pushover(&body, 8, 40, false, &q).unwrap()[0].clone();
+    let with_weight = pushover(&body, 8, 40, true, &q).unwrap().points[0].clone();
+    let without = pushover(&body, 8, 40, false, &q).unwrap().points[0].clone();
     assert!(!with_weight.heel_lifted && !without.heel_lifted);
     let k_pd = with_weight.base_shear / q[0];
     let k_lin = without.base_shear / q[0];
@@ -273,6 +276,7 @@ fn pushover_reference_body_stiffness() {
 fn first_heel_lift(body: &FemBody, p_delta: bool, qs: &[f64]) -> PushoverPoint {
     pushover(body, 8, 40, p_delta, qs)
         .unwrap()
+        .points
         .into_iter()
         .find(|p| p.heel_lifted)
         .expect("the heel lifts within the sweep")
@@ -291,12 +295,58 @@ fn pushover_reference_body_uplift_point() {
     let qs: Vec<f64> = (0..=200).map(|k| 0.15 + 0.0005 * k as f64).collect();
     let lift = first_heel_lift(&body, true, &qs);
     assert!((lift.q / 0.1895 - 1.0).abs() < 0.05, "lifted at {}", lift.q);
-    assert!(lift.uplift, "a rigid plate lifts whole, pivoting on the toe");
+    assert!(
+        lift.uplift,
+        "a rigid plate lifts whole, pivoting on the toe"
+    );
     assert!(
         (lift.base_shear / 1565.0 - 1.0).abs() < 0.05,
         "base shear {} at uplift",
         lift.base_shear
     );
+}
+
+/// Without P-Delta the weight keeps its line of action, so the resisting moment about the toe
+/// stays M g B/2: eq. 8 without its weight-shift term 2σ/L gives the uplift point,
+/// B M g H²/(2 EI L²) (0.1837 m; the continuum's shear adds ~3 %), and after it the body turns
+/// rigidly about the toe at constant load, base shear = (M g B/2) ∫U / (H ∫U ξ) (loads m U).
+/// Where round-off leaves that rotation without any stiffness the sweep ends and says so.
+#[test]
+fn rigid_plate_without_p_delta_lifts_at_small_displacement_s_n_then_turns_at_constant_load() {
+    let body = FemBody {
+        base: BaseSupport::RigidPlate,
+        ..FemBody::reference()
+    };
+    let weight = body.mass() * body.gravity;
+    let s_n_small_displacement =
+        body.width * weight * body.height.powi(2) / (2.0 * body.flexural_rigidity() * L * L);
+    let n = 100_000;
+    let (int_u, int_u_xi) = (0..n).fold((0.0, 0.0), |(a, b), k| {
+        let xi = (k as f64 + 0.5) / n as f64;
+        let u = cantilever_mode(xi) / n as f64;
+        (a + u, b + u * xi)
+    });
+    let plateau = weight * body.width / 2.0 * int_u / (body.height * int_u_xi);
+    let qs: Vec<f64> = (1..=100).map(|k| 0.002 * k as f64).collect();
+    let curve = pushover(&body, 8, 40, false, &qs).unwrap();
+    let lift = curve.points.iter().position(|p| p.heel_lifted).unwrap();
+    let q_lift = curve.points[lift].q;
+    assert!(
+        (q_lift / s_n_small_displacement - 1.0).abs() < 0.05,
+        "lifted at {q_lift}, expected {s_n_small_displacement}"
+    );
+    for p in &curve.points[lift..] {
+        assert!(
+            (p.base_shear / plateau - 1.0).abs() < 0.02,
+            "{} at {}",
+            p.base_shear,
+            p.q
+        );
+    }
+    if let Some(stop) = curve.free_rotation_at {
+        assert!(stop > q_lift);
+        assert_eq!(curve.points.len(), qs.iter().filter(|q| **q < stop).count());
+    }
 }
 
 /// The stiff body on a rigid plate lifts off where the SDOF model does (s_n; gravity
@@ -483,4 +533,3 @@ fn invalid_input_is_reported_not_panicked() {
         Err(FemError::InvalidParameter { .. })
     ));
 }
-
