@@ -144,11 +144,16 @@ enum Command {
         #[arg(long)]
         dt: Option<f64>,
         /// Also solve the SDOF model and compare the two (table, compare.csv, figures).
-        #[arg(long, conflicts_with = "modes")]
+        #[arg(long, conflicts_with_all = ["modes", "pushover"])]
         compare: bool,
         /// Only print the fixed-base natural periods of the mesh against the SDOF period T.
-        #[arg(long)]
+        #[arg(long, conflicts_with = "pushover")]
         modes: bool,
+        /// Instead of the dynamic run, push the body over statically (lateral loads m U(y), q up
+        /// to B) on the flexible base and on a rigid base plate, against the SDOF model's F(q):
+        /// writes pushover.csv, pushover.json and pushover.svg. Use a refined mesh (--nx 8 --ny 40).
+        #[arg(long)]
+        pushover: bool,
     },
 }
 
@@ -325,12 +330,19 @@ fn execute(command: Command) -> flexrock::Result<()> {
             dt,
             compare,
             modes,
+            pushover,
         } => {
             use flexrock::fem::run as fem;
             let model = Model::load(&path, &Overrides::default())?;
             let setup = model.fem_with(&FemOverrides { nx, ny, scheme, dt })?;
             if modes {
                 print!("{}", fem::modes_text(&fem::modes(&model, &setup)?));
+                return Ok(());
+            }
+            if pushover {
+                let out = out.unwrap_or_else(|| default_out_dir(&path, "-pushover"));
+                let report = flexrock::fem::pushover_run::run(&model, &setup, &out)?;
+                print!("{}", flexrock::fem::pushover_run::report_text(&report));
                 return Ok(());
             }
             let out = out.unwrap_or_else(|| default_out_dir(&path, "-fem"));

@@ -210,6 +210,87 @@ fn modes_lists_periods_against_the_sdof_period() {
     }
 }
 
+/// The pushover of the reference body: on a rigid base plate it lifts off where MODEL.md 7a's
+/// beam-column model does (q = 0.1895 m, base shear 8260 N/m x 0.1895 m = 1565 N), and its
+/// pre-uplift stiffness is that model's 0.764 Ke; the flexible base opens well before.
+#[test]
+fn pushover_writes_both_curves_against_the_sdof_force() {
+    let out = common::scratch_dir("fem-pushover").join("result");
+    let o = flexrock(&[
+        "fem",
+        reference_model().to_str().unwrap(),
+        "--pushover",
+        "--nx",
+        "8",
+        "--ny",
+        "40",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(
+        file_names(&out),
+        ["pushover.csv", "pushover.json", "pushover.svg"]
+    );
+    let csv = std::fs::read_to_string(out.join("pushover.csv")).unwrap();
+    assert!(csv.starts_with(
+        "base,q,base_shear,load_factor,flexural,rocking,shearing,contact_nodes,heel_lifted,\
+         uplift,approximate_contact,sdof_force\n"
+    ));
+    assert_eq!(
+        csv.lines().filter(|l| l.starts_with("flexible,")).count(),
+        400
+    );
+    assert_eq!(
+        csv.lines()
+            .filter(|l| l.starts_with("rigid-plate,"))
+            .count(),
+        400
+    );
+    // the SDOF column is F(q) of MODEL.md section 3: Ke q up to s_n = 0.15237 m, then falling
+    let ke = 10807.7;
+    for line in csv.lines().skip(1).take(400) {
+        let f: Vec<f64> = line
+            .split(',')
+            .skip(1)
+            .map(|x| x.parse().unwrap_or(f64::NAN))
+            .collect();
+        let (q, sdof) = (f[0], f[10]);
+        let expected = if q <= 0.15237 {
+            ke * q
+        } else {
+            ke * 0.15237 * (0.7 - q) / (0.7 - 0.15237)
+        };
+        assert!((sdof - expected).abs() < 1e-3 * ke * 0.15237, "q = {q}");
+    }
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("pushover.json")).unwrap()).unwrap();
+    assert_eq!(summary["p_delta"], true);
+    assert_eq!(summary["nx"], 8);
+    let curves = summary["curves"].as_array().unwrap();
+    let (flexible, plate) = (&curves[0], &curves[1]);
+    assert_eq!(flexible["base"], "flexible");
+    assert_eq!(plate["base"], "rigid-plate");
+    let plate_lift = plate["heel_lift_q"].as_f64().unwrap();
+    assert!((plate_lift / 0.1895 - 1.0).abs() < 0.05, "{plate_lift}");
+    let plate_peak = plate["peak_base_shear"].as_f64().unwrap();
+    assert!((plate_peak / 1565.0 - 1.0).abs() < 0.05, "{plate_peak}");
+    let k0 = plate["initial_stiffness_over_ke"].as_f64().unwrap();
+    assert!((k0 / 0.764 - 1.0).abs() < 0.06, "{k0}");
+    assert!(flexible["heel_lift_q"].as_f64().unwrap() < 0.5 * plate_lift);
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(stdout.contains("rigid-plate") && stdout.contains("s_n = 0.15237 m"));
+
+    // --pushover is a mode of its own
+    let o = flexrock(&[
+        "fem",
+        reference_model().to_str().unwrap(),
+        "--pushover",
+        "--compare",
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+}
+
 /// A model with `[fem]` text that must be refused: exit 2, the key named, nothing written.
 fn refused(name: &str, body_extra: &str, fem: &str) -> String {
     let text = common::reference_body(&format!(

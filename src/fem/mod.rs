@@ -113,6 +113,7 @@ mod element;
 mod mesh;
 mod model;
 mod pushover;
+pub mod pushover_run;
 pub mod run;
 #[cfg(test)]
 mod tests;
