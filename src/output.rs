@@ -1,5 +1,5 @@
 //! Output files: CSV tables and JSON summaries, written atomically. Writers see only the
-//! solver-agnostic [`Solution`] types, never a solver.
+//! solver-agnostic [`Solution`](crate::solution::Solution) types, never a solver.
 
 use std::io::Write;
 use std::path::{Path, PathBuf};

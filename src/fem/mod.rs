@@ -28,7 +28,7 @@
 //!   (the restoring force vanishes at q = B as in the SDOF model, MODEL.md section 3).
 //!   Without it the restoring moment of a linear model stays at M g B/2 after uplift.
 //!   The formulation remains geometrically linear (small rotations).
-//! * **Damping**: [C] = (h T_d/π)[K] with the *elastic* K only. K_σ is left out of C: the
+//! * **Damping**: \[C\] = (h T_d/π)\[K\] with the *elastic* K only. K_σ is left out of C: the
 //!   paper's damping is a property of the material, it stays positive semi-definite, and it is
 //!   the same with and without P-Delta.
 //!
@@ -87,21 +87,31 @@
 //!
 //! [`pushover`] applies lateral loads λ m U(y) (U the first cantilever mode) from the gravity
 //! state under top-displacement control; base nodes in contact are held in x and y, and leave
-//! or re-enter contact by a no-tension/no-penetration active-set iteration. A continuum on a
-//! rigid floor has no sharp uplift: its base starts to open at the heel once the base moment
-//! passes roughly the kern value (≈ M g B/6) and the contact zone then shrinks towards the toe.
-//! [`PushoverPoint::heel_lifted`] marks the opening, [`PushoverPoint::uplift`] the state where a
-//! single corner node carries the weight. For a stiff body (E = 500 MPa) the curve follows the
-//! SDOF model closely (its pre-uplift line and rocking line meet within 3 % of s_n, and the
-//! rocking branch matches F(q) within 2 % for 0.1 B <= q <= 0.6 B). For the paper's soft body (E = 5 MPa, toe strains of
-//! several %) the contact zone at the toe stays 1/4-1/3 of B wide: the base shear peaks at
-//! about 1030-1050 N near q ≈ 0.205 m (mesh-converged from 8 x 40 to 32 x 80), below the
-//! 1565 N at q = 0.1895 m of a beam-column model with a rigid base section on toe springs.
+//! or re-enter contact by a no-tension/no-penetration active-set iteration.
+//!
+//! On the flexible base ([`BaseSupport::Flexible`], the paper's) a continuum on a rigid floor
+//! has no sharp uplift: its base starts to open at the heel once the base moment passes roughly
+//! the kern value (≈ M g B/6) and the contact zone then shrinks towards the toe.
+//! [`PushoverPoint::heel_lifted`] marks the opening, [`PushoverPoint::uplift`] the state where
+//! only one corner node is on the floor. For a stiff body (E = 500 MPa) the curve still follows
+//! the SDOF model closely (its pre-uplift line and rocking line meet within 3 % of s_n, and the
+//! rocking branch matches F(q) within 2 % for 0.1 B <= q <= 0.6 B). For the paper's soft body
+//! (E = 5 MPa, toe strains of several %) the contact zone at the toe stays 1/4-1/3 of B wide:
+//! the base shear peaks at about 1050 N near q ≈ 0.205 m (mesh-converged from 8 x 40 to
+//! 32 x 80).
+//!
+//! On a rigid base plate ([`BaseSupport::RigidPlate`]) the base stays flat until the base moment
+//! reaches N B/2 and then pivots about the toe, as the beam-column model of MODEL.md 7a (a rigid
+//! base section on toe springs) and the SDOF model assume: the reference body lifts off at
+//! q = 0.194 m with 1549 N (beam-column: 0.1895 m, 1565 N). The plate is a set of penalty
+//! springs on the base nodes (stretching and the second difference of uy) 1e4 times stiffer
+//! than the body's base section; the results do not change from 1e3 to 1e5.
 //!
 //! # Stability of the paper's run
 //!
-//! With the lumped mass the 2 x 5 mesh has ω_max = 534.6 rad/s (T_min = 0.01175 s), so the
-//! linear acceleration limit is dt = 0.00648 s and the paper's dt = 0.0071 s lies beyond it.
+//! With the lumped mass and the base free the 2 x 5 mesh has ω_max = 539.1 rad/s
+//! (T_min = 0.01165 s; 534.6 rad/s with the base held), so the linear acceleration limit is
+//! dt = 0.00643 s and the paper's dt = 0.0071 s lies beyond it.
 //! The run does not blow up (every contact change resets the growing highest mode) but it
 //! shows spurious contact chatter (5x the state changes of an average-acceleration run);
 //! dt <= 0.0064 s, average acceleration or Wilson θ = 1.4 avoid it.
@@ -142,7 +152,7 @@ pub struct FemBody {
     pub youngs_modulus: f64,
     /// Poisson's ratio, in [0, 0.5).
     pub poisson_ratio: f64,
-    /// Damping ratio h of [C] = (h T_d/π)[K], dimensionless.
+    /// Damping ratio h of \[C\] = (h T_d/π)\[K\], dimensionless.
     pub damping_ratio: f64,
     /// Period T_d at which the stiffness-proportional damping equals h, s.
     pub damping_period: f64,

@@ -210,7 +210,8 @@ pub fn figure(model: &Model, a: &PushoverAnalysis) -> Panel {
         "top displacement q (m)",
         "base shear (N)",
     );
-    panel.legend = Legend::UpperRight;
+    // the curves start low: small q with a large shear is empty in every case
+    panel.legend = Legend::UpperLeft;
     // the kink at s_n is a point of the curve
     let mut sdof: Vec<(f64, f64)> = (0..=SWEEP_POINTS)
         .map(|k| a.width * k as f64 / SWEEP_POINTS as f64)
