@@ -3,7 +3,7 @@
 use std::path::Path;
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use flexrock::fem::{simulate, TimeScheme};
+use flexrock::fem::{pushover, simulate, BaseSupport, FemBody, TimeScheme};
 use flexrock::model::{Model, Overrides};
 
 fn fem_runs(c: &mut Criterion) {
@@ -45,5 +45,22 @@ fn fem_runs(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, fem_runs);
+/// The sweep of `flexrock fem --pushover` on 8 x 40: 400 steps of q up to B, per base.
+fn pushovers(c: &mut Criterion) {
+    let mut group = c.benchmark_group("pushover 8x40 400 steps");
+    group.sample_size(10);
+    for base in [BaseSupport::Flexible, BaseSupport::RigidPlate] {
+        let body = FemBody {
+            base,
+            ..FemBody::reference()
+        };
+        let qs: Vec<f64> = (1..=400).map(|k| body.width * k as f64 / 400.0).collect();
+        group.bench_function(format!("{base:?}"), |b| {
+            b.iter(|| pushover(&body, 8, 40, true, std::hint::black_box(&qs)).expect("runs"))
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, fem_runs, pushovers);
 criterion_main!(benches);
