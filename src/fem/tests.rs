@@ -55,6 +55,46 @@ fn banded_ldl_matches_dense_solve() {
     }
 }
 
+/// A chain of springs k (i, i+1): free at both ends it is singular (rigid translation), which
+/// the factorisation must report even when one spring is 1e8 times stiffer than the rest; held
+/// at one end it solves, stiff spring and all, to the closed form x_i = sum of 1/k up to i.
+#[test]
+fn banded_ldl_reports_singular_chains_and_solves_held_ones() {
+    let n = 12;
+    let chain = |held: bool| {
+        let mut a = BandedSym::zeros(n, 1);
+        for i in 0..n - 1 {
+            let k = if i == 5 { 1e8 } else { 1.0 };
+            a.add(i, i, k);
+            a.add(i + 1, i + 1, k);
+            a.add(i + 1, i, -k);
+        }
+        if held {
+            a.add(0, 0, 1.0);
+        }
+        a
+    };
+    assert!(BandedLdl::factor(&chain(false)).is_err());
+    // unit load at the free end: every spring carries 1
+    let mut x = vec![0.0; n];
+    x[n - 1] = 1.0;
+    BandedLdl::factor(&chain(true))
+        .unwrap()
+        .solve_in_place(&mut x);
+    let mut expected = 1.0; // the grounding spring
+    for i in 0..n {
+        // round-off grows with the stiffness contrast (1e8): about 1e-16 x 1e8
+        assert!(
+            (x[i] - expected).abs() < 1e-6 * expected,
+            "dof {i}: {}",
+            x[i]
+        );
+        if i < n - 1 {
+            expected += if i == 5 { 1e-8 } else { 1.0 };
+        }
+    }
+}
+
 /// Force-driven constant-stress patch test on two distorted quadrilaterals: the consistent
 /// edge loads of a uniform stress, minimal supports; the displacement must be the exact linear
 /// field and the stress uniform at every Gauss point.
