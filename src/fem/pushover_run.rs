@@ -120,8 +120,7 @@ fn summarise(base: BaseSupport, curve: &Pushover, ke: f64) -> CurveSummary {
 }
 
 /// F(q) of the SDOF model on the branch q belongs to (q >= 0).
-fn sdof_force(model: &Model, q: f64) -> f64 {
-    let automaton = Automaton::new(&model.constants);
+fn sdof_force(automaton: &Automaton, q: f64) -> f64 {
     automaton.restoring_force(automaton.initial_mode(q), q)
 }
 
@@ -133,6 +132,7 @@ fn base_name(base: BaseSupport) -> &'static str {
 }
 
 pub fn curves_csv(model: &Model, a: &PushoverAnalysis) -> Vec<u8> {
+    let automaton = Automaton::new(&model.constants);
     let mut table = Table::new(&PUSHOVER_COLUMNS);
     for (base, curve) in &a.curves {
         for p in &curve.points {
@@ -148,7 +148,7 @@ pub fn curves_csv(model: &Model, a: &PushoverAnalysis) -> Vec<u8> {
                 p.heel_lifted.to_string(),
                 p.uplift.to_string(),
                 p.approximate_contact.to_string(),
-                number(sdof_force(model, p.q)),
+                number(sdof_force(&automaton, p.q)),
             ]);
         }
     }
@@ -196,6 +196,7 @@ pub fn summary<'a>(model: &'a Model, a: &'a PushoverAnalysis) -> PushoverSummary
 }
 
 pub fn figure(model: &Model, a: &PushoverAnalysis) -> Panel {
+    let automaton = Automaton::new(&model.constants);
     let mut panel = Panel::new(
         &format!(
             "Static pushover, {} x {} mesh, P-Delta {}",
@@ -216,7 +217,7 @@ pub fn figure(model: &Model, a: &PushoverAnalysis) -> Panel {
     let mut sdof: Vec<(f64, f64)> = (0..=SWEEP_POINTS)
         .map(|k| a.width * k as f64 / SWEEP_POINTS as f64)
         .chain([a.uplift_displacement])
-        .map(|q| (q, sdof_force(model, q)))
+        .map(|q| (q, sdof_force(&automaton, q)))
         .collect();
     sdof.sort_by(|x, y| x.0.total_cmp(&y.0));
     panel = panel.with(Series::line("SDOF model F(q)", sdof, 0));
