@@ -117,7 +117,7 @@ pub fn solve(
         }
     };
 
-    let problem = OdeBuilder::<Matrix>::new()
+    let mut problem = OdeBuilder::<Matrix>::new()
         .t0(0.0)
         .rtol(settings.rtol)
         .atol([settings.atol; NSTATES])
@@ -168,6 +168,11 @@ pub fn solve(
         )
         .build()
         .map_err(|e| solver_error(0.0, &e))?;
+    // diffsol counts Newton failures over the solver's whole life, not per step. Every mode
+    // switch leaves it a stale Jacobian and so costs one failure, which would end any run with
+    // more than 50 events. A Newton solve that truly cannot converge still ends the run: the
+    // step is cut by 0.3 per failure until it falls below the minimum step.
+    problem.ode_options.max_nonlinear_solver_failures = usize::MAX;
 
     let driver = Driver {
         automaton,
@@ -279,6 +284,11 @@ impl<'d> Driver<'d> {
         loop {
             let reason = solver.step().map_err(|e| self.error(step_start, e))?;
             let step_end = solver.state().t;
+            let stop = stops[stop_index];
+            if step_end > stop + 1e-12 * stop.abs().max(1.0) {
+                // Never expected: a run that went past its stop time would never end.
+                return Err(self.error(step_end, format!("stepped past the stop time {stop} s")));
+            }
             let mode = self.mode.get();
             let guard_root = match reason {
                 OdeSolverStopReason::RootFound(t, i) => {
@@ -332,6 +342,11 @@ impl<'d> Driver<'d> {
                     return Ok((recorder, t_event, self.stats(&solver)));
                 }
                 step_start = t_event;
+                // Moving the state back out of a step that had reached the stop time leaves the
+                // solver without one: set it again, or the run would go past it.
+                solver
+                    .set_stop_time(stops[stop_index])
+                    .map_err(|e| self.error(step_start, e))?;
             } else {
                 self.emit(
                     &solver,
