@@ -206,6 +206,20 @@ impl FemBody {
     }
 }
 
+impl FemBody {
+    /// Whether base node `i` of `base_nodes` takes part in the static pushover's contact
+    /// problem: every one on the flexible base; only the two corners of a rigid plate (the
+    /// nodes between lie on the line joining them, so they meet the floor only when both
+    /// corners do, and a flat plate's reactions split among them indeterminately). The dynamic
+    /// run keeps all base nodes in contact, so that a landing plate stops at every node.
+    pub(crate) fn touches_floor(&self, i: usize, base_nodes: usize) -> bool {
+        match self.base {
+            BaseSupport::Flexible => true,
+            BaseSupport::RigidPlate => i == 0 || i + 1 == base_nodes,
+        }
+    }
+}
+
 impl Default for FemBody {
     fn default() -> Self {
         Self::reference()

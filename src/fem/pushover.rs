@@ -102,6 +102,7 @@ pub fn pushover(
                     trial.tension = Some((i, ry));
                 }
             } else if !in_contact
+                && body.touches_floor(i, base_nodes)
                 && trial.u[d] < -penetration_tolerance
                 && trial.penetration.is_none_or(|(_, v)| trial.u[d] < v)
             {
@@ -111,7 +112,9 @@ pub fn pushover(
         Some(trial)
     };
 
-    let mut contact = vec![true; base_nodes];
+    let mut contact: Vec<bool> = (0..base_nodes)
+        .map(|i| body.touches_floor(i, base_nodes))
+        .collect();
     let mut points = Vec::with_capacity(top_displacements.len());
     for &q in top_displacements {
         // active set from the previous point: one change per pass, re-adding the most
@@ -148,11 +151,12 @@ pub fn pushover(
             for size in (1..=base_nodes).rev() {
                 let zone: Vec<bool> = (0..base_nodes)
                     .map(|i| {
-                        if q >= 0.0 {
-                            i + size >= base_nodes
-                        } else {
-                            i < size
-                        }
+                        body.touches_floor(i, base_nodes)
+                            && if q >= 0.0 {
+                                i + size >= base_nodes
+                            } else {
+                                i < size
+                            }
                     })
                     .collect();
                 let Some(trial) = solve_with(&zone, q) else {
@@ -173,9 +177,11 @@ pub fn pushover(
                 approximate = violation > 0.0;
             }
         }
-        if converged.is_none() && !any_solvable && points.iter().any(|p: &PushoverPoint| p.uplift) {
-            // the body stands on one corner and nothing resists its turning about it: the
-            // curve has ended (without P-Delta the restoring moment stays at its uplift value)
+        if converged.is_none() && !points.is_empty() && (!any_solvable || !p_delta) {
+            // the body stands on its toe and nothing resists its turning about it: the curve
+            // has ended. Without P-Delta the contact problem is convex (an elastic body on
+            // unilateral supports), so it fails only this way: the restoring moment stays at
+            // its uplift value and the tangent is singular or nearly so.
             return Ok(Pushover {
                 points,
                 free_rotation_at: Some(q),

@@ -570,3 +570,23 @@ fn invalid_input_is_reported_not_panicked() {
         Err(FemError::InvalidParameter { .. })
     ));
 }
+
+/// Without P-Delta a coarse mesh loses all resistance to turning about the toe once it stands
+/// on it: the sweep must end there and say where, on both bases, not fail.
+#[test]
+fn pushover_without_p_delta_ends_where_the_body_turns_freely() {
+    for base in [BaseSupport::Flexible, BaseSupport::RigidPlate] {
+        let body = FemBody {
+            height: 3.0,
+            width: 0.6,
+            density: 500.0,
+            base,
+            ..FemBody::reference()
+        };
+        let qs: Vec<f64> = (1..=400).map(|k| body.width * k as f64 / 400.0).collect();
+        let curve = pushover(&body, 3, 6, false, &qs).unwrap();
+        let stop = curve.free_rotation_at.expect("the sweep ends");
+        assert!(stop < body.width, "{base:?}: {stop}");
+        assert_eq!(curve.points.len(), qs.iter().filter(|q| **q < stop).count());
+    }
+}
