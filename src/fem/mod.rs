@@ -177,6 +177,22 @@ pub enum BaseSupport {
     RigidPlate,
 }
 
+impl BaseSupport {
+    /// The name used in model files and outputs.
+    pub fn name(self) -> &'static str {
+        match self {
+            BaseSupport::Flexible => "flexible",
+            BaseSupport::RigidPlate => "rigid-plate",
+        }
+    }
+
+    pub fn from_name(name: &str) -> Option<Self> {
+        [BaseSupport::Flexible, BaseSupport::RigidPlate]
+            .into_iter()
+            .find(|b| b.name() == name)
+    }
+}
+
 impl FemBody {
     /// The paper's body: H = 4 m, B = 0.7 m, D = 1 m, 600 kg/m³, E = 5 MPa, ν = 0.25,
     /// h = 0.05 at T_d = 1.55 s, g = 9.81 m/s².
@@ -203,20 +219,6 @@ impl FemBody {
     /// Flexural rigidity EI = E D B³/12, N m².
     pub fn flexural_rigidity(&self) -> f64 {
         self.youngs_modulus * self.depth * self.width.powi(3) / 12.0
-    }
-}
-
-impl FemBody {
-    /// Whether base node `i` of `base_nodes` takes part in the static pushover's contact
-    /// problem: every one on the flexible base; only the two corners of a rigid plate (the
-    /// nodes between lie on the line joining them, so they meet the floor only when both
-    /// corners do, and a flat plate's reactions split among them indeterminately). The dynamic
-    /// run keeps all base nodes in contact, so that a landing plate stops at every node.
-    pub(crate) fn touches_floor(&self, i: usize, base_nodes: usize) -> bool {
-        match self.base {
-            BaseSupport::Flexible => true,
-            BaseSupport::RigidPlate => i == 0 || i + 1 == base_nodes,
-        }
     }
 }
 

@@ -4,10 +4,9 @@ use std::collections::HashMap;
 
 use super::banded::BandedLdl;
 use super::model::Model;
-use super::BaseSupport;
 use super::{
-    cantilever_mode, decompose, invalid, validate_body, validate_mesh, FemBody, FemError, Pushover,
-    PushoverPoint,
+    cantilever_mode, decompose, invalid, validate_body, validate_mesh, BaseSupport, FemBody,
+    FemError, Pushover, PushoverPoint,
 };
 
 /// Displacement-controlled static pushover from the gravity state.
@@ -102,7 +101,7 @@ pub fn pushover(
                     trial.tension = Some((i, ry));
                 }
             } else if !in_contact
-                && body.touches_floor(i, base_nodes)
+                && is_contact_candidate(body, i, base_nodes)
                 && trial.u[d] < -penetration_tolerance
                 && trial.penetration.is_none_or(|(_, v)| trial.u[d] < v)
             {
@@ -113,7 +112,7 @@ pub fn pushover(
     };
 
     let mut contact: Vec<bool> = (0..base_nodes)
-        .map(|i| body.touches_floor(i, base_nodes))
+        .map(|i| is_contact_candidate(body, i, base_nodes))
         .collect();
     let mut points = Vec::with_capacity(top_displacements.len());
     for &q in top_displacements {
@@ -151,7 +150,7 @@ pub fn pushover(
             for size in (1..=base_nodes).rev() {
                 let zone: Vec<bool> = (0..base_nodes)
                     .map(|i| {
-                        body.touches_floor(i, base_nodes)
+                        is_contact_candidate(body, i, base_nodes)
                             && if q >= 0.0 {
                                 i + size >= base_nodes
                             } else {
@@ -226,6 +225,18 @@ pub fn pushover(
         points,
         free_rotation_at: None,
     })
+}
+
+/// Whether base node `i` of `base_nodes` takes part in the contact problem: every one on the
+/// flexible base; only the two corners of a rigid plate (the nodes between lie on the line
+/// joining them, so they meet the floor only when both corners do, and a flat plate's reactions
+/// split among them indeterminately). The dynamic run keeps all base nodes in contact, so that
+/// a landing plate stops at every node.
+fn is_contact_candidate(body: &FemBody, i: usize, base_nodes: usize) -> bool {
+    match body.base {
+        BaseSupport::Flexible => true,
+        BaseSupport::RigidPlate => i == 0 || i + 1 == base_nodes,
+    }
 }
 
 /// Static solution for one trial contact set.

@@ -124,20 +124,13 @@ fn sdof_force(automaton: &Automaton, q: f64) -> f64 {
     automaton.restoring_force(automaton.initial_mode(q), q)
 }
 
-fn base_name(base: BaseSupport) -> &'static str {
-    match base {
-        BaseSupport::Flexible => "flexible",
-        BaseSupport::RigidPlate => "rigid-plate",
-    }
-}
-
 pub fn curves_csv(model: &Model, a: &PushoverAnalysis) -> Vec<u8> {
     let automaton = Automaton::new(&model.constants);
     let mut table = Table::new(&PUSHOVER_COLUMNS);
     for (base, curve) in &a.curves {
         for p in &curve.points {
             table.row([
-                base_name(*base).to_string(),
+                base.name().to_string(),
                 number(p.q),
                 number(p.base_shear),
                 number(p.load_factor),
@@ -226,7 +219,7 @@ pub fn figure(model: &Model, a: &PushoverAnalysis) -> Panel {
             .chain(curve.points.iter().map(|p| (p.q, p.base_shear)))
             .collect();
         panel = panel.with(Series::line(
-            &format!("FEM, {} base", base_name(*base)),
+            &format!("FEM, {} base", base.name()),
             points,
             k + 1,
         ));
@@ -288,7 +281,7 @@ pub fn report_text(report: &PushoverReport) -> String {
         let _ = writeln!(
             t,
             "  {:<12} {:>8.4} {:>14} {:>14} {:>16.1} {:>12.4}",
-            base_name(c.base),
+            c.base.name(),
             c.initial_stiffness_over_ke,
             show(c.heel_lift_q),
             show(c.uplift_q),
@@ -300,7 +293,7 @@ pub fn report_text(report: &PushoverReport) -> String {
                 t,
                 "  {}: the body turned freely about its toe from q = {q:.4} m on (no stiffness \
                  left without P-Delta); the curve ends there",
-                base_name(c.base)
+                c.base.name()
             );
         }
     }

@@ -120,16 +120,14 @@ pub fn fem_from_section(
             &format!("kinetic friction cannot exceed static friction (fem.mu_s = {mu_s})"),
         ));
     }
-    let base =
-        match s.base.as_deref().unwrap_or("flexible") {
-            "flexible" => BaseSupport::Flexible,
-            "rigid-plate" => BaseSupport::RigidPlate,
-            other => return Err(Error::invalid(
-                "fem.base",
-                format!("\"{other}\""),
-                "must be \"flexible\" (base nodes touch the floor one by one) or \"rigid-plate\"",
-            )),
-        };
+    let base_name = s.base.as_deref().unwrap_or(BaseSupport::Flexible.name());
+    let base = BaseSupport::from_name(base_name).ok_or_else(|| {
+        Error::invalid(
+            "fem.base",
+            format!("\"{base_name}\""),
+            "must be \"flexible\" (base nodes touch the floor one by one) or \"rigid-plate\"",
+        )
+    })?;
     let damping_period = s.damping_period.unwrap_or(constants.period);
     positive("fem.damping_period", damping_period)?;
     let fem_body = FemBody {

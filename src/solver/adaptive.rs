@@ -345,7 +345,7 @@ impl<'d> Driver<'d> {
                 // Moving the state back out of a step that had reached the stop time leaves the
                 // solver without one: set it again, or the run would go past it.
                 solver
-                    .set_stop_time(stops[stop_index])
+                    .set_stop_time(stop)
                     .map_err(|e| self.error(step_start, e))?;
             } else {
                 self.emit(
@@ -361,7 +361,6 @@ impl<'d> Driver<'d> {
             qdot_at_start = solver.state().y[1];
 
             // At a stop time: finish, or go on towards the next one.
-            let stop = stops[stop_index];
             if (step_start - stop).abs() <= 1e-12 * stop.abs().max(1.0) {
                 if stop_index + 1 == stops.len() {
                     let y = &solver.state().y;
