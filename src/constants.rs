@@ -11,6 +11,14 @@ pub const MODE_ROOT: f64 = 1.875_104_068_711_961;
 /// Value of M g H^2 / EI at which a uniform cantilever buckles under its own weight.
 pub const SELF_WEIGHT_BUCKLING_PARAMETER: f64 = 7.837;
 
+/// Share of [`SELF_WEIGHT_BUCKLING_PARAMETER`] above which a run warns that the self-weight the
+/// model leaves out of bending matters: at the paper's own 0.235 a beam-column with it lifts off
+/// 24 % later than s_n (MODEL.md 7a); at 0.1 the errors are of order 10 %.
+pub const SELF_WEIGHT_WARNING_SHARE: f64 = 0.1;
+
+/// Shortest pre-uplift period a model may have, s.
+pub const MIN_PERIOD: f64 = 1e-4;
+
 /// The mode-shape numbers the model is built from: either exact, or as printed in the paper.
 #[derive(Debug, Clone, Copy, Serialize)]
 pub struct ModeShapeIntegrals {
@@ -113,18 +121,32 @@ impl Constants {
         let omega = (ke / me).sqrt();
         let gravity_parameter = mg * h * h / body.flexural_rigidity;
 
-        // Eq. 8: base bending moment EI (lambda/H)^2 s equals the gravity moment about the toe.
-        let s_n = b / (2.0 * body.flexural_rigidity * l2 / (mg * h * h) + 2.0 * shape.int_u);
-        if s_n >= b {
+        // A cantilever buckles under its own weight at M g H^2/EI = 7.837: beyond it there is no
+        // upright equilibrium to rock about. (This also keeps s_n below B: s_n reaches B only at
+        // M g H^2/EI = 2 lambda^2/(1 - 2 int U) = 32.4.)
+        if gravity_parameter.is_nan() || gravity_parameter >= SELF_WEIGHT_BUCKLING_PARAMETER {
             return Err(Error::invalid(
-                "derived uplift displacement s_n",
-                format!("{s_n} m"),
+                "derived gravity parameter M g H^2/EI",
+                gravity_parameter,
                 &format!(
-                    "the body is unstable under its own weight: s_n must be less than the width B = {b} m \
-                     (s_n grows as the flexural rigidity falls and the weight rises)"
+                    "the body buckles under its own weight: M g H^2/EI must be below \
+                     {SELF_WEIGHT_BUCKLING_PARAMETER} (raise the flexural rigidity or lower the mass)"
                 ),
             ));
         }
+        if !(omega.is_finite() && omega > 0.0 && 2.0 * std::f64::consts::PI / omega >= MIN_PERIOD) {
+            return Err(Error::invalid(
+                "derived pre-uplift period T (s)",
+                2.0 * std::f64::consts::PI / omega,
+                &format!(
+                    "must be at least {MIN_PERIOD:e} s: no body that rocks on a floor is that stiff \
+                     for its mass, and the solvers would need steps far below a microsecond"
+                ),
+            ));
+        }
+
+        // Eq. 8: base bending moment EI (lambda/H)^2 s equals the gravity moment about the toe.
+        let s_n = b / (2.0 * body.flexural_rigidity * l2 / (mg * h * h) + 2.0 * shape.int_u);
         let d = b - s_n;
 
         // Eq. 13 (per unit H): integrals of the rocking velocity shape V = (-s_n U + B xi)/d.

@@ -52,6 +52,8 @@ pub struct SolverStats {
     pub error_test_failures: usize,
     pub nonlinear_iterations: usize,
     pub jacobian_evaluations: usize,
+    /// Steps taken again because their dense output could not resolve a grazing crossing.
+    pub crossing_retries: usize,
     pub rhs_evaluations: usize,
     pub wall_time_s: f64,
 }

@@ -173,12 +173,29 @@ fn width_not_less_than_height() {
 }
 
 #[test]
-fn unstable_under_its_own_weight() {
-    let stderr = refused(
-        "unstable",
-        &GOOD.replace("youngs_modulus = 5.0e6", "youngs_modulus = 1.0e3"),
-    );
-    assert_mentions(&stderr, &["s_n", "unstable under its own weight"]);
+fn buckled_under_its_own_weight() {
+    // E = 1 MPa: M g H^2/EI = 9.23 for the reference body, beyond 7.837.
+    for e in ["1.0e6", "1.0e3"] {
+        let stderr = refused(
+            "buckled",
+            &GOOD.replace("youngs_modulus = 5.0e6", &format!("youngs_modulus = {e}")),
+        );
+        assert_mentions(
+            &stderr,
+            &["M g H^2/EI", "7.837", "buckles under its own weight"],
+        );
+    }
+}
+
+#[test]
+fn too_stiff_for_its_mass() {
+    for (key, value) in [
+        ("youngs_modulus = 5.0e6", "youngs_modulus = 1e300"),
+        ("density = 600.0", "density = 1e-300"),
+    ] {
+        let stderr = refused("stiff", &GOOD.replace(key, value));
+        assert_mentions(&stderr, &["pre-uplift period T", "at least 1e-4 s"]);
+    }
 }
 
 #[test]

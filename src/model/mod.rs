@@ -15,8 +15,11 @@ pub use fem_section::{
     fem_from_section, FemSetup, DEFAULT_FEM_DT, DEFAULT_FEM_MU_K, DEFAULT_FEM_MU_S, DEFAULT_FEM_NX,
     DEFAULT_FEM_NY, DEFAULT_FEM_THETA, DEFAULT_POISSON_RATIO, FEM_SNAPSHOT_TIMES,
 };
-use solver_section::{newmark_from_section, solver_from_section};
-pub use solver_section::{DEFAULT_NEWMARK_BETA, DEFAULT_NEWMARK_DT, DEFAULT_NEWMARK_GAMMA};
+use solver_section::{check_rtol, newmark_from_section, solver_from_section};
+pub use solver_section::{
+    DEFAULT_NEWMARK_BETA, DEFAULT_NEWMARK_DT, DEFAULT_NEWMARK_GAMMA, MAX_ATOL_OVER_WIDTH, MAX_RTOL,
+    MIN_RTOL,
+};
 
 use std::path::{Path, PathBuf};
 
@@ -255,7 +258,7 @@ impl Model {
         };
         positive("simulation.duration", duration)?;
         let initial = initial_from_section(&file.simulation, &body)?;
-        let solver = solver_from_section(&file.solver, duration, constants.omega)?;
+        let solver = solver_from_section(&file.solver, duration, constants.omega, body.width)?;
         let fem = fem_from_section(&file, &body, &constants, duration)?;
         Ok(Model {
             path: None,
@@ -289,13 +292,7 @@ impl Model {
     /// names Newmark) at `rtol`, with atol = rtol / 100 (q is of order 0.1 m), on the model's
     /// output grid.
     pub fn reference_settings(&self, rtol: f64) -> Result<AdaptiveSettings> {
-        if !(rtol > 0.0 && rtol < 1.0) {
-            return Err(Error::invalid(
-                "rtol",
-                rtol,
-                "the relative tolerance must lie in (0, 1)",
-            ));
-        }
+        check_rtol("rtol", rtol)?;
         let method = match self.solver {
             SolverSettings::Adaptive(a) => a.method,
             SolverSettings::Newmark(_) => AdaptiveMethod::Bdf,

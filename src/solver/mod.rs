@@ -2,6 +2,7 @@
 //! result type ([`crate::solution::Solution`]).
 
 pub mod adaptive;
+pub mod budget;
 pub mod newmark;
 
 use serde::Serialize;
