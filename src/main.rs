@@ -246,6 +246,9 @@ fn execute(command: Command) -> flexrock::Result<()> {
             let model = Model::load(&path, &overrides)?;
             let out = out.unwrap_or_else(|| default_out_dir(&path, ""));
             let report = flexrock::run::run(&model, &out)?;
+            for warning in &report.warnings {
+                eprintln!("warning: {warning}");
+            }
             print!("{}", flexrock::run::run_report_text(&model, &report));
         }
         Command::Record { command } => match command {

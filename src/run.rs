@@ -7,8 +7,10 @@ use serde::Serialize;
 
 use crate::automaton::{Automaton, EventKind};
 use crate::body::Body;
-use crate::constants::Constants;
+use crate::constants::{Constants, SELF_WEIGHT_BUCKLING_PARAMETER, SELF_WEIGHT_WARNING_SHARE};
 use crate::error::Result;
+use crate::excitation::FloorMotion;
+use crate::model::STANDARD_GRAVITY;
 use crate::model::{Model, ModelFile};
 use crate::output;
 use crate::solution::{Solution, SolverStats};
@@ -160,8 +162,14 @@ pub struct RunSummary<'a> {
     #[serde(rename = "T")]
     pub period: f64,
     pub max_energy_residual: f64,
+    /// The energies the residual is measured against, J (see [`Solution::energy_scale`]).
+    pub energy_scale: f64,
     pub final_time: f64,
     pub final_mode: &'static str,
+    /// The run ended with the body rocking: no overturning within the duration, no more.
+    pub ended_while_rocking: bool,
+    /// What a reader of the result must know (also printed on stderr).
+    pub warnings: Vec<String>,
     pub solver: &'a SolverSettings,
     pub statistics: &'a SolverStats,
     pub constants: &'a Constants,
@@ -187,8 +195,11 @@ pub fn summary<'a>(model: &'a Model, solution: &'a Solution) -> RunSummary<'a> {
         s_n: model.constants.uplift_displacement,
         period: model.constants.period,
         max_energy_residual: solution.max_energy_residual,
+        energy_scale: solution.energy_scale,
         final_time: solution.final_time,
         final_mode: solution.final_mode.name(),
+        ended_while_rocking: solution.ended_while_rocking(),
+        warnings: warnings(model, solution),
         solver: &model.solver,
         statistics: &solution.stats,
         constants: &model.constants,
@@ -200,10 +211,49 @@ pub fn summary<'a>(model: &'a Model, solution: &'a Solution) -> RunSummary<'a> {
     }
 }
 
+/// Share of the energy scale above which the energy residual is reported as a warning.
+pub const ENERGY_RESIDUAL_WARNING_SHARE: f64 = 1e-2;
+
+/// The warnings of a run: an energy residual beyond [`ENERGY_RESIDUAL_WARNING_SHARE`] of the
+/// energy scale, a gravity parameter beyond [`SELF_WEIGHT_WARNING_SHARE`] of buckling, and a run
+/// that ended while the body was rocking.
+pub fn warnings(model: &Model, solution: &Solution) -> Vec<String> {
+    let mut warnings = Vec::new();
+    let scale = solution.energy_scale;
+    if solution.max_energy_residual > ENERGY_RESIDUAL_WARNING_SHARE * scale {
+        warnings.push(format!(
+            "the energy residual reached {:.3e} J, {:.1} % of the energy scale {:.3e} J (above {} %): \
+             the solution is no more accurate than that; tighten the tolerance (or the Newmark step)",
+            solution.max_energy_residual,
+            100.0 * solution.max_energy_residual / scale,
+            scale,
+            100.0 * ENERGY_RESIDUAL_WARNING_SHARE
+        ));
+    }
+    let c = &model.constants;
+    if c.gravity_parameter_ratio > SELF_WEIGHT_WARNING_SHARE {
+        warnings.push(format!(
+            "M g H^2/EI = {:.4} is {:.3} of its buckling value {SELF_WEIGHT_BUCKLING_PARAMETER} (above {}): \
+             the self-weight the model leaves out of bending matters for this body (README, Known limits)",
+            c.gravity_parameter, c.gravity_parameter_ratio, SELF_WEIGHT_WARNING_SHARE
+        ));
+    }
+    if solution.ended_while_rocking() {
+        warnings.push(format!(
+            "the run ended while the body was rocking ({} at t = {} s): no overturning within the \
+             duration, which does not mean it would not overturn later; lengthen simulation.duration",
+            solution.final_mode.name(),
+            solution.final_time
+        ));
+    }
+    warnings
+}
+
 /// Result of `flexrock run`.
 pub struct RunReport {
     pub solution: Solution,
     pub files: Vec<PathBuf>,
+    pub warnings: Vec<String>,
 }
 
 /// Solves a model and writes history.csv, events.csv and summary.json into `out_dir`.
@@ -220,7 +270,43 @@ pub fn run(model: &Model, out_dir: &Path) -> Result<RunReport> {
             ),
         ],
     )?;
-    Ok(RunReport { solution, files })
+    let warnings = warnings(model, &solution);
+    Ok(RunReport {
+        solution,
+        files,
+        warnings,
+    })
+}
+
+/// "1 uplift", "2 uplifts".
+fn counted(n: usize, noun: &str) -> String {
+    if n == 1 {
+        format!("1 {noun}")
+    } else {
+        format!("{n} {noun}s")
+    }
+}
+
+/// The excitation as understood, in one line: its kind and parameters, and its peak.
+fn excitation_text(floor: &dyn FloorMotion) -> String {
+    let mut parts = vec![floor.kind().to_string()];
+    if let serde_json::Value::Object(map) = floor.parameters() {
+        for (key, value) in map {
+            match value {
+                serde_json::Value::Number(n) => parts.push(format!("{key} = {n}")),
+                serde_json::Value::String(text) if key != "kind" => {
+                    parts.push(format!("{key} = {text}"))
+                }
+                _ => {}
+            }
+        }
+    }
+    let peak = floor.peak_acceleration();
+    parts.push(format!(
+        "peak floor acceleration {peak:.6} m/s^2 = {:.6} g",
+        peak / STANDARD_GRAVITY
+    ));
+    parts.join(", ")
 }
 
 /// The short human summary printed after a run.
@@ -229,13 +315,10 @@ pub fn run_report_text(model: &Model, report: &RunReport) -> String {
     let mut t = String::new();
     let _ = writeln!(
         t,
-        "flexrock {VERSION}: {} solution over {} s ({} excitation), T = {:.4} s, s_n = {:.6} m",
-        s.stats.method,
-        model.duration,
-        model.floor.kind(),
-        model.constants.period,
-        model.constants.uplift_displacement
+        "flexrock {VERSION}: {} solution over {} s, T = {:.4} s, s_n = {:.6} m",
+        s.stats.method, model.duration, model.constants.period, model.constants.uplift_displacement
     );
+    let _ = writeln!(t, "  excitation: {}", excitation_text(model.floor.as_ref()));
     let _ = writeln!(
         t,
         "  max q = {:.9} m at t = {:.9} s; min q = {:.9} m at t = {:.9} s",
@@ -243,12 +326,15 @@ pub fn run_report_text(model: &Model, report: &RunReport) -> String {
     );
     let _ = writeln!(
         t,
-        "  {} uplifts, {} landings{}",
-        s.count(EventKind::Uplift),
-        s.count(EventKind::Landing),
+        "  {}, {}, {}",
+        counted(s.count(EventKind::Uplift), "uplift"),
+        counted(s.count(EventKind::Landing), "landing"),
         match s.t_overturn {
-            Some(to) => format!(", overturned at t = {to:.9} s"),
-            None => ", no overturning".to_string(),
+            Some(to) => format!("overturned at t = {to:.9} s"),
+            None if s.ended_while_rocking() => {
+                "ended while rocking; no overturning within the duration".to_string()
+            }
+            None => "no overturning".to_string(),
         }
     );
     let _ = writeln!(

@@ -71,12 +71,21 @@ pub struct Solution {
     pub final_mode: Mode,
     /// Largest |energy_residual| over the samples, J.
     pub max_energy_residual: f64,
+    /// The size of the energies the residual is measured against, J: the largest of the SDOF
+    /// energy, the input work and the damping work over the samples.
+    pub energy_scale: f64,
     pub stats: SolverStats,
 }
 
 impl Solution {
     pub fn count(&self, kind: EventKind) -> usize {
         self.events.iter().filter(|e| e.kind == kind).count()
+    }
+
+    /// True when the run ended with the body rocking: it did not overturn within the duration,
+    /// but nothing says it would not have later.
+    pub fn ended_while_rocking(&self) -> bool {
+        matches!(self.final_mode, Mode::RockRight | Mode::RockLeft)
     }
 }
 
@@ -96,6 +105,7 @@ pub struct Recorder<'a> {
     initial_energy: f64,
     event_jumps: f64,
     max_energy_residual: f64,
+    energy_scale: f64,
     t_overturn: Option<f64>,
 }
 
@@ -110,6 +120,7 @@ impl<'a> Recorder<'a> {
             initial_energy: Self::energy(automaton, mode, q0, qdot0),
             event_jumps: 0.0,
             max_energy_residual: 0.0,
+            energy_scale: 0.0,
             t_overturn: None,
         }
     }
@@ -132,10 +143,14 @@ impl<'a> Recorder<'a> {
         work_damping: f64,
     ) {
         let a = self.automaton;
-        let residual = Self::energy(a, mode, q, qdot) - self.initial_energy - work_input
-            + work_damping
-            - self.event_jumps;
+        let energy = Self::energy(a, mode, q, qdot);
+        let residual = energy - self.initial_energy - work_input + work_damping - self.event_jumps;
         self.max_energy_residual = self.max_energy_residual.max(residual.abs());
+        self.energy_scale = self
+            .energy_scale
+            .max(energy.abs())
+            .max(work_input.abs())
+            .max(work_damping.abs());
         self.peak_candidate(t, q);
         self.samples.push(Sample {
             t,
@@ -210,6 +225,7 @@ impl<'a> Recorder<'a> {
             final_time,
             final_mode,
             max_energy_residual: self.max_energy_residual,
+            energy_scale: self.energy_scale,
             stats,
         }
     }

@@ -5,6 +5,17 @@ use std::f64::consts::PI;
 
 use serde::Serialize;
 
+/// Largest floor acceleration a model may have, m/s^2: 20 g. No earthquake record and no seismic
+/// shaking table comes near it (the largest recorded ground accelerations are a few g), and far
+/// beyond it the numbers stop meaning anything (a floor of 1e150 m/s^2 left one method running
+/// forever).
+pub const MAX_FLOOR_ACCELERATION: f64 = 20.0 * crate::model::STANDARD_GRAVITY;
+
+/// Shortest period of an analytic floor motion, s: 1 ms, far above any frequency of earthquake or
+/// shaking-table motion, and a motion faster than that would take the solvers millions of steps
+/// per simulated second.
+pub const MIN_EXCITATION_PERIOD: f64 = 1e-3;
+
 /// A prescribed horizontal floor acceleration a(t) = u0''(t).
 pub trait FloorMotion: Send + Sync {
     /// Floor acceleration at time `t` (s), m/s^2.
@@ -15,6 +26,9 @@ pub trait FloorMotion: Send + Sync {
     fn breakpoints(&self) -> &[f64] {
         &[]
     }
+
+    /// Largest |a(t)| over the motion, m/s^2 (for a pulse of less than a quarter cycle, a bound).
+    fn peak_acceleration(&self) -> f64;
 
     /// A short name for reports, e.g. `paper-sine`.
     fn kind(&self) -> &'static str;
@@ -29,6 +43,9 @@ pub struct Free;
 
 impl FloorMotion for Free {
     fn acceleration(&self, _t: f64) -> f64 {
+        0.0
+    }
+    fn peak_acceleration(&self) -> f64 {
         0.0
     }
     fn kind(&self) -> &'static str {
@@ -49,6 +66,9 @@ pub struct Harmonic {
 impl FloorMotion for Harmonic {
     fn acceleration(&self, t: f64) -> f64 {
         self.amplitude * (2.0 * PI * t / self.period).sin()
+    }
+    fn peak_acceleration(&self) -> f64 {
+        self.amplitude.abs()
     }
     fn kind(&self) -> &'static str {
         "harmonic"
@@ -95,6 +115,27 @@ impl FloorMotion for PaperSine {
     }
     fn breakpoints(&self) -> &[f64] {
         &self.breakpoints
+    }
+    fn peak_acceleration(&self) -> f64 {
+        // The cubic's extremes on [0, ramp]: its ends and the roots of c1 + 2 c2 t + 3 c3 t^2.
+        let [c1, c2, c3] = self.ramp_coefficients;
+        let cubic = |t: f64| t * (c1 + t * (c2 + t * c3));
+        let mut peak = self.amplitude.abs().max(cubic(self.ramp).abs());
+        let discriminant = 4.0 * c2 * c2 - 12.0 * c1 * c3;
+        if discriminant >= 0.0 && c3 != 0.0 {
+            for sign in [-1.0, 1.0] {
+                let t = (-2.0 * c2 + sign * discriminant.sqrt()) / (6.0 * c3);
+                if t > 0.0 && t < self.ramp {
+                    peak = peak.max(cubic(t).abs());
+                }
+            }
+        }
+        // Coefficients that overflowed make the motion meaningless: say so through the peak.
+        if [c1, c2, c3].iter().all(|c| c.is_finite()) {
+            peak
+        } else {
+            f64::INFINITY
+        }
     }
     fn kind(&self) -> &'static str {
         "paper-sine"

@@ -63,6 +63,9 @@ impl FloorMotion for SinePulse {
     fn breakpoints(&self) -> &[f64] {
         &self.breakpoints
     }
+    fn peak_acceleration(&self) -> f64 {
+        self.amplitude.abs()
+    }
     fn kind(&self) -> &'static str {
         "sine-pulse"
     }
@@ -95,6 +98,10 @@ impl FloorMotion for Ricker {
         let x = PI * (t - self.center) / self.period;
         let x2 = x * x;
         self.amplitude * (1.0 - 2.0 * x2) * (-x2).exp()
+    }
+    fn peak_acceleration(&self) -> f64 {
+        // (1 - 2 x^2) exp(-x^2) is largest in size at x = 0.
+        self.amplitude.abs()
     }
     fn kind(&self) -> &'static str {
         "ricker"

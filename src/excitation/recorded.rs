@@ -71,6 +71,9 @@ impl FloorMotion for RecordedMotion {
     fn breakpoints(&self) -> &[f64] {
         &self.sample_times
     }
+    fn peak_acceleration(&self) -> f64 {
+        self.peak().0
+    }
     fn kind(&self) -> &'static str {
         "record"
     }

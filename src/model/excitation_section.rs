@@ -7,6 +7,7 @@ use crate::body::positive;
 use crate::error::{Error, Result};
 use crate::excitation::{
     FloorMotion, Free, Harmonic, PaperSine, PulseShape, RecordedMotion, Ricker, SinePulse,
+    MAX_FLOOR_ACCELERATION, MIN_EXCITATION_PERIOD,
 };
 use crate::record::{read_record, RecordFormat};
 
@@ -94,8 +95,14 @@ pub(super) fn floor_from_section(
         ));
     }
     let period = s.period.unwrap_or(1.0);
-    if allowed.contains(&"period") {
-        positive("excitation.period", period)?;
+    if allowed.contains(&"period")
+        && (period.is_nan() || !period.is_finite() || period < MIN_EXCITATION_PERIOD)
+    {
+        return Err(Error::invalid(
+            "excitation.period",
+            period,
+            &format!("must be a finite number of at least {MIN_EXCITATION_PERIOD} s"),
+        ));
     }
     let floor: Box<dyn FloorMotion> = match kind {
         "paper-sine" => {
@@ -137,11 +144,39 @@ pub(super) fn floor_from_section(
         }
         "record" => {
             let (record, tail) = recorded_motion(s, base_dir)?;
+            let peak = record.peak_acceleration();
+            if peak.is_nan() || peak > MAX_FLOOR_ACCELERATION {
+                return Err(Error::invalid(
+                    "excitation.scale",
+                    s.scale.unwrap_or(1.0),
+                    &format!(
+                        "makes the record's peak floor acceleration {peak:.6e} m/s^2, beyond the limit of \
+                         {MAX_FLOOR_ACCELERATION:.1} m/s^2 (20 g)"
+                    ),
+                ));
+            }
             let length = record.end() + tail;
             return Ok((Box::new(record), Some(length)));
         }
         _ => Box::new(Free),
     };
+    let peak = floor.peak_acceleration();
+    if peak.is_nan() || peak > MAX_FLOOR_ACCELERATION {
+        // Within the limit the amplitude itself, beyond it the paper-sine's ramp, is to blame.
+        let (key, value) = if amplitude.abs() > MAX_FLOOR_ACCELERATION {
+            ("excitation.amplitude", amplitude)
+        } else {
+            ("excitation.ramp", s.ramp.unwrap_or(0.0))
+        };
+        return Err(Error::invalid(
+            key,
+            value,
+            &format!(
+                "gives a peak floor acceleration of {peak:.6e} m/s^2, beyond the limit of \
+                 {MAX_FLOOR_ACCELERATION:.1} m/s^2 (20 g)"
+            ),
+        ));
+    }
     Ok((floor, None))
 }
 
@@ -242,7 +277,7 @@ fn recorded_motion(s: &ExcitationSection, base_dir: &Path) -> Result<(RecordedMo
     Ok((
         RecordedMotion::new(
             format!(
-                "{} (samples {}..={} of {})",
+                "{} (samples {}..={} of {}, {units} x {unit_factor} x scale {scale})",
                 relative,
                 first,
                 last,

@@ -162,6 +162,8 @@ pub const DEFAULT_GRAVITY: f64 = 9.81;
 pub const DEFAULT_RTOL: f64 = 1e-10;
 pub const DEFAULT_ATOL: f64 = 1e-12;
 pub const DEFAULT_OUTPUT_DT: f64 = 0.005;
+/// Longest simulated time, s.
+pub const MAX_DURATION: f64 = 1e4;
 
 /// A validated model, ready to run.
 pub struct Model {
@@ -257,6 +259,13 @@ impl Model {
             }
         };
         positive("simulation.duration", duration)?;
+        if duration > MAX_DURATION {
+            return Err(Error::invalid(
+                "simulation.duration",
+                duration,
+                &format!("must be at most {MAX_DURATION:e} s: no earthquake or shaking-table test lasts nearly that long"),
+            ));
+        }
         let initial = initial_from_section(&file.simulation, &body)?;
         let solver = solver_from_section(&file.solver, duration, constants.omega, body.width)?;
         let fem = fem_from_section(&file, &body, &constants, duration)?;
