@@ -293,6 +293,8 @@ fn excitation_text(floor: &dyn FloorMotion) -> String {
     if let serde_json::Value::Object(map) = floor.parameters() {
         for (key, value) in map {
             match value {
+                // The peak is printed below, for every kind.
+                serde_json::Value::Number(_) if key == "pga" || key == "t_pga" => {}
                 serde_json::Value::Number(n) => parts.push(format!("{key} = {n}")),
                 serde_json::Value::String(text) if key != "kind" => {
                     parts.push(format!("{key} = {text}"))
