@@ -495,3 +495,27 @@ fn a_large_energy_residual_is_a_warning() {
     ]);
     assert!(!String::from_utf8_lossy(&o.stderr).contains("energy residual"));
 }
+
+#[test]
+fn a_record_model_needs_no_simulation_table() {
+    let dir = common::scratch_dir("no-simulation");
+    let text = format!(
+        "{}\n[excitation]\nkind = \"record\"\npath = \"{}\"\n",
+        GOOD.split("\n\n[excitation]").next().unwrap(),
+        common::repo("validation/records/elCentro.AT2").display()
+    );
+    std::fs::write(dir.join("model.toml"), text).unwrap();
+    let o = flexrock(&[
+        "run",
+        dir.join("model.toml").to_str().unwrap(),
+        "--out",
+        dir.join("out").to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    // Without a record the duration is still required, and the message says so.
+    let stderr = refused(
+        "no-simulation-harmonic",
+        GOOD.split("\n[simulation]").next().unwrap(),
+    );
+    assert_mentions(&stderr, &["simulation.duration", "required"]);
+}

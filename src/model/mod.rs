@@ -39,6 +39,8 @@ use crate::solver::{InitialState, SolverSettings};
 pub struct ModelFile {
     pub body: BodySection,
     pub excitation: ExcitationSection,
+    /// Every key of it is optional for records, so the table may be left out.
+    #[serde(default)]
     pub simulation: SimulationSection,
     #[serde(default)]
     pub solver: SolverSection,
@@ -95,7 +97,7 @@ pub struct ExcitationSection {
     pub dt: Option<f64>,
 }
 
-#[derive(Debug, Clone, Deserialize, Serialize)]
+#[derive(Debug, Clone, Default, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct SimulationSection {
     /// Required, except for records, where it defaults to the record length plus `tail`.
