@@ -164,6 +164,8 @@ pub const DEFAULT_GRAVITY: f64 = 9.81;
 pub const DEFAULT_RTOL: f64 = 1e-10;
 pub const DEFAULT_ATOL: f64 = 1e-12;
 pub const DEFAULT_OUTPUT_DT: f64 = 0.005;
+/// Largest initial top velocity, m/s.
+pub const MAX_INITIAL_VELOCITY: f64 = 100.0;
 /// Longest simulated time, s.
 pub const MAX_DURATION: f64 = 1e4;
 
@@ -454,11 +456,14 @@ fn initial_from_section(s: &SimulationSection, body: &Body) -> Result<InitialSta
             ),
         ));
     }
-    if !qdot.is_finite() {
+    if qdot.is_nan() || qdot.abs() > MAX_INITIAL_VELOCITY {
         return Err(Error::invalid(
             "simulation.qdot0",
             qdot,
-            "must be a finite number",
+            &format!(
+                "must lie within +-{MAX_INITIAL_VELOCITY} m/s: far beyond any velocity a floor gives a body \
+                 (earthquake ground velocities stay within a few m/s)"
+            ),
         ));
     }
     Ok(InitialState { q, qdot })
