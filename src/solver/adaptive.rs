@@ -235,6 +235,13 @@ struct StepStart {
     work: [f64; NOUT],
 }
 
+/// The history's grid and the buffers its samples are interpolated into, allocated once.
+struct Sampler {
+    grid: OutputGrid,
+    y: Vector,
+    work: Vector,
+}
+
 /// What one accepted step holds.
 enum Crossing {
     /// No guard crossed; a root of q' (a peak of q) inside, if any.
@@ -289,19 +296,13 @@ impl<'d> Driver<'d> {
             .map_err(|e| self.error(0.0, e))?;
 
         let y0 = solver.state().y.clone();
-        // Buffers for dense output, allocated once.
-        let mut y_buf = y0.clone();
-        let mut work_buf = solver.state().g.clone();
         let mut recorder = Recorder::new(automaton, 0.0, y0[0], y0[1], self.mode.get());
-        let mut grid = OutputGrid::new(end, self.settings.output_dt);
-        self.emit(
-            &solver,
-            &mut recorder,
-            &mut grid,
-            (&mut y_buf, &mut work_buf),
-            0.0,
-            true,
-        )?;
+        let mut sampler = Sampler {
+            grid: OutputGrid::new(end, self.settings.output_dt),
+            y: y0.clone(),
+            work: solver.state().g.clone(),
+        };
+        self.emit(&solver, &mut recorder, &mut sampler, 0.0, true)?;
 
         // A start on a guard, moving across it, is an event at t = 0.
         if let Some(guard) = automaton.crossed_guard(self.mode.get(), y0[0], y0[1]) {
@@ -347,14 +348,7 @@ impl<'d> Driver<'d> {
                     if let Some((t_peak, q_peak)) = peak {
                         recorder.peak_candidate(t_peak, q_peak);
                     }
-                    self.emit(
-                        &solver,
-                        &mut recorder,
-                        &mut grid,
-                        (&mut y_buf, &mut work_buf),
-                        t,
-                        false,
-                    )?;
+                    self.emit(&solver, &mut recorder, &mut sampler, t, false)?;
                     if self.apply_event(&mut solver, &mut recorder, t, guard, true)? {
                         return Ok((recorder, t, self.stats(&solver, crossing_retries)));
                     }
@@ -375,28 +369,14 @@ impl<'d> Driver<'d> {
                     if let Some((t_peak, q_peak)) = peak {
                         recorder.peak_candidate(t_peak, q_peak);
                     }
-                    self.emit(
-                        &solver,
-                        &mut recorder,
-                        &mut grid,
-                        (&mut y_buf, &mut work_buf),
-                        step_end,
-                        true,
-                    )?;
+                    self.emit(&solver, &mut recorder, &mut sampler, step_end, true)?;
                     if matches!(reason, OdeSolverStopReason::TstopReached)
                         || at_stop(step_end, stop)
                     {
                         self.snap_to_stop(&mut solver, stop, step_end - start.t);
                         let now = solver.state().t;
                         // A grid time at the stop, if the step ended just short of it.
-                        self.emit(
-                            &solver,
-                            &mut recorder,
-                            &mut grid,
-                            (&mut y_buf, &mut work_buf),
-                            now,
-                            true,
-                        )?;
+                        self.emit(&solver, &mut recorder, &mut sampler, now, true)?;
                         if stop_index + 1 == stops.len() {
                             recorder.peak_candidate(now, solver.state().y[0]);
                             return Ok((recorder, now, self.stats(&solver, crossing_retries)));
@@ -560,8 +540,7 @@ impl<'d> Driver<'d> {
         &self,
         solver: &S,
         recorder: &mut Recorder<'d>,
-        grid: &mut OutputGrid,
-        buffers: (&mut Vector, &mut Vector),
+        sampler: &mut Sampler,
         until: f64,
         inclusive: bool,
     ) -> Result<()>
@@ -570,7 +549,7 @@ impl<'d> Driver<'d> {
         S: OdeSolverMethod<'a, Eqn>,
     {
         let me = self.automaton.generalised_mass();
-        let (y, work) = buffers;
+        let Sampler { grid, y, work } = sampler;
         while let Some(t) = grid.peek() {
             if t > until || (!inclusive && t == until) {
                 break;
