@@ -12,7 +12,7 @@ use serde::Serialize;
 use crate::compare::{compare, max_event_shift};
 use crate::error::Result;
 use crate::model::Model;
-use crate::output::{self, number, Table};
+use crate::output::{self, count, number, readable, scientific, Table};
 use crate::plot::{self, Legend, Panel, Series};
 use crate::run::{simulate_with, VERSION};
 use crate::solution::SolverStats;
@@ -409,8 +409,11 @@ pub fn converge_text(report: &ConvergeReport) -> String {
     let mut t = String::new();
     let _ = writeln!(
         t,
-        "flexrock {VERSION} converge: reference {} at rtol = {:e} ({} events, {} steps)",
-        s.reference_method, s.reference_rtol, s.reference_events, s.reference_statistics.steps
+        "flexrock {VERSION} converge: reference {} at rtol = {:e} ({}, {})",
+        s.reference_method,
+        s.reference_rtol,
+        count(s.reference_events, "event", "events"),
+        count(s.reference_statistics.steps, "step", "steps")
     );
     let _ = writeln!(
         t,
@@ -433,8 +436,8 @@ pub fn converge_text(report: &ConvergeReport) -> String {
                 t,
                 "  {:<19} {:>10} {:>7}  failed: {}",
                 c.method,
-                optional(c.dt, &|v| format!("{v}")),
-                optional(c.rtol, &|v| format!("{v:.0e}")),
+                optional(c.dt, &readable),
+                optional(c.rtol, &scientific),
                 c.status
             );
             continue;
@@ -443,8 +446,8 @@ pub fn converge_text(report: &ConvergeReport) -> String {
             t,
             "  {:<19} {:>10} {:>7} {:>11.3e} {:>11.3e} {:>11.3e} {:>+6} {:>8} {:>9} {:>9.2}",
             c.method,
-            optional(c.dt, &|v| format!("{v}")),
-            optional(c.rtol, &|v| format!("{v:.0e}")),
+            optional(c.dt, &readable),
+            optional(c.rtol, &scientific),
             c.max_q_error,
             c.max_event_time_error,
             c.peak_error,
@@ -466,8 +469,10 @@ pub fn converge_text(report: &ConvergeReport) -> String {
         };
         let _ = writeln!(
             t,
-            "  {:<19} {:<21} {meaning:<20} ({} points)",
-            o.method, o.metric, o.points
+            "  {:<19} {:<21} {meaning:<20} ({})",
+            o.method,
+            o.metric,
+            count(o.points, "point", "points")
         );
     }
     for f in &report.files {

@@ -42,7 +42,7 @@ pub enum Error {
     },
 
     /// The integrator could not continue.
-    #[error("the {method} solver failed at t = {t} s: {message}")]
+    #[error("the {method} solver failed at t = {} s: {message}", crate::output::readable(*.t))]
     Solver {
         method: String,
         t: f64,
@@ -70,12 +70,47 @@ pub enum Error {
     },
 }
 
+/// A value quoted in an error message. Numbers appear in their shortest exact form
+/// ([`crate::output::shortest`]), so that 1e300 reads `1e300`, not 301 digits.
+pub trait Quoted {
+    fn quoted(&self) -> String;
+}
+
+impl Quoted for f64 {
+    fn quoted(&self) -> String {
+        crate::output::shortest(*self)
+    }
+}
+
+impl Quoted for f32 {
+    fn quoted(&self) -> String {
+        crate::output::shortest(f64::from(*self))
+    }
+}
+
+macro_rules! quoted_by_display {
+    ($($t:ty),*) => {
+        $(impl Quoted for $t {
+            fn quoted(&self) -> String {
+                self.to_string()
+            }
+        })*
+    };
+}
+quoted_by_display!(usize, u8, u16, u32, u64, isize, i8, i16, i32, i64, bool, char, str, String);
+
+impl<T: Quoted + ?Sized> Quoted for &T {
+    fn quoted(&self) -> String {
+        (**self).quoted()
+    }
+}
+
 impl Error {
-    /// Shorthand for [`Error::InvalidParameter`].
-    pub fn invalid(key: &str, value: impl std::fmt::Display, rule: &str) -> Self {
+    /// Shorthand for [`Error::InvalidParameter`]; numbers are quoted in their shortest form.
+    pub fn invalid(key: &str, value: impl Quoted, rule: &str) -> Self {
         Error::InvalidParameter {
             key: key.to_string(),
-            value: value.to_string(),
+            value: value.quoted(),
             rule: rule.to_string(),
         }
     }

@@ -131,6 +131,11 @@ const RELATIVE_DT_TOLERANCE: f64 = 1e-6;
 /// Longest piece of file text quoted in a message, in characters.
 const MAX_QUOTED_CHARS: usize = 80;
 
+/// A number in a message (shortest exact form: `1e-300`, not 300 zeros).
+fn shown(x: f64) -> String {
+    crate::output::shortest(x)
+}
+
 /// Everything that can go wrong reading a record. Each message names the file (and line).
 #[derive(Debug, thiserror::Error)]
 pub enum RecordError {
@@ -166,10 +171,10 @@ pub enum RecordError {
     #[error("{at}: NPTS must be > 0, found {found}")]
     InvalidCount { at: Location, found: usize },
 
-    #[error("{at}: dt must be > 0, found {found}")]
+    #[error("{at}: dt must be > 0, found {}", shown(*.found))]
     InvalidDt { at: Location, found: f64 },
 
-    #[error("{at}: dt must be a finite number, found {found}")]
+    #[error("{at}: dt must be a finite number, found {}", shown(*.found))]
     NonFiniteDt { at: Location, found: f64 },
 
     #[error("{at}: value {token:?} is not a number")]
@@ -216,16 +221,17 @@ pub enum RecordError {
     #[error("{file}: a time column needs at least 2 rows to give dt, found 1")]
     TooFewRowsForDt { file: String },
 
-    #[error("{at}: the time column must start at 0, found {found}")]
+    #[error("{at}: the time column must start at 0, found {}", shown(*.found))]
     TimeNotFromZero { at: Location, found: f64 },
 
     #[error(
-        "{at}: time step {step} differs from the mean step {mean} by more than 1e-6 relative \
-         (the time column must be uniformly spaced)"
+        "{at}: time step {} differs from the mean step {} by more than 1e-6 relative \
+         (the time column must be uniformly spaced)",
+        shown(*.step), shown(*.mean)
     )]
     NonUniformTime { at: Location, step: f64, mean: f64 },
 
-    #[error("{file}: dt given as {given} but the file says {found}")]
+    #[error("{file}: dt given as {} but the file says {}", shown(*.given), shown(*.found))]
     DtConflict {
         file: String,
         given: f64,

@@ -5,7 +5,7 @@ use std::path::Path;
 
 use crate::error::{Error, Result};
 use crate::model::STANDARD_GRAVITY;
-use crate::output::{number, Table};
+use crate::output::{number, readable, Table};
 use crate::record::{read_record, Record, RecordFormat};
 
 /// Reads a record for the `record` commands (format by extension unless given).
@@ -58,19 +58,19 @@ pub fn info_text(record: &Record, units: &str) -> Result<String> {
         );
     }
     let _ = writeln!(t, "points     {}", record.values.len());
-    let _ = writeln!(t, "dt         {} s", record.dt);
+    let _ = writeln!(t, "dt         {} s", readable(record.dt));
     let _ = writeln!(
         t,
         "duration   {} s (first sample at t = 0)",
-        record.duration()
+        readable(record.duration())
     );
-    let _ = writeln!(t, "units      {units} (1 {units} = {factor} m/s^2)");
+    let _ = writeln!(t, "units      {units} (1 {units} = {} m/s^2)", readable(factor));
     let _ = writeln!(
         t,
         "PGA        {:.6} g = {:.6} m/s^2 at t = {} s",
         peak_si / STANDARD_GRAVITY,
         peak_si,
-        t_peak
+        readable(t_peak)
     );
     Ok(t)
 }

@@ -452,10 +452,10 @@ pub enum FemError {
     ContactNotConverged { context: String },
 }
 
-fn invalid(name: &'static str, value: impl ToString, rule: &'static str) -> FemError {
+fn invalid(name: &'static str, value: impl crate::error::Quoted, rule: &'static str) -> FemError {
     FemError::InvalidParameter {
         name,
-        value: value.to_string(),
+        value: value.quoted(),
         rule,
     }
 }
