@@ -1,5 +1,6 @@
 //! The `flexrock` command: parses arguments, calls the library, maps errors to exit codes.
 
+use std::io::Write as _;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -189,40 +190,82 @@ struct RecordOptions {
     dt: Option<f64>,
 }
 
-/// Exit code for bad input (model file, parameters).
+/// Exit code for bad input (model file, parameters): nothing was written.
 const EXIT_INPUT: u8 = 2;
-/// Exit code for a failure of the computation or of writing results.
+/// Exit code for a failure of the computation or of writing results (standard output included).
 const EXIT_FAILURE: u8 = 1;
 
-fn main() -> ExitCode {
-    let cli = Cli::parse();
-    match execute(cli.command) {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(e) => {
-            eprintln!("error: {e}");
-            ExitCode::from(if e.is_input_error() {
-                EXIT_INPUT
-            } else {
-                EXIT_FAILURE
-            })
+/// What a command has to say: its text for standard output and its warnings for standard error.
+#[derive(Default)]
+struct Output {
+    stdout: Vec<u8>,
+    warnings: Vec<String>,
+}
+
+impl Output {
+    fn text(text: impl Into<String>) -> Self {
+        Output {
+            stdout: text.into().into_bytes(),
+            warnings: Vec::new(),
         }
     }
 }
 
-fn execute(command: Command) -> flexrock::Result<()> {
-    match command {
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let output = match execute(cli.command) {
+        Ok(output) => output,
+        Err(e) => {
+            write_stderr(&format!("error: {e}\n"));
+            return ExitCode::from(if e.is_input_error() {
+                EXIT_INPUT
+            } else {
+                EXIT_FAILURE
+            });
+        }
+    };
+    for warning in &output.warnings {
+        write_stderr(&format!("warning: {warning}\n"));
+    }
+    match write_stdout(&output.stdout) {
+        Ok(()) => ExitCode::SUCCESS,
+        // The reader went away (`flexrock ... | head`): what it did not read it did not want.
+        // End quietly and successfully, as other Unix tools do.
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => ExitCode::SUCCESS,
+        Err(e) => {
+            write_stderr(&format!("error: cannot write standard output: {e}\n"));
+            ExitCode::from(EXIT_FAILURE)
+        }
+    }
+}
+
+/// The one place where command output reaches standard output: written whole and flushed, so
+/// that every failure (a full disk, a closed pipe) is seen here.
+fn write_stdout(bytes: &[u8]) -> std::io::Result<()> {
+    let mut out = std::io::stdout().lock();
+    out.write_all(bytes)?;
+    out.flush()
+}
+
+/// Messages to standard error. A failure to write them cannot be reported anywhere, so it is
+/// ignored (the exit code still tells).
+fn write_stderr(text: &str) {
+    let mut err = std::io::stderr().lock();
+    let _ = err.write_all(text.as_bytes());
+    let _ = err.flush();
+}
+
+fn execute(command: Command) -> flexrock::Result<Output> {
+    Ok(match command {
         Command::Props { model, json } => {
             let model = Model::load(&model, &Overrides::default())?;
             if json {
-                println!(
-                    "{}",
-                    String::from_utf8_lossy(&flexrock::output::json_bytes(
-                        &flexrock::run::properties(&model)
-                    ))
-                    .trim_end()
-                );
+                Output {
+                    stdout: flexrock::output::json_bytes(&flexrock::run::properties(&model)),
+                    warnings: Vec::new(),
+                }
             } else {
-                print!("{}", flexrock::run::properties_table(&model));
+                Output::text(flexrock::run::properties_table(&model))
             }
         }
         Command::Run {
@@ -246,22 +289,25 @@ fn execute(command: Command) -> flexrock::Result<()> {
             let model = Model::load(&path, &overrides)?;
             let out = out.unwrap_or_else(|| default_out_dir(&path, ""));
             let report = flexrock::run::run(&model, &out)?;
-            print!("{}", flexrock::run::run_report_text(&model, &report));
+            Output::text(flexrock::run::run_report_text(&model, &report))
         }
         Command::Record { command } => match command {
             RecordCommand::Info { file, options } => {
                 let record = record_tools::load(&file, options.format.as_deref(), options.dt)?;
-                print!("{}", record_tools::info_text(&record, &options.units)?);
+                Output::text(record_tools::info_text(&record, &options.units)?)
             }
             RecordCommand::Csv { file, options, out } => {
                 let record = record_tools::load(&file, options.format.as_deref(), options.dt)?;
                 let bytes = record_tools::csv_bytes(&record, &options.units)?;
                 match out {
-                    Some(path) => flexrock::output::write_file_atomically(&path, &bytes)?,
-                    None => {
-                        use std::io::Write;
-                        let _ = std::io::stdout().write_all(&bytes);
+                    Some(path) => {
+                        flexrock::output::write_file_atomically(&path, &bytes)?;
+                        Output::default()
                     }
+                    None => Output {
+                        stdout: bytes,
+                        warnings: Vec::new(),
+                    },
                 }
             }
         },
@@ -281,7 +327,7 @@ fn execute(command: Command) -> flexrock::Result<()> {
             };
             let out = out.unwrap_or_else(|| default_out_dir(&path, "-compare"));
             let report = flexrock::compare::run_compare(&model, &options, &out)?;
-            print!("{}", flexrock::compare::compare_text(&model, &report));
+            Output::text(flexrock::compare::compare_text(&model, &report))
         }
         Command::Converge {
             model: path,
@@ -299,7 +345,7 @@ fn execute(command: Command) -> flexrock::Result<()> {
             };
             let out = out.unwrap_or_else(|| default_out_dir(&path, "-converge"));
             let report = flexrock::converge::run_converge(&model, &options, &out)?;
-            print!("{}", flexrock::converge::converge_text(&report));
+            Output::text(flexrock::converge::converge_text(&report))
         }
         Command::Report {
             compare_compensate,
@@ -319,7 +365,7 @@ fn execute(command: Command) -> flexrock::Result<()> {
                 command,
             };
             let written = flexrock::report::write_report(&inputs, &out)?;
-            println!("wrote {}", written.display());
+            Output::text(format!("wrote {}\n", written.display()))
         }
         Command::Fem {
             model: path,
@@ -336,14 +382,14 @@ fn execute(command: Command) -> flexrock::Result<()> {
             let model = Model::load(&path, &Overrides::default())?;
             let setup = model.fem_with(&FemOverrides { nx, ny, scheme, dt })?;
             if modes {
-                print!("{}", fem::modes_text(&fem::modes(&model, &setup)?));
-                return Ok(());
+                return Ok(Output::text(fem::modes_text(&fem::modes(&model, &setup)?)));
             }
             if pushover {
                 let out = out.unwrap_or_else(|| default_out_dir(&path, "-pushover"));
                 let report = flexrock::fem::pushover_run::run(&model, &setup, &out)?;
-                print!("{}", flexrock::fem::pushover_run::report_text(&report));
-                return Ok(());
+                return Ok(Output::text(flexrock::fem::pushover_run::report_text(
+                    &report,
+                )));
             }
             let out = out.unwrap_or_else(|| default_out_dir(&path, "-fem"));
             let report = if compare {
@@ -351,13 +397,12 @@ fn execute(command: Command) -> flexrock::Result<()> {
             } else {
                 fem::fem(&model, &setup, &out)?
             };
-            for warning in &report.analysis.warnings {
-                eprintln!("warning: {warning}");
+            Output {
+                stdout: fem::report_text(&report).into_bytes(),
+                warnings: report.analysis.warnings.clone(),
             }
-            print!("{}", fem::report_text(&report));
         }
-    }
-    Ok(())
+    })
 }
 
 /// A model file with only the simulated time overridden (compare, converge).

@@ -5,10 +5,84 @@
 
 mod common;
 
-use common::{flexrock, reference_model, scratch_dir};
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+
+use common::{flexrock, reference_model, repo, scratch_dir};
+
+fn bin() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_flexrock"))
+}
 
 fn stderr_of(o: &std::process::Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+fn el_centro() -> PathBuf {
+    repo("validation/records/elCentro.AT2")
+}
+
+// --- 1. standard output ---------------------------------------------------------------------
+
+/// The commands that print, each with its arguments (the output directory of `run` inside
+/// `dir`).
+fn printing_commands(dir: &Path) -> Vec<Vec<String>> {
+    let model = reference_model().display().to_string();
+    let record = el_centro().display().to_string();
+    let out = dir.join("run-out").display().to_string();
+    [
+        vec!["props", &model],
+        vec!["props", &model, "--json"],
+        vec!["record", "info", &record],
+        vec!["record", "csv", &record],
+        vec!["run", &model, "--out", &out],
+    ]
+    .into_iter()
+    .map(|args| args.into_iter().map(String::from).collect())
+    .collect()
+}
+
+#[test]
+fn a_full_disk_on_standard_output_is_an_error_not_a_panic() {
+    let dir = scratch_dir("hostile-dev-full");
+    for args in printing_commands(&dir) {
+        let full = std::fs::OpenOptions::new()
+            .write(true)
+            .open("/dev/full")
+            .expect("/dev/full opens");
+        let o = bin()
+            .args(&args)
+            .stdout(Stdio::from(full))
+            .output()
+            .expect("the binary runs");
+        let stderr = stderr_of(&o);
+        assert_eq!(o.status.code(), Some(1), "{args:?}: {stderr}");
+        assert!(
+            stderr.contains("error: cannot write standard output: "),
+            "{args:?}: {stderr}"
+        );
+        assert!(!stderr.contains("panicked"), "{args:?}: {stderr}");
+    }
+}
+
+#[test]
+fn a_closed_pipe_on_standard_output_ends_quietly() {
+    let dir = scratch_dir("hostile-closed-pipe");
+    for args in printing_commands(&dir) {
+        let mut child = bin()
+            .args(&args)
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .expect("the binary runs");
+        // The reader goes away before reading anything.
+        drop(child.stdout.take());
+        let o = child.wait_with_output().expect("the binary ends");
+        let stderr = stderr_of(&o);
+        assert!(!stderr.contains("panicked"), "{args:?}: {stderr}");
+        assert_eq!(o.status.code(), Some(0), "{args:?}: {stderr}");
+        assert!(stderr.is_empty(), "{args:?}: {stderr}");
+    }
 }
 
 // --- 7. the program and its documents ------------------------------------------------------
