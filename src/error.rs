@@ -68,6 +68,16 @@ pub enum Error {
         #[source]
         source: std::io::Error,
     },
+
+    /// An output path names something flexrock must not replace (a directory, a device, a FIFO,
+    /// a socket, or a symbolic link to one), or an output directory that is not a directory.
+    #[error("{path}: {found}; {rule}")]
+    OutputTarget {
+        path: PathBuf,
+        /// What is there, e.g. "a FIFO (named pipe)".
+        found: String,
+        rule: String,
+    },
 }
 
 /// A value quoted in an error message. Numbers appear in their shortest exact form
@@ -124,6 +134,7 @@ impl Error {
                 | Error::ParseModel { .. }
                 | Error::InModel { .. }
                 | Error::Record { .. }
+                | Error::OutputTarget { .. }
                 | Error::Fem(crate::fem::FemError::InvalidParameter { .. })
         )
     }

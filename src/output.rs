@@ -159,11 +159,20 @@ pub fn json_bytes<T: serde::Serialize>(value: &T) -> Vec<u8> {
 
 /// Writes a set of files into `dir` so that each appears whole or not at all: every file is first
 /// written and synced under a temporary name, and only when all are written are they renamed.
+///
+/// Before anything is written, every target is checked: an existing target must be a regular
+/// file (or a symbolic link to one, which is then replaced by the file); a directory, device,
+/// FIFO or socket (or a link to one) is refused with [`Error::OutputTarget`], an input error,
+/// and so is a `dir` that exists and is not a directory.
 pub fn write_atomically(dir: &Path, files: &[(&str, Vec<u8>)]) -> Result<Vec<PathBuf>> {
     let write_err = |path: &Path, source| Error::Write {
         path: path.to_path_buf(),
         source,
     };
+    check_output_dir(dir)?;
+    for (name, _) in files {
+        check_target(&dir.join(name))?;
+    }
     std::fs::create_dir_all(dir).map_err(|e| write_err(dir, e))?;
     let mut staged = Vec::new();
     let result = (|| {
@@ -190,20 +199,100 @@ pub fn write_atomically(dir: &Path, files: &[(&str, Vec<u8>)]) -> Result<Vec<Pat
     result
 }
 
-/// Writes one file atomically (see [`write_atomically`]).
+/// What a file system entry is, for messages: "a directory", "a FIFO (named pipe)", ...
+pub(crate) fn file_kind(file_type: std::fs::FileType) -> &'static str {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        if file_type.is_fifo() {
+            return "a FIFO (named pipe)";
+        }
+        if file_type.is_char_device() {
+            return "a character device";
+        }
+        if file_type.is_block_device() {
+            return "a block device";
+        }
+        if file_type.is_socket() {
+            return "a socket";
+        }
+    }
+    if file_type.is_dir() {
+        "a directory"
+    } else if file_type.is_file() {
+        "a regular file"
+    } else {
+        "a special file"
+    }
+}
+
+/// The rule of [`check_target`], as messages state it.
+const TARGET_RULE: &str = "flexrock replaces only regular files, never a directory, device, \
+     FIFO or socket (nor a symbolic link to one): remove it or choose another output path";
+
+/// An existing output target must be a regular file (after following symbolic links).
+fn check_target(path: &Path) -> Result<()> {
+    match std::fs::metadata(path) {
+        Ok(m) if m.is_file() => Ok(()),
+        Ok(m) => {
+            let linked = std::fs::symlink_metadata(path).is_ok_and(|l| l.file_type().is_symlink());
+            let kind = file_kind(m.file_type());
+            Err(Error::OutputTarget {
+                path: path.to_path_buf(),
+                found: if linked {
+                    format!("is a symbolic link to {kind}")
+                } else {
+                    format!("is {kind}")
+                },
+                rule: TARGET_RULE.to_string(),
+            })
+        }
+        // Nothing there, or a dangling symbolic link (replaced by the file).
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(()),
+        Err(e) => Err(Error::Write {
+            path: path.to_path_buf(),
+            source: e,
+        }),
+    }
+}
+
+/// An existing output directory must be a directory.
+fn check_output_dir(dir: &Path) -> Result<()> {
+    match std::fs::metadata(dir) {
+        Ok(m) if !m.is_dir() => Err(Error::OutputTarget {
+            path: dir.to_path_buf(),
+            found: format!("is {}", file_kind(m.file_type())),
+            rule: "the output directory must be a directory (or not exist yet)".to_string(),
+        }),
+        _ => Ok(()),
+    }
+}
+
+/// Writes one file atomically (see [`write_atomically`]): a regular file is replaced whole or
+/// left as it was; anything else at `path` is refused before anything is written.
 pub fn write_file_atomically(path: &Path, bytes: &[u8]) -> Result<()> {
     let dir = match path.parent() {
         Some(d) if !d.as_os_str().is_empty() => d,
         _ => Path::new("."),
     };
-    let name = path
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .ok_or_else(|| Error::Write {
-            path: path.to_path_buf(),
-            source: std::io::Error::new(std::io::ErrorKind::InvalidInput, "not a file name"),
-        })?;
-    write_atomically(dir, &[(name.as_str(), bytes.to_vec())]).map(|_| ())
+    let Some(name) = path.file_name().and_then(|n| n.to_str()) else {
+        // "/", "..", "dir/.." or a name that is not UTF-8.
+        return match std::fs::metadata(path) {
+            Ok(m) if !m.is_file() => Err(Error::OutputTarget {
+                path: path.to_path_buf(),
+                found: format!("is {}", file_kind(m.file_type())),
+                rule: TARGET_RULE.to_string(),
+            }),
+            _ => Err(Error::Write {
+                path: path.to_path_buf(),
+                source: std::io::Error::new(
+                    std::io::ErrorKind::InvalidInput,
+                    "not a file name flexrock can write (it must end in a UTF-8 file name)",
+                ),
+            }),
+        };
+    };
+    write_atomically(dir, &[(name, bytes.to_vec())]).map(|_| ())
 }
 
 #[cfg(test)]

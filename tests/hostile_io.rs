@@ -22,6 +22,40 @@ fn el_centro() -> PathBuf {
     repo("validation/records/elCentro.AT2")
 }
 
+fn assert_mentions(text: &str, words: &[&str]) {
+    for w in words {
+        assert!(text.contains(w), "expected {w:?} in: {text}");
+    }
+}
+
+/// Runs the binary and expects exit code 2 (bad input) without a panic; returns stderr.
+fn refused(args: &[&str]) -> String {
+    let o = flexrock(args);
+    let stderr = stderr_of(&o);
+    assert_eq!(o.status.code(), Some(2), "{args:?}: {stderr}");
+    assert!(!stderr.contains("panicked"), "{args:?}: {stderr}");
+    stderr
+}
+
+/// mkfifo PATH.
+fn make_fifo(path: &Path) {
+    let status = Command::new("mkfifo")
+        .arg(path)
+        .status()
+        .expect("mkfifo runs");
+    assert!(status.success());
+}
+
+fn is_fifo(path: &Path) -> bool {
+    use std::os::unix::fs::FileTypeExt;
+    std::fs::symlink_metadata(path).is_ok_and(|m| m.file_type().is_fifo())
+}
+
+fn is_char_device(path: &Path) -> bool {
+    use std::os::unix::fs::FileTypeExt;
+    std::fs::metadata(path).is_ok_and(|m| m.file_type().is_char_device())
+}
+
 // --- 1. standard output ---------------------------------------------------------------------
 
 /// The commands that print, each with its arguments (the output directory of `run` inside
@@ -83,6 +117,111 @@ fn a_closed_pipe_on_standard_output_ends_quietly() {
         assert_eq!(o.status.code(), Some(0), "{args:?}: {stderr}");
         assert!(stderr.is_empty(), "{args:?}: {stderr}");
     }
+}
+
+// --- 2. special files are never replaced ----------------------------------------------------
+
+#[test]
+fn a_fifo_as_output_is_refused_and_kept() {
+    let dir = scratch_dir("hostile-fifo-out");
+    let fifo = dir.join("el.csv");
+    make_fifo(&fifo);
+    let stderr = refused(&[
+        "record",
+        "csv",
+        el_centro().to_str().unwrap(),
+        "--out",
+        fifo.to_str().unwrap(),
+    ]);
+    assert_mentions(
+        &stderr,
+        &[fifo.to_str().unwrap(), "FIFO", "only regular files"],
+    );
+    assert!(is_fifo(&fifo), "the FIFO was replaced");
+    assert_eq!(common::file_names(&dir), ["el.csv"]);
+
+    // One file of a run's set: nothing of the set is written.
+    let out = dir.join("run");
+    std::fs::create_dir(&out).unwrap();
+    make_fifo(&out.join("events.csv"));
+    let stderr = refused(&[
+        "run",
+        reference_model().to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_mentions(&stderr, &["events.csv", "FIFO"]);
+    assert!(is_fifo(&out.join("events.csv")));
+    assert_eq!(common::file_names(&out), ["events.csv"]);
+}
+
+/// A character device to write to: a private copy of /dev/null (`mknod`, which needs root)
+/// where the test can make one, else /dev/null itself. Never /dev/null as root: a flexrock
+/// that replaced devices would replace the system's /dev/null (as flexrock 0.1.0 did), while
+/// without root it cannot write into /dev at all.
+fn char_device(dir: &Path) -> PathBuf {
+    let private = dir.join("null");
+    let made = Command::new("mknod")
+        .args([private.to_str().unwrap(), "c", "1", "3"])
+        .stderr(Stdio::null())
+        .status()
+        .is_ok_and(|s| s.success());
+    if made {
+        return private;
+    }
+    let root = std::fs::read_to_string("/proc/self/status").is_ok_and(|s| {
+        s.lines()
+            .any(|l| l.starts_with("Uid:") && l.split_whitespace().nth(1) == Some("0"))
+    });
+    assert!(
+        !root,
+        "as root the test needs mknod, not the system's /dev/null"
+    );
+    PathBuf::from("/dev/null")
+}
+
+#[test]
+fn a_device_as_output_is_refused_and_kept() {
+    let dir = scratch_dir("hostile-device-out");
+    let record = el_centro();
+    let device = char_device(&dir);
+    let stderr = refused(&[
+        "record",
+        "csv",
+        record.to_str().unwrap(),
+        "--out",
+        device.to_str().unwrap(),
+    ]);
+    assert_mentions(&stderr, &[device.to_str().unwrap(), "character device"]);
+    assert!(is_char_device(&device), "{device:?} was replaced");
+
+    // A symbolic link to a device is not followed into it, nor replaced.
+    let link = dir.join("null.csv");
+    std::os::unix::fs::symlink(&device, &link).unwrap();
+    let stderr = refused(&[
+        "record",
+        "csv",
+        record.to_str().unwrap(),
+        "--out",
+        link.to_str().unwrap(),
+    ]);
+    assert_mentions(&stderr, &["symbolic link to a character device"]);
+    assert!(std::fs::symlink_metadata(&link)
+        .unwrap()
+        .file_type()
+        .is_symlink());
+
+    // An output directory that is a file.
+    let file = dir.join("plain");
+    std::fs::write(&file, "keep").unwrap();
+    let stderr = refused(&[
+        "run",
+        reference_model().to_str().unwrap(),
+        "--out",
+        file.to_str().unwrap(),
+    ]);
+    assert_mentions(&stderr, &["plain", "must be a directory"]);
+    assert_eq!(std::fs::read_to_string(&file).unwrap(), "keep");
 }
 
 // --- 7. the program and its documents ------------------------------------------------------
