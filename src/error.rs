@@ -78,6 +78,20 @@ pub enum Error {
         found: String,
         rule: String,
     },
+
+    /// A set of output files could not be put in place, and the previous files could not all be
+    /// put back either: the message says where they are.
+    #[error(
+        "cannot write {path}: {source}; putting the previous files back failed too \
+         ({restore_error}): they are kept in {kept}"
+    )]
+    Rollback {
+        path: PathBuf,
+        #[source]
+        source: std::io::Error,
+        restore_error: std::io::Error,
+        kept: PathBuf,
+    },
 }
 
 /// A value quoted in an error message. Numbers appear in their shortest exact form

@@ -224,6 +224,51 @@ fn a_device_as_output_is_refused_and_kept() {
     assert_eq!(std::fs::read_to_string(&file).unwrap(), "keep");
 }
 
+// --- 3. a set of files is replaced whole or not at all -------------------------------------
+
+#[test]
+fn a_run_that_cannot_replace_one_file_leaves_the_others_as_they_were() {
+    let dir = scratch_dir("hostile-set");
+    let out = dir.join("out");
+    let model = reference_model();
+    let run = |duration: &str| {
+        flexrock(&[
+            "run",
+            model.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+            "--duration",
+            duration,
+        ])
+    };
+    assert!(run("2.0").status.success());
+    let before: Vec<(String, Vec<u8>)> = ["history.csv", "events.csv"]
+        .iter()
+        .map(|n| (n.to_string(), std::fs::read(out.join(n)).unwrap()))
+        .collect();
+    // summary.json becomes a directory: that target cannot be replaced.
+    std::fs::remove_file(out.join("summary.json")).unwrap();
+    std::fs::create_dir(out.join("summary.json")).unwrap();
+    std::fs::write(out.join("summary.json").join("inside"), "x").unwrap();
+    let o = run("3.0");
+    let stderr = stderr_of(&o);
+    assert_eq!(o.status.code(), Some(2), "{stderr}");
+    assert_mentions(&stderr, &["summary.json", "is a directory"]);
+    for (name, bytes) in before {
+        assert_eq!(
+            std::fs::read(out.join(&name)).unwrap(),
+            bytes,
+            "{name} changed"
+        );
+    }
+    assert!(out.join("summary.json").join("inside").exists());
+    // No temporary left behind.
+    assert_eq!(
+        common::file_names(&out),
+        ["events.csv", "history.csv", "summary.json"]
+    );
+}
+
 // --- 7. the program and its documents ------------------------------------------------------
 
 #[test]
