@@ -161,6 +161,11 @@ pub fn json_bytes<T: serde::Serialize>(value: &T) -> Vec<u8> {
 /// `.flexrock-tmp-<pid>-<nonce>`.
 pub const TEMPORARY_PREFIX: &str = ".flexrock-tmp-";
 
+/// A temporary entry older than this is stale whatever its pid says. A write takes seconds (the
+/// computation happens before it), so this only matters where a pid cannot be checked (no
+/// `/proc`) or has been reused by another process.
+const STALE_AGE: std::time::Duration = std::time::Duration::from_secs(3600);
+
 /// Writes a set of files into `dir` (created if missing) so that it replaces the previous set
 /// as a whole or not at all.
 ///
@@ -168,21 +173,26 @@ pub const TEMPORARY_PREFIX: &str = ".flexrock-tmp-";
 ///    regular file (or a symbolic link to one, which is then replaced by the file); a directory,
 ///    device, FIFO or socket (or a link to one) is refused with [`Error::OutputTarget`], an
 ///    input error, and so is a `dir` that exists and is not a directory.
-/// 2. Every new file is written and synced into a fresh directory
+/// 2. Temporaries that an earlier, killed write left in `dir` are removed: entries named
+///    `.flexrock-tmp-<pid>-<nonce>` (and `.<name>.tmp-<pid>` of older versions, for the names
+///    of this set) whose process is no longer running (checked in `/proc`), or older than an
+///    hour.
+/// 3. Every new file is written and synced into a fresh directory
 ///    `dir/.flexrock-tmp-<pid>-<nonce>/` as `new-<name>`.
-/// 3. The previous files of the set are renamed into that directory as `old-<name>`, then the
+/// 4. The previous files of the set are renamed into that directory as `old-<name>`, then the
 ///    new files are renamed into place, and `dir` is synced (where the system allows).
-/// 4. On any failure in 2 or 3 the new files are taken out and the previous ones renamed back,
+/// 5. On any failure in 3 or 4 the new files are taken out and the previous ones renamed back,
 ///    so that `dir` holds exactly what it held before; if even that fails, the error says
 ///    where the previous files are ([`Error::Rollback`]). On success the temporary directory,
 ///    with the previous files, is removed.
 ///
 /// What a reader can observe: the files of the set that are present at any moment are all
 /// previous ones (while step 4 moves them away) or all new ones (while it moves the new ones
-/// in), never a mix of both; each file is whole. If the process is killed during step 3, some
+/// in), never a mix of both; each file is whole. If the process is killed during step 4, some
 /// files of the set may be missing (a set of several files cannot be replaced in one atomic
 /// step without swapping the whole directory); the previous files are then in
-/// `dir/.flexrock-tmp-<pid>-<nonce>/old-<name>`. Files in `dir` that are not part of the set are left alone.
+/// `dir/.flexrock-tmp-<pid>-<nonce>/old-<name>` until the next write into `dir` removes that
+/// directory. Files in `dir` that are not part of the set are left alone.
 pub fn write_atomically(dir: &Path, files: &[(&str, Vec<u8>)]) -> Result<Vec<PathBuf>> {
     write_set(dir, files, &mut |from, to| std::fs::rename(from, to))
 }
@@ -204,6 +214,7 @@ fn write_set(
     }
     std::fs::create_dir_all(dir).map_err(|e| write_err(dir, e))?;
     let names: Vec<&str> = files.iter().map(|(name, _)| *name).collect();
+    remove_stale_temporaries(dir, &names);
     let staging = create_staging_dir(dir).map_err(|e| write_err(dir, e))?;
     let staged = (|| {
         for (name, bytes) in files {
@@ -325,6 +336,65 @@ fn create_staging_dir(dir: &Path) -> std::io::Result<PathBuf> {
             Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => continue,
             other => return other.map(|()| path),
         }
+    }
+}
+
+/// The pid in the name of a temporary entry of flexrock, if the name is one: the current
+/// `.flexrock-tmp-<pid>-<nonce>` or, for the names of the set being written, the
+/// `.<name>.tmp-<pid>` files of earlier versions.
+fn temporary_pid(entry: &str, names: &[&str]) -> Option<u32> {
+    if let Some(rest) = entry.strip_prefix(TEMPORARY_PREFIX) {
+        let (pid, nonce) = rest.split_once('-')?;
+        let all_hex = !nonce.is_empty() && nonce.chars().all(|c| c.is_ascii_hexdigit());
+        return all_hex.then(|| pid.parse().ok()).flatten();
+    }
+    names.iter().find_map(|name| {
+        entry
+            .strip_prefix(&format!(".{name}.tmp-"))
+            .and_then(|pid| pid.parse().ok())
+    })
+}
+
+/// Whether a process with this pid runs on this machine: Some(answer) where `/proc` tells,
+/// None where it cannot be known.
+fn process_is_running(pid: u32) -> Option<bool> {
+    if pid == std::process::id() {
+        return Some(true);
+    }
+    if !Path::new("/proc/self").exists() {
+        return None;
+    }
+    Some(Path::new(&format!("/proc/{pid}")).exists())
+}
+
+/// Removes the temporaries a killed write left in `dir` (see [`write_atomically`]). Best
+/// effort: an entry that cannot be removed is left, and the write goes on.
+fn remove_stale_temporaries(dir: &Path, names: &[&str]) {
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return;
+    };
+    for entry in entries.flatten() {
+        let file_name = entry.file_name();
+        let Some(pid) = file_name.to_str().and_then(|n| temporary_pid(n, names)) else {
+            continue;
+        };
+        let Ok(metadata) = entry.path().symlink_metadata() else {
+            continue;
+        };
+        let old = metadata
+            .modified()
+            .ok()
+            .and_then(|m| m.elapsed().ok())
+            .is_some_and(|age| age > STALE_AGE);
+        let stale = process_is_running(pid) == Some(false) || old;
+        if !stale {
+            continue;
+        }
+        let _ = if metadata.is_dir() {
+            std::fs::remove_dir_all(entry.path())
+        } else {
+            std::fs::remove_file(entry.path())
+        };
     }
 }
 
@@ -533,5 +603,16 @@ mod tests {
         assert_eq!(names(&dir), ["a", "b"]);
         assert_eq!(std::fs::read(dir.join("b")).unwrap(), b"2");
         let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    #[test]
+    fn temporary_names() {
+        let names = ["history.csv"];
+        assert_eq!(temporary_pid(".flexrock-tmp-123-abc0", &names), Some(123));
+        assert_eq!(temporary_pid(".history.csv.tmp-77", &names), Some(77));
+        assert_eq!(temporary_pid(".events.csv.tmp-77", &names), None);
+        assert_eq!(temporary_pid(".flexrock-tmp-123-", &names), None);
+        assert_eq!(temporary_pid(".flexrock-tmp-x-1", &names), None);
+        assert_eq!(temporary_pid("history.csv", &names), None);
     }
 }

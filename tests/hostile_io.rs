@@ -269,6 +269,58 @@ fn a_run_that_cannot_replace_one_file_leaves_the_others_as_they_were() {
     );
 }
 
+// --- 4. temporaries of a killed run ----------------------------------------------------------
+
+/// The pid of a process that has ended.
+fn dead_pid() -> u32 {
+    let mut child = Command::new("true").spawn().expect("true runs");
+    let pid = child.id();
+    child.wait().unwrap();
+    pid
+}
+
+#[test]
+fn temporaries_of_a_killed_run_are_removed_by_the_next_one() {
+    let dir = scratch_dir("hostile-stale");
+    let out = dir.join("out");
+    std::fs::create_dir(&out).unwrap();
+    let dead = dead_pid();
+    let stale_dir = out.join(format!(".flexrock-tmp-{dead}-1f2e"));
+    std::fs::create_dir(&stale_dir).unwrap();
+    std::fs::write(stale_dir.join("new-history.csv"), vec![b'0'; 100_000]).unwrap();
+    std::fs::write(stale_dir.join("old-events.csv"), "old").unwrap();
+    // What flexrock 0.1.0 left: `.<name>.tmp-<pid>`.
+    let legacy = out.join(format!(".history.csv.tmp-{dead}"));
+    std::fs::write(&legacy, "half a history").unwrap();
+    // A running process's temporary (this test's) and a user's file stay.
+    let live = out.join(format!(".flexrock-tmp-{}-abc", std::process::id()));
+    std::fs::create_dir(&live).unwrap();
+    let unrelated = out.join(".flexrock-tmp-notes");
+    std::fs::write(&unrelated, "mine").unwrap();
+
+    let o = flexrock(&[
+        "run",
+        reference_model().to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--duration",
+        "1.0",
+    ]);
+    assert!(o.status.success(), "{}", stderr_of(&o));
+    assert!(
+        !stale_dir.exists(),
+        "the stale temporary directory is still there"
+    );
+    assert!(!legacy.exists(), "the stale temporary file is still there");
+    assert!(live.exists(), "a running process's temporary was removed");
+    assert!(unrelated.exists());
+    let names = common::file_names(&out);
+    for name in ["history.csv", "events.csv", "summary.json"] {
+        assert!(names.contains(&name.to_string()), "{names:?}");
+    }
+    assert_eq!(names.len(), 5, "{names:?}");
+}
+
 // --- 7. the program and its documents ------------------------------------------------------
 
 #[test]
