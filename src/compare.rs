@@ -371,6 +371,36 @@ pub fn max_event_shift(model: &Model) -> f64 {
     0.25 * model.constants.period
 }
 
+/// The reference's and Newmark's settings, checked before anything is computed; an error names
+/// the flag its value came from (`--reference-rtol`, `--dt`, `--variant`).
+pub fn compare_settings(
+    model: &Model,
+    options: &CompareOptions,
+) -> Result<(SolverSettings, SolverSettings)> {
+    let reference = model
+        .reference_settings(options.reference_rtol)
+        .map_err(|e| {
+            e.renamed("rtol", "--reference-rtol")
+                .renamed("solver.rtol", "--reference-rtol")
+        })?;
+    let newmark = model
+        .newmark_settings(options.dt, options.variant.as_deref())
+        .map_err(|e| {
+            let e = match options.dt {
+                Some(_) => e.renamed("solver.dt", "--dt"),
+                None => e,
+            };
+            match options.variant {
+                Some(_) => e.renamed("solver.newmark_variant", "--variant"),
+                None => e,
+            }
+        })?;
+    Ok((
+        SolverSettings::Adaptive(reference),
+        SolverSettings::Newmark(newmark),
+    ))
+}
+
 /// Runs the reference and Newmark, compares them, writes compare.csv, compare_history.csv,
 /// compare.json, compare.svg and compare_relations.svg into `out_dir`.
 pub fn run_compare(
@@ -378,10 +408,7 @@ pub fn run_compare(
     options: &CompareOptions,
     out_dir: &Path,
 ) -> Result<CompareReport> {
-    let reference_settings =
-        SolverSettings::Adaptive(model.reference_settings(options.reference_rtol)?);
-    let newmark_settings =
-        SolverSettings::Newmark(model.newmark_settings(options.dt, options.variant.as_deref())?);
+    let (reference_settings, newmark_settings) = compare_settings(model, options)?;
     let reference = simulate_with(model, &reference_settings)?;
     let newmark = simulate_with(model, &newmark_settings)?;
     let output_dt = model.solver.output_dt();

@@ -139,6 +139,23 @@ impl Error {
         }
     }
 
+    /// The same error with the key `key` renamed to `name` (e.g. `solver.dt` to `--dt` when the
+    /// value came from the command line); other errors are returned unchanged.
+    pub fn renamed(self, key: &str, name: &str) -> Self {
+        match self {
+            Error::InvalidParameter {
+                key: found,
+                value,
+                rule,
+            } if found == key => Error::InvalidParameter {
+                key: name.to_string(),
+                value,
+                rule,
+            },
+            other => other,
+        }
+    }
+
     /// True for errors caused by the user's input rather than by the computation or the disk.
     pub fn is_input_error(&self) -> bool {
         matches!(
