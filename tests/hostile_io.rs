@@ -369,6 +369,47 @@ fn converge_refuses_bad_lists_before_computing() {
     assert!(!out.exists());
 }
 
+#[test]
+fn fem_refuses_a_step_longer_than_the_run() {
+    let dir = scratch_dir("hostile-fem-dt");
+    let out = dir.join("out");
+    let stderr = refused(&[
+        "fem",
+        reference_model().to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--dt",
+        "1000",
+    ]);
+    assert_mentions(
+        &stderr,
+        &[
+            "--dt = 1000",
+            "must not exceed",
+            "simulation.duration = 6 s",
+        ],
+    );
+    assert!(!out.exists());
+    // The same rule for the file's key.
+    let text = common::reference_body(
+        "[excitation]\nkind = \"free\"\n\n[simulation]\nduration = 1.0\nq0 = 0.1\n\n\
+         [fem]\ndt = 2.0\n",
+    );
+    let stderr = common::refused("fem", "fem-dt-duration", &text);
+    assert_mentions(&stderr, &["model.toml", "fem.dt = 2", "must not exceed"]);
+    // No 300 digits for a huge value.
+    let stderr = refused(&[
+        "fem",
+        reference_model().to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--dt",
+        "1e300",
+    ]);
+    assert_mentions(&stderr, &["--dt = 1e300"]);
+    assert!(stderr.len() < 300, "{stderr}");
+}
+
 /// Needs the rtol floor and cap that the solver branch adds to `Model::reference_settings`
 /// (refused below ~1e-14 and above 1e-2): fails until that branch is merged.
 #[test]

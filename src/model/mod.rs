@@ -270,17 +270,16 @@ impl Model {
         })
     }
 
-    /// The finite element setup with command-line overrides applied (checked like the file).
+    /// The finite element setup with command-line overrides applied (checked like the file;
+    /// messages name the flags).
     pub fn fem_with(&self, overrides: &FemOverrides) -> Result<FemSetup> {
-        let mut file = self.file.clone();
-        let section = file.fem.get_or_insert_with(FemSection::default);
-        section.nx = overrides.nx.or(section.nx);
-        section.ny = overrides.ny.or(section.ny);
-        section.dt = overrides.dt.or(section.dt);
-        if let Some(scheme) = &overrides.scheme {
-            section.scheme = Some(scheme.clone());
-        }
-        fem_from_section(&file, &self.body, &self.constants, self.duration)
+        fem_section::fem_with_overrides(
+            &self.file,
+            &self.body,
+            &self.constants,
+            self.duration,
+            overrides,
+        )
     }
 }
 
