@@ -15,7 +15,8 @@
 //!   numbers is read again as fixed-width fields of 10, then 15 characters, so that fields that
 //!   touch (`-100.12345-100.12345`) are still read.
 //!
-//! The number of values must equal NPTS; NaN and infinite values are errors; dt must be > 0.
+//! The number of values must equal NPTS; NaN and infinite values are errors; dt must be at
+//! least [`MIN_DT`].
 //! CRLF line ends, a missing newline after the last value, blank lines and a UTF-8 byte-order
 //! mark are accepted.
 //!
@@ -131,6 +132,11 @@ const RELATIVE_DT_TOLERANCE: f64 = 1e-6;
 /// Longest piece of file text quoted in a message, in characters.
 const MAX_QUOTED_CHARS: usize = 80;
 
+/// Smallest sampling interval accepted, s (100 kHz). Strong-motion accelerographs sample at
+/// 100 Hz to a few kHz (dt from 0.01 s down to a few 1e-4 s); a smaller dt is a mistake in the
+/// file (or a unit other than seconds), and every sample is a stop time of the adaptive solver.
+pub const MIN_DT: f64 = 1e-5;
+
 /// A number in a message (shortest exact form: `1e-300`, not 300 zeros).
 fn shown(x: f64) -> String {
     crate::output::shortest(x)
@@ -176,6 +182,17 @@ pub enum RecordError {
 
     #[error("{at}: dt must be a finite number, found {}", shown(*.found))]
     NonFiniteDt { at: Location, found: f64 },
+
+    #[error(
+        "{at}: dt = {} s is below the smallest sampling interval accepted, {} s (100 kHz; \
+         accelerographs sample at 100 Hz to a few kHz)",
+        shown(*.found), shown(*.limit)
+    )]
+    DtTooSmall {
+        at: Location,
+        found: f64,
+        limit: f64,
+    },
 
     #[error("{at}: value {token:?} is not a number")]
     NotANumber { at: Location, token: String },
@@ -328,12 +345,18 @@ fn parse_old_style_header(line: &str) -> Option<(usize, f64)> {
     }
 }
 
-/// Checks that a dt is finite and > 0.
+/// Checks that a dt is finite, > 0 and at least [`MIN_DT`].
 fn check_dt(dt: f64, at: Location) -> Result<f64, RecordError> {
     if !dt.is_finite() {
         Err(RecordError::NonFiniteDt { at, found: dt })
     } else if dt <= 0.0 {
         Err(RecordError::InvalidDt { at, found: dt })
+    } else if dt < MIN_DT {
+        Err(RecordError::DtTooSmall {
+            at,
+            found: dt,
+            limit: MIN_DT,
+        })
     } else {
         Ok(dt)
     }

@@ -430,6 +430,35 @@ fn compare_refuses_reference_tolerances_out_of_range() {
     }
 }
 
+#[test]
+fn a_record_sampled_faster_than_100_khz_is_refused() {
+    let dir = scratch_dir("hostile-record-dt");
+    let text = std::fs::read_to_string(el_centro()).unwrap();
+    let tiny = dir.join("tiny.AT2");
+    std::fs::write(&tiny, text.replace("DT= .02000 SEC", "DT= 1e-300 SEC")).unwrap();
+    let stderr = refused(&["record", "info", tiny.to_str().unwrap()]);
+    assert_mentions(&stderr, &["tiny.AT2 line 4", "1e-300", "1e-5 s"]);
+    assert!(stderr.len() < 400, "{stderr}");
+    // Through a model: exit 2, nothing written.
+    let model = dir.join("model.toml");
+    std::fs::write(
+        &model,
+        common::reference_body(
+            "[excitation]\nkind = \"record\"\npath = \"tiny.AT2\"\n\n[simulation]\nduration = 1.0\n",
+        ),
+    )
+    .unwrap();
+    let out = dir.join("out");
+    let stderr = refused(&[
+        "run",
+        model.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_mentions(&stderr, &["excitation.path", "tiny.AT2 line 4", "1e-5 s"]);
+    assert!(!out.exists());
+}
+
 // --- 7. the program and its documents ------------------------------------------------------
 
 #[test]
