@@ -459,6 +459,65 @@ fn a_record_sampled_faster_than_100_khz_is_refused() {
     assert!(!out.exists());
 }
 
+// --- 6. size limits ----------------------------------------------------------------------------
+
+#[test]
+fn a_mesh_beyond_the_memory_limit_is_refused_at_once() {
+    let dir = scratch_dir("hostile-mesh");
+    let out = dir.join("out");
+    let started = std::time::Instant::now();
+    let stderr = refused(&[
+        "fem",
+        reference_model().to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--nx",
+        "200",
+        "--ny",
+        "1000",
+    ]);
+    assert!(started.elapsed().as_secs_f64() < 5.0);
+    assert_mentions(&stderr, &["--nx, --ny = 200, 1000", "at most 4e6 entries"]);
+    assert!(!out.exists());
+    // Too much work: a fine mesh with many steps.
+    let stderr = refused(&[
+        "fem",
+        reference_model().to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--nx",
+        "64",
+        "--ny",
+        "160",
+        "--dt",
+        "1e-4",
+    ]);
+    assert_mentions(
+        &stderr,
+        &["--dt = 1e-4", "60000 time steps", "at most 1e10"],
+    );
+    // Too many steps.
+    let stderr = refused(&[
+        "fem",
+        reference_model().to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--dt",
+        "1e-6",
+    ]);
+    assert_mentions(&stderr, &["--dt = 1e-6", "at most 1e6"]);
+    // The same limits for the file's keys.
+    let text = common::reference_body(
+        "[excitation]\nkind = \"free\"\n\n[simulation]\nduration = 1.0\nq0 = 0.1\n\n\
+         [fem]\nnx = 500\nny = 500\n",
+    );
+    let stderr = common::refused("fem", "fem-mesh-size", &text);
+    assert_mentions(
+        &stderr,
+        &["fem.nx, fem.ny = 500, 500", "at most 4e6 entries"],
+    );
+}
+
 // --- 7. the program and its documents ------------------------------------------------------
 
 #[test]

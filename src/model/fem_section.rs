@@ -6,7 +6,7 @@ use super::{FemOverrides, FemSection, ModelFile};
 use crate::body::{positive, Body};
 use crate::constants::Constants;
 use crate::error::{Error, Result};
-use crate::fem::{BaseSupport, FemBody, FemSettings, TimeScheme};
+use crate::fem::{check_run_size, BaseSupport, FemBody, FemSettings, SizeLimit, TimeScheme};
 use crate::output::readable;
 
 pub const DEFAULT_POISSON_RATIO: f64 = 0.25;
@@ -49,7 +49,8 @@ const FILE_NAMES: Names = Names {
 /// E = 12 EI/(D B^3) and the density M/(H B D) from the validated body, so every way of giving
 /// the stiffness and the mass works; the damping period defaults to the pre-uplift period T.
 ///
-/// Without a `[fem]` section the defaults are not checked against the simulated time (a time step longer than a short run,
+/// Every rule is here, the size limits of `crate::fem` included. Without a `[fem]` section the
+/// defaults are not checked against the simulated time (a time step longer than a short run,
 /// too many steps for a long one): `flexrock run` must not fail for settings that only
 /// `flexrock fem` uses, and that command checks them all ([`fem_with_overrides`]).
 pub fn fem_from_section(
@@ -113,22 +114,6 @@ fn fem_setup(
     }
     let nx = s.nx.unwrap_or(DEFAULT_FEM_NX);
     let ny = s.ny.unwrap_or(DEFAULT_FEM_NY);
-    for (key, n) in [(names.nx, nx), (names.ny, ny)] {
-        if !(1..=1000).contains(&n) {
-            return Err(Error::invalid(
-                key,
-                n,
-                "the number of elements must lie in 1..=1000",
-            ));
-        }
-    }
-    if nx * ny > 200_000 {
-        return Err(Error::invalid(
-            names.nx,
-            format!("{nx} (with {} = {ny})", names.ny),
-            "the mesh must have at most 200000 elements",
-        ));
-    }
     let dt = s.dt.unwrap_or(DEFAULT_FEM_DT);
     positive(names.dt, dt)?;
     let (duration, duration_key) = match s.duration {
@@ -136,7 +121,27 @@ fn fem_setup(
         None => (simulation_duration, "simulation.duration"),
     };
     positive("fem.duration", duration)?;
-    if file.fem.is_some() {
+    let size_error = |limit: SizeLimit| {
+        let rule = limit.rule();
+        match limit {
+            SizeLimit::Nx(n) => Error::invalid(names.nx, n, &rule),
+            SizeLimit::Ny(n) => Error::invalid(names.ny, n, &rule),
+            SizeLimit::Band { nx, ny } => Error::invalid(
+                &format!("{}, {}", names.nx, names.ny),
+                format!("{nx}, {ny}"),
+                &rule,
+            ),
+            SizeLimit::Steps { .. } | SizeLimit::Work { .. } => Error::invalid(
+                names.dt,
+                dt,
+                &format!("over {duration_key} = {} s {rule}", readable(duration)),
+            ),
+        }
+    };
+    if file.fem.is_none() {
+        // The defaults: only the mesh (see above).
+        crate::fem::check_mesh_size(nx, ny).map_err(size_error)?;
+    } else {
         if dt > duration {
             return Err(Error::invalid(
                 names.dt,
@@ -148,16 +153,7 @@ fn fem_setup(
                 ),
             ));
         }
-        if duration / dt > 1e7 {
-            return Err(Error::invalid(
-                names.dt,
-                dt,
-                &format!(
-                    "gives more than 1e7 steps over {duration_key} = {} s; choose a larger step",
-                    readable(duration)
-                ),
-            ));
-        }
+        check_run_size(nx, ny, dt, duration).map_err(size_error)?;
     }
     let name = s.scheme.as_deref().unwrap_or("linear-acceleration");
     let (scheme, scheme_name) = match name {
