@@ -27,6 +27,12 @@
 //! (dt must be given by the caller). An optional first row of non-numeric column names is
 //! skipped. `#` starts a comment that runs to the end of the line; blank lines are skipped.
 //!
+//! # Files
+//!
+//! [`read_record`] reads only regular files (not a device such as /dev/zero, a FIFO or a
+//! directory) of at most [`MAX_RECORD_BYTES`], checked before reading, through a reader that
+//! stops at that limit.
+//!
 //! Every error names the file, the 1-based line number where there is one, and what was
 //! expected and found. No input, however malformed, makes the readers panic.
 
@@ -137,6 +143,10 @@ const MAX_QUOTED_CHARS: usize = 80;
 /// file (or a unit other than seconds), and every sample is a stop time of the adaptive solver.
 pub const MIN_DT: f64 = 1e-5;
 
+/// Largest record file read, bytes (64 MiB). The largest real AT2 files are a few MB (a long
+/// record at 200 Hz has some 60 000 values, 10-16 characters each).
+pub const MAX_RECORD_BYTES: u64 = 64 * 1024 * 1024;
+
 /// A number in a message (shortest exact form: `1e-300`, not 300 zeros).
 fn shown(x: f64) -> String {
     crate::output::shortest(x)
@@ -151,6 +161,19 @@ pub enum RecordError {
         #[source]
         error: std::io::Error,
     },
+
+    #[error(
+        "{file}: is {found}; a record must be a regular file (not a device, FIFO, socket or \
+         directory)"
+    )]
+    NotRegularFile { file: String, found: &'static str },
+
+    #[error(
+        "{file}: the file has {size} bytes, more than the limit for a record, {limit} bytes \
+         ({} MiB); real AT2 files have a few MB",
+        .limit / (1024 * 1024)
+    )]
+    TooLarge { file: String, size: u64, limit: u64 },
 
     #[error("{at}: the file is not UTF-8 text (invalid byte at offset {byte_offset})")]
     NotUtf8 { at: Location, byte_offset: usize },
@@ -658,6 +681,41 @@ fn decode_utf8(bytes: Vec<u8>, source: &str) -> Result<String, RecordError> {
     })
 }
 
+/// The bytes of a record file: only a regular file (checked before opening it, so that a FIFO
+/// does not block and /dev/zero is not read), of at most [`MAX_RECORD_BYTES`] (checked before
+/// reading, and enforced while reading in case the file grows).
+fn read_bounded(path: &Path, source: &str) -> Result<Vec<u8>, RecordError> {
+    use std::io::Read as _;
+    let read_error = |error| RecordError::Read {
+        file: source.to_string(),
+        error,
+    };
+    let too_large = |size| RecordError::TooLarge {
+        file: source.to_string(),
+        size,
+        limit: MAX_RECORD_BYTES,
+    };
+    let metadata = std::fs::metadata(path).map_err(read_error)?;
+    if !metadata.is_file() {
+        return Err(RecordError::NotRegularFile {
+            file: source.to_string(),
+            found: crate::output::file_kind(metadata.file_type()),
+        });
+    }
+    if metadata.len() > MAX_RECORD_BYTES {
+        return Err(too_large(metadata.len()));
+    }
+    let file = std::fs::File::open(path).map_err(read_error)?;
+    let mut bytes = Vec::with_capacity(metadata.len() as usize);
+    file.take(MAX_RECORD_BYTES + 1)
+        .read_to_end(&mut bytes)
+        .map_err(read_error)?;
+    if bytes.len() as u64 > MAX_RECORD_BYTES {
+        return Err(too_large(bytes.len() as u64));
+    }
+    Ok(bytes)
+}
+
 /// Reads a record file. Without `format`, the extension decides (`.AT2`/`.at2`: PEER AT2,
 /// `.csv`: CSV). `dt` is required for one-column CSV; otherwise, if given, it must agree with
 /// the file's dt to 1e-6 relative.
@@ -679,10 +737,7 @@ pub fn read_record(
             })
         }
     };
-    let bytes = std::fs::read(path).map_err(|error| RecordError::Read {
-        file: source.clone(),
-        error,
-    })?;
+    let bytes = read_bounded(path, &source)?;
     let text = decode_utf8(bytes, &source)?;
     match format {
         RecordFormat::Csv => parse_csv(&text, &source, dt),

@@ -518,6 +518,47 @@ fn a_mesh_beyond_the_memory_limit_is_refused_at_once() {
     );
 }
 
+#[test]
+fn records_that_are_not_regular_files_or_too_large_are_refused() {
+    let dir = scratch_dir("hostile-record-files");
+    let zero = dir.join("zero.AT2");
+    std::os::unix::fs::symlink("/dev/zero", &zero).unwrap();
+    let stderr = refused(&["record", "info", zero.to_str().unwrap()]);
+    assert_mentions(&stderr, &["zero.AT2", "character device", "regular file"]);
+    let fifo = dir.join("pipe.AT2");
+    make_fifo(&fifo);
+    let stderr = refused(&["record", "info", fifo.to_str().unwrap()]);
+    assert_mentions(&stderr, &["pipe.AT2", "FIFO"]);
+    let large = dir.join("large.AT2");
+    std::fs::File::create(&large)
+        .unwrap()
+        .set_len(65 * 1024 * 1024)
+        .unwrap();
+    let stderr = refused(&["record", "info", large.to_str().unwrap()]);
+    assert_mentions(&stderr, &["large.AT2", "67108864 bytes", "64 MiB"]);
+    // Through a model file.
+    let model = dir.join("model.toml");
+    std::fs::write(
+        &model,
+        common::reference_body(
+            "[excitation]\nkind = \"record\"\npath = \"zero.AT2\"\n\n[simulation]\nduration = 1.0\n",
+        ),
+    )
+    .unwrap();
+    let out = dir.join("out");
+    let stderr = refused(&[
+        "run",
+        model.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_mentions(
+        &stderr,
+        &["excitation.path", "zero.AT2", "character device"],
+    );
+    assert!(!out.exists());
+}
+
 // --- 7. the program and its documents ------------------------------------------------------
 
 #[test]
