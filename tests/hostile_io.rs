@@ -559,6 +559,25 @@ fn records_that_are_not_regular_files_or_too_large_are_refused() {
     assert!(!out.exists());
 }
 
+/// 6 s at output_dt = 6e-7 are 1e7 history rows, about 1.5 GB of CSV: refused by the model
+/// file's rules (checked with `props`, which validates the whole file and computes nothing).
+/// Fails while solver_section.rs accepts up to 1e7 rows inclusive.
+#[test]
+fn a_history_of_ten_million_rows_is_refused() {
+    let dir = scratch_dir("hostile-history-rows");
+    let model = dir.join("model.toml");
+    std::fs::write(
+        &model,
+        common::reference_body(
+            "[excitation]\nkind = \"harmonic\"\namplitude = 1.0\nperiod = 1.0\n\n\
+             [simulation]\nduration = 6.0\n\n[solver]\noutput_dt = 6e-7\n",
+        ),
+    )
+    .unwrap();
+    let stderr = refused(&["props", model.to_str().unwrap()]);
+    assert_mentions(&stderr, &["solver.output_dt"]);
+}
+
 // --- 7. the program and its documents ------------------------------------------------------
 
 #[test]
