@@ -182,9 +182,10 @@ struct RecordOptions {
     /// peer-at2 or csv [default: from the extension].
     #[arg(long)]
     format: Option<String>,
-    /// Units of the values: g, m/s2 or cm/s2 [default: g].
-    #[arg(long, default_value = "g")]
-    units: String,
+    /// Units of the values: g, m/s2 or cm/s2 [default: g for AT2; for CSV the unit its header
+    /// names (acc_m_s2, as `record csv` writes), else required].
+    #[arg(long)]
+    units: Option<String>,
     /// Sampling interval of a one-column CSV file, s.
     #[arg(long)]
     dt: Option<f64>,
@@ -293,12 +294,12 @@ fn execute(command: Command) -> flexrock::Result<Output> {
         }
         Command::Record { command } => match command {
             RecordCommand::Info { file, options } => {
-                let record = record_tools::load(&file, options.format.as_deref(), options.dt)?;
-                Output::text(record_tools::info_text(&record, &options.units)?)
+                let record = load_record(&file, &options)?;
+                Output::text(record_tools::info_text(&record))
             }
             RecordCommand::Csv { file, options, out } => {
-                let record = record_tools::load(&file, options.format.as_deref(), options.dt)?;
-                let bytes = record_tools::csv_bytes(&record, &options.units)?;
+                let record = load_record(&file, &options)?;
+                let bytes = record_tools::csv_bytes(&record);
                 match out {
                     Some(path) => {
                         flexrock::output::write_file_atomically(&path, &bytes)?;
@@ -403,6 +404,19 @@ fn execute(command: Command) -> flexrock::Result<Output> {
             }
         }
     })
+}
+
+/// A record for the `record` commands, with its units resolved.
+fn load_record(
+    file: &std::path::Path,
+    options: &RecordOptions,
+) -> flexrock::Result<record_tools::LoadedRecord> {
+    record_tools::load(
+        file,
+        options.format.as_deref(),
+        options.dt,
+        options.units.as_deref(),
+    )
 }
 
 /// A model file with only the simulated time overridden (compare, converge).

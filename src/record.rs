@@ -25,7 +25,8 @@
 //! Comma-separated, one row per sample, either two columns `t, acc` (the time column must start
 //! at 0 and be uniformly spaced to 1e-6 relative; dt is derived from it) or one column `acc`
 //! (dt must be given by the caller). An optional first row of non-numeric column names is
-//! skipped. `#` starts a comment that runs to the end of the line; blank lines are skipped.
+//! kept in [`Record::title`]. `#` starts a comment that runs to the end of the line; blank
+//! lines are skipped.
 //!
 //! # Files
 //!
@@ -44,7 +45,8 @@ use std::path::Path;
 pub struct Record {
     /// The file name as given, for messages.
     pub source: String,
-    /// The header lines before the NPTS line (event/station lines); empty for CSV.
+    /// The header lines before the NPTS line (event/station lines); for CSV the row of column
+    /// names, if the file has one.
     pub title: Vec<String>,
     /// Sampling interval, s.
     pub dt: f64,
@@ -533,6 +535,7 @@ pub fn parse_csv(text: &str, source: &str, dt: Option<f64>) -> Result<Record, Re
     }
 
     let mut rows: Vec<CsvRow> = Vec::new();
+    let mut title = Vec::new();
     let mut column_count: Option<usize> = None;
     for (line_number, line) in numbered_lines(text) {
         let content = line.split('#').next().unwrap_or("").trim();
@@ -555,6 +558,7 @@ pub fn parse_csv(text: &str, source: &str, dt: Option<f64>) -> Result<Record, Re
                     .iter()
                     .all(|field| matches!(parse_number(field), Err(NumberError::NotANumber)));
                 if is_header_row {
+                    title.push(content.to_string());
                     continue;
                 }
             }
@@ -621,7 +625,7 @@ pub fn parse_csv(text: &str, source: &str, dt: Option<f64>) -> Result<Record, Re
         .collect();
     Ok(Record {
         source: source.to_string(),
-        title: Vec::new(),
+        title,
         dt: record_dt,
         values,
     })
@@ -1082,7 +1086,7 @@ mod tests {
         let record = parse_csv(text, "two.csv", None).expect("two-column CSV parses");
         assert_close(record.dt, 0.01);
         assert_eq!(record.values, vec![0.1, -0.3, 0.2, 0.0]);
-        assert!(record.title.is_empty());
+        assert_eq!(record.title, vec!["t, acc".to_string()]);
         let (peak, time) = record.peak();
         assert_close(peak, -0.3);
         assert_close(time, 0.01);

@@ -581,6 +581,36 @@ fn a_history_of_ten_million_rows_is_refused() {
 // --- 7. the program and its documents ------------------------------------------------------
 
 #[test]
+fn a_record_converted_to_csv_reads_back_with_the_same_pga() {
+    let dir = scratch_dir("hostile-record-round-trip");
+    let o = flexrock(&["record", "csv", el_centro().to_str().unwrap()]);
+    assert!(o.status.success());
+    let csv = dir.join("y.csv");
+    std::fs::write(&csv, &o.stdout).unwrap();
+    let info = |path: &Path| {
+        let o = flexrock(&["record", "info", path.to_str().unwrap()]);
+        assert!(o.status.success(), "{}", stderr_of(&o));
+        let text = String::from_utf8_lossy(&o.stdout).into_owned();
+        text.lines()
+            .find(|l| l.starts_with("PGA"))
+            .unwrap()
+            .to_string()
+    };
+    assert_eq!(info(&csv), info(&el_centro()));
+    assert!(info(&csv).contains("0.318820 g = -3.126556 m/s^2"));
+    // A CSV file whose header does not name its unit needs --units.
+    let bare = dir.join("bare.csv");
+    std::fs::write(&bare, "t,acc\n0,0.1\n0.01,-0.2\n").unwrap();
+    let stderr = refused(&["record", "info", bare.to_str().unwrap()]);
+    assert_mentions(&stderr, &["--units", "(missing)", "bare.csv"]);
+    let o = flexrock(&["record", "info", bare.to_str().unwrap(), "--units", "g"]);
+    assert!(o.status.success());
+    // ... and must not contradict a header that does.
+    let stderr = refused(&["record", "info", csv.to_str().unwrap(), "--units", "g"]);
+    assert_mentions(&stderr, &["--units", "acc_m_s2"]);
+}
+
+#[test]
 fn numbers_and_counts_read_as_people_write_them() {
     // 4399 samples at 0.01 s: (n - 1) dt = 43.980000000000004 in floating point.
     let dir = scratch_dir("hostile-readable");
