@@ -42,8 +42,9 @@ enum Command {
         /// Absolute tolerance (overrides solver.atol).
         #[arg(long)]
         atol: Option<f64>,
-        /// Integration method: bdf, esdirk34, tr-bdf2 or newmark (overrides solver.method; switching
-        /// between newmark and the adaptive methods sets aside the file's keys of the other).
+        /// Integration method: bdf (implicit, the default), esdirk34, tr-bdf2 (implicit), tsit45
+        /// (explicit) or newmark (fixed step) (overrides solver.method; switching between newmark
+        /// and the adaptive methods sets aside the file's keys of the other).
         #[arg(long)]
         method: Option<String>,
         /// Newmark time step, s (overrides solver.dt; needs method newmark).

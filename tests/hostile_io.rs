@@ -580,6 +580,58 @@ fn a_history_of_ten_million_rows_is_refused() {
 
 // --- 7. the program and its documents ------------------------------------------------------
 
+const README: &str = include_str!("../README.md");
+
+const METHODS: [&str; 5] = ["bdf", "esdirk34", "tr-bdf2", "tsit45", "newmark"];
+
+#[test]
+fn every_method_is_accepted_and_documented() {
+    let text = |method: &str| {
+        common::reference_body(&format!(
+            "[excitation]\nkind = \"free\"\n\n[simulation]\nduration = 1.0\nq0 = 0.2\n\n\
+             [solver]\nmethod = \"{method}\"\n"
+        ))
+    };
+    for method in METHODS {
+        assert!(
+            flexrock::model::Model::from_toml_str(&text(method), &Default::default()).is_ok(),
+            "{method} is not accepted"
+        );
+    }
+    // The validator's list of names is the same list.
+    let error = flexrock::model::Model::from_toml_str(&text("rk4"), &Default::default())
+        .err()
+        .unwrap()
+        .to_string();
+    let listed = error.matches('"').count() / 2 - 1;
+    assert_eq!(listed, METHODS.len(), "{error}");
+
+    let help = String::from_utf8_lossy(&flexrock(&["run", "--help"]).stdout).into_owned();
+    let method_help = help
+        .split("--method")
+        .nth(1)
+        .and_then(|rest| rest.split("--dt").next())
+        .unwrap();
+    let flag_line = README
+        .lines()
+        .find(|l| l.starts_with("`run` flags override the file"))
+        .unwrap();
+    let file_line = README
+        .lines()
+        .find(|l| l.starts_with("method = \"bdf\""))
+        .unwrap();
+    for method in METHODS {
+        assert!(
+            method_help.contains(method),
+            "{method} not in {method_help}"
+        );
+        assert!(flag_line.contains(&format!("`{method}`")), "{flag_line}");
+        assert!(file_line.contains(&format!("\"{method}\"")), "{file_line}");
+    }
+    assert!(method_help.contains("tsit45 (explicit)"), "{method_help}");
+    assert!(!README.contains("adaptive implicit solver"));
+}
+
 #[test]
 fn a_record_converted_to_csv_reads_back_with_the_same_pga() {
     let dir = scratch_dir("hostile-record-round-trip");
