@@ -130,7 +130,8 @@ enum Command {
     Fem {
         /// Model file (TOML); its optional [fem] section holds the settings.
         model: PathBuf,
-        /// Output directory [default: out/<model file stem>-fem].
+        /// Output directory [default: out/<model file stem>-fem, or out/<model file stem>-pushover
+        /// with --pushover].
         #[arg(long)]
         out: Option<PathBuf>,
         /// Elements across the width (overrides fem.nx).

@@ -633,6 +633,22 @@ fn every_method_is_accepted_and_documented() {
 }
 
 #[test]
+fn pushover_writes_where_the_readme_says() {
+    let dir = scratch_dir("hostile-pushover-dir");
+    std::fs::copy(reference_model(), dir.join("tower.toml")).unwrap();
+    let o = bin()
+        .args(["fem", "tower.toml", "--pushover"])
+        .current_dir(&dir)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", stderr_of(&o));
+    assert!(dir.join("out/tower-pushover/pushover.csv").exists());
+    assert!(README.contains("out/<model file stem>-pushover"));
+    let help = String::from_utf8_lossy(&flexrock(&["fem", "--help"]).stdout).into_owned();
+    assert!(help.contains("out/<model file stem>-pushover"), "{help}");
+}
+
+#[test]
 fn a_record_converted_to_csv_reads_back_with_the_same_pga() {
     let dir = scratch_dir("hostile-record-round-trip");
     let o = flexrock(&["record", "csv", el_centro().to_str().unwrap()]);
