@@ -3,6 +3,7 @@
 use std::io::Write as _;
 use std::path::PathBuf;
 use std::process::ExitCode;
+use std::sync::LazyLock;
 
 use clap::{Parser, Subcommand};
 use flexrock::model::{FemOverrides, Model, Overrides};
@@ -77,7 +78,7 @@ enum Command {
         #[arg(long)]
         variant: Option<String>,
         /// Relative tolerance of the adaptive reference.
-        #[arg(long, default_value_t = flexrock::compare::DEFAULT_REFERENCE_RTOL)]
+        #[arg(long, default_value = REFERENCE_RTOL_TEXT.as_str())]
         reference_rtol: f64,
         /// Simulated time, s (overrides simulation.duration).
         #[arg(long)]
@@ -91,14 +92,14 @@ enum Command {
         /// Output directory [default: out/<model file stem>-converge].
         #[arg(long)]
         out: Option<PathBuf>,
-        /// Newmark time steps, s.
-        #[arg(long, value_delimiter = ',', default_values_t = flexrock::converge::DEFAULT_DTS)]
+        /// Newmark time steps, s, separated by commas.
+        #[arg(long, value_delimiter = ',', default_value = DTS_TEXT.as_str())]
         dt: Vec<f64>,
-        /// Relative tolerances of the adaptive methods.
-        #[arg(long, value_delimiter = ',', default_values_t = flexrock::converge::DEFAULT_RTOLS)]
+        /// Relative tolerances of the adaptive methods, separated by commas.
+        #[arg(long, value_delimiter = ',', default_value = RTOLS_TEXT.as_str())]
         rtol: Vec<f64>,
         /// Relative tolerance of the reference.
-        #[arg(long, default_value_t = flexrock::compare::DEFAULT_REFERENCE_RTOL)]
+        #[arg(long, default_value = REFERENCE_RTOL_TEXT.as_str())]
         reference_rtol: f64,
         /// Simulated time, s (overrides simulation.duration).
         #[arg(long)]
@@ -192,6 +193,20 @@ struct RecordOptions {
     #[arg(long)]
     dt: Option<f64>,
 }
+
+/// The default lists of `converge` and the reference tolerance, as a user types them; the
+/// numbers themselves live in the library.
+static DTS_TEXT: LazyLock<String> = LazyLock::new(|| {
+    flexrock::output::list(&flexrock::converge::DEFAULT_DTS, flexrock::output::shortest)
+});
+static RTOLS_TEXT: LazyLock<String> = LazyLock::new(|| {
+    flexrock::output::list(
+        &flexrock::converge::DEFAULT_RTOLS,
+        flexrock::output::scientific,
+    )
+});
+static REFERENCE_RTOL_TEXT: LazyLock<String> =
+    LazyLock::new(|| flexrock::output::scientific(flexrock::compare::DEFAULT_REFERENCE_RTOL));
 
 /// Exit code for bad input (model file, parameters): nothing was written.
 const EXIT_INPUT: u8 = 2;

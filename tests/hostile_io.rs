@@ -649,6 +649,25 @@ fn pushover_writes_where_the_readme_says() {
 }
 
 #[test]
+fn converge_shows_its_defaults_as_they_are_typed() {
+    let help = String::from_utf8_lossy(&flexrock(&["converge", "--help"]).stdout).into_owned();
+    let defaults: String = flexrock::converge::DEFAULT_DTS
+        .iter()
+        .map(|x| x.to_string())
+        .collect::<Vec<_>>()
+        .join(",");
+    assert!(help.contains(&format!("[default: {defaults}]")), "{help}");
+    assert!(
+        help.contains("[default: 1e-3,1e-4,1e-5,1e-6,1e-7,1e-8,1e-9,1e-10,1e-11]"),
+        "{help}"
+    );
+    assert!(help.contains("[default: 1e-12]"), "{help}");
+    assert!(!help.contains("0.000000000001"), "{help}");
+    let help = String::from_utf8_lossy(&flexrock(&["compare", "--help"]).stdout).into_owned();
+    assert!(help.contains("[default: 1e-12]"), "{help}");
+}
+
+#[test]
 fn a_record_converted_to_csv_reads_back_with_the_same_pga() {
     let dir = scratch_dir("hostile-record-round-trip");
     let o = flexrock(&["record", "csv", el_centro().to_str().unwrap()]);
