@@ -12,7 +12,7 @@ use crate::automaton::{EventKind, Mode};
 use crate::error::Result;
 use crate::findings::{self, Findings};
 use crate::model::Model;
-use crate::output::{self, number, Table};
+use crate::output::{self, count, number, readable, Table};
 use crate::plot::{self, Legend, Panel, Series};
 use crate::run::{simulate_with, VERSION};
 use crate::solution::{Event, Extremum, Sample, Solution, SolverStats};
@@ -371,6 +371,36 @@ pub fn max_event_shift(model: &Model) -> f64 {
     0.25 * model.constants.period
 }
 
+/// The reference's and Newmark's settings, checked before anything is computed; an error names
+/// the flag its value came from (`--reference-rtol`, `--dt`, `--variant`).
+pub fn compare_settings(
+    model: &Model,
+    options: &CompareOptions,
+) -> Result<(SolverSettings, SolverSettings)> {
+    let reference = model
+        .reference_settings(options.reference_rtol)
+        .map_err(|e| {
+            e.renamed("rtol", "--reference-rtol")
+                .renamed("solver.rtol", "--reference-rtol")
+        })?;
+    let newmark = model
+        .newmark_settings(options.dt, options.variant.as_deref())
+        .map_err(|e| {
+            let e = match options.dt {
+                Some(_) => e.renamed("solver.dt", "--dt"),
+                None => e,
+            };
+            match options.variant {
+                Some(_) => e.renamed("solver.newmark_variant", "--variant"),
+                None => e,
+            }
+        })?;
+    Ok((
+        SolverSettings::Adaptive(reference),
+        SolverSettings::Newmark(newmark),
+    ))
+}
+
 /// Runs the reference and Newmark, compares them, writes compare.csv, compare_history.csv,
 /// compare.json, compare.svg and compare_relations.svg into `out_dir`.
 pub fn run_compare(
@@ -378,10 +408,7 @@ pub fn run_compare(
     options: &CompareOptions,
     out_dir: &Path,
 ) -> Result<CompareReport> {
-    let reference_settings =
-        SolverSettings::Adaptive(model.reference_settings(options.reference_rtol)?);
-    let newmark_settings =
-        SolverSettings::Newmark(model.newmark_settings(options.dt, options.variant.as_deref())?);
+    let (reference_settings, newmark_settings) = compare_settings(model, options)?;
     let reference = simulate_with(model, &reference_settings)?;
     let newmark = simulate_with(model, &newmark_settings)?;
     let output_dt = model.solver.output_dt();
@@ -547,7 +574,12 @@ pub fn compare_text(model: &Model, report: &CompareReport) -> String {
     let newmark_label = report.newmark_settings.label();
     let dt = match report.newmark_settings {
         SolverSettings::Newmark(n) => {
-            format!("dt = {} s, beta = {:.6}, gamma = {}", n.dt, n.beta, n.gamma)
+            format!(
+                "dt = {} s, beta = {:.6}, gamma = {}",
+                readable(n.dt),
+                n.beta,
+                readable(n.gamma)
+            )
         }
         SolverSettings::Adaptive(_) => String::new(),
     };
@@ -559,7 +591,7 @@ pub fn compare_text(model: &Model, report: &CompareReport) -> String {
         t,
         "flexrock {VERSION} compare: reference {} ({reference_rtol}) vs {newmark_label} ({dt}) over {} s",
         report.reference_settings.label(),
-        model.duration
+        readable(model.duration)
     );
     let e = &c.events;
     let _ = writeln!(
@@ -622,17 +654,25 @@ pub fn compare_text(model: &Model, report: &CompareReport) -> String {
     let g = &c.grid;
     let _ = writeln!(
         t,
-        "q(t) on the common {} s grid ({} points): RMS difference {:.6} m, max {:.6} m at t = {:.3} s; max |q' difference| {:.6} m/s",
-        g.output_dt, g.points, g.rms_q_difference, g.max_abs_q_difference, g.t_max_abs_q_difference, g.max_abs_qdot_difference
+        "q(t) on the common {} s grid ({}): RMS difference {:.6} m, max {:.6} m at t = {:.3} s; max |q' difference| {:.6} m/s",
+        readable(g.output_dt), count(g.points, "point", "points"), g.rms_q_difference, g.max_abs_q_difference, g.t_max_abs_q_difference, g.max_abs_qdot_difference
     );
     let _ = writeln!(
         t,
-        "cost: reference {} steps, {} rhs evaluations, {:.1} ms; newmark {} steps, {} rhs evaluations, {:.1} ms",
-        report.reference.stats.steps,
-        report.reference.stats.rhs_evaluations,
+        "cost: reference {}, {}, {:.1} ms; newmark {}, {}, {:.1} ms",
+        count(report.reference.stats.steps, "step", "steps"),
+        count(
+            report.reference.stats.rhs_evaluations,
+            "rhs evaluation",
+            "rhs evaluations"
+        ),
         report.reference.stats.wall_time_s * 1e3,
-        report.newmark.stats.steps,
-        report.newmark.stats.rhs_evaluations,
+        count(report.newmark.stats.steps, "step", "steps"),
+        count(
+            report.newmark.stats.rhs_evaluations,
+            "rhs evaluation",
+            "rhs evaluations"
+        ),
         report.newmark.stats.wall_time_s * 1e3
     );
     for f in &report.files {

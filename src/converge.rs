@@ -12,7 +12,7 @@ use serde::Serialize;
 use crate::compare::{compare, max_event_shift};
 use crate::error::Result;
 use crate::model::Model;
-use crate::output::{self, number, Table};
+use crate::output::{self, count, number, readable, scientific, Table};
 use crate::plot::{self, Legend, Panel, Series};
 use crate::run::{simulate_with, VERSION};
 use crate::solution::SolverStats;
@@ -184,33 +184,47 @@ fn orders(cases: &[Case]) -> Vec<ObservedOrder> {
     orders
 }
 
-/// One case to run: method label, dt, rtol, and its settings (or why they are invalid).
-type Configuration = (String, Option<f64>, Option<f64>, Result<SolverSettings>);
+/// One case to run: method label, dt, rtol, and its settings.
+type Configuration = (String, Option<f64>, Option<f64>, SolverSettings);
 
-/// Runs the reference, every Newmark variant at every dt and every adaptive method at every
-/// tolerance; writes convergence.csv, convergence.json and the figures into `out_dir`.
-pub fn run_converge(
+/// The reference's settings and every case's, checked by the rules `run` and `compare` apply
+/// (`Model::reference_settings`, `Model::newmark_settings`) before anything is computed. An
+/// error names the flag (`--dt`, `--rtol`, `--reference-rtol`), the value and the rule.
+pub fn configurations(
     model: &Model,
     options: &ConvergeOptions,
-    out_dir: &Path,
-) -> Result<ConvergeReport> {
-    let reference_settings =
-        SolverSettings::Adaptive(model.reference_settings(options.reference_rtol)?);
-    let reference = simulate_with(model, &reference_settings)?;
-    let output_dt = model.solver.output_dt();
-    let max_shift = max_event_shift(model);
-
+) -> Result<(SolverSettings, Vec<Configuration>)> {
+    let flag = |flag: &'static str| {
+        move |e: crate::Error| e.renamed("rtol", flag).renamed("solver.rtol", flag)
+    };
+    for (name, empty) in [
+        ("--dt", options.dts.is_empty()),
+        ("--rtol", options.rtols.is_empty()),
+    ] {
+        if empty {
+            return Err(crate::Error::invalid(
+                name,
+                "(an empty list)",
+                "give at least one value (several, separated by commas, to see convergence)",
+            ));
+        }
+    }
+    let reference_settings = SolverSettings::Adaptive(
+        model
+            .reference_settings(options.reference_rtol)
+            .map_err(flag("--reference-rtol"))?,
+    );
     let mut configurations: Vec<Configuration> = Vec::new();
     for variant in [NewmarkVariant::Compensate, NewmarkVariant::Substep] {
         for &dt in &options.dts {
             let settings = model
                 .newmark_settings(Some(dt), Some(variant.name()))
-                .map(SolverSettings::Newmark);
+                .map_err(|e| e.renamed("solver.dt", "--dt"))?;
             configurations.push((
                 format!("newmark-{}", variant.name()),
                 Some(dt),
                 None,
-                settings,
+                SolverSettings::Newmark(settings),
             ));
         }
     }
@@ -221,13 +235,31 @@ pub fn run_converge(
         AdaptiveMethod::Tsit45,
     ] {
         for &rtol in &options.rtols {
-            let settings = model.reference_settings(rtol).map(|mut a| {
-                a.method = method;
-                SolverSettings::Adaptive(a)
-            });
-            configurations.push((method.name().to_string(), None, Some(rtol), settings));
+            let mut settings = model.reference_settings(rtol).map_err(flag("--rtol"))?;
+            settings.method = method;
+            configurations.push((
+                method.name().to_string(),
+                None,
+                Some(rtol),
+                SolverSettings::Adaptive(settings),
+            ));
         }
     }
+    Ok((reference_settings, configurations))
+}
+
+/// Runs the reference, every Newmark variant at every dt and every adaptive method at every
+/// tolerance; writes convergence.csv, convergence.json and the figures into `out_dir`. Every
+/// setting is checked before the first computation ([`configurations`]).
+pub fn run_converge(
+    model: &Model,
+    options: &ConvergeOptions,
+    out_dir: &Path,
+) -> Result<ConvergeReport> {
+    let (reference_settings, configurations) = configurations(model, options)?;
+    let reference = simulate_with(model, &reference_settings)?;
+    let output_dt = model.solver.output_dt();
+    let max_shift = max_event_shift(model);
 
     let mut cases = Vec::new();
     for (method, dt, rtol, settings) in configurations {
@@ -246,7 +278,7 @@ pub fn run_converge(
             max_energy_residual: f64::NAN,
             status,
         };
-        let solution = match settings.and_then(|s| simulate_with(model, &s)) {
+        let solution = match simulate_with(model, &settings) {
             Ok(s) => s,
             Err(e) => {
                 cases.push(failed(e.to_string()));
@@ -409,8 +441,11 @@ pub fn converge_text(report: &ConvergeReport) -> String {
     let mut t = String::new();
     let _ = writeln!(
         t,
-        "flexrock {VERSION} converge: reference {} at rtol = {:e} ({} events, {} steps)",
-        s.reference_method, s.reference_rtol, s.reference_events, s.reference_statistics.steps
+        "flexrock {VERSION} converge: reference {} at rtol = {:e} ({}, {})",
+        s.reference_method,
+        s.reference_rtol,
+        count(s.reference_events, "event", "events"),
+        count(s.reference_statistics.steps, "step", "steps")
     );
     let _ = writeln!(
         t,
@@ -433,8 +468,8 @@ pub fn converge_text(report: &ConvergeReport) -> String {
                 t,
                 "  {:<19} {:>10} {:>7}  failed: {}",
                 c.method,
-                optional(c.dt, &|v| format!("{v}")),
-                optional(c.rtol, &|v| format!("{v:.0e}")),
+                optional(c.dt, &readable),
+                optional(c.rtol, &scientific),
                 c.status
             );
             continue;
@@ -443,8 +478,8 @@ pub fn converge_text(report: &ConvergeReport) -> String {
             t,
             "  {:<19} {:>10} {:>7} {:>11.3e} {:>11.3e} {:>11.3e} {:>+6} {:>8} {:>9} {:>9.2}",
             c.method,
-            optional(c.dt, &|v| format!("{v}")),
-            optional(c.rtol, &|v| format!("{v:.0e}")),
+            optional(c.dt, &readable),
+            optional(c.rtol, &scientific),
             c.max_q_error,
             c.max_event_time_error,
             c.peak_error,
@@ -466,8 +501,10 @@ pub fn converge_text(report: &ConvergeReport) -> String {
         };
         let _ = writeln!(
             t,
-            "  {:<19} {:<21} {meaning:<20} ({} points)",
-            o.method, o.metric, o.points
+            "  {:<19} {:<21} {meaning:<20} ({})",
+            o.method,
+            o.metric,
+            count(o.points, "point", "points")
         );
     }
     for f in &report.files {

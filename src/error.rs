@@ -42,7 +42,7 @@ pub enum Error {
     },
 
     /// The integrator could not continue.
-    #[error("the {method} solver failed at t = {t} s: {message}")]
+    #[error("the {method} solver failed at t = {} s: {message}", crate::output::readable(*.t))]
     Solver {
         method: String,
         t: f64,
@@ -68,15 +68,91 @@ pub enum Error {
         #[source]
         source: std::io::Error,
     },
+
+    /// An output path names something flexrock must not replace (a directory, a device, a FIFO,
+    /// a socket, or a symbolic link to one), or an output directory that is not a directory.
+    #[error("{path}: {found}; {rule}")]
+    OutputTarget {
+        path: PathBuf,
+        /// What is there, e.g. "a FIFO (named pipe)".
+        found: String,
+        rule: String,
+    },
+
+    /// A set of output files could not be put in place, and the previous files could not all be
+    /// put back either: the message says where they are.
+    #[error(
+        "cannot write {path}: {source}; putting the previous files back failed too \
+         ({restore_error}): they are kept in {kept}"
+    )]
+    Rollback {
+        path: PathBuf,
+        #[source]
+        source: std::io::Error,
+        restore_error: std::io::Error,
+        kept: PathBuf,
+    },
+}
+
+/// A value quoted in an error message. Numbers appear in their shortest exact form
+/// ([`crate::output::shortest`]), so that 1e300 reads `1e300`, not 301 digits.
+pub trait Quoted {
+    fn quoted(&self) -> String;
+}
+
+impl Quoted for f64 {
+    fn quoted(&self) -> String {
+        crate::output::shortest(*self)
+    }
+}
+
+impl Quoted for f32 {
+    fn quoted(&self) -> String {
+        crate::output::shortest(f64::from(*self))
+    }
+}
+
+macro_rules! quoted_by_display {
+    ($($t:ty),*) => {
+        $(impl Quoted for $t {
+            fn quoted(&self) -> String {
+                self.to_string()
+            }
+        })*
+    };
+}
+quoted_by_display!(usize, u8, u16, u32, u64, isize, i8, i16, i32, i64, bool, char, str, String);
+
+impl<T: Quoted + ?Sized> Quoted for &T {
+    fn quoted(&self) -> String {
+        (**self).quoted()
+    }
 }
 
 impl Error {
-    /// Shorthand for [`Error::InvalidParameter`].
-    pub fn invalid(key: &str, value: impl std::fmt::Display, rule: &str) -> Self {
+    /// Shorthand for [`Error::InvalidParameter`]; numbers are quoted in their shortest form.
+    pub fn invalid(key: &str, value: impl Quoted, rule: &str) -> Self {
         Error::InvalidParameter {
             key: key.to_string(),
-            value: value.to_string(),
+            value: value.quoted(),
             rule: rule.to_string(),
+        }
+    }
+
+    /// The same error with the key `key` renamed to `name` (e.g. `solver.dt` to `--dt` when the
+    /// value came from the command line); other errors are returned unchanged.
+    pub fn renamed(self, key: &str, name: &str) -> Self {
+        match self {
+            Error::InvalidParameter {
+                key: found,
+                value,
+                rule,
+            } if found == key => Error::InvalidParameter {
+                key: name.to_string(),
+                value,
+                rule,
+            },
+            other => other,
         }
     }
 
@@ -89,6 +165,7 @@ impl Error {
                 | Error::ParseModel { .. }
                 | Error::InModel { .. }
                 | Error::Record { .. }
+                | Error::OutputTarget { .. }
                 | Error::Fem(crate::fem::FemError::InvalidParameter { .. })
         )
     }

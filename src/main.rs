@@ -1,7 +1,9 @@
 //! The `flexrock` command: parses arguments, calls the library, maps errors to exit codes.
 
+use std::io::Write as _;
 use std::path::PathBuf;
 use std::process::ExitCode;
+use std::sync::LazyLock;
 
 use clap::{Parser, Subcommand};
 use flexrock::model::{FemOverrides, Model, Overrides};
@@ -41,8 +43,9 @@ enum Command {
         /// Absolute tolerance (overrides solver.atol).
         #[arg(long)]
         atol: Option<f64>,
-        /// Integration method: bdf, esdirk34, tr-bdf2 or newmark (overrides solver.method; switching
-        /// between newmark and the adaptive methods sets aside the file's keys of the other).
+        /// Integration method: bdf (implicit, the default), esdirk34, tr-bdf2 (implicit), tsit45
+        /// (explicit) or newmark (fixed step) (overrides solver.method; switching between newmark
+        /// and the adaptive methods sets aside the file's keys of the other).
         #[arg(long)]
         method: Option<String>,
         /// Newmark time step, s (overrides solver.dt; needs method newmark).
@@ -75,7 +78,7 @@ enum Command {
         #[arg(long)]
         variant: Option<String>,
         /// Relative tolerance of the adaptive reference.
-        #[arg(long, default_value_t = flexrock::compare::DEFAULT_REFERENCE_RTOL)]
+        #[arg(long, default_value = REFERENCE_RTOL_TEXT.as_str())]
         reference_rtol: f64,
         /// Simulated time, s (overrides simulation.duration).
         #[arg(long)]
@@ -89,14 +92,14 @@ enum Command {
         /// Output directory [default: out/<model file stem>-converge].
         #[arg(long)]
         out: Option<PathBuf>,
-        /// Newmark time steps, s.
-        #[arg(long, value_delimiter = ',', default_values_t = flexrock::converge::DEFAULT_DTS)]
+        /// Newmark time steps, s, separated by commas.
+        #[arg(long, value_delimiter = ',', default_value = DTS_TEXT.as_str())]
         dt: Vec<f64>,
-        /// Relative tolerances of the adaptive methods.
-        #[arg(long, value_delimiter = ',', default_values_t = flexrock::converge::DEFAULT_RTOLS)]
+        /// Relative tolerances of the adaptive methods, separated by commas.
+        #[arg(long, value_delimiter = ',', default_value = RTOLS_TEXT.as_str())]
         rtol: Vec<f64>,
         /// Relative tolerance of the reference.
-        #[arg(long, default_value_t = flexrock::compare::DEFAULT_REFERENCE_RTOL)]
+        #[arg(long, default_value = REFERENCE_RTOL_TEXT.as_str())]
         reference_rtol: f64,
         /// Simulated time, s (overrides simulation.duration).
         #[arg(long)]
@@ -128,7 +131,8 @@ enum Command {
     Fem {
         /// Model file (TOML); its optional [fem] section holds the settings.
         model: PathBuf,
-        /// Output directory [default: out/<model file stem>-fem].
+        /// Output directory [default: out/<model file stem>-fem, or out/<model file stem>-pushover
+        /// with --pushover].
         #[arg(long)]
         out: Option<PathBuf>,
         /// Elements across the width (overrides fem.nx).
@@ -181,48 +185,105 @@ struct RecordOptions {
     /// peer-at2 or csv [default: from the extension].
     #[arg(long)]
     format: Option<String>,
-    /// Units of the values: g, m/s2 or cm/s2 [default: g].
-    #[arg(long, default_value = "g")]
-    units: String,
+    /// Units of the values: g, m/s2 or cm/s2 [default: g for AT2; for CSV the unit its header
+    /// names (acc_m_s2, as `record csv` writes), else required].
+    #[arg(long)]
+    units: Option<String>,
     /// Sampling interval of a one-column CSV file, s.
     #[arg(long)]
     dt: Option<f64>,
 }
 
-/// Exit code for bad input (model file, parameters).
+/// The default lists of `converge` and the reference tolerance, as a user types them; the
+/// numbers themselves live in the library.
+static DTS_TEXT: LazyLock<String> = LazyLock::new(|| {
+    flexrock::output::list(&flexrock::converge::DEFAULT_DTS, flexrock::output::shortest)
+});
+static RTOLS_TEXT: LazyLock<String> = LazyLock::new(|| {
+    flexrock::output::list(
+        &flexrock::converge::DEFAULT_RTOLS,
+        flexrock::output::scientific,
+    )
+});
+static REFERENCE_RTOL_TEXT: LazyLock<String> =
+    LazyLock::new(|| flexrock::output::scientific(flexrock::compare::DEFAULT_REFERENCE_RTOL));
+
+/// Exit code for bad input (model file, parameters): nothing was written.
 const EXIT_INPUT: u8 = 2;
-/// Exit code for a failure of the computation or of writing results.
+/// Exit code for a failure of the computation or of writing results (standard output included).
 const EXIT_FAILURE: u8 = 1;
 
-fn main() -> ExitCode {
-    let cli = Cli::parse();
-    match execute(cli.command) {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(e) => {
-            eprintln!("error: {e}");
-            ExitCode::from(if e.is_input_error() {
-                EXIT_INPUT
-            } else {
-                EXIT_FAILURE
-            })
+/// What a command has to say: its text for standard output and its warnings for standard error.
+#[derive(Default)]
+struct Output {
+    stdout: Vec<u8>,
+    warnings: Vec<String>,
+}
+
+impl Output {
+    fn text(text: impl Into<String>) -> Self {
+        Output {
+            stdout: text.into().into_bytes(),
+            warnings: Vec::new(),
         }
     }
 }
 
-fn execute(command: Command) -> flexrock::Result<()> {
-    match command {
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let output = match execute(cli.command) {
+        Ok(output) => output,
+        Err(e) => {
+            write_stderr(&format!("error: {e}\n"));
+            return ExitCode::from(if e.is_input_error() {
+                EXIT_INPUT
+            } else {
+                EXIT_FAILURE
+            });
+        }
+    };
+    for warning in &output.warnings {
+        write_stderr(&format!("warning: {warning}\n"));
+    }
+    match write_stdout(&output.stdout) {
+        Ok(()) => ExitCode::SUCCESS,
+        // The reader went away (`flexrock ... | head`): what it did not read it did not want.
+        // End quietly and successfully, as other Unix tools do.
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => ExitCode::SUCCESS,
+        Err(e) => {
+            write_stderr(&format!("error: cannot write standard output: {e}\n"));
+            ExitCode::from(EXIT_FAILURE)
+        }
+    }
+}
+
+/// The one place where command output reaches standard output: written whole and flushed, so
+/// that every failure (a full disk, a closed pipe) is seen here.
+fn write_stdout(bytes: &[u8]) -> std::io::Result<()> {
+    let mut out = std::io::stdout().lock();
+    out.write_all(bytes)?;
+    out.flush()
+}
+
+/// Messages to standard error. A failure to write them cannot be reported anywhere, so it is
+/// ignored (the exit code still tells).
+fn write_stderr(text: &str) {
+    let mut err = std::io::stderr().lock();
+    let _ = err.write_all(text.as_bytes());
+    let _ = err.flush();
+}
+
+fn execute(command: Command) -> flexrock::Result<Output> {
+    Ok(match command {
         Command::Props { model, json } => {
             let model = Model::load(&model, &Overrides::default())?;
             if json {
-                println!(
-                    "{}",
-                    String::from_utf8_lossy(&flexrock::output::json_bytes(
-                        &flexrock::run::properties(&model)
-                    ))
-                    .trim_end()
-                );
+                Output {
+                    stdout: flexrock::output::json_bytes(&flexrock::run::properties(&model)),
+                    warnings: Vec::new(),
+                }
             } else {
-                print!("{}", flexrock::run::properties_table(&model));
+                Output::text(flexrock::run::properties_table(&model))
             }
         }
         Command::Run {
@@ -246,25 +307,28 @@ fn execute(command: Command) -> flexrock::Result<()> {
             let model = Model::load(&path, &overrides)?;
             let out = out.unwrap_or_else(|| default_out_dir(&path, ""));
             let report = flexrock::run::run(&model, &out)?;
-            for warning in &report.warnings {
-                eprintln!("warning: {warning}");
+            Output {
+                stdout: flexrock::run::run_report_text(&model, &report).into_bytes(),
+                warnings: report.warnings.clone(),
             }
-            print!("{}", flexrock::run::run_report_text(&model, &report));
         }
         Command::Record { command } => match command {
             RecordCommand::Info { file, options } => {
-                let record = record_tools::load(&file, options.format.as_deref(), options.dt)?;
-                print!("{}", record_tools::info_text(&record, &options.units)?);
+                let record = load_record(&file, &options)?;
+                Output::text(record_tools::info_text(&record))
             }
             RecordCommand::Csv { file, options, out } => {
-                let record = record_tools::load(&file, options.format.as_deref(), options.dt)?;
-                let bytes = record_tools::csv_bytes(&record, &options.units)?;
+                let record = load_record(&file, &options)?;
+                let bytes = record_tools::csv_bytes(&record);
                 match out {
-                    Some(path) => flexrock::output::write_file_atomically(&path, &bytes)?,
-                    None => {
-                        use std::io::Write;
-                        let _ = std::io::stdout().write_all(&bytes);
+                    Some(path) => {
+                        flexrock::output::write_file_atomically(&path, &bytes)?;
+                        Output::default()
                     }
+                    None => Output {
+                        stdout: bytes,
+                        warnings: Vec::new(),
+                    },
                 }
             }
         },
@@ -284,7 +348,7 @@ fn execute(command: Command) -> flexrock::Result<()> {
             };
             let out = out.unwrap_or_else(|| default_out_dir(&path, "-compare"));
             let report = flexrock::compare::run_compare(&model, &options, &out)?;
-            print!("{}", flexrock::compare::compare_text(&model, &report));
+            Output::text(flexrock::compare::compare_text(&model, &report))
         }
         Command::Converge {
             model: path,
@@ -302,7 +366,7 @@ fn execute(command: Command) -> flexrock::Result<()> {
             };
             let out = out.unwrap_or_else(|| default_out_dir(&path, "-converge"));
             let report = flexrock::converge::run_converge(&model, &options, &out)?;
-            print!("{}", flexrock::converge::converge_text(&report));
+            Output::text(flexrock::converge::converge_text(&report))
         }
         Command::Report {
             compare_compensate,
@@ -322,7 +386,7 @@ fn execute(command: Command) -> flexrock::Result<()> {
                 command,
             };
             let written = flexrock::report::write_report(&inputs, &out)?;
-            println!("wrote {}", written.display());
+            Output::text(format!("wrote {}\n", written.display()))
         }
         Command::Fem {
             model: path,
@@ -339,14 +403,14 @@ fn execute(command: Command) -> flexrock::Result<()> {
             let model = Model::load(&path, &Overrides::default())?;
             let setup = model.fem_with(&FemOverrides { nx, ny, scheme, dt })?;
             if modes {
-                print!("{}", fem::modes_text(&fem::modes(&model, &setup)?));
-                return Ok(());
+                return Ok(Output::text(fem::modes_text(&fem::modes(&model, &setup)?)));
             }
             if pushover {
                 let out = out.unwrap_or_else(|| default_out_dir(&path, "-pushover"));
                 let report = flexrock::fem::pushover_run::run(&model, &setup, &out)?;
-                print!("{}", flexrock::fem::pushover_run::report_text(&report));
-                return Ok(());
+                return Ok(Output::text(flexrock::fem::pushover_run::report_text(
+                    &report,
+                )));
             }
             let out = out.unwrap_or_else(|| default_out_dir(&path, "-fem"));
             let report = if compare {
@@ -354,13 +418,25 @@ fn execute(command: Command) -> flexrock::Result<()> {
             } else {
                 fem::fem(&model, &setup, &out)?
             };
-            for warning in &report.analysis.warnings {
-                eprintln!("warning: {warning}");
+            Output {
+                stdout: fem::report_text(&report).into_bytes(),
+                warnings: report.analysis.warnings.clone(),
             }
-            print!("{}", fem::report_text(&report));
         }
-    }
-    Ok(())
+    })
+}
+
+/// A record for the `record` commands, with its units resolved.
+fn load_record(
+    file: &std::path::Path,
+    options: &RecordOptions,
+) -> flexrock::Result<record_tools::LoadedRecord> {
+    record_tools::load(
+        file,
+        options.format.as_deref(),
+        options.dt,
+        options.units.as_deref(),
+    )
 }
 
 /// A model file with only the simulated time overridden (compare, converge).

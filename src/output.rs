@@ -64,6 +64,58 @@ pub fn number(x: f64) -> String {
     format!("{x}")
 }
 
+/// A number as a person would type it, for messages and help texts: its shortest round-trip
+/// digits, in exponent form when that is shorter by two characters or more (1e-4, 1e300, 2e5;
+/// but 0.005, 0.0003125, 43.98). It reads back exactly, and 1e300 or 1e-300 never print as
+/// 301 digits.
+pub fn shortest(x: f64) -> String {
+    let plain = format!("{x}");
+    if !x.is_finite() {
+        return plain;
+    }
+    let exponent = format!("{x:e}");
+    if exponent.len() + 2 <= plain.len() {
+        exponent
+    } else {
+        plain
+    }
+}
+
+/// A number in exponent form (1e-8, 2.5e-3), as tolerances are written.
+pub fn scientific(x: f64) -> String {
+    format!("{x:e}")
+}
+
+/// Significant digits of [`readable`].
+const READABLE_DIGITS: usize = 12;
+
+/// A computed quantity for people: rounded to 12 significant digits, then in the form of
+/// [`shortest`], so that a sum such as 43.980000000000004 prints as 43.98.
+pub fn readable(x: f64) -> String {
+    if !x.is_finite() || x == 0.0 {
+        return shortest(x);
+    }
+    let rounded = format!("{x:.prec$e}", prec = READABLE_DIGITS - 1)
+        .parse::<f64>()
+        .unwrap_or(x);
+    shortest(rounded)
+}
+
+/// A count with its noun: "1 uplift", "2 uplifts", "0 uplifts".
+pub fn count(n: usize, singular: &str, plural: &str) -> String {
+    format!("{n} {}", if n == 1 { singular } else { plural })
+}
+
+/// Values as a comma-separated list, each in the form `format` gives ([`shortest`],
+/// [`scientific`]), as a user types them after a flag such as `--dt`.
+pub fn list(values: &[f64], format: fn(f64) -> String) -> String {
+    values
+        .iter()
+        .map(|&x| format(x))
+        .collect::<Vec<_>>()
+        .join(",")
+}
+
 pub fn history_csv(samples: &[Sample]) -> Vec<u8> {
     let mut table = Table::new(&HISTORY_COLUMNS);
     for s in samples {
@@ -105,51 +157,462 @@ pub fn json_bytes<T: serde::Serialize>(value: &T) -> Vec<u8> {
     bytes
 }
 
-/// Writes a set of files into `dir` so that each appears whole or not at all: every file is first
-/// written and synced under a temporary name, and only when all are written are they renamed.
+/// Start of the name of the temporary directory a write uses inside the output directory:
+/// `.flexrock-tmp-<pid>-<nonce>`.
+pub const TEMPORARY_PREFIX: &str = ".flexrock-tmp-";
+
+/// A temporary entry older than this is stale whatever its pid says. A write takes seconds (the
+/// computation happens before it), so this only matters where a pid cannot be checked (no
+/// `/proc`) or has been reused by another process.
+const STALE_AGE: std::time::Duration = std::time::Duration::from_secs(3600);
+
+/// Writes a set of files into `dir` (created if missing) so that it replaces the previous set
+/// as a whole or not at all.
+///
+/// 1. Before anything is written, every target is checked: an existing target must be a
+///    regular file (or a symbolic link to one, which is then replaced by the file); a directory,
+///    device, FIFO or socket (or a link to one) is refused with [`Error::OutputTarget`], an
+///    input error, and so is a `dir` that exists and is not a directory.
+/// 2. Temporaries that an earlier, killed write left in `dir` are removed: entries named
+///    `.flexrock-tmp-<pid>-<nonce>` (and `.<name>.tmp-<pid>` of older versions, for the names
+///    of this set) whose process is no longer running (checked in `/proc`), or older than an
+///    hour.
+/// 3. Every new file is written and synced into a fresh directory
+///    `dir/.flexrock-tmp-<pid>-<nonce>/` as `new-<name>`.
+/// 4. The previous files of the set are renamed into that directory as `old-<name>`, then the
+///    new files are renamed into place, and `dir` is synced (where the system allows).
+/// 5. On any failure in 3 or 4 the new files are taken out and the previous ones renamed back,
+///    so that `dir` holds exactly what it held before; if even that fails, the error says
+///    where the previous files are ([`Error::Rollback`]). On success the temporary directory,
+///    with the previous files, is removed.
+///
+/// What a reader can observe: the files of the set that are present at any moment are all
+/// previous ones (while step 4 moves them away) or all new ones (while it moves the new ones
+/// in), never a mix of both; each file is whole. If the process is killed during step 4, some
+/// files of the set may be missing (a set of several files cannot be replaced in one atomic
+/// step without swapping the whole directory); the previous files are then in
+/// `dir/.flexrock-tmp-<pid>-<nonce>/old-<name>` until the next write into `dir` removes that
+/// directory. Files in `dir` that are not part of the set are left alone.
 pub fn write_atomically(dir: &Path, files: &[(&str, Vec<u8>)]) -> Result<Vec<PathBuf>> {
+    write_set(dir, files, &mut |from, to| std::fs::rename(from, to))
+}
+
+/// [`write_atomically`] with the rename operation given, so that tests can make it fail.
+fn write_set(
+    dir: &Path,
+    files: &[(&str, Vec<u8>)],
+    rename: &mut dyn FnMut(&Path, &Path) -> std::io::Result<()>,
+) -> Result<Vec<PathBuf>> {
     let write_err = |path: &Path, source| Error::Write {
         path: path.to_path_buf(),
         source,
     };
+    check_output_dir(dir)?;
+    for (name, _) in files {
+        check_file_name(dir, name)?;
+        check_target(&dir.join(name))?;
+    }
     std::fs::create_dir_all(dir).map_err(|e| write_err(dir, e))?;
-    let mut staged = Vec::new();
-    let result = (|| {
+    let names: Vec<&str> = files.iter().map(|(name, _)| *name).collect();
+    remove_stale_temporaries(dir, &names);
+    let staging = create_staging_dir(dir).map_err(|e| write_err(dir, e))?;
+    let staged = (|| {
         for (name, bytes) in files {
-            let tmp = dir.join(format!(".{name}.tmp-{}", std::process::id()));
-            staged.push(tmp.clone());
-            let mut f = std::fs::File::create(&tmp).map_err(|e| write_err(&tmp, e))?;
-            f.write_all(bytes).map_err(|e| write_err(&tmp, e))?;
-            f.sync_all().map_err(|e| write_err(&tmp, e))?;
+            let path = staging.join(format!("new-{name}"));
+            let mut f = std::fs::File::create(&path).map_err(|e| write_err(&path, e))?;
+            f.write_all(bytes).map_err(|e| write_err(&path, e))?;
+            f.sync_all().map_err(|e| write_err(&path, e))?;
         }
-        let mut finals = Vec::new();
-        for ((name, _), tmp) in files.iter().zip(&staged) {
-            let target = dir.join(name);
-            std::fs::rename(tmp, &target).map_err(|e| write_err(&target, e))?;
-            finals.push(target);
-        }
-        Ok(finals)
+        sync_dir(&staging);
+        Ok(())
     })();
-    if result.is_err() {
-        for tmp in &staged {
-            let _ = std::fs::remove_file(tmp);
+    let result = staged.and_then(|()| swap_in(dir, &staging, &names, rename));
+    match &result {
+        // The previous files could not all be put back: they stay in the staging directory.
+        Err(Error::Rollback { .. }) => {}
+        _ => {
+            let _ = std::fs::remove_dir_all(&staging);
         }
     }
     result
 }
 
-/// Writes one file atomically (see [`write_atomically`]).
+/// Moves the previous files of the set into `staging` and the new ones from it into `dir`;
+/// on failure puts everything back as it was.
+fn swap_in(
+    dir: &Path,
+    staging: &Path,
+    names: &[&str],
+    rename: &mut dyn FnMut(&Path, &Path) -> std::io::Result<()>,
+) -> Result<Vec<PathBuf>> {
+    let target = |name: &str| dir.join(name);
+    let old = |name: &str| staging.join(format!("old-{name}"));
+    let new = |name: &str| staging.join(format!("new-{name}"));
+    // Names whose previous file was moved aside, and names whose new file is in place.
+    let mut moved_aside: Vec<&str> = Vec::new();
+    let mut installed: Vec<&str> = Vec::new();
+    let mut step = || -> std::result::Result<(), (PathBuf, std::io::Error)> {
+        for &name in names {
+            match std::fs::symlink_metadata(target(name)) {
+                // Checked before, and again here: nothing but a file or a link is moved aside
+                // (and later removed with the staging directory).
+                Ok(m) if m.is_file() || m.file_type().is_symlink() => {
+                    rename(&target(name), &old(name)).map_err(|e| (target(name), e))?;
+                    moved_aside.push(name);
+                }
+                Ok(m) => {
+                    let message = format!(
+                        "it became {} after it was checked; {TARGET_RULE}",
+                        file_kind(m.file_type())
+                    );
+                    return Err((target(name), std::io::Error::other(message)));
+                }
+                Err(e) if e.kind() == std::io::ErrorKind::NotFound => {}
+                Err(e) => return Err((target(name), e)),
+            }
+        }
+        for &name in names {
+            rename(&new(name), &target(name)).map_err(|e| (target(name), e))?;
+            installed.push(name);
+        }
+        Ok(())
+    };
+    let outcome = step();
+    match outcome {
+        Ok(()) => {
+            sync_dir(dir);
+            Ok(names.iter().map(|name| target(name)).collect())
+        }
+        Err((path, source)) => {
+            // Put the previous set back: a previous file renamed over a new one replaces it; a
+            // new file without a previous one is removed.
+            let mut restore_error = None;
+            for &name in names {
+                let restored = if moved_aside.contains(&name) {
+                    rename(&old(name), &target(name))
+                } else if installed.contains(&name) {
+                    std::fs::remove_file(target(name))
+                } else {
+                    Ok(())
+                };
+                if let Err(e) = restored {
+                    restore_error.get_or_insert(e);
+                }
+            }
+            sync_dir(dir);
+            match restore_error {
+                None => Err(Error::Write { path, source }),
+                Some(restore_error) => Err(Error::Rollback {
+                    path,
+                    source,
+                    restore_error,
+                    kept: staging.to_path_buf(),
+                }),
+            }
+        }
+    }
+}
+
+/// Syncs a directory's entries to disk where the system allows it (best effort: some systems
+/// cannot open or sync a directory).
+fn sync_dir(dir: &Path) {
+    if let Ok(d) = std::fs::File::open(dir) {
+        let _ = d.sync_all();
+    }
+}
+
+/// A new, empty directory `dir/.flexrock-tmp-<pid>-<nonce>`.
+fn create_staging_dir(dir: &Path) -> std::io::Result<PathBuf> {
+    use std::sync::atomic::{AtomicU64, Ordering};
+    static COUNTER: AtomicU64 = AtomicU64::new(0);
+    let pid = std::process::id();
+    loop {
+        let clock = std::time::SystemTime::now()
+            .duration_since(std::time::UNIX_EPOCH)
+            .map_or(0, |d| d.subsec_nanos() as u64);
+        let nonce = clock ^ (COUNTER.fetch_add(1, Ordering::Relaxed) << 32);
+        let path = dir.join(format!("{TEMPORARY_PREFIX}{pid}-{nonce:x}"));
+        match std::fs::create_dir(&path) {
+            Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => continue,
+            other => return other.map(|()| path),
+        }
+    }
+}
+
+/// The pid in the name of a temporary entry of flexrock, if the name is one: the current
+/// `.flexrock-tmp-<pid>-<nonce>` or, for the names of the set being written, the
+/// `.<name>.tmp-<pid>` files of earlier versions.
+fn temporary_pid(entry: &str, names: &[&str]) -> Option<u32> {
+    if let Some(rest) = entry.strip_prefix(TEMPORARY_PREFIX) {
+        let (pid, nonce) = rest.split_once('-')?;
+        let all_hex = !nonce.is_empty() && nonce.chars().all(|c| c.is_ascii_hexdigit());
+        return all_hex.then(|| pid.parse().ok()).flatten();
+    }
+    names.iter().find_map(|name| {
+        entry
+            .strip_prefix(&format!(".{name}.tmp-"))
+            .and_then(|pid| pid.parse().ok())
+    })
+}
+
+/// Whether a process with this pid runs on this machine: Some(answer) where `/proc` tells,
+/// None where it cannot be known.
+fn process_is_running(pid: u32) -> Option<bool> {
+    if pid == std::process::id() {
+        return Some(true);
+    }
+    if !Path::new("/proc/self").exists() {
+        return None;
+    }
+    Some(Path::new(&format!("/proc/{pid}")).exists())
+}
+
+/// Removes the temporaries a killed write left in `dir` (see [`write_atomically`]). Best
+/// effort: an entry that cannot be removed is left, and the write goes on.
+fn remove_stale_temporaries(dir: &Path, names: &[&str]) {
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return;
+    };
+    for entry in entries.flatten() {
+        let file_name = entry.file_name();
+        let Some(pid) = file_name.to_str().and_then(|n| temporary_pid(n, names)) else {
+            continue;
+        };
+        let Ok(metadata) = entry.path().symlink_metadata() else {
+            continue;
+        };
+        let old = metadata
+            .modified()
+            .ok()
+            .and_then(|m| m.elapsed().ok())
+            .is_some_and(|age| age > STALE_AGE);
+        let stale = process_is_running(pid) == Some(false) || old;
+        if !stale {
+            continue;
+        }
+        let _ = if metadata.is_dir() {
+            std::fs::remove_dir_all(entry.path())
+        } else {
+            std::fs::remove_file(entry.path())
+        };
+    }
+}
+
+/// What a file system entry is, for messages: "a directory", "a FIFO (named pipe)", ...
+pub(crate) fn file_kind(file_type: std::fs::FileType) -> &'static str {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        if file_type.is_fifo() {
+            return "a FIFO (named pipe)";
+        }
+        if file_type.is_char_device() {
+            return "a character device";
+        }
+        if file_type.is_block_device() {
+            return "a block device";
+        }
+        if file_type.is_socket() {
+            return "a socket";
+        }
+    }
+    if file_type.is_dir() {
+        "a directory"
+    } else if file_type.is_file() {
+        "a regular file"
+    } else {
+        "a special file"
+    }
+}
+
+/// The rule of [`check_target`], as messages state it.
+const TARGET_RULE: &str = "flexrock replaces only regular files, never a directory, device, \
+     FIFO or socket (nor a symbolic link to one): remove it or choose another output path";
+
+/// An existing output target must be a regular file (after following symbolic links).
+fn check_target(path: &Path) -> Result<()> {
+    match std::fs::metadata(path) {
+        Ok(m) if m.is_file() => Ok(()),
+        Ok(m) => {
+            let linked = std::fs::symlink_metadata(path).is_ok_and(|l| l.file_type().is_symlink());
+            let kind = file_kind(m.file_type());
+            Err(Error::OutputTarget {
+                path: path.to_path_buf(),
+                found: if linked {
+                    format!("is a symbolic link to {kind}")
+                } else {
+                    format!("is {kind}")
+                },
+                rule: TARGET_RULE.to_string(),
+            })
+        }
+        // Nothing there, or a dangling symbolic link (replaced by the file).
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(()),
+        Err(e) => Err(Error::Write {
+            path: path.to_path_buf(),
+            source: e,
+        }),
+    }
+}
+
+/// An existing output directory must be a directory.
+fn check_output_dir(dir: &Path) -> Result<()> {
+    match std::fs::metadata(dir) {
+        Ok(m) if !m.is_dir() => Err(Error::OutputTarget {
+            path: dir.to_path_buf(),
+            found: format!("is {}", file_kind(m.file_type())),
+            rule: "the output directory must be a directory (or not exist yet)".to_string(),
+        }),
+        _ => Ok(()),
+    }
+}
+
+/// An output name must be a plain file name: no separator, not `.` or `..`.
+fn check_file_name(dir: &Path, name: &str) -> Result<()> {
+    let plain = Path::new(name).file_name().and_then(|n| n.to_str()) == Some(name);
+    if plain {
+        Ok(())
+    } else {
+        Err(Error::Write {
+            path: dir.join(name),
+            source: std::io::Error::new(std::io::ErrorKind::InvalidInput, "not a file name"),
+        })
+    }
+}
+
+/// Writes one file atomically (see [`write_atomically`]): a regular file is replaced whole or
+/// left as it was; anything else at `path` is refused before anything is written.
 pub fn write_file_atomically(path: &Path, bytes: &[u8]) -> Result<()> {
     let dir = match path.parent() {
         Some(d) if !d.as_os_str().is_empty() => d,
         _ => Path::new("."),
     };
-    let name = path
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .ok_or_else(|| Error::Write {
-            path: path.to_path_buf(),
-            source: std::io::Error::new(std::io::ErrorKind::InvalidInput, "not a file name"),
-        })?;
-    write_atomically(dir, &[(name.as_str(), bytes.to_vec())]).map(|_| ())
+    let Some(name) = path.file_name().and_then(|n| n.to_str()) else {
+        // "/", "..", "dir/.." or a name that is not UTF-8.
+        return match std::fs::metadata(path) {
+            Ok(m) if !m.is_file() => Err(Error::OutputTarget {
+                path: path.to_path_buf(),
+                found: format!("is {}", file_kind(m.file_type())),
+                rule: TARGET_RULE.to_string(),
+            }),
+            _ => Err(Error::Write {
+                path: path.to_path_buf(),
+                source: std::io::Error::new(
+                    std::io::ErrorKind::InvalidInput,
+                    "not a file name flexrock can write (it must end in a UTF-8 file name)",
+                ),
+            }),
+        };
+    };
+    write_atomically(dir, &[(name, bytes.to_vec())]).map(|_| ())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn scratch(name: &str) -> PathBuf {
+        let dir =
+            std::env::temp_dir().join(format!("flexrock-output-{name}-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        dir
+    }
+
+    fn names(dir: &Path) -> Vec<String> {
+        let mut names: Vec<String> = std::fs::read_dir(dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        names.sort();
+        names
+    }
+
+    #[test]
+    fn numbers_for_people() {
+        assert_eq!(shortest(1e300), "1e300");
+        assert_eq!(shortest(-1e-300), "-1e-300");
+        assert_eq!(shortest(0.005), "0.005");
+        assert_eq!(shortest(0.0003125), "0.0003125");
+        assert_eq!(shortest(1e-4), "1e-4");
+        assert_eq!(shortest(43.980000000000004), "43.980000000000004");
+        assert_eq!(shortest(f64::NAN), "NaN");
+        assert_eq!(shortest(f64::NEG_INFINITY), "-inf");
+        assert_eq!(readable(43.980000000000004), "43.98");
+        assert_eq!(readable(0.1 + 0.2), "0.3");
+        assert_eq!(readable(1.0 / 3.0), "0.333333333333");
+        assert_eq!(readable(0.0), "0");
+        assert_eq!(readable(6e4), "6e4");
+        assert_eq!(readable(31.16), "31.16");
+        assert_eq!(count(1, "uplift", "uplifts"), "1 uplift");
+        assert_eq!(count(0, "uplift", "uplifts"), "0 uplifts");
+        assert_eq!(count(2, "uplift", "uplifts"), "2 uplifts");
+        assert_eq!(list(&[1e-3, 1e-11], scientific), "1e-3,1e-11");
+        assert_eq!(list(&[0.04, 0.0003125], shortest), "0.04,0.0003125");
+    }
+
+    /// A rename that fails at its `fail_at`-th call (0-based), like a disk error in the middle.
+    fn failing_rename(fail_at: usize) -> impl FnMut(&Path, &Path) -> std::io::Result<()> {
+        let mut calls = 0;
+        move |from, to| {
+            calls += 1;
+            if calls - 1 == fail_at {
+                Err(std::io::Error::other("injected failure"))
+            } else {
+                std::fs::rename(from, to)
+            }
+        }
+    }
+
+    #[test]
+    fn a_failed_rename_puts_the_previous_set_back() {
+        let files = |tag: &str| -> Vec<(&'static str, Vec<u8>)> {
+            ["a.csv", "b.csv", "c.json"]
+                .into_iter()
+                .map(|n| (n, format!("{tag} {n}").into_bytes()))
+                .collect()
+        };
+        // 2 of the 3 targets exist: calls 0-1 move them aside, 2-4 move the new files in.
+        // Fail each of them in turn.
+        for fail_at in 0..5 {
+            let dir = scratch(&format!("rollback-{fail_at}"));
+            write_atomically(&dir, &files("old")[..2]).unwrap();
+            let mut rename = failing_rename(fail_at);
+            let error = write_set(&dir, &files("new"), &mut rename).unwrap_err();
+            assert!(matches!(error, Error::Write { .. }), "{fail_at}: {error}");
+            assert!(error.to_string().contains("injected failure"), "{error}");
+            // The two previous files as they were, no third file, no temporary left.
+            assert_eq!(names(&dir), ["a.csv", "b.csv"], "{fail_at}");
+            for n in ["a.csv", "b.csv"] {
+                assert_eq!(
+                    std::fs::read_to_string(dir.join(n)).unwrap(),
+                    format!("old {n}")
+                );
+            }
+            let _ = std::fs::remove_dir_all(&dir);
+        }
+    }
+
+    #[test]
+    fn the_whole_set_is_replaced() {
+        let dir = scratch("replace");
+        write_atomically(&dir, &[("a", b"1".to_vec()), ("b", b"1".to_vec())]).unwrap();
+        let written =
+            write_atomically(&dir, &[("a", b"2".to_vec()), ("b", b"2".to_vec())]).unwrap();
+        assert_eq!(written, vec![dir.join("a"), dir.join("b")]);
+        assert_eq!(names(&dir), ["a", "b"]);
+        assert_eq!(std::fs::read(dir.join("b")).unwrap(), b"2");
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    #[test]
+    fn temporary_names() {
+        let names = ["history.csv"];
+        assert_eq!(temporary_pid(".flexrock-tmp-123-abc0", &names), Some(123));
+        assert_eq!(temporary_pid(".history.csv.tmp-77", &names), Some(77));
+        assert_eq!(temporary_pid(".events.csv.tmp-77", &names), None);
+        assert_eq!(temporary_pid(".flexrock-tmp-123-", &names), None);
+        assert_eq!(temporary_pid(".flexrock-tmp-x-1", &names), None);
+        assert_eq!(temporary_pid("history.csv", &names), None);
+    }
 }

@@ -15,7 +15,8 @@
 //!   numbers is read again as fixed-width fields of 10, then 15 characters, so that fields that
 //!   touch (`-100.12345-100.12345`) are still read.
 //!
-//! The number of values must equal NPTS; NaN and infinite values are errors; dt must be > 0.
+//! The number of values must equal NPTS; NaN and infinite values are errors; dt must be at
+//! least [`MIN_DT`].
 //! CRLF line ends, a missing newline after the last value, blank lines and a UTF-8 byte-order
 //! mark are accepted.
 //!
@@ -24,7 +25,14 @@
 //! Comma-separated, one row per sample, either two columns `t, acc` (the time column must start
 //! at 0 and be uniformly spaced to 1e-6 relative; dt is derived from it) or one column `acc`
 //! (dt must be given by the caller). An optional first row of non-numeric column names is
-//! skipped. `#` starts a comment that runs to the end of the line; blank lines are skipped.
+//! kept in [`Record::title`]. `#` starts a comment that runs to the end of the line; blank
+//! lines are skipped.
+//!
+//! # Files
+//!
+//! [`read_record`] reads only regular files (not a device such as /dev/zero, a FIFO or a
+//! directory) of at most [`MAX_RECORD_BYTES`], checked before reading, through a reader that
+//! stops at that limit.
 //!
 //! Every error names the file, the 1-based line number where there is one, and what was
 //! expected and found. No input, however malformed, makes the readers panic.
@@ -37,7 +45,8 @@ use std::path::Path;
 pub struct Record {
     /// The file name as given, for messages.
     pub source: String,
-    /// The header lines before the NPTS line (event/station lines); empty for CSV.
+    /// The header lines before the NPTS line (event/station lines); for CSV the row of column
+    /// names, if the file has one.
     pub title: Vec<String>,
     /// Sampling interval, s.
     pub dt: f64,
@@ -131,6 +140,20 @@ const RELATIVE_DT_TOLERANCE: f64 = 1e-6;
 /// Longest piece of file text quoted in a message, in characters.
 const MAX_QUOTED_CHARS: usize = 80;
 
+/// Smallest sampling interval accepted, s (100 kHz). Strong-motion accelerographs sample at
+/// 100 Hz to a few kHz (dt from 0.01 s down to a few 1e-4 s); a smaller dt is a mistake in the
+/// file (or a unit other than seconds), and every sample is a stop time of the adaptive solver.
+pub const MIN_DT: f64 = 1e-5;
+
+/// Largest record file read, bytes (64 MiB). The largest real AT2 files are a few MB (a long
+/// record at 200 Hz has some 60 000 values, 10-16 characters each).
+pub const MAX_RECORD_BYTES: u64 = 64 * 1024 * 1024;
+
+/// A number in a message (shortest exact form: `1e-300`, not 300 zeros).
+fn shown(x: f64) -> String {
+    crate::output::shortest(x)
+}
+
 /// Everything that can go wrong reading a record. Each message names the file (and line).
 #[derive(Debug, thiserror::Error)]
 pub enum RecordError {
@@ -140,6 +163,19 @@ pub enum RecordError {
         #[source]
         error: std::io::Error,
     },
+
+    #[error(
+        "{file}: is {found}; a record must be a regular file (not a device, FIFO, socket or \
+         directory)"
+    )]
+    NotRegularFile { file: String, found: &'static str },
+
+    #[error(
+        "{file}: the file has {size} bytes, more than the limit for a record, {limit} bytes \
+         ({} MiB); real AT2 files have a few MB",
+        .limit / (1024 * 1024)
+    )]
+    TooLarge { file: String, size: u64, limit: u64 },
 
     #[error("{at}: the file is not UTF-8 text (invalid byte at offset {byte_offset})")]
     NotUtf8 { at: Location, byte_offset: usize },
@@ -166,11 +202,22 @@ pub enum RecordError {
     #[error("{at}: NPTS must be > 0, found {found}")]
     InvalidCount { at: Location, found: usize },
 
-    #[error("{at}: dt must be > 0, found {found}")]
+    #[error("{at}: dt must be > 0, found {}", shown(*.found))]
     InvalidDt { at: Location, found: f64 },
 
-    #[error("{at}: dt must be a finite number, found {found}")]
+    #[error("{at}: dt must be a finite number, found {}", shown(*.found))]
     NonFiniteDt { at: Location, found: f64 },
+
+    #[error(
+        "{at}: dt = {} s is below the smallest sampling interval accepted, {} s (100 kHz; \
+         accelerographs sample at 100 Hz to a few kHz)",
+        shown(*.found), shown(*.limit)
+    )]
+    DtTooSmall {
+        at: Location,
+        found: f64,
+        limit: f64,
+    },
 
     #[error("{at}: value {token:?} is not a number")]
     NotANumber { at: Location, token: String },
@@ -216,16 +263,17 @@ pub enum RecordError {
     #[error("{file}: a time column needs at least 2 rows to give dt, found 1")]
     TooFewRowsForDt { file: String },
 
-    #[error("{at}: the time column must start at 0, found {found}")]
+    #[error("{at}: the time column must start at 0, found {}", shown(*.found))]
     TimeNotFromZero { at: Location, found: f64 },
 
     #[error(
-        "{at}: time step {step} differs from the mean step {mean} by more than 1e-6 relative \
-         (the time column must be uniformly spaced)"
+        "{at}: time step {} differs from the mean step {} by more than 1e-6 relative \
+         (the time column must be uniformly spaced)",
+        shown(*.step), shown(*.mean)
     )]
     NonUniformTime { at: Location, step: f64, mean: f64 },
 
-    #[error("{file}: dt given as {given} but the file says {found}")]
+    #[error("{file}: dt given as {} but the file says {}", shown(*.given), shown(*.found))]
     DtConflict {
         file: String,
         given: f64,
@@ -322,12 +370,18 @@ fn parse_old_style_header(line: &str) -> Option<(usize, f64)> {
     }
 }
 
-/// Checks that a dt is finite and > 0.
+/// Checks that a dt is finite, > 0 and at least [`MIN_DT`].
 fn check_dt(dt: f64, at: Location) -> Result<f64, RecordError> {
     if !dt.is_finite() {
         Err(RecordError::NonFiniteDt { at, found: dt })
     } else if dt <= 0.0 {
         Err(RecordError::InvalidDt { at, found: dt })
+    } else if dt < MIN_DT {
+        Err(RecordError::DtTooSmall {
+            at,
+            found: dt,
+            limit: MIN_DT,
+        })
     } else {
         Ok(dt)
     }
@@ -481,6 +535,7 @@ pub fn parse_csv(text: &str, source: &str, dt: Option<f64>) -> Result<Record, Re
     }
 
     let mut rows: Vec<CsvRow> = Vec::new();
+    let mut title = Vec::new();
     let mut column_count: Option<usize> = None;
     for (line_number, line) in numbered_lines(text) {
         let content = line.split('#').next().unwrap_or("").trim();
@@ -503,6 +558,7 @@ pub fn parse_csv(text: &str, source: &str, dt: Option<f64>) -> Result<Record, Re
                     .iter()
                     .all(|field| matches!(parse_number(field), Err(NumberError::NotANumber)));
                 if is_header_row {
+                    title.push(content.to_string());
                     continue;
                 }
             }
@@ -569,7 +625,7 @@ pub fn parse_csv(text: &str, source: &str, dt: Option<f64>) -> Result<Record, Re
         .collect();
     Ok(Record {
         source: source.to_string(),
-        title: Vec::new(),
+        title,
         dt: record_dt,
         values,
     })
@@ -629,6 +685,41 @@ fn decode_utf8(bytes: Vec<u8>, source: &str) -> Result<String, RecordError> {
     })
 }
 
+/// The bytes of a record file: only a regular file (checked before opening it, so that a FIFO
+/// does not block and /dev/zero is not read), of at most [`MAX_RECORD_BYTES`] (checked before
+/// reading, and enforced while reading in case the file grows).
+fn read_bounded(path: &Path, source: &str) -> Result<Vec<u8>, RecordError> {
+    use std::io::Read as _;
+    let read_error = |error| RecordError::Read {
+        file: source.to_string(),
+        error,
+    };
+    let too_large = |size| RecordError::TooLarge {
+        file: source.to_string(),
+        size,
+        limit: MAX_RECORD_BYTES,
+    };
+    let metadata = std::fs::metadata(path).map_err(read_error)?;
+    if !metadata.is_file() {
+        return Err(RecordError::NotRegularFile {
+            file: source.to_string(),
+            found: crate::output::file_kind(metadata.file_type()),
+        });
+    }
+    if metadata.len() > MAX_RECORD_BYTES {
+        return Err(too_large(metadata.len()));
+    }
+    let file = std::fs::File::open(path).map_err(read_error)?;
+    let mut bytes = Vec::with_capacity(metadata.len() as usize);
+    file.take(MAX_RECORD_BYTES + 1)
+        .read_to_end(&mut bytes)
+        .map_err(read_error)?;
+    if bytes.len() as u64 > MAX_RECORD_BYTES {
+        return Err(too_large(bytes.len() as u64));
+    }
+    Ok(bytes)
+}
+
 /// Reads a record file. Without `format`, the extension decides (`.AT2`/`.at2`: PEER AT2,
 /// `.csv`: CSV). `dt` is required for one-column CSV; otherwise, if given, it must agree with
 /// the file's dt to 1e-6 relative.
@@ -650,10 +741,7 @@ pub fn read_record(
             })
         }
     };
-    let bytes = std::fs::read(path).map_err(|error| RecordError::Read {
-        file: source.clone(),
-        error,
-    })?;
+    let bytes = read_bounded(path, &source)?;
     let text = decode_utf8(bytes, &source)?;
     match format {
         RecordFormat::Csv => parse_csv(&text, &source, dt),
@@ -998,7 +1086,7 @@ mod tests {
         let record = parse_csv(text, "two.csv", None).expect("two-column CSV parses");
         assert_close(record.dt, 0.01);
         assert_eq!(record.values, vec![0.1, -0.3, 0.2, 0.0]);
-        assert!(record.title.is_empty());
+        assert_eq!(record.title, vec!["t, acc".to_string()]);
         let (peak, time) = record.peak();
         assert_close(peak, -0.3);
         assert_close(time, 0.01);

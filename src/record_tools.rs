@@ -5,11 +5,38 @@ use std::path::Path;
 
 use crate::error::{Error, Result};
 use crate::model::STANDARD_GRAVITY;
-use crate::output::{number, Table};
+use crate::output::{number, readable, Table};
 use crate::record::{read_record, Record, RecordFormat};
 
-/// Reads a record for the `record` commands (format by extension unless given).
-pub fn load(path: &Path, format: Option<&str>, dt: Option<f64>) -> Result<Record> {
+/// The acceleration column of the CSV files `flexrock record csv` writes.
+pub const CSV_ACCELERATION_COLUMN: &str = "acc_m_s2";
+
+/// Acceleration column names that say their unit, as `flexrock record csv` writes them, with
+/// that unit.
+const UNIT_COLUMNS: [(&str, &str); 3] = [
+    (CSV_ACCELERATION_COLUMN, "m/s2"),
+    ("acc_g", "g"),
+    ("acc_cm_s2", "cm/s2"),
+];
+
+/// A record read for the `record` commands, with the unit of its values.
+pub struct LoadedRecord {
+    pub record: Record,
+    /// "g", "m/s2" or "cm/s2".
+    pub units: &'static str,
+    /// Factor from `units` to m/s^2.
+    pub factor: f64,
+}
+
+/// Reads a record for the `record` commands (format by extension unless given). The unit is
+/// `units` when given; otherwise g for PEER AT2 files, and for CSV files the unit their header
+/// names (`acc_m_s2`, as `record csv` writes it); a CSV file without one needs `units`.
+pub fn load(
+    path: &Path,
+    format: Option<&str>,
+    dt: Option<f64>,
+    units: Option<&str>,
+) -> Result<LoadedRecord> {
     let format = match format {
         None => None,
         Some("peer-at2") => Some(RecordFormat::PeerAt2),
@@ -22,18 +49,65 @@ pub fn load(path: &Path, format: Option<&str>, dt: Option<f64>) -> Result<Record
             ))
         }
     };
-    read_record(path, format, dt).map_err(|source| Error::Record {
+    if let Some(u) = units {
+        unit_factor(u)?;
+    }
+    let record = read_record(path, format, dt).map_err(|source| Error::Record {
         key: "record".to_string(),
         source,
+    })?;
+    let is_csv = format.or_else(|| RecordFormat::from_extension(path)) == Some(RecordFormat::Csv);
+    let from_header = if is_csv { header_units(&record) } else { None };
+    let units = match (units, from_header, is_csv) {
+        (Some(given), Some((column, said)), _) if given != said => {
+            return Err(Error::invalid(
+                "--units",
+                format!("\"{given}\""),
+                &format!(
+                    "contradicts the column {column} of {}, which is in {said}",
+                    record.source
+                ),
+            ))
+        }
+        (Some(given), _, _) => given,
+        (None, Some((_, said)), _) => said,
+        (None, None, false) => "g",
+        (None, None, true) => {
+            return Err(Error::invalid(
+                "--units",
+                "(missing)",
+                &format!(
+                    "required for a CSV record whose header does not name its unit ({} has no \
+                     column {CSV_ACCELERATION_COLUMN}): \"g\", \"m/s2\" or \"cm/s2\"",
+                    record.source
+                ),
+            ))
+        }
+    };
+    let (units, factor) = unit_factor(units)?;
+    Ok(LoadedRecord {
+        record,
+        units,
+        factor,
     })
 }
 
-/// Factor from the record's units to m/s^2.
-pub fn unit_factor(units: &str) -> Result<f64> {
+/// The unit a CSV record's header names, with the column that names it.
+fn header_units(record: &Record) -> Option<(&'static str, &'static str)> {
+    let header = record.title.first()?;
+    let column = header.split(',').next_back()?.trim();
+    UNIT_COLUMNS
+        .iter()
+        .find(|(name, _)| column.eq_ignore_ascii_case(name))
+        .copied()
+}
+
+/// The unit's canonical name and its factor to m/s^2.
+pub fn unit_factor(units: &str) -> Result<(&'static str, f64)> {
     match units {
-        "g" => Ok(STANDARD_GRAVITY),
-        "m/s2" => Ok(1.0),
-        "cm/s2" => Ok(0.01),
+        "g" => Ok(("g", STANDARD_GRAVITY)),
+        "m/s2" => Ok(("m/s2", 1.0)),
+        "cm/s2" => Ok(("cm/s2", 0.01)),
         other => Err(Error::invalid(
             "--units",
             format!("\"{other}\""),
@@ -43,8 +117,12 @@ pub fn unit_factor(units: &str) -> Result<f64> {
 }
 
 /// What the reader understood, for `flexrock record info`.
-pub fn info_text(record: &Record, units: &str) -> Result<String> {
-    let factor = unit_factor(units)?;
+pub fn info_text(loaded: &LoadedRecord) -> String {
+    let LoadedRecord {
+        record,
+        units,
+        factor,
+    } = loaded;
     let (peak, t_peak) = record.peak();
     let peak_si = peak * factor;
     let mut t = String::new();
@@ -58,29 +136,35 @@ pub fn info_text(record: &Record, units: &str) -> Result<String> {
         );
     }
     let _ = writeln!(t, "points     {}", record.values.len());
-    let _ = writeln!(t, "dt         {} s", record.dt);
+    let _ = writeln!(t, "dt         {} s", readable(record.dt));
     let _ = writeln!(
         t,
         "duration   {} s (first sample at t = 0)",
-        record.duration()
+        readable(record.duration())
     );
-    let _ = writeln!(t, "units      {units} (1 {units} = {factor} m/s^2)");
+    let _ = writeln!(
+        t,
+        "units      {units} (1 {units} = {} m/s^2)",
+        readable(*factor)
+    );
     let _ = writeln!(
         t,
         "PGA        {:.6} g = {:.6} m/s^2 at t = {} s",
         peak_si / STANDARD_GRAVITY,
         peak_si,
-        t_peak
+        readable(t_peak)
     );
-    Ok(t)
+    t
 }
 
 /// The record as a two-column CSV, `t,acc_m_s2`.
-pub fn csv_bytes(record: &Record, units: &str) -> Result<Vec<u8>> {
-    let factor = unit_factor(units)?;
-    let mut table = Table::new(&["t", "acc_m_s2"]);
-    for (k, v) in record.values.iter().enumerate() {
-        table.row([number(k as f64 * record.dt), number(v * factor)]);
+pub fn csv_bytes(loaded: &LoadedRecord) -> Vec<u8> {
+    let mut table = Table::new(&["t", CSV_ACCELERATION_COLUMN]);
+    for (k, v) in loaded.record.values.iter().enumerate() {
+        table.row([
+            number(k as f64 * loaded.record.dt),
+            number(v * loaded.factor),
+        ]);
     }
-    Ok(table.into_bytes())
+    table.into_bytes()
 }

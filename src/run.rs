@@ -278,15 +278,6 @@ pub fn run(model: &Model, out_dir: &Path) -> Result<RunReport> {
     })
 }
 
-/// "1 uplift", "2 uplifts".
-fn counted(n: usize, noun: &str) -> String {
-    if n == 1 {
-        format!("1 {noun}")
-    } else {
-        format!("{n} {noun}s")
-    }
-}
-
 /// The excitation as understood, in one line: its kind and parameters, and its peak.
 fn excitation_text(floor: &dyn FloorMotion) -> String {
     let mut parts = vec![floor.kind().to_string()];
@@ -295,7 +286,10 @@ fn excitation_text(floor: &dyn FloorMotion) -> String {
             match value {
                 // The peak is printed below, for every kind.
                 serde_json::Value::Number(_) if key == "pga" || key == "t_pga" => {}
-                serde_json::Value::Number(n) => parts.push(format!("{key} = {n}")),
+                serde_json::Value::Number(n) => parts.push(format!(
+                    "{key} = {}",
+                    n.as_f64().map_or_else(|| n.to_string(), output::readable)
+                )),
                 serde_json::Value::String(text) if key != "kind" => {
                     parts.push(format!("{key} = {text}"))
                 }
@@ -329,8 +323,8 @@ pub fn run_report_text(model: &Model, report: &RunReport) -> String {
     let _ = writeln!(
         t,
         "  {}, {}, {}",
-        counted(s.count(EventKind::Uplift), "uplift"),
-        counted(s.count(EventKind::Landing), "landing"),
+        output::count(s.count(EventKind::Uplift), "uplift", "uplifts"),
+        output::count(s.count(EventKind::Landing), "landing", "landings"),
         match s.t_overturn {
             Some(to) => format!("overturned at t = {to:.9} s"),
             None if s.ended_while_rocking() => {

@@ -144,7 +144,7 @@ fn a_step_beyond_the_stability_limit_is_refused() {
     let text = format!("{base}dt = 0.86\nnewmark_beta = 0.25\n");
     assert!(Model::from_toml_str(&text, &Overrides::default()).is_ok());
 
-    // On the command line: exit code 2, the key named, nothing written.
+    // On the command line: exit code 2, the flag named, nothing written.
     let dir = common::scratch_dir("newmark-unstable");
     let out = dir.join("out");
     let o = flexrock(&[
@@ -158,7 +158,7 @@ fn a_step_beyond_the_stability_limit_is_refused() {
     let stderr = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(2), "{stderr}");
     assert!(
-        stderr.contains("solver.dt") && stderr.contains("stable"),
+        stderr.contains("--dt = 0.9") && stderr.contains("stable"),
         "{stderr}"
     );
     assert!(!out.exists());

@@ -13,7 +13,8 @@ use super::{
 
 /// Most friction re-solves within one step.
 const FRICTION_ITERATIONS: usize = 10;
-/// Distinct constraint patterns kept factorised.
+/// Most distinct constraint patterns kept factorised (fewer on large meshes: see
+/// [`super::FACTOR_CACHE_BYTES`]).
 const FACTOR_CACHE_SIZE: usize = 256;
 
 /// Runs the dynamic analysis: static gravity first, then the floor acceleration
@@ -256,7 +257,10 @@ impl<'a> Run<'a> {
     fn factors_for(&mut self, constrained: &[bool]) -> Result<&BandedLdl, FemError> {
         let key = constrained[..2 * self.base_nodes].to_vec();
         if !self.factors.contains_key(&key) {
-            if self.factors.len() >= FACTOR_CACHE_SIZE {
+            let factor_bytes = 8.0 * (self.effective.n * (self.effective.hb + 1)) as f64;
+            let capacity =
+                ((super::FACTOR_CACHE_BYTES / factor_bytes) as usize).clamp(1, FACTOR_CACHE_SIZE);
+            if self.factors.len() >= capacity {
                 self.factors.clear();
             }
             let f = BandedLdl::factor(&self.effective.with_identity_rows(constrained))?;

@@ -14,7 +14,7 @@ use super::{
 use crate::automaton::EventKind;
 use crate::error::{Error, Result};
 use crate::model::{FemSetup, Model, ModelFile};
-use crate::output::{self, number, Table};
+use crate::output::{self, count, number, readable, Table};
 use crate::plot::{self, Panel, Series};
 use crate::run::VERSION;
 use crate::solution::Solution;
@@ -189,7 +189,8 @@ pub fn analyse(model: &Model, setup: &FemSetup) -> Result<FemAnalysis> {
     }
     if let Some(t) = result.overturned_at {
         warnings.push(format!(
-            "the body overturned (|q| > B) at t = {t} s; the run stops there"
+            "the body overturned (|q| > B) at t = {} s; the run stops there",
+            readable(t)
         ));
     }
     let uplifts = uplift_episodes(&result.steps, setup.body.width);
@@ -546,6 +547,9 @@ pub struct ComparisonRow {
     pub quantity: String,
     pub sdof: f64,
     pub fem: f64,
+    /// The row counts something (printed without decimals).
+    #[serde(skip)]
+    pub is_count: bool,
 }
 
 /// The SDOF model and the FEM side by side.
@@ -619,17 +623,21 @@ pub fn compare_solutions(model: &Model, sdof: &Solution, a: &FemAnalysis) -> Com
         quantity: quantity.to_string(),
         sdof,
         fem,
+        is_count: false,
     };
     let rows = vec![
         row("max q (m)", sdof.max_q.value, p.max_q),
         row("t of max q (s)", sdof.max_q.t, p.t_max_q),
         row("min q (m)", sdof.min_q.value, p.min_q),
         row("t of min q (s)", sdof.min_q.t, p.t_min_q),
-        row(
-            "uplifts",
-            sdof_uplift_times.len() as f64,
-            fem_uplift_times.len() as f64,
-        ),
+        ComparisonRow {
+            is_count: true,
+            ..row(
+                "uplifts",
+                sdof_uplift_times.len() as f64,
+                fem_uplift_times.len() as f64,
+            )
+        },
         row(
             "first uplift t (s)",
             sdof_uplift_times.first().copied().unwrap_or(f64::NAN),
@@ -693,7 +701,12 @@ pub fn comparison_text(c: &Comparison) -> String {
     let mut t = String::new();
     let _ = writeln!(t, "  {:<36} {:>12} {:>12}", "quantity", "SDOF", "FEM");
     for r in &c.rows {
-        let _ = writeln!(t, "  {:<36} {:>12.5} {:>12.5}", r.quantity, r.sdof, r.fem);
+        let digits = if r.is_count { 0 } else { 5 };
+        let _ = writeln!(
+            t,
+            "  {:<36} {:>12.digits$} {:>12.digits$}",
+            r.quantity, r.sdof, r.fem
+        );
     }
     let list = |v: &[f64]| {
         let shown: Vec<String> = v.iter().take(12).map(|t| format!("{t:.3}")).collect();
@@ -783,8 +796,8 @@ pub fn report_text(report: &FemReport) -> String {
         s.nx,
         s.ny,
         a.setup.scheme_name,
-        s.dt,
-        s.duration,
+        readable(s.dt),
+        readable(s.duration),
         if s.p_delta { "on" } else { "off" }
     );
     let _ = writeln!(
@@ -800,10 +813,14 @@ pub fn report_text(report: &FemReport) -> String {
     );
     let _ = writeln!(
         t,
-        "  {} base-node state changes, {} uplift episodes; {} steps in {:.1} ms",
-        a.result.events.len(),
-        a.uplifts.len(),
-        a.result.steps.len(),
+        "  {}, {}; {} in {:.1} ms",
+        count(
+            a.result.events.len(),
+            "base-node state change",
+            "base-node state changes"
+        ),
+        count(a.uplifts.len(), "uplift episode", "uplift episodes"),
+        count(a.result.steps.len(), "step", "steps"),
         a.wall_time_s * 1e3
     );
     if let Some(c) = &report.comparison {

@@ -2,11 +2,12 @@
 
 use serde::Serialize;
 
-use super::{FemSection, ModelFile};
+use super::{FemOverrides, FemSection, ModelFile};
 use crate::body::{positive, Body};
 use crate::constants::Constants;
 use crate::error::{Error, Result};
-use crate::fem::{BaseSupport, FemBody, FemSettings, TimeScheme};
+use crate::fem::{check_run_size, BaseSupport, FemBody, FemSettings, SizeLimit, TimeScheme};
+use crate::output::readable;
 
 pub const DEFAULT_POISSON_RATIO: f64 = 0.25;
 
@@ -28,14 +29,78 @@ pub const DEFAULT_FEM_MU_K: f64 = 0.4;
 /// Deformed shapes are stored at these times (the paper's Fig. 9), s.
 pub const FEM_SNAPSHOT_TIMES: [f64; 6] = [0.9, 1.0, 1.1, 1.2, 1.3, 1.4];
 
+/// How the settings that the command line can override are named in messages: by their key in
+/// the model file, or by their flag when the value came from the command line.
+struct Names {
+    nx: &'static str,
+    ny: &'static str,
+    dt: &'static str,
+    scheme: &'static str,
+}
+
+const FILE_NAMES: Names = Names {
+    nx: "fem.nx",
+    ny: "fem.ny",
+    dt: "fem.dt",
+    scheme: "fem.scheme",
+};
+
 /// Builds the finite element analysis from `[body]` and `[fem]`. The plane-stress body takes
 /// E = 12 EI/(D B^3) and the density M/(H B D) from the validated body, so every way of giving
 /// the stiffness and the mass works; the damping period defaults to the pre-uplift period T.
+///
+/// Every rule is here, the size limits of `crate::fem` included. Without a `[fem]` section the
+/// defaults are not checked against the simulated time (a time step longer than a short run,
+/// too many steps for a long one): `flexrock run` must not fail for settings that only
+/// `flexrock fem` uses, and that command checks them all ([`fem_with_overrides`]).
 pub fn fem_from_section(
     file: &ModelFile,
     body: &Body,
     constants: &Constants,
     simulation_duration: f64,
+) -> Result<FemSetup> {
+    fem_setup(file, body, constants, simulation_duration, &FILE_NAMES)
+}
+
+/// The analysis with command-line values in place of the file's, checked by the same rules;
+/// messages name the flag (`--nx`, `--ny`, `--dt`, `--scheme`) of a value from the command line.
+pub fn fem_with_overrides(
+    file: &ModelFile,
+    body: &Body,
+    constants: &Constants,
+    simulation_duration: f64,
+    overrides: &FemOverrides,
+) -> Result<FemSetup> {
+    let mut file = file.clone();
+    let section = file.fem.get_or_insert_with(FemSection::default);
+    section.nx = overrides.nx.or(section.nx);
+    section.ny = overrides.ny.or(section.ny);
+    section.dt = overrides.dt.or(section.dt);
+    if let Some(scheme) = &overrides.scheme {
+        section.scheme = Some(scheme.clone());
+    }
+    let flag_or_key = |flag: bool, name: &'static str, key: &'static str| {
+        if flag {
+            name
+        } else {
+            key
+        }
+    };
+    let names = Names {
+        nx: flag_or_key(overrides.nx.is_some(), "--nx", FILE_NAMES.nx),
+        ny: flag_or_key(overrides.ny.is_some(), "--ny", FILE_NAMES.ny),
+        dt: flag_or_key(overrides.dt.is_some(), "--dt", FILE_NAMES.dt),
+        scheme: flag_or_key(overrides.scheme.is_some(), "--scheme", FILE_NAMES.scheme),
+    };
+    fem_setup(&file, body, constants, simulation_duration, &names)
+}
+
+fn fem_setup(
+    file: &ModelFile,
+    body: &Body,
+    constants: &Constants,
+    simulation_duration: f64,
+    names: &Names,
 ) -> Result<FemSetup> {
     let default = FemSection::default();
     let s = file.fem.as_ref().unwrap_or(&default);
@@ -49,32 +114,46 @@ pub fn fem_from_section(
     }
     let nx = s.nx.unwrap_or(DEFAULT_FEM_NX);
     let ny = s.ny.unwrap_or(DEFAULT_FEM_NY);
-    for (key, n) in [("fem.nx", nx), ("fem.ny", ny)] {
-        if !(1..=1000).contains(&n) {
+    let dt = s.dt.unwrap_or(DEFAULT_FEM_DT);
+    positive(names.dt, dt)?;
+    let (duration, duration_key) = match s.duration {
+        Some(d) => (d, "fem.duration"),
+        None => (simulation_duration, "simulation.duration"),
+    };
+    positive("fem.duration", duration)?;
+    let size_error = |limit: SizeLimit| {
+        let rule = limit.rule();
+        match limit {
+            SizeLimit::Nx(n) => Error::invalid(names.nx, n, &rule),
+            SizeLimit::Ny(n) => Error::invalid(names.ny, n, &rule),
+            SizeLimit::Band { nx, ny } => Error::invalid(
+                &format!("{}, {}", names.nx, names.ny),
+                format!("{nx}, {ny}"),
+                &rule,
+            ),
+            SizeLimit::Steps { .. } | SizeLimit::Work { .. } => Error::invalid(
+                names.dt,
+                dt,
+                &format!("over {duration_key} = {} s {rule}", readable(duration)),
+            ),
+        }
+    };
+    if file.fem.is_none() {
+        // The defaults: only the mesh (see above).
+        crate::fem::check_mesh_size(nx, ny).map_err(size_error)?;
+    } else {
+        if dt > duration {
             return Err(Error::invalid(
-                key,
-                n,
-                "the number of elements must lie in 1..=1000",
+                names.dt,
+                dt,
+                &format!(
+                    "the time step must not exceed the duration of the analysis, {duration_key} \
+                     = {} s (there would be no step after t = 0)",
+                    readable(duration)
+                ),
             ));
         }
-    }
-    if nx * ny > 200_000 {
-        return Err(Error::invalid(
-            "fem.nx",
-            format!("{nx} (with fem.ny = {ny})"),
-            "the mesh must have at most 200000 elements",
-        ));
-    }
-    let dt = s.dt.unwrap_or(DEFAULT_FEM_DT);
-    positive("fem.dt", dt)?;
-    let duration = s.duration.unwrap_or(simulation_duration);
-    positive("fem.duration", duration)?;
-    if duration / dt > 1e7 {
-        return Err(Error::invalid(
-            "fem.dt",
-            dt,
-            &format!("gives more than 1e7 steps over {duration} s; choose a larger step"),
-        ));
+        check_run_size(nx, ny, dt, duration).map_err(size_error)?;
     }
     let name = s.scheme.as_deref().unwrap_or("linear-acceleration");
     let (scheme, scheme_name) = match name {
@@ -89,7 +168,7 @@ pub fn fem_from_section(
         }
         other => {
             return Err(Error::invalid(
-                "fem.scheme",
+                names.scheme,
                 format!("\"{other}\""),
                 "must be \"linear-acceleration\", \"average-acceleration\" or \"wilson-theta\"",
             ))

@@ -145,6 +145,44 @@ pub struct FemOverrides {
     pub dt: Option<f64>,
 }
 
+/// Largest model file read, bytes: a model file is a few hundred bytes.
+pub const MAX_MODEL_FILE_BYTES: u64 = 1024 * 1024;
+
+/// The text of a model file: only a regular file of at most [`MAX_MODEL_FILE_BYTES`] (so that
+/// /dev/zero or a FIFO is refused rather than read until memory runs out).
+fn read_model_text(path: &Path) -> Result<String> {
+    use std::io::Read as _;
+    let refuse = |source| Error::ReadModel {
+        path: path.to_path_buf(),
+        source,
+    };
+    let invalid = |message: String| {
+        refuse(std::io::Error::new(
+            std::io::ErrorKind::InvalidInput,
+            message,
+        ))
+    };
+    let metadata = std::fs::metadata(path).map_err(refuse)?;
+    if !metadata.is_file() {
+        return Err(invalid(format!(
+            "it is {}; a model file must be a regular file",
+            crate::output::file_kind(metadata.file_type())
+        )));
+    }
+    let mut text = String::new();
+    std::fs::File::open(path)
+        .map_err(refuse)?
+        .take(MAX_MODEL_FILE_BYTES + 1)
+        .read_to_string(&mut text)
+        .map_err(refuse)?;
+    if text.len() as u64 > MAX_MODEL_FILE_BYTES {
+        return Err(invalid(format!(
+            "larger than the limit of {MAX_MODEL_FILE_BYTES} bytes for a model file"
+        )));
+    }
+    Ok(text)
+}
+
 /// Command-line values that take precedence over the file.
 #[derive(Debug, Clone, Default)]
 pub struct Overrides {
@@ -156,6 +194,21 @@ pub struct Overrides {
     pub dt: Option<f64>,
     /// Newmark variant (solver.newmark_variant).
     pub newmark_variant: Option<String>,
+}
+
+impl Overrides {
+    /// The command-line flag that set the model-file key `key`, if one did.
+    pub fn flag_for(&self, key: &str) -> Option<&'static str> {
+        match key {
+            "solver.method" if self.method.is_some() => Some("--method"),
+            "solver.rtol" if self.rtol.is_some() => Some("--rtol"),
+            "solver.atol" if self.atol.is_some() => Some("--atol"),
+            "solver.dt" if self.dt.is_some() => Some("--dt"),
+            "solver.newmark_variant" if self.newmark_variant.is_some() => Some("--variant"),
+            "simulation.duration" if self.duration.is_some() => Some("--duration"),
+            _ => None,
+        }
+    }
 }
 
 pub const DEFAULT_DEPTH: f64 = 1.0;
@@ -188,20 +241,32 @@ pub struct Model {
 impl Model {
     /// Reads, parses and validates a model file.
     pub fn load(path: &Path, overrides: &Overrides) -> Result<Model> {
-        let text = std::fs::read_to_string(path).map_err(|source| Error::ReadModel {
-            path: path.to_path_buf(),
-            source,
-        })?;
+        let text = read_model_text(path)?;
         let file: ModelFile = toml::from_str(&text).map_err(|e| Error::ParseModel {
             path: path.to_path_buf(),
             message: e.to_string().trim_end().to_string(),
         })?;
         let base_dir = path.parent().unwrap_or(Path::new("."));
-        let mut model =
-            Model::from_file(file, overrides, base_dir).map_err(|e| Error::InModel {
+        let mut model = Model::from_file(file, overrides, base_dir).map_err(|e| match e {
+            // A value the command line set is the flag's fault, not the file's.
+            Error::InvalidParameter { key, value, rule } if overrides.flag_for(&key).is_some() => {
+                let flag = overrides.flag_for(&key).unwrap_or_default();
+                let hint = if flag == "--dt" && rule.starts_with("not a parameter") {
+                    " (--dt needs --method newmark)"
+                } else {
+                    ""
+                };
+                Error::InvalidParameter {
+                    key: format!("{flag} (sets {key})"),
+                    value,
+                    rule: format!("{rule}{hint}"),
+                }
+            }
+            other => Error::InModel {
                 path: path.to_path_buf(),
-                source: Box::new(e),
-            })?;
+                source: Box::new(other),
+            },
+        })?;
         model.path = Some(path.to_path_buf());
         Ok(model)
     }
@@ -286,17 +351,16 @@ impl Model {
         })
     }
 
-    /// The finite element setup with command-line overrides applied (checked like the file).
+    /// The finite element setup with command-line overrides applied (checked like the file;
+    /// messages name the flags).
     pub fn fem_with(&self, overrides: &FemOverrides) -> Result<FemSetup> {
-        let mut file = self.file.clone();
-        let section = file.fem.get_or_insert_with(FemSection::default);
-        section.nx = overrides.nx.or(section.nx);
-        section.ny = overrides.ny.or(section.ny);
-        section.dt = overrides.dt.or(section.dt);
-        if let Some(scheme) = &overrides.scheme {
-            section.scheme = Some(scheme.clone());
-        }
-        fem_from_section(&file, &self.body, &self.constants, self.duration)
+        fem_section::fem_with_overrides(
+            &self.file,
+            &self.body,
+            &self.constants,
+            self.duration,
+            overrides,
+        )
     }
 }
 

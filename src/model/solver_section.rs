@@ -15,7 +15,7 @@ pub const DEFAULT_NEWMARK_GAMMA: f64 = 0.5;
 /// More Newmark steps than this is a mistake in dt, not a wish.
 const MAX_NEWMARK_STEPS: f64 = 1e8;
 /// More history rows than this is a mistake in output_dt, not a wish.
-const MAX_SAMPLES: f64 = 1e7;
+const MAX_SAMPLES: f64 = 1e6;
 /// Loosest relative tolerance of the adaptive methods: beyond it the solution is not worth having
 /// (at rtol = 0.5 the paper's example logs 817 uplifts and an overturning instead of 11 and none).
 pub const MAX_RTOL: f64 = 1e-2;
