@@ -115,7 +115,11 @@ fn a_closed_pipe_on_standard_output_ends_quietly() {
         let stderr = stderr_of(&o);
         assert!(!stderr.contains("panicked"), "{args:?}: {stderr}");
         assert_eq!(o.status.code(), Some(0), "{args:?}: {stderr}");
-        assert!(stderr.is_empty(), "{args:?}: {stderr}");
+        // Warnings about the model may be there; no error.
+        assert!(
+            stderr.lines().all(|line| line.starts_with("warning: ")),
+            "{args:?}: {stderr}"
+        );
     }
 }
 
