@@ -386,6 +386,20 @@ fn floor_motions_beyond_physics_are_refused() {
     );
     let stderr = refused("scaled-record", &record);
     assert_mentions(&stderr, &["excitation.scale", "peak floor acceleration"]);
+    // One sample of 1e150 m/s^2 in the file itself: the record, not the scale, is to blame.
+    let dir = common::scratch_dir("huge-sample-record");
+    let csv = dir.join("huge.csv");
+    std::fs::write(&csv, "t,acc\n0,0\n0.01,1e150\n0.02,0\n").unwrap();
+    let record = format!(
+        "{}\n[excitation]\nkind = \"record\"\npath = \"{}\"\nunits = \"m/s2\"\n[simulation]\n",
+        GOOD.split("\n\n[excitation]").next().unwrap(),
+        csv.display()
+    );
+    let stderr = refused("huge-sample", &record);
+    assert_mentions(
+        &stderr,
+        &["excitation.path", "at t = 0.01 s", "beyond the limit"],
+    );
 }
 
 #[test]

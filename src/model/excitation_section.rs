@@ -146,14 +146,27 @@ pub(super) fn floor_from_section(
             let (record, tail) = recorded_motion(s, base_dir)?;
             let peak = record.peak_acceleration();
             if peak.is_nan() || peak > MAX_FLOOR_ACCELERATION {
-                return Err(Error::invalid(
-                    "excitation.scale",
-                    s.scale.unwrap_or(1.0),
-                    &format!(
-                        "makes the record's peak floor acceleration {peak:.6e} m/s^2, beyond the limit of \
-                         {MAX_FLOOR_ACCELERATION:.1} m/s^2 (20 g)"
-                    ),
-                ));
+                let scale = s.scale.unwrap_or(1.0);
+                let limit = format!("the limit of {MAX_FLOOR_ACCELERATION:.1} m/s^2 (20 g)");
+                // Blame the scale only when the record itself is within the limit.
+                return Err(
+                    if peak / scale.abs().max(1e-300) <= MAX_FLOOR_ACCELERATION {
+                        Error::invalid(
+                        "excitation.scale",
+                        scale,
+                        &format!("makes the record's peak floor acceleration {peak:.6e} m/s^2, beyond {limit}"),
+                    )
+                    } else {
+                        Error::invalid(
+                        "excitation.path",
+                        s.path.clone().unwrap_or_default(),
+                        &format!(
+                            "the record's peak floor acceleration, {peak:.6e} m/s^2 at t = {} s, is beyond {limit}",
+                            record.peak().1
+                        ),
+                    )
+                    },
+                );
             }
             let length = record.end() + tail;
             return Ok((Box::new(record), Some(length)));
