@@ -8,6 +8,10 @@
 //! [`GRAZE_SHARE`] of omega s_n, the speed of a pre-uplift oscillation that just reaches s_n.
 //! Such a crossing goes less than about (GRAZE_SHARE)^2 s_n / 2 beyond its guard, which is where
 //! the tolerance of a loose run decides whether it happens at all.
+//!
+//! Two logs may also differ because the runs have separated (see [`Agreement::Separated`]): a
+//! body that rocks through many impacts amplifies the error of a loose run, tenfold every couple
+//! of impacts in the one case of 3000 random models where it was seen.
 
 mod common;
 
@@ -70,15 +74,32 @@ fn kinds(sol: &Solution) -> Vec<(EventKind, Mode)> {
     sol.events.iter().map(|e| (e.kind, e.to)).collect()
 }
 
-/// Ok when the two logs agree, or first differ at a grazing crossing; Err says where they differ.
+/// How a loose event log compares with a tight one.
+#[derive(Debug, PartialEq)]
+enum Agreement {
+    /// The same sequence of event kinds.
+    Identical,
+    /// They first differ at a grazing crossing.
+    Graze,
+    /// Before they first differ, the loose run's event times had drifted from the tight ones by
+    /// more than [`SEPARATION_SHARE`] of the pre-uplift period: it follows another trajectory
+    /// (a body that rocks through many impacts amplifies any error, as the physical one would).
+    Separated,
+}
+
+/// Share of the pre-uplift period T by which matched event times may drift before the two
+/// runs count as separated.
+const SEPARATION_SHARE: f64 = 1e-2;
+
+/// Compares two logs; Err says where they differ without a graze or a separation to explain it.
 fn same_events_except_grazes(
     loose: &Solution,
     tight: &Solution,
     model: &Model,
-) -> Result<bool, String> {
+) -> Result<Agreement, String> {
     let (a, b) = (kinds(loose), kinds(tight));
     let Some(i) = (0..a.len().max(b.len())).find(|&i| a.get(i) != b.get(i)) else {
-        return Ok(true);
+        return Ok(Agreement::Identical);
     };
     let v_graze = GRAZE_SHARE * model.constants.omega * model.constants.uplift_displacement;
     let grazing = |sol: &Solution| {
@@ -87,14 +108,21 @@ fn same_events_except_grazes(
             .is_some_and(|e| e.qdot_before.abs() < v_graze)
     };
     if grazing(loose) || grazing(tight) {
-        Ok(false)
-    } else {
-        Err(format!(
-            "event {i} differs: {:?} (loose) against {:?} (tight)",
-            loose.events.get(i),
-            tight.events.get(i)
-        ))
+        return Ok(Agreement::Graze);
     }
+    let drift = loose.events[..i]
+        .iter()
+        .zip(&tight.events[..i])
+        .map(|(l, t)| (l.t - t.t).abs())
+        .fold(0.0, f64::max);
+    if drift > SEPARATION_SHARE * model.constants.period {
+        return Ok(Agreement::Separated);
+    }
+    Err(format!(
+        "event {i} differs: {:?} (loose) against {:?} (tight), after a drift of {drift:e} s",
+        loose.events.get(i),
+        tight.events.get(i)
+    ))
 }
 
 fn harmonic_model(body: &str, amplitude: f64, period: f64, duration: f64) -> Model {
@@ -231,6 +259,7 @@ fn every_method_finishes_every_record_at_every_tolerance() {
                     compared += 1;
                     if same_events_except_grazes(&sol, &tight, &model)
                         .unwrap_or_else(|e| panic!("{context}: {e}"))
+                        == Agreement::Identical
                     {
                         identical += 1;
                     }
@@ -262,7 +291,7 @@ impl Random {
 #[test]
 fn random_models_log_the_tight_events_at_every_tolerance() {
     let mut random = Random(0x9e37_79b9_7f4a_7c15);
-    let (mut cases, mut identical, mut grazing) = (0, 0, 0);
+    let (mut cases, mut identical, mut grazing, mut separated) = (0, 0, 0, 0);
     while cases < 150 {
         let height = random.between(2.0, 8.0);
         let width = height * random.between(0.08, 0.3);
@@ -296,16 +325,17 @@ fn random_models_log_the_tight_events_at_every_tolerance() {
             assert_directions(&sol, &context);
             if exponent == 6 {
                 match same_events_except_grazes(&sol, &tight, &model) {
-                    Ok(true) => identical += 1,
-                    Ok(false) => grazing += 1,
+                    Ok(Agreement::Identical) => identical += 1,
+                    Ok(Agreement::Graze) => grazing += 1,
+                    Ok(Agreement::Separated) => separated += 1,
                     Err(e) => panic!("{context}: {e}"),
                 }
             }
         }
     }
     // Grazes are the exception: most logs at rtol 1e-6 equal the tight ones outright.
-    assert!(
-        identical >= 140,
-        "{identical} identical, {grazing} grazing of {cases}"
-    );
+    let counts =
+        format!("{identical} identical, {grazing} grazing, {separated} separated of {cases}");
+    eprintln!("{counts}");
+    assert!(identical * 100 >= cases * 93, "{counts}");
 }
