@@ -28,6 +28,28 @@ fn assert_mentions(text: &str, words: &[&str]) {
     }
 }
 
+/// Runs a model on the reference body with the record `file` (in `dir`), which must be refused
+/// with nothing written; returns the message.
+fn refused_record_model(dir: &std::path::Path, file: &str) -> String {
+    let model = dir.join("model.toml");
+    std::fs::write(
+        &model,
+        common::reference_body(&format!(
+            "[excitation]\nkind = \"record\"\npath = \"{file}\"\n\n[simulation]\nduration = 1.0\n"
+        )),
+    )
+    .unwrap();
+    let out = dir.join("out");
+    let stderr = refused(&[
+        "run",
+        model.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(!out.exists(), "{file}: output written");
+    stderr
+}
+
 /// Runs the binary and expects exit code 2 (bad input) without a panic; returns stderr.
 fn refused(args: &[&str]) -> String {
     let o = flexrock(args);
@@ -444,23 +466,8 @@ fn a_record_sampled_faster_than_100_khz_is_refused() {
     assert_mentions(&stderr, &["tiny.AT2 line 4", "1e-300", "1e-5 s"]);
     assert!(stderr.len() < 400, "{stderr}");
     // Through a model: exit 2, nothing written.
-    let model = dir.join("model.toml");
-    std::fs::write(
-        &model,
-        common::reference_body(
-            "[excitation]\nkind = \"record\"\npath = \"tiny.AT2\"\n\n[simulation]\nduration = 1.0\n",
-        ),
-    )
-    .unwrap();
-    let out = dir.join("out");
-    let stderr = refused(&[
-        "run",
-        model.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+    let stderr = refused_record_model(&dir, "tiny.AT2");
     assert_mentions(&stderr, &["excitation.path", "tiny.AT2 line 4", "1e-5 s"]);
-    assert!(!out.exists());
 }
 
 // --- 6. size limits ----------------------------------------------------------------------------
@@ -541,26 +548,11 @@ fn records_that_are_not_regular_files_or_too_large_are_refused() {
     let stderr = refused(&["record", "info", large.to_str().unwrap()]);
     assert_mentions(&stderr, &["large.AT2", "67108864 bytes", "64 MiB"]);
     // Through a model file.
-    let model = dir.join("model.toml");
-    std::fs::write(
-        &model,
-        common::reference_body(
-            "[excitation]\nkind = \"record\"\npath = \"zero.AT2\"\n\n[simulation]\nduration = 1.0\n",
-        ),
-    )
-    .unwrap();
-    let out = dir.join("out");
-    let stderr = refused(&[
-        "run",
-        model.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+    let stderr = refused_record_model(&dir, "zero.AT2");
     assert_mentions(
         &stderr,
         &["excitation.path", "zero.AT2", "character device"],
     );
-    assert!(!out.exists());
 }
 
 /// 6 s at output_dt = 6e-7 are 1e7 history rows, about 1.5 GB of CSV: refused by the model
