@@ -280,6 +280,8 @@ impl<'d> Driver<'d> {
         let end = self.duration;
         let mut budget = RunBudget::new();
         let mut crossing_retries = 0usize;
+        // Retakes of the current step; an accepted step starts the count again.
+        let mut retries_in_a_row = 0usize;
 
         // Stop times: the floor motion's breakpoints inside (0, end), then the end.
         let mut stops: Vec<f64> = self
@@ -328,7 +330,8 @@ impl<'d> Driver<'d> {
             match self.find_crossing(&solver, &start, step_end)? {
                 Crossing::Unresolved => {
                     crossing_retries += 1;
-                    if crossing_retries % (MAX_CROSSING_RETRIES + 1) == MAX_CROSSING_RETRIES {
+                    retries_in_a_row += 1;
+                    if retries_in_a_row == MAX_CROSSING_RETRIES {
                         return Err(self.error(
                             start.t,
                             format!(
@@ -345,6 +348,7 @@ impl<'d> Driver<'d> {
                     continue;
                 }
                 Crossing::At { t, guard, peak } => {
+                    retries_in_a_row = 0;
                     if let Some((t_peak, q_peak)) = peak {
                         recorder.peak_candidate(t_peak, q_peak);
                     }
@@ -366,6 +370,7 @@ impl<'d> Driver<'d> {
                         .map_err(|e| self.error(t, e))?;
                 }
                 Crossing::None { peak } => {
+                    retries_in_a_row = 0;
                     if let Some((t_peak, q_peak)) = peak {
                         recorder.peak_candidate(t_peak, q_peak);
                     }
