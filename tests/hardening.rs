@@ -17,7 +17,7 @@ mod common;
 
 use flexrock::automaton::{EventKind, Mode};
 use flexrock::model::{Model, Overrides};
-use flexrock::solution::{Event, Solution};
+use flexrock::solution::Solution;
 use flexrock::solver::adaptive::{AdaptiveMethod, AdaptiveSettings};
 use flexrock::solver::SolverSettings;
 
@@ -47,26 +47,9 @@ fn solve(model: &Model, method: AdaptiveMethod, rtol: f64, context: &str) -> Sol
     }
 }
 
-/// The side of the floor an event's rocking mode is on: +1 right, -1 left.
-fn side(e: &Event) -> f64 {
-    match (e.from, e.to) {
-        (Mode::RockRight, _) | (_, Mode::RockRight) => 1.0,
-        _ => -1.0,
-    }
-}
-
 fn assert_directions(sol: &Solution, context: &str) {
-    for e in &sol.events {
-        let outward = side(e) * e.qdot_before;
-        let right = match e.kind {
-            EventKind::Uplift | EventKind::Overturn => outward > 0.0,
-            EventKind::Landing => outward < 0.0,
-        };
-        assert!(
-            right,
-            "{context}: {:?} at t = {} with q' = {}",
-            e.kind, e.t, e.qdot_before
-        );
+    if let Some(wrong) = common::event_against_its_direction(sol) {
+        panic!("{context}: {wrong}");
     }
 }
 

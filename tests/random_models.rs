@@ -63,14 +63,8 @@ proptest! {
         // Newmark with compensation logs an event where it detects it, past the guard.
         if method != "newmark" {
             // Uplifts and overturns move away from the floor, landings back towards it.
-            for e in &sol.events {
-                let side = if e.from == Mode::RockRight || e.to == Mode::RockRight { 1.0 } else { -1.0 };
-                let outward = side * e.qdot_before;
-                match e.kind {
-                    EventKind::Landing => prop_assert!(outward < 0.0, "{:?}\n{}", e, text),
-                    _ => prop_assert!(outward > 0.0, "{:?}\n{}", e, text),
-                }
-            }
+            let wrong = common::event_against_its_direction(&sol);
+            prop_assert!(wrong.is_none(), "{:?}\n{}", wrong, text);
             for e in &sol.events {
                 let level = match e.kind { EventKind::Overturn => b, _ => s_n };
                 prop_assert!((e.q.abs() - level).abs() < 1e-12);

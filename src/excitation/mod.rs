@@ -11,6 +11,20 @@ use serde::Serialize;
 /// forever).
 pub const MAX_FLOOR_ACCELERATION: f64 = 20.0 * crate::model::STANDARD_GRAVITY;
 
+/// True when a peak floor acceleration `peak` (m/s^2) is within [`MAX_FLOOR_ACCELERATION`]
+/// (NaN is not).
+pub fn within_floor_limit(peak: f64) -> bool {
+    peak <= MAX_FLOOR_ACCELERATION
+}
+
+/// The rule a peak floor acceleration beyond the limit breaks, for error messages.
+pub fn floor_limit_rule(peak: f64) -> String {
+    format!(
+        "the peak floor acceleration {peak:.6e} m/s^2 is beyond the limit of \
+         {MAX_FLOOR_ACCELERATION:.1} m/s^2 (20 g)"
+    )
+}
+
 /// Shortest period of an analytic floor motion, s: 1 ms, far above any frequency of earthquake or
 /// shaking-table motion, and a motion faster than that would take the solvers millions of steps
 /// per simulated second.

@@ -6,8 +6,8 @@ use super::ExcitationSection;
 use crate::body::positive;
 use crate::error::{Error, Result};
 use crate::excitation::{
-    FloorMotion, Free, Harmonic, PaperSine, PulseShape, RecordedMotion, Ricker, SinePulse,
-    MAX_FLOOR_ACCELERATION, MIN_EXCITATION_PERIOD,
+    floor_limit_rule, within_floor_limit, FloorMotion, Free, Harmonic, PaperSine, PulseShape,
+    RecordedMotion, Ricker, SinePulse, MIN_EXCITATION_PERIOD,
 };
 use crate::record::{read_record, RecordFormat};
 
@@ -144,29 +144,22 @@ pub(super) fn floor_from_section(
         }
         "record" => {
             let (record, tail) = recorded_motion(s, base_dir)?;
-            let peak = record.peak_acceleration();
-            if peak.is_nan() || peak > MAX_FLOOR_ACCELERATION {
+            let (peak, t_peak) = record.peak();
+            if !within_floor_limit(peak) {
                 let scale = s.scale.unwrap_or(1.0);
-                let limit = format!("the limit of {MAX_FLOOR_ACCELERATION:.1} m/s^2 (20 g)");
                 // Blame the scale only when the record itself is within the limit.
-                return Err(
-                    if peak / scale.abs().max(1e-300) <= MAX_FLOOR_ACCELERATION {
-                        Error::invalid(
-                        "excitation.scale",
-                        scale,
-                        &format!("makes the record's peak floor acceleration {peak:.6e} m/s^2, beyond {limit}"),
-                    )
-                    } else {
-                        Error::invalid(
+                return Err(if within_floor_limit(peak / scale.abs().max(1e-300)) {
+                    Error::invalid("excitation.scale", scale, &floor_limit_rule(peak))
+                } else {
+                    Error::invalid(
                         "excitation.path",
                         s.path.clone().unwrap_or_default(),
                         &format!(
-                            "the record's peak floor acceleration, {peak:.6e} m/s^2 at t = {} s, is beyond {limit}",
-                            record.peak().1
+                            "{}: the record's largest sample is at t = {t_peak} s",
+                            floor_limit_rule(peak)
                         ),
                     )
-                    },
-                );
+                });
             }
             let length = record.end() + tail;
             return Ok((Box::new(record), Some(length)));
@@ -174,21 +167,14 @@ pub(super) fn floor_from_section(
         _ => Box::new(Free),
     };
     let peak = floor.peak_acceleration();
-    if peak.is_nan() || peak > MAX_FLOOR_ACCELERATION {
+    if !within_floor_limit(peak) {
         // Within the limit the amplitude itself, beyond it the paper-sine's ramp, is to blame.
-        let (key, value) = if amplitude.abs() > MAX_FLOOR_ACCELERATION {
-            ("excitation.amplitude", amplitude)
-        } else {
+        let (key, value) = if within_floor_limit(amplitude.abs()) {
             ("excitation.ramp", s.ramp.unwrap_or(0.0))
+        } else {
+            ("excitation.amplitude", amplitude)
         };
-        return Err(Error::invalid(
-            key,
-            value,
-            &format!(
-                "gives a peak floor acceleration of {peak:.6e} m/s^2, beyond the limit of \
-                 {MAX_FLOOR_ACCELERATION:.1} m/s^2 (20 g)"
-            ),
-        ));
+        return Err(Error::invalid(key, value, &floor_limit_rule(peak)));
     }
     Ok((floor, None))
 }

@@ -1,6 +1,7 @@
 //! Helpers shared by the integration tests.
 #![allow(dead_code)]
 
+use flexrock::automaton::{EventKind, Mode};
 use flexrock::model::{Model, Overrides};
 use flexrock::solution::Solution;
 
@@ -102,4 +103,22 @@ pub fn damped_oscillator_response(
             + xc * (big_w * t).cos()
             + (-h * w * t).exp() * (e * (wd * t).cos() + g * (wd * t).sin())
     }
+}
+
+/// The first logged event whose q' does not point across its guard (an uplift or an overturn
+/// away from the floor, a landing back towards it), described; None when every event does.
+pub fn event_against_its_direction(sol: &Solution) -> Option<String> {
+    sol.events.iter().find_map(|e| {
+        let side = if e.from == Mode::RockRight || e.to == Mode::RockRight {
+            1.0
+        } else {
+            -1.0
+        };
+        let outward = side * e.qdot_before;
+        let right = match e.kind {
+            EventKind::Uplift | EventKind::Overturn => outward > 0.0,
+            EventKind::Landing => outward < 0.0,
+        };
+        (!right).then(|| format!("{:?} at t = {} with q' = {}", e.kind, e.t, e.qdot_before))
+    })
 }
