@@ -83,6 +83,19 @@ impl Body {
     }
 
     /// Mass per unit height, kg/m.
+    /// alpha = atan(B/H), the slenderness angle of the rocking literature (Housner 1963): a rigid
+    /// block starts to rock at a floor acceleration of g tan(alpha).
+    pub fn slenderness_angle(&self) -> f64 {
+        (self.width / self.height).atan()
+    }
+
+    /// p = sqrt(3 g / (4 R)), R = sqrt(H^2 + B^2)/2: the frequency parameter of a rigid block
+    /// (Housner 1963), rad/s; pulse frequencies are plotted over it.
+    pub fn block_frequency_parameter(&self) -> f64 {
+        let half_diagonal = 0.5 * self.height.hypot(self.width);
+        (3.0 * self.gravity / (4.0 * half_diagonal)).sqrt()
+    }
+
     pub fn mass_per_height(&self) -> f64 {
         self.mass / self.height
     }

@@ -10,7 +10,8 @@
 //! - [`model`]: the TOML model file; [`output`]: CSV/JSON writers; [`run`]: the commands;
 //! - [`compare`], [`converge`]: Newmark against the adaptive reference; [`findings`]: the paper's
 //!   qualitative findings in numbers; [`plot`]: SVG figures from series; [`report`]: the
-//!   validation report assembled from their files.
+//!   validation report assembled from their files;
+//! - [`sweep`]: parametric studies (axes, minimum overturning searches, chunks, shards, maps).
 
 pub mod automaton;
 pub mod body;
@@ -30,5 +31,6 @@ pub mod report;
 pub mod run;
 pub mod solution;
 pub mod solver;
+pub mod sweep;
 
 pub use error::{Error, Result};

@@ -6,7 +6,7 @@ use std::process::ExitCode;
 use std::sync::LazyLock;
 
 use clap::{Parser, Subcommand};
-use flexrock::model::{FemOverrides, Model, Overrides};
+use flexrock::model::{FemOverrides, Model, Overrides, Setting};
 use flexrock::record_tools;
 
 #[derive(Parser)]
@@ -29,6 +29,8 @@ enum Command {
         /// Print JSON instead of a table.
         #[arg(long)]
         json: bool,
+        #[command(flatten)]
+        set: SetArgs,
     },
     /// Simulate a model and write history.csv, events.csv and summary.json.
     Run {
@@ -57,7 +59,13 @@ enum Command {
         /// Simulated time, s (overrides simulation.duration).
         #[arg(long)]
         duration: Option<f64>,
+        #[command(flatten)]
+        set: SetArgs,
     },
+    /// Parametric study: run the model at every point of a grid of model-file keys (or search
+    /// the smallest overturning value at each), one row per point in sweep.csv, with sweep.json
+    /// and a map or spectrum (SVG). Re-running the same command resumes an interrupted sweep.
+    Sweep(SweepArgs),
     /// Look at a ground-motion record before using it.
     Record {
         #[command(subcommand)]
@@ -83,6 +91,8 @@ enum Command {
         /// Simulated time, s (overrides simulation.duration).
         #[arg(long)]
         duration: Option<f64>,
+        #[command(flatten)]
+        set: SetArgs,
     },
     /// Convergence study: Newmark at each dt and each adaptive method at each tolerance against
     /// a reference; write convergence.csv, convergence.json and two SVG figures.
@@ -104,6 +114,8 @@ enum Command {
         /// Simulated time, s (overrides simulation.duration).
         #[arg(long)]
         duration: Option<f64>,
+        #[command(flatten)]
+        set: SetArgs,
     },
     /// Assemble the validation report (markdown) from the output directories of compare (both
     /// variants), converge and a run of the rigid-limit model.
@@ -158,7 +170,170 @@ enum Command {
         /// writes pushover.csv, pushover.json and pushover.svg. Use a refined mesh (--nx 8 --ny 40).
         #[arg(long)]
         pushover: bool,
+        #[command(flatten)]
+        set: SetArgs,
     },
+}
+
+#[derive(clap::Args)]
+#[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true)]
+struct SweepArgs {
+    #[command(subcommand)]
+    command: Option<SweepCommand>,
+    /// Model file (TOML): the base of every point.
+    #[arg(required = true)]
+    model: Option<PathBuf>,
+    /// Output directory [default: out/<model file stem>-sweep].
+    #[arg(long)]
+    out: Option<PathBuf>,
+    /// An axis, KEY=VALUES (repeatable): LO:HI:STEP, lin:LO:HI:N, log:LO:HI:N, a comma list, or
+    /// for excitation.path a file pattern such as 'records/*.AT2'. The last axis varies fastest.
+    #[arg(long, value_name = "KEY=VALUES")]
+    vary: Vec<String>,
+    /// Instead of one run per point, the smallest value of KEY in [LO, HI] that overturns the
+    /// body: a scan of --scan values, then bisection of the first transition to --tol.
+    #[arg(long, value_name = "KEY=LO:HI")]
+    find_min: Option<String>,
+    /// Values scanned by --find-min [default: 100].
+    #[arg(long)]
+    scan: Option<usize>,
+    /// Width of the final bracket of --find-min, in KEY's units [default: (HI - LO)/1e4].
+    #[arg(long)]
+    tol: Option<f64>,
+    /// A sweep file (TOML: vary, set, find_min, scan, tol); flags add to it.
+    #[arg(long)]
+    sweep_file: Option<PathBuf>,
+    /// Compute only shard K of N (disjoint slices of whole chunks), into OUT/shard-K-of-N; set
+    /// from SLURM_ARRAY_TASK_ID and SLURM_ARRAY_TASK_COUNT in a Slurm job array.
+    #[arg(long, value_name = "K/N")]
+    shard: Option<String>,
+    /// Points per chunk (what a kill can lose) [default: about 1024 simulations' worth].
+    #[arg(long)]
+    chunk_size: Option<usize>,
+    /// Threads [default: every core].
+    #[arg(long)]
+    threads: Option<usize>,
+    /// No progress bar.
+    #[arg(long)]
+    quiet: bool,
+    #[command(flatten)]
+    set: SetArgs,
+}
+
+#[derive(Subcommand)]
+enum SweepCommand {
+    /// Join the outputs of shards (directories of shards, or directories holding
+    /// shard-K-of-N directories) into one, exactly as one process writes it; refuses gaps,
+    /// overlaps and shards of different sweeps.
+    Merge {
+        #[arg(required = true)]
+        dirs: Vec<PathBuf>,
+        /// Output directory.
+        #[arg(long)]
+        out: PathBuf,
+    },
+}
+
+/// A progress bar on standard error, drawn only on a terminal.
+struct ProgressBar(indicatif::ProgressBar);
+
+impl flexrock::sweep::store::Progress for ProgressBar {
+    fn start(&self, total: usize, done: usize) {
+        self.0.set_length(total as u64);
+        self.0.set_position(done as u64);
+        self.0.reset_eta();
+    }
+    fn advance(&self, points: usize) {
+        self.0.inc(points as u64);
+    }
+}
+
+fn sweep(args: SweepArgs) -> flexrock::Result<Output> {
+    use flexrock::sweep::{axis, store, Axis, Request, Sweep};
+    if let Some(SweepCommand::Merge { dirs, out }) = args.command {
+        let report = store::merge(&dirs, &out)?;
+        return Ok(Output::text(flexrock::sweep::report_text(&report, None)));
+    }
+    let Some(path) = args.model else {
+        return Err(flexrock::Error::invalid(
+            "MODEL",
+            "(missing)",
+            "name a model file",
+        ));
+    };
+    let mut request = Request {
+        settings: args.set.settings,
+        scan: args.scan,
+        tol: args.tol,
+        chunk_size: args.chunk_size,
+        ..Request::default()
+    };
+    if let Some(file) = &args.sweep_file {
+        request.add_file(file)?;
+    }
+    for text in &args.vary {
+        request
+            .axes
+            .push(Axis::parse(text, std::path::Path::new("."))?);
+    }
+    if let Some(text) = &args.find_min {
+        request.find_min = Some(axis::parse_interval(text)?);
+    }
+    let shard = match &args.shard {
+        Some(text) => Some(store::Shard::parse(text)?),
+        None => store::Shard::from_slurm(|name| std::env::var(name).ok())?,
+    };
+    if let Some(threads) = args.threads {
+        if threads == 0 {
+            return Err(flexrock::Error::invalid(
+                "--threads",
+                0,
+                "must be at least 1",
+            ));
+        }
+        // Fails only if a pool exists already, which it cannot here.
+        let _ = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build_global();
+    }
+    let sweep = Sweep::new(&path, request)?;
+    let out = args.out.unwrap_or_else(|| default_out_dir(&path, "-sweep"));
+    let bar = if args.quiet {
+        indicatif::ProgressBar::hidden()
+    } else {
+        indicatif::ProgressBar::with_draw_target(None, indicatif::ProgressDrawTarget::stderr())
+    };
+    bar.set_style(
+        indicatif::ProgressStyle::with_template(
+            "{bar:40} {pos}/{len} points, {per_sec}, {eta} left",
+        )
+        .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+    );
+    let started = std::time::Instant::now();
+    let report = store::run(&sweep, &out, shard, &ProgressBar(bar.clone()))?;
+    bar.finish_and_clear();
+    Ok(Output::text(flexrock::sweep::report_text(
+        &report,
+        Some(started.elapsed().as_secs_f64()),
+    )))
+}
+
+/// `--set KEY=VALUE`, any number of times: a model-file key set from the command line.
+#[derive(clap::Args)]
+struct SetArgs {
+    /// Set a model-file key, e.g. --set excitation.amplitude=4.5 (repeatable; checked by the
+    /// rules of the file; applied before the other flags).
+    #[arg(long = "set", value_name = "KEY=VALUE", value_parser = Setting::parse)]
+    settings: Vec<Setting>,
+}
+
+impl SetArgs {
+    fn overrides(self) -> Overrides {
+        Overrides {
+            settings: self.settings,
+            ..Overrides::default()
+        }
+    }
 }
 
 #[derive(Subcommand)]
@@ -275,8 +450,9 @@ fn write_stderr(text: &str) {
 
 fn execute(command: Command) -> flexrock::Result<Output> {
     Ok(match command {
-        Command::Props { model, json } => {
-            let model = Model::load(&model, &Overrides::default())?;
+        Command::Sweep(args) => sweep(args)?,
+        Command::Props { model, json, set } => {
+            let model = Model::load(&model, &set.overrides())?;
             if json {
                 Output {
                     stdout: flexrock::output::json_bytes(&flexrock::run::properties(&model)),
@@ -295,6 +471,7 @@ fn execute(command: Command) -> flexrock::Result<Output> {
             dt,
             variant,
             duration,
+            set,
         } => {
             let overrides = Overrides {
                 method,
@@ -303,6 +480,7 @@ fn execute(command: Command) -> flexrock::Result<Output> {
                 duration,
                 dt,
                 newmark_variant: variant,
+                settings: set.settings,
             };
             let model = Model::load(&path, &overrides)?;
             let out = out.unwrap_or_else(|| default_out_dir(&path, ""));
@@ -339,8 +517,9 @@ fn execute(command: Command) -> flexrock::Result<Output> {
             variant,
             reference_rtol,
             duration,
+            set,
         } => {
-            let model = load_with_duration(&path, duration)?;
+            let model = load_with_duration(&path, duration, set)?;
             let options = flexrock::compare::CompareOptions {
                 reference_rtol,
                 dt,
@@ -357,8 +536,9 @@ fn execute(command: Command) -> flexrock::Result<Output> {
             rtol,
             reference_rtol,
             duration,
+            set,
         } => {
-            let model = load_with_duration(&path, duration)?;
+            let model = load_with_duration(&path, duration, set)?;
             let options = flexrock::converge::ConvergeOptions {
                 dts: dt,
                 rtols: rtol,
@@ -398,9 +578,10 @@ fn execute(command: Command) -> flexrock::Result<Output> {
             compare,
             modes,
             pushover,
+            set,
         } => {
             use flexrock::fem::run as fem;
-            let model = Model::load(&path, &Overrides::default())?;
+            let model = Model::load(&path, &set.overrides())?;
             let setup = model.fem_with(&FemOverrides { nx, ny, scheme, dt })?;
             if modes {
                 return Ok(Output::text(fem::modes_text(&fem::modes(&model, &setup)?)));
@@ -439,11 +620,15 @@ fn load_record(
     )
 }
 
-/// A model file with only the simulated time overridden (compare, converge).
-fn load_with_duration(path: &std::path::Path, duration: Option<f64>) -> flexrock::Result<Model> {
+/// A model file with only the simulated time and `--set` keys overridden (compare, converge).
+fn load_with_duration(
+    path: &std::path::Path,
+    duration: Option<f64>,
+    set: SetArgs,
+) -> flexrock::Result<Model> {
     let overrides = Overrides {
         duration,
-        ..Overrides::default()
+        ..set.overrides()
     };
     Model::load(path, &overrides)
 }

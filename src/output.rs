@@ -45,6 +45,13 @@ impl Table {
         Table { writer }
     }
 
+    /// A table without a header row (a part of a longer table).
+    pub fn without_header() -> Self {
+        Table {
+            writer: csv::Writer::from_writer(Vec::new()),
+        }
+    }
+
     /// Appends a row of already formatted fields.
     pub fn row<I, S>(&mut self, fields: I)
     where

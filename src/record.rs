@@ -76,7 +76,7 @@ impl Record {
 }
 
 /// The file layouts [`read_record`] understands.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum RecordFormat {
     /// PEER Strong Motion Database "AT2" text file.
     PeerAt2,

@@ -15,7 +15,7 @@ use crate::model::{Model, ModelFile};
 use crate::output;
 use crate::solution::{Solution, SolverStats};
 use crate::solver::{adaptive, newmark};
-use crate::solver::{InitialState, SolverSettings};
+use crate::solver::{History, InitialState, SolverSettings};
 
 /// Version of flexrock that made a result.
 pub const VERSION: &str = env!("CARGO_PKG_VERSION");
@@ -27,11 +27,25 @@ pub fn simulate(model: &Model) -> Result<Solution> {
 
 /// Solves a model with the given solver settings instead of its own.
 pub fn simulate_with(model: &Model, settings: &SolverSettings) -> Result<Solution> {
+    solve(model, settings, History::Sampled)
+}
+
+/// Solves a model with its own solver, keeping no history: events, peaks and statistics only
+/// (what a sweep needs of each of its points).
+pub fn simulate_peaks(model: &Model) -> Result<Solution> {
+    solve(model, &model.solver, History::PeaksOnly)
+}
+
+fn solve(model: &Model, settings: &SolverSettings, history: History) -> Result<Solution> {
     let automaton = Automaton::new(&model.constants);
     let (floor, initial, duration) = (model.floor.as_ref(), model.initial, model.duration);
     match settings {
-        SolverSettings::Adaptive(s) => adaptive::solve(&automaton, floor, initial, duration, s),
-        SolverSettings::Newmark(s) => newmark::solve(&automaton, floor, initial, duration, s),
+        SolverSettings::Adaptive(s) => {
+            adaptive::solve(&automaton, floor, initial, duration, s, history)
+        }
+        SolverSettings::Newmark(s) => {
+            newmark::solve(&automaton, floor, initial, duration, s, history)
+        }
     }
 }
 
@@ -154,6 +168,9 @@ pub struct RunSummary<'a> {
     pub t_max_q: f64,
     pub min_q: f64,
     pub t_min_q: f64,
+    /// Largest |s| (flexural part) and |r| (rocking part), m.
+    pub max_abs_s: f64,
+    pub max_abs_r: f64,
     pub n_uplift: usize,
     pub n_landing: usize,
     pub overturned: bool,
@@ -188,6 +205,8 @@ pub fn summary<'a>(model: &'a Model, solution: &'a Solution) -> RunSummary<'a> {
         t_max_q: solution.max_q.t,
         min_q: solution.min_q.value,
         t_min_q: solution.min_q.t,
+        max_abs_s: solution.max_abs_s,
+        max_abs_r: solution.max_abs_r,
         n_uplift: solution.count(EventKind::Uplift),
         n_landing: solution.count(EventKind::Landing),
         overturned: solution.overturned,

@@ -4,6 +4,7 @@
 use serde::Serialize;
 
 use crate::automaton::{Automaton, EventKind, Mode};
+use crate::solver::History;
 
 /// One row of the history.
 #[derive(Debug, Clone, Serialize)]
@@ -65,6 +66,10 @@ pub struct Solution {
     pub events: Vec<Event>,
     pub max_q: Extremum,
     pub min_q: Extremum,
+    /// Largest |s|, the flexural part, m.
+    pub max_abs_s: f64,
+    /// Largest |r|, the rocking part, m.
+    pub max_abs_r: f64,
     pub overturned: bool,
     pub t_overturn: Option<f64>,
     pub final_time: f64,
@@ -102,6 +107,11 @@ pub struct Recorder<'a> {
     events: Vec<Event>,
     max_q: Extremum,
     min_q: Extremum,
+    max_abs_s: f64,
+    max_abs_r: f64,
+    /// The mode the body is in, as the events booked so far say.
+    mode: Mode,
+    history: History,
     initial_energy: f64,
     event_jumps: f64,
     max_energy_residual: f64,
@@ -110,13 +120,24 @@ pub struct Recorder<'a> {
 }
 
 impl<'a> Recorder<'a> {
-    pub fn new(automaton: &'a Automaton, t0: f64, q0: f64, qdot0: f64, mode: Mode) -> Self {
+    pub fn new(
+        automaton: &'a Automaton,
+        t0: f64,
+        q0: f64,
+        qdot0: f64,
+        mode: Mode,
+        history: History,
+    ) -> Self {
         Recorder {
             automaton,
             samples: Vec::new(),
             events: Vec::new(),
             max_q: Extremum { value: q0, t: t0 },
             min_q: Extremum { value: q0, t: t0 },
+            max_abs_s: automaton.flexural_part(mode, q0).abs(),
+            max_abs_r: automaton.rocking_part(mode, q0).abs(),
+            mode,
+            history,
             initial_energy: Self::energy(automaton, mode, q0, qdot0),
             event_jumps: 0.0,
             max_energy_residual: 0.0,
@@ -152,6 +173,9 @@ impl<'a> Recorder<'a> {
             .max(work_input.abs())
             .max(work_damping.abs());
         self.peak_candidate(t, q);
+        if self.history == History::PeaksOnly {
+            return;
+        }
         self.samples.push(Sample {
             t,
             q,
@@ -165,7 +189,9 @@ impl<'a> Recorder<'a> {
         });
     }
 
-    /// Offers a state at which q may be extremal (a root of q', an event, an end point).
+    /// Offers a state at which q may be extremal (a root of q', an event, an end point). Within
+    /// a mode |s| and |r| are monotone in |q| (MODEL.md section 3), so their peaks are among
+    /// these states too.
     pub fn peak_candidate(&mut self, t: f64, q: f64) {
         if q > self.max_q.value {
             self.max_q = Extremum { value: q, t };
@@ -173,6 +199,9 @@ impl<'a> Recorder<'a> {
         if q < self.min_q.value {
             self.min_q = Extremum { value: q, t };
         }
+        let a = self.automaton;
+        self.max_abs_s = self.max_abs_s.max(a.flexural_part(self.mode, q).abs());
+        self.max_abs_r = self.max_abs_r.max(a.rocking_part(self.mode, q).abs());
     }
 
     /// Records a mode change and the states on both sides of it.
@@ -190,7 +219,9 @@ impl<'a> Recorder<'a> {
         work_input: f64,
         work_damping: f64,
     ) {
+        self.mode = from;
         self.sample(t, from, q, qdot_before, floor_acc, work_input, work_damping);
+        self.mode = to;
         let a = self.automaton;
         self.event_jumps +=
             Self::energy(a, to, q, qdot_after) - Self::energy(a, from, q, qdot_before);
@@ -220,6 +251,8 @@ impl<'a> Recorder<'a> {
             events: self.events,
             max_q: self.max_q,
             min_q: self.min_q,
+            max_abs_s: self.max_abs_s,
+            max_abs_r: self.max_abs_r,
             overturned: self.t_overturn.is_some(),
             t_overturn: self.t_overturn,
             final_time,

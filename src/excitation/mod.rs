@@ -44,6 +44,11 @@ pub trait FloorMotion: Send + Sync {
     /// Largest |a(t)| over the motion, m/s^2 (for a pulse of less than a quarter cycle, a bound).
     fn peak_acceleration(&self) -> f64;
 
+    /// The period of an analytic motion (sine, pulse), s; None for records and free vibration.
+    fn period(&self) -> Option<f64> {
+        None
+    }
+
     /// A short name for reports, e.g. `paper-sine`.
     fn kind(&self) -> &'static str;
 
@@ -78,6 +83,9 @@ pub struct Harmonic {
 }
 
 impl FloorMotion for Harmonic {
+    fn period(&self) -> Option<f64> {
+        Some(self.period)
+    }
     fn acceleration(&self, t: f64) -> f64 {
         self.amplitude * (2.0 * PI * t / self.period).sin()
     }
@@ -119,6 +127,9 @@ impl PaperSine {
 }
 
 impl FloorMotion for PaperSine {
+    fn period(&self) -> Option<f64> {
+        Some(self.period)
+    }
     fn acceleration(&self, t: f64) -> f64 {
         if t < self.ramp {
             let [c1, c2, c3] = self.ramp_coefficients;

@@ -43,12 +43,16 @@ impl SinePulse {
         }
     }
 
-    fn end(&self) -> f64 {
+    /// End of the pulse, s.
+    pub fn end(&self) -> f64 {
         self.breakpoints[0]
     }
 }
 
 impl FloorMotion for SinePulse {
+    fn period(&self) -> Option<f64> {
+        Some(self.period)
+    }
     fn acceleration(&self, t: f64) -> f64 {
         if !(0.0..self.end()).contains(&t) {
             return 0.0;
@@ -94,6 +98,9 @@ pub struct Ricker {
 }
 
 impl FloorMotion for Ricker {
+    fn period(&self) -> Option<f64> {
+        Some(self.period)
+    }
     fn acceleration(&self, t: f64) -> f64 {
         let x = PI * (t - self.center) / self.period;
         let x2 = x * x;

@@ -1,6 +1,8 @@
 //! Rules of the `[excitation]` section: which keys each kind takes, and the floor motion it makes.
 
-use std::path::Path;
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use std::sync::{Arc, Mutex};
 
 use super::ExcitationSection;
 use crate::body::positive;
@@ -9,13 +11,49 @@ use crate::excitation::{
     floor_limit_rule, within_floor_limit, FloorMotion, Free, Harmonic, PaperSine, PulseShape,
     RecordedMotion, Ricker, SinePulse, MIN_EXCITATION_PERIOD,
 };
-use crate::record::{read_record, RecordFormat};
+use crate::record::{read_record, Record, RecordFormat};
+
+/// Records read once and shared: a sweep builds thousands of models from a few record files.
+/// A record is known by its path, format and given sampling interval.
+#[derive(Debug, Default)]
+pub struct RecordCache {
+    records: Mutex<HashMap<(PathBuf, Option<RecordFormat>, Option<u64>), Arc<Record>>>,
+}
+
+impl RecordCache {
+    fn read(
+        &self,
+        path: &Path,
+        format: Option<RecordFormat>,
+        dt: Option<f64>,
+    ) -> std::result::Result<Arc<Record>, crate::record::RecordError> {
+        let key = (path.to_path_buf(), format, dt.map(f64::to_bits));
+        if let Some(record) = self.lock().get(&key) {
+            return Ok(Arc::clone(record));
+        }
+        // Read outside the lock; two threads may read one file at once, and agree.
+        let record = Arc::new(read_record(path, format, dt)?);
+        self.lock().insert(key, Arc::clone(&record));
+        Ok(record)
+    }
+
+    fn lock(
+        &self,
+    ) -> std::sync::MutexGuard<'_, HashMap<(PathBuf, Option<RecordFormat>, Option<u64>), Arc<Record>>>
+    {
+        // A panic elsewhere cannot leave the map half-updated: insert is one call.
+        self.records.lock().unwrap_or_else(|e| e.into_inner())
+    }
+}
 
 /// Which keys each excitation kind takes (all others are errors).
 const EXCITATION_KEYS: &[(&str, &[&str])] = &[
     ("paper-sine", &["amplitude", "period", "ramp"]),
     ("harmonic", &["amplitude", "period"]),
-    ("sine-pulse", &["amplitude", "period", "cycles", "shape"]),
+    (
+        "sine-pulse",
+        &["amplitude", "period", "cycles", "shape", "tail"],
+    ),
     ("ricker", &["amplitude", "period", "center"]),
     (
         "record",
@@ -33,6 +71,7 @@ const REQUIRED_EXCITATION_KEYS: &[&str] = &["amplitude", "period", "ramp", "cent
 pub(super) fn floor_from_section(
     s: &ExcitationSection,
     base_dir: &Path,
+    records: &RecordCache,
 ) -> Result<(Box<dyn FloorMotion>, Option<f64>)> {
     let kind = s.kind.as_str();
     let allowed = EXCITATION_KEYS
@@ -125,7 +164,14 @@ pub(super) fn floor_from_section(
                     ))
                 }
             };
-            Box::new(SinePulse::new(amplitude, period, cycles, shape))
+            let pulse = SinePulse::new(amplitude, period, cycles, shape);
+            // With a tail, the run lasts the pulse and the tail (unless simulation.duration says
+            // otherwise): a sweep over the pulse period keeps the free rocking after it the same.
+            let natural = match s.tail {
+                Some(tail) => Some(pulse.end() + check_tail(tail)?),
+                None => None,
+            };
+            return finish_analytic(Box::new(pulse), amplitude, s, natural);
         }
         "ricker" => {
             let center = s.center.unwrap_or(0.0);
@@ -143,7 +189,7 @@ pub(super) fn floor_from_section(
             })
         }
         "record" => {
-            let (record, tail) = recorded_motion(s, base_dir)?;
+            let (record, tail) = recorded_motion(s, base_dir, records)?;
             let (peak, t_peak) = record.peak();
             if !within_floor_limit(peak) {
                 let scale = s.scale.unwrap_or(1.0);
@@ -166,6 +212,16 @@ pub(super) fn floor_from_section(
         }
         _ => Box::new(Free),
     };
+    finish_analytic(floor, amplitude, s, None)
+}
+
+/// An analytic floor motion, checked against the floor limit, with its natural length.
+fn finish_analytic(
+    floor: Box<dyn FloorMotion>,
+    amplitude: f64,
+    s: &ExcitationSection,
+    natural_duration: Option<f64>,
+) -> Result<(Box<dyn FloorMotion>, Option<f64>)> {
     let peak = floor.peak_acceleration();
     if !within_floor_limit(peak) {
         // Within the limit the amplitude itself, beyond it the paper-sine's ramp, is to blame.
@@ -176,14 +232,26 @@ pub(super) fn floor_from_section(
         };
         return Err(Error::invalid(key, value, &floor_limit_rule(peak)));
     }
-    Ok((floor, None))
+    Ok((floor, natural_duration))
+}
+
+/// Free vibration after a pulse or a record, s: 0 or more.
+fn check_tail(tail: f64) -> Result<f64> {
+    if !(tail.is_finite() && tail >= 0.0) {
+        return Err(Error::invalid("excitation.tail", tail, "must be 0 or more"));
+    }
+    Ok(tail)
 }
 
 /// Standard gravity, for records in units of g (independent of the body's `gravity`).
 pub const STANDARD_GRAVITY: f64 = 9.80665;
 
 /// Reads and trims the record of a `kind = "record"` section; returns it with the tail length.
-fn recorded_motion(s: &ExcitationSection, base_dir: &Path) -> Result<(RecordedMotion, f64)> {
+fn recorded_motion(
+    s: &ExcitationSection,
+    base_dir: &Path,
+    records: &RecordCache,
+) -> Result<(RecordedMotion, f64)> {
     let relative = s.path.clone().unwrap_or_default();
     let path = base_dir.join(&relative);
     let format = match s.format.as_deref() {
@@ -201,10 +269,12 @@ fn recorded_motion(s: &ExcitationSection, base_dir: &Path) -> Result<(RecordedMo
     if let Some(dt) = s.dt {
         positive("excitation.dt", dt)?;
     }
-    let record = read_record(&path, format, s.dt).map_err(|e| Error::Record {
-        key: "excitation.path".to_string(),
-        source: e,
-    })?;
+    let record = records
+        .read(&path, format, s.dt)
+        .map_err(|e| Error::Record {
+            key: "excitation.path".to_string(),
+            source: e,
+        })?;
     let is_at2 = matches!(format, Some(RecordFormat::PeerAt2))
         || (format.is_none() && record_format_of(&path) == Some(RecordFormat::PeerAt2));
     let units = match (s.units.as_deref(), is_at2) {
@@ -255,10 +325,7 @@ fn recorded_motion(s: &ExcitationSection, base_dir: &Path) -> Result<(RecordedMo
             &format!("must lie in ({start}, {record_length}] s"),
         ));
     }
-    let tail = s.tail.unwrap_or(0.0);
-    if !(tail.is_finite() && tail >= 0.0) {
-        return Err(Error::invalid("excitation.tail", tail, "must be 0 or more"));
-    }
+    let tail = check_tail(s.tail.unwrap_or(0.0))?;
     // Trimming keeps whole samples: the first at or after `start`, the last at or before `end`.
     let first = (start / record.dt - 1e-9).ceil().max(0.0) as usize;
     let last = ((end / record.dt + 1e-9).floor() as usize).min(record.values.len() - 1);

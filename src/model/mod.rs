@@ -7,9 +7,13 @@
 
 mod excitation_section;
 mod fem_section;
+mod setting;
 mod solver_section;
 
+pub use setting::{check_key, value_text, Setting};
+
 use excitation_section::floor_from_section;
+pub use excitation_section::RecordCache;
 pub use excitation_section::STANDARD_GRAVITY;
 pub use fem_section::{
     fem_from_section, FemSetup, DEFAULT_FEM_DT, DEFAULT_FEM_MU_K, DEFAULT_FEM_MU_S, DEFAULT_FEM_NX,
@@ -91,7 +95,8 @@ pub struct ExcitationSection {
     /// record: first and last record time used, s.
     pub start: Option<f64>,
     pub end: Option<f64>,
-    /// record: free vibration after the record when the duration is not given, s.
+    /// record, sine-pulse: free vibration after the record or pulse when simulation.duration is
+    /// not given, s.
     pub tail: Option<f64>,
     /// record: sampling interval of a one-column CSV file, s.
     pub dt: Option<f64>,
@@ -100,7 +105,8 @@ pub struct ExcitationSection {
 #[derive(Debug, Clone, Default, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct SimulationSection {
-    /// Required, except for records, where it defaults to the record length plus `tail`.
+    /// Required, except for records and sine pulses with a `tail`, where it defaults to their
+    /// length plus the tail.
     pub duration: Option<f64>,
     pub q0: Option<f64>,
     pub qdot0: Option<f64>,
@@ -183,6 +189,31 @@ fn read_model_text(path: &Path) -> Result<String> {
     Ok(text)
 }
 
+/// A model file's TOML table, as written (the schema is checked by [`read_schema`]).
+pub fn read_model_table(path: &Path) -> Result<toml::Table> {
+    let text = read_model_text(path)?;
+    parse_table(&text, path)
+}
+
+fn parse_table(text: &str, source: &Path) -> Result<toml::Table> {
+    toml::from_str(text).map_err(|e| Error::ParseModel {
+        path: source.to_path_buf(),
+        message: e.to_string().trim_end().to_string(),
+    })
+}
+
+/// The text of a model file read into the schema, with `settings` applied. Without settings
+/// the text is read directly, so that a message points at the line of the file.
+fn parse_model_text(text: &str, settings: &[Setting], source: &Path) -> Result<ModelFile> {
+    if settings.is_empty() {
+        return toml::from_str(text).map_err(|e| Error::ParseModel {
+            path: source.to_path_buf(),
+            message: e.to_string().trim_end().to_string(),
+        });
+    }
+    read_schema(&parse_table(text, source)?, settings, source)
+}
+
 /// Command-line values that take precedence over the file.
 #[derive(Debug, Clone, Default)]
 pub struct Overrides {
@@ -194,19 +225,67 @@ pub struct Overrides {
     pub dt: Option<f64>,
     /// Newmark variant (solver.newmark_variant).
     pub newmark_variant: Option<String>,
+    /// `--set KEY=VALUE`: any model-file key, applied to the file before the flags above.
+    pub settings: Vec<Setting>,
 }
 
 impl Overrides {
     /// The command-line flag that set the model-file key `key`, if one did.
-    pub fn flag_for(&self, key: &str) -> Option<&'static str> {
-        match key {
-            "solver.method" if self.method.is_some() => Some("--method"),
-            "solver.rtol" if self.rtol.is_some() => Some("--rtol"),
-            "solver.atol" if self.atol.is_some() => Some("--atol"),
-            "solver.dt" if self.dt.is_some() => Some("--dt"),
-            "solver.newmark_variant" if self.newmark_variant.is_some() => Some("--variant"),
-            "simulation.duration" if self.duration.is_some() => Some("--duration"),
-            _ => None,
+    pub fn flag_for(&self, key: &str) -> Option<String> {
+        let flag = match key {
+            "solver.method" if self.method.is_some() => "--method",
+            "solver.rtol" if self.rtol.is_some() => "--rtol",
+            "solver.atol" if self.atol.is_some() => "--atol",
+            "solver.dt" if self.dt.is_some() => "--dt",
+            "solver.newmark_variant" if self.newmark_variant.is_some() => "--variant",
+            "simulation.duration" if self.duration.is_some() => "--duration",
+            _ if self.settings.iter().any(|s| s.key == key) => return Some(format!("--set {key}")),
+            _ => return None,
+        };
+        Some(flag.to_string())
+    }
+}
+
+/// Reads a model file's table into the schema, with `settings` applied first. A table that does
+/// not follow the schema is the file's fault (`source` names it); a setting that breaks it is
+/// the setting's, and the error names its key.
+pub fn read_schema(table: &toml::Table, settings: &[Setting], source: &Path) -> Result<ModelFile> {
+    let read = |table: toml::Table| -> std::result::Result<ModelFile, String> {
+        table
+            .try_into::<ModelFile>()
+            .map_err(|e| e.to_string().trim_end().replace('\n', " "))
+    };
+    if settings.is_empty() {
+        return read(table.clone()).map_err(|message| Error::ParseModel {
+            path: source.to_path_buf(),
+            message,
+        });
+    }
+    let mut with_settings = table.clone();
+    for setting in settings {
+        setting.apply(&mut with_settings)?;
+    }
+    match read(with_settings) {
+        Ok(file) => Ok(file),
+        Err(message) => {
+            // Blame the first setting that breaks the schema on its own, else the file.
+            for setting in settings {
+                let mut alone = table.clone();
+                setting.apply(&mut alone)?;
+                if let Err(message) = read(alone) {
+                    if read(table.clone()).is_ok() {
+                        return Err(Error::invalid(
+                            &format!("--set {}", setting.key),
+                            setting.value_text(),
+                            &format!("does not fit the model file's schema: {message}"),
+                        ));
+                    }
+                }
+            }
+            Err(Error::ParseModel {
+                path: source.to_path_buf(),
+                message,
+            })
         }
     }
 }
@@ -242,10 +321,7 @@ impl Model {
     /// Reads, parses and validates a model file.
     pub fn load(path: &Path, overrides: &Overrides) -> Result<Model> {
         let text = read_model_text(path)?;
-        let file: ModelFile = toml::from_str(&text).map_err(|e| Error::ParseModel {
-            path: path.to_path_buf(),
-            message: e.to_string().trim_end().to_string(),
-        })?;
+        let file = parse_model_text(&text, &overrides.settings, path)?;
         let base_dir = path.parent().unwrap_or(Path::new("."));
         let mut model = Model::from_file(file, overrides, base_dir).map_err(|e| match e {
             // A value the command line set is the flag's fault, not the file's.
@@ -257,7 +333,11 @@ impl Model {
                     ""
                 };
                 Error::InvalidParameter {
-                    key: format!("{flag} (sets {key})"),
+                    key: if flag.starts_with("--set") {
+                        flag
+                    } else {
+                        format!("{flag} (sets {key})")
+                    },
                     value,
                     rule: format!("{rule}{hint}"),
                 }
@@ -271,17 +351,25 @@ impl Model {
         Ok(model)
     }
 
-    /// Parses and validates the text of a model file (`source` names it in messages).
+    /// Parses and validates the text of a model file; record paths are relative to the
+    /// current directory.
     pub fn from_toml_str(text: &str, overrides: &Overrides) -> Result<Model> {
-        let file: ModelFile = toml::from_str(text).map_err(|e| Error::ParseModel {
-            path: PathBuf::from("(model text)"),
-            message: e.to_string().trim_end().to_string(),
-        })?;
+        let file = parse_model_text(text, &overrides.settings, Path::new("(model text)"))?;
         Model::from_file(file, overrides, Path::new("."))
     }
 
     /// Validates a parsed model file; record paths are relative to `base_dir`.
-    pub fn from_file(mut file: ModelFile, overrides: &Overrides, base_dir: &Path) -> Result<Model> {
+    pub fn from_file(file: ModelFile, overrides: &Overrides, base_dir: &Path) -> Result<Model> {
+        Model::from_file_cached(file, overrides, base_dir, &RecordCache::default())
+    }
+
+    /// [`Model::from_file`], taking records from `records` (and reading them into it).
+    pub fn from_file_cached(
+        mut file: ModelFile,
+        overrides: &Overrides,
+        base_dir: &Path,
+        records: &RecordCache,
+    ) -> Result<Model> {
         if let Some(m) = &overrides.method {
             // Switching between Newmark and the adaptive methods on the command line sets aside
             // the file's keys of the other family: they were written for the file's method.
@@ -313,7 +401,7 @@ impl Model {
 
         let body = body_from_section(&file.body)?;
         let constants = Constants::new(&body)?;
-        let (floor, natural_duration) = floor_from_section(&file.excitation, base_dir)?;
+        let (floor, natural_duration) = floor_from_section(&file.excitation, base_dir, records)?;
         let duration = match (file.simulation.duration, natural_duration) {
             (Some(d), _) | (None, Some(d)) => d,
             (None, None) => {
@@ -321,7 +409,7 @@ impl Model {
                     "simulation.duration",
                     "(missing)",
                     &format!(
-                        "required for kind = \"{}\" (only records have a natural length)",
+                        "required for kind = \"{}\" (records, and sine pulses with excitation.tail, have a natural length)",
                         file.excitation.kind
                     ),
                 ))

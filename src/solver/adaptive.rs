@@ -37,7 +37,7 @@ use crate::automaton::{Automaton, Guard, Mode};
 use crate::error::{Error, Result};
 use crate::excitation::FloorMotion;
 use crate::solution::{Recorder, Solution, SolverStats};
-use crate::solver::{InitialState, OutputGrid};
+use crate::solver::{History, InitialState, OutputGrid};
 
 type Matrix = NalgebraMat<f64>;
 type LinearSolver = NalgebraLU<f64>;
@@ -106,6 +106,7 @@ pub fn solve(
     initial: InitialState,
     duration: f64,
     settings: &AdaptiveSettings,
+    history: History,
 ) -> Result<Solution> {
     let started = Instant::now();
     let mode = Cell::new(automaton.initial_mode(initial.q));
@@ -182,6 +183,7 @@ pub fn solve(
         mode: &mode,
         duration,
         settings,
+        history,
     };
     let (recorder, final_time, mut stats) = match settings.method {
         AdaptiveMethod::Bdf => driver.run(
@@ -226,6 +228,7 @@ struct Driver<'d> {
     mode: &'d Cell<Mode>,
     duration: f64,
     settings: &'d AdaptiveSettings,
+    history: History,
 }
 
 /// The exact state at the start of a step, kept so that a step can be taken again.
@@ -298,9 +301,10 @@ impl<'d> Driver<'d> {
             .map_err(|e| self.error(0.0, e))?;
 
         let y0 = solver.state().y.clone();
-        let mut recorder = Recorder::new(automaton, 0.0, y0[0], y0[1], self.mode.get());
+        let mut recorder =
+            Recorder::new(automaton, 0.0, y0[0], y0[1], self.mode.get(), self.history);
         let mut sampler = Sampler {
-            grid: OutputGrid::new(end, self.settings.output_dt),
+            grid: OutputGrid::for_history(self.history, end, self.settings.output_dt),
             y: y0.clone(),
             work: solver.state().g.clone(),
         };

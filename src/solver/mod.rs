@@ -16,6 +16,16 @@ pub struct InitialState {
     pub qdot: f64,
 }
 
+/// Whether a run keeps its sampled history, or only its events, peaks and statistics (sweeps,
+/// where thousands of runs need one row each).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum History {
+    /// Samples every `output_dt`, and both sides of every event.
+    Sampled,
+    /// No samples: events, peaks, the energy balance at events, statistics.
+    PeaksOnly,
+}
+
 /// The times at which the history is sampled: every `output_dt` from 0, and the final time.
 #[derive(Debug, Clone)]
 pub struct OutputGrid {
@@ -26,6 +36,19 @@ pub struct OutputGrid {
 }
 
 impl OutputGrid {
+    /// The grid of a run that keeps `history`: none at all for [`History::PeaksOnly`].
+    pub fn for_history(history: History, end: f64, output_dt: f64) -> Self {
+        match history {
+            History::Sampled => OutputGrid::new(end, output_dt),
+            History::PeaksOnly => OutputGrid {
+                output_dt,
+                count: 0,
+                end,
+                next: 0,
+            },
+        }
+    }
+
     pub fn new(end: f64, output_dt: f64) -> Self {
         // Points closer to `end` than a millionth of a step merge with it.
         let count = (end / output_dt * (1.0 + 1e-12) + 1e-6).floor() as usize + 1;
@@ -50,7 +73,8 @@ impl OutputGrid {
     pub fn peek(&self) -> Option<f64> {
         if self.next < self.count {
             Some(self.time(self.next))
-        } else if self.next == self.count && self.time(self.count - 1) < self.end {
+        } else if self.count > 0 && self.next == self.count && self.time(self.count - 1) < self.end
+        {
             Some(self.end)
         } else {
             None

@@ -42,7 +42,7 @@ use crate::automaton::{Automaton, Guard, Mode};
 use crate::error::{Error, Result};
 use crate::excitation::FloorMotion;
 use crate::solution::{Recorder, Solution, SolverStats};
-use crate::solver::{InitialState, OutputGrid};
+use crate::solver::{History, InitialState, OutputGrid};
 
 /// How a step that crosses a guard is treated.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -120,6 +120,7 @@ pub fn solve(
     initial: InitialState,
     duration: f64,
     settings: &NewmarkSettings,
+    history: History,
 ) -> Result<Solution> {
     let started = Instant::now();
     let mut stepper = Stepper {
@@ -127,7 +128,7 @@ pub fn solve(
         floor,
         settings,
         mode: automaton.initial_mode(initial.q),
-        grid: OutputGrid::new(duration, settings.output_dt),
+        grid: OutputGrid::for_history(history, duration, settings.output_dt),
         stats: SolverStats {
             method: settings.label(),
             ..SolverStats::default()
@@ -143,7 +144,14 @@ pub fn solve(
         work_input: 0.0,
         work_damping: 0.0,
     };
-    let mut recorder = Recorder::new(automaton, 0.0, initial.q, initial.qdot, stepper.mode);
+    let mut recorder = Recorder::new(
+        automaton,
+        0.0,
+        initial.q,
+        initial.qdot,
+        stepper.mode,
+        history,
+    );
 
     // A start on a guard, moving across it, is an event at t = 0.
     if let Some(guard) = automaton.crossed_guard(stepper.mode, state.q, state.qdot) {

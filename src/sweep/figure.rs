@@ -1,0 +1,437 @@
+//! Figures of a sweep, drawn from sweep.csv alone (so that a merge of shards draws the same):
+//! - `map.svg` for a sweep over two numeric axes: max |q|/B as colour, overturned cells black,
+//!   the boundary between overturned and standing cells drawn in red; beside it the same map
+//!   over the dimensionless axes when an axis is the excitation's amplitude (plotted over
+//!   g tan(alpha)) or period (plotted as omega_p/p);
+//! - `spectrum.svg` for a minimum search over one numeric axis: the smallest overturning value
+//!   against the axis, in physical and in dimensionless units, with the rigid block's (the
+//!   slender Housner block of the same geometry) where the rows have it.
+
+use std::path::Path;
+
+use plotters::prelude::*;
+
+use super::store::Counts;
+use super::Plan;
+use crate::error::{Error, Result};
+use crate::plot::{Legend, Panel, Series};
+
+/// sweep.csv read back: its columns and rows of text.
+pub struct Table {
+    pub columns: Vec<String>,
+    pub rows: Vec<Vec<String>>,
+    path: std::path::PathBuf,
+}
+
+impl Table {
+    /// Parses CSV text; `path` names it in messages.
+    pub fn parse(bytes: &[u8], path: &Path) -> Result<Table> {
+        let fail = |message: String| Error::ReadResult {
+            path: path.to_path_buf(),
+            message,
+        };
+        let mut reader = csv::ReaderBuilder::new().from_reader(bytes);
+        let columns: Vec<String> = reader
+            .headers()
+            .map_err(|e| fail(format!("not a CSV table: {e}")))?
+            .iter()
+            .map(str::to_string)
+            .collect();
+        let mut rows = Vec::new();
+        for record in reader.records() {
+            let record = record.map_err(|e| fail(format!("a malformed row: {e}")))?;
+            rows.push(record.iter().map(str::to_string).collect());
+        }
+        Ok(Table {
+            columns,
+            rows,
+            path: path.to_path_buf(),
+        })
+    }
+
+    /// The index of a column.
+    pub fn column(&self, name: &str) -> Result<usize> {
+        self.columns
+            .iter()
+            .position(|c| c == name)
+            .ok_or_else(|| Error::ReadResult {
+                path: self.path.clone(),
+                message: format!("has no column {name}"),
+            })
+    }
+
+    /// A numeric field; None when empty or not a number.
+    pub fn number(&self, row: usize, column: usize) -> Option<f64> {
+        self.rows[row][column].parse().ok()
+    }
+
+    /// Rows by status, and points that overturned.
+    pub fn counts(&self, find_min: bool) -> Result<Counts> {
+        let status = self.column("status")?;
+        let overturned = if find_min {
+            self.column("min_overturning")?
+        } else {
+            self.column("overturned")?
+        };
+        let mut counts = Counts::default();
+        for row in &self.rows {
+            match row[status].as_str() {
+                "ok" => counts.ok += 1,
+                "invalid" => counts.invalid += 1,
+                _ => counts.failed += 1,
+            }
+            let over = &row[overturned];
+            if (find_min && !over.is_empty()) || (!find_min && over == "true") {
+                counts.overturned += 1;
+            }
+        }
+        Ok(counts)
+    }
+}
+
+/// The figures of a sweep, as (file name, SVG bytes).
+pub fn figures(plan: &Plan, table: &Table) -> Result<Vec<(String, Vec<u8>)>> {
+    let numeric: Vec<usize> = (0..plan.axes.len())
+        .filter(|&i| plan.axes[i].is_numeric())
+        .collect();
+    match (&plan.find_min, plan.axes.len(), numeric.as_slice()) {
+        (None, 2, [x, y]) => Ok(vec![("map.svg".to_string(), map(plan, table, *x, *y)?)]),
+        (Some(_), 1, [x]) => Ok(vec![(
+            "spectrum.svg".to_string(),
+            spectrum(plan, table, *x)?,
+        )]),
+        _ => Ok(Vec::new()),
+    }
+}
+
+/// The dimensionless column that stands for an axis, and its label.
+fn dimensionless(key: &str) -> Option<(&'static str, &'static str)> {
+    match key {
+        "excitation.amplitude" | "excitation.scale" => Some((
+            "amplitude_over_g_tan_alpha",
+            "peak floor acceleration / (g tan alpha)",
+        )),
+        "excitation.period" => Some(("omega_p_over_p", "omega_p / p")),
+        _ => None,
+    }
+}
+
+/// The colour of max |q|/B in [0, 1]: a perceptually ordered ramp (dark blue, teal, yellow).
+fn colour(value: f64) -> RGBColor {
+    const STOPS: [(f64, [f64; 3]); 5] = [
+        (0.0, [68.0, 1.0, 84.0]),
+        (0.25, [59.0, 82.0, 139.0]),
+        (0.5, [33.0, 145.0, 140.0]),
+        (0.75, [94.0, 201.0, 98.0]),
+        (1.0, [253.0, 231.0, 37.0]),
+    ];
+    let v = value.clamp(0.0, 1.0);
+    let i = STOPS
+        .windows(2)
+        .position(|w| v <= w[1].0)
+        .unwrap_or(STOPS.len() - 2);
+    let ((a, ca), (b, cb)) = (STOPS[i], STOPS[i + 1]);
+    let f = if b > a { (v - a) / (b - a) } else { 0.0 };
+    let mix = |k: usize| (ca[k] + f * (cb[k] - ca[k])).round() as u8;
+    RGBColor(mix(0), mix(1), mix(2))
+}
+
+/// One map cell.
+#[derive(Clone, Copy)]
+struct Cell {
+    /// Value of max |q|/B; None for an invalid or failed point.
+    value: Option<f64>,
+    overturned: bool,
+}
+
+/// Edges of cells centred on `centres` (sorted or reversed): midpoints, the ends extended by
+/// half a cell.
+fn edges(centres: &[f64]) -> Vec<f64> {
+    let n = centres.len();
+    if n == 1 {
+        let half = 0.5 * centres[0].abs().max(1e-12) * 0.1;
+        return vec![centres[0] - half, centres[0] + half];
+    }
+    let mut e = Vec::with_capacity(n + 1);
+    e.push(centres[0] - 0.5 * (centres[1] - centres[0]));
+    for w in centres.windows(2) {
+        e.push(0.5 * (w[0] + w[1]));
+    }
+    e.push(centres[n - 1] + 0.5 * (centres[n - 1] - centres[n - 2]));
+    e
+}
+
+fn plot_error(e: impl std::fmt::Display) -> Error {
+    Error::Plot {
+        name: "map.svg".to_string(),
+        message: e.to_string(),
+    }
+}
+
+/// The map over axes `x` and `y` (indices into the plan's axes).
+fn map(plan: &Plan, table: &Table, x: usize, y: usize) -> Result<Vec<u8>> {
+    let (nx, ny) = (plan.axes[x].len(), plan.axes[y].len());
+    let q_column = table.column("max_abs_q_over_B")?;
+    let over_column = table.column("overturned")?;
+    let mut cells = vec![
+        vec![
+            Cell {
+                value: None,
+                overturned: false
+            };
+            ny
+        ];
+        nx
+    ];
+    for (r, row) in table.rows.iter().enumerate() {
+        let point: usize = row[0].parse().map_err(|_| Error::ReadResult {
+            path: table.path.clone(),
+            message: format!("row {} has no point number", r + 1),
+        })?;
+        let c = plan.coordinates(point);
+        cells[c[x]][c[y]] = Cell {
+            value: table.number(r, q_column),
+            overturned: row[over_column] == "true",
+        };
+    }
+    let physical = |axis: usize| -> Vec<f64> {
+        (0..plan.axes[axis].len())
+            .map(|i| plan.axes[axis].number(i).unwrap_or(f64::NAN))
+            .collect()
+    };
+    // Dimensionless coordinates: the column's value at the first valid point of each index.
+    let scaled = |axis: usize, column: &str| -> Result<Option<Vec<f64>>> {
+        let column = table.column(column)?;
+        let mut values = vec![None; plan.axes[axis].len()];
+        for (r, row) in table.rows.iter().enumerate() {
+            let point: usize = row[0].parse().unwrap_or(0);
+            let i = plan.coordinates(point)[axis];
+            if values[i].is_none() {
+                values[i] = table.number(r, column);
+            }
+        }
+        Ok(values.into_iter().collect())
+    };
+    let mut views: Vec<(Vec<f64>, String, Vec<f64>, String)> = vec![(
+        physical(x),
+        plan.axes[x].key.clone(),
+        physical(y),
+        plan.axes[y].key.clone(),
+    )];
+    let dx = dimensionless(&plan.axes[x].key);
+    let dy = dimensionless(&plan.axes[y].key);
+    if dx.is_some() || dy.is_some() {
+        let axis_view = |axis: usize, d: Option<(&str, &str)>| -> Result<(Vec<f64>, String)> {
+            if let Some((column, label)) = d {
+                if let Some(values) = scaled(axis, column)? {
+                    return Ok((values, label.to_string()));
+                }
+            }
+            Ok((physical(axis), plan.axes[axis].key.clone()))
+        };
+        let (xs, xl) = axis_view(x, dx)?;
+        let (ys, yl) = axis_view(y, dy)?;
+        // Drawn only when the body is the same at every point (the scaled values are monotone).
+        let monotone =
+            |v: &[f64]| v.windows(2).all(|w| w[0] < w[1]) || v.windows(2).all(|w| w[0] > w[1]);
+        if (monotone(&xs) || xs.len() == 1) && (monotone(&ys) || ys.len() == 1) {
+            views.push((xs, xl, ys, yl));
+        }
+    }
+
+    let panel = (720u32, 600u32);
+    let legend_width = 110u32;
+    let width = panel.0 * views.len() as u32 + legend_width;
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (width, panel.1)).into_drawing_area();
+        root.fill(&WHITE).map_err(plot_error)?;
+        let (maps, bar) = root.split_horizontally(panel.0 * views.len() as u32);
+        let areas = maps.split_evenly((1, views.len()));
+        for ((xs, x_label, ys, y_label), area) in views.iter().zip(areas.iter()) {
+            draw_map(area, &cells, xs, ys, x_label, y_label).map_err(plot_error)?;
+        }
+        draw_colour_bar(&bar).map_err(plot_error)?;
+        root.present().map_err(plot_error)?;
+    }
+    Ok(svg.into_bytes())
+}
+
+type Area<'a> = DrawingArea<SVGBackend<'a>, plotters::coord::Shift>;
+
+fn draw_map(
+    area: &Area<'_>,
+    cells: &[Vec<Cell>],
+    xs: &[f64],
+    ys: &[f64],
+    x_label: &str,
+    y_label: &str,
+) -> std::result::Result<(), Box<dyn std::error::Error>> {
+    let (ex, ey) = (edges(xs), edges(ys));
+    let range = |e: &[f64]| {
+        let lo = e.iter().copied().fold(f64::INFINITY, f64::min);
+        let hi = e.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        lo..hi
+    };
+    let mut chart = ChartBuilder::on(area)
+        .caption("max |q| / B (black: overturned)", ("sans-serif", 22))
+        .margin(14)
+        .x_label_area_size(50)
+        .y_label_area_size(80)
+        .build_cartesian_2d(range(&ex), range(&ey))?;
+    chart
+        .configure_mesh()
+        .disable_mesh()
+        .x_desc(x_label)
+        .y_desc(y_label)
+        .label_style(("sans-serif", 16))
+        .axis_desc_style(("sans-serif", 18))
+        .draw()?;
+    let mut rects = Vec::new();
+    for (i, column) in cells.iter().enumerate() {
+        for (j, cell) in column.iter().enumerate() {
+            let style = match (cell.value, cell.overturned) {
+                (_, true) => BLACK.filled(),
+                (Some(v), false) => colour(v).filled(),
+                (None, false) => RGBColor(255, 255, 255).filled(),
+            };
+            rects.push(Rectangle::new(
+                [(ex[i], ey[j]), (ex[i + 1], ey[j + 1])],
+                style,
+            ));
+        }
+    }
+    chart.draw_series(rects)?;
+    // Invalid or failed points: a grey cross.
+    let grey = RGBColor(140, 140, 140);
+    for (i, column) in cells.iter().enumerate() {
+        for (j, cell) in column.iter().enumerate() {
+            if cell.value.is_none() && !cell.overturned {
+                chart.draw_series(std::iter::once(PathElement::new(
+                    vec![(ex[i], ey[j]), (ex[i + 1], ey[j + 1])],
+                    grey.stroke_width(1),
+                )))?;
+            }
+        }
+    }
+    // The boundary: every cell edge between an overturned and a standing cell.
+    let red = RGBColor(220, 30, 30).stroke_width(3);
+    let mut boundary = Vec::new();
+    for i in 0..cells.len() {
+        for j in 0..cells[i].len() {
+            let here = cells[i][j].overturned;
+            if i + 1 < cells.len() && cells[i + 1][j].overturned != here {
+                boundary.push(vec![(ex[i + 1], ey[j]), (ex[i + 1], ey[j + 1])]);
+            }
+            if j + 1 < cells[i].len() && cells[i][j + 1].overturned != here {
+                boundary.push(vec![(ex[i], ey[j + 1]), (ex[i + 1], ey[j + 1])]);
+            }
+        }
+    }
+    chart.draw_series(boundary.into_iter().map(|p| PathElement::new(p, red)))?;
+    Ok(())
+}
+
+fn draw_colour_bar(area: &Area<'_>) -> std::result::Result<(), Box<dyn std::error::Error>> {
+    let mut chart = ChartBuilder::on(area)
+        .margin_top(60)
+        .margin_bottom(64)
+        .margin_right(10)
+        .y_label_area_size(46)
+        .build_cartesian_2d(0.0..1.0, 0.0..1.0)?;
+    chart
+        .configure_mesh()
+        .disable_mesh()
+        .disable_x_axis()
+        .y_labels(6)
+        .label_style(("sans-serif", 15))
+        .draw()?;
+    let steps = 100;
+    chart.draw_series((0..steps).map(|k| {
+        let (a, b) = (k as f64 / steps as f64, (k + 1) as f64 / steps as f64);
+        Rectangle::new([(0.0, a), (1.0, b)], colour(0.5 * (a + b)).filled())
+    }))?;
+    Ok(())
+}
+
+/// The spectrum of a minimum search over axis `x`.
+fn spectrum(plan: &Plan, table: &Table, x: usize) -> Result<Vec<u8>> {
+    let Some(find) = &plan.find_min else {
+        return Ok(Vec::new());
+    };
+    let min_column = table.column("min_overturning")?;
+    let axis = &plan.axes[x];
+    let mut physical = Vec::new();
+    let mut scaled = Vec::new();
+    let mut rigid_physical = Vec::new();
+    let mut rigid_scaled = Vec::new();
+    let dx = dimensionless(&axis.key);
+    let x_scaled_column = match dx {
+        Some((column, _)) => Some(table.column(column)?),
+        None => None,
+    };
+    let y_scaled_column = table.column("amplitude_over_g_tan_alpha")?;
+    let rigid_column = table.column("rigid_min_overturning").ok();
+    let rigid_scaled_column = table.column("rigid_amplitude_over_g_tan_alpha").ok();
+    for (r, row) in table.rows.iter().enumerate() {
+        let point: usize = row[0].parse().unwrap_or(0);
+        let Some(xv) = axis.number(plan.coordinates(point)[x]) else {
+            continue;
+        };
+        let xs = x_scaled_column
+            .and_then(|c| table.number(r, c))
+            .unwrap_or(xv);
+        if let Some(min) = table.number(r, min_column) {
+            physical.push((xv, min));
+            if let Some(s) = table.number(r, y_scaled_column) {
+                scaled.push((xs, s));
+            }
+        }
+        if let Some(rigid) = rigid_column.and_then(|c| table.number(r, c)) {
+            rigid_physical.push((xv, rigid));
+        }
+        if let Some(rigid) = rigid_scaled_column.and_then(|c| table.number(r, c)) {
+            rigid_scaled.push((xs, rigid));
+        }
+    }
+    let sort = |v: &mut Vec<(f64, f64)>| v.sort_by(|a, b| a.0.total_cmp(&b.0));
+    for v in [
+        &mut physical,
+        &mut scaled,
+        &mut rigid_physical,
+        &mut rigid_scaled,
+    ] {
+        sort(v);
+    }
+    let title = format!("smallest overturning {}", find.key);
+    let mut left = Panel::new(&title, &axis.key, &find.key)
+        .with(Series::line("elastic body (flexrock)", physical, 2).with_markers());
+    if !rigid_physical.is_empty() {
+        left = left.with(Series::line(
+            "rigid block (slender Housner)",
+            rigid_physical,
+            1,
+        ));
+    }
+    left.legend = Legend::UpperLeft;
+    let mut panels = vec![left];
+    if let Some((_, x_label)) = dx {
+        let mut right = Panel::new(
+            "dimensionless",
+            x_label,
+            "peak floor acceleration / (g tan alpha)",
+        )
+        .with(Series::line("elastic body (flexrock)", scaled, 2).with_markers());
+        if !rigid_scaled.is_empty() {
+            right = right.with(Series::line(
+                "rigid block (slender Housner)",
+                rigid_scaled,
+                1,
+            ));
+        }
+        right.legend = Legend::UpperLeft;
+        panels.push(right);
+    }
+    let columns = panels.len();
+    crate::plot::figure("spectrum.svg", &panels, columns, (640, 520)).map(String::into_bytes)
+}

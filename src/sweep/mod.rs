@@ -1,0 +1,447 @@
+//! Parametric studies: one model file, axes over any of its numeric keys (and over record
+//! files), one row per point in sweep.csv.
+//!
+//! - [`axis`]: the axes and their values (`KEY=LO:HI:STEP`, `log:LO:HI:N`, lists, file patterns);
+//! - [`find_min`]: the smallest overturning value of a key at every point (scan, then bisect);
+//! - [`row`]: what a point gives, and the column names of sweep.csv;
+//! - [`store`]: chunks on disk, resuming, shards and their merge;
+//! - [`figure`]: the map and the spectrum, drawn from sweep.csv alone.
+//!
+//! Every point is the base model with the point's keys set ([`crate::model::Setting`]), read
+//! and checked by the same rules as a model file: a point that breaks one is a row with its
+//! reason, not the end of the sweep. Points run in parallel; each is computed alone and rows
+//! are written in point order, so that the output is the same whatever the number of threads.
+
+pub mod axis;
+pub mod figure;
+pub mod find_min;
+pub mod row;
+pub mod store;
+
+use std::path::{Path, PathBuf};
+
+use serde::{Deserialize, Serialize};
+
+pub use axis::{Axis, Interval};
+pub use find_min::FindMin;
+use row::{Outcome, Row, RunOutcome, Scales, Status};
+
+use crate::error::{Error, Result};
+use crate::model::{read_schema, Model, Overrides, RecordCache, Setting};
+
+/// Simulations per chunk, roughly: a chunk is the most a kill can lose.
+pub const SIMULATIONS_PER_CHUNK: usize = 1024;
+
+/// What a sweep is, as stored with its results: enough to tell whether a directory holds this
+/// sweep (to resume it, or to merge its shards) and to say how the results were made.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Plan {
+    pub flexrock_version: String,
+    /// The model file as named on the command line.
+    pub model_file: String,
+    /// Its text, so that a changed file is not mistaken for the same sweep.
+    pub model_text: String,
+    /// `--set` keys, as `key=value`.
+    pub settings: Vec<String>,
+    pub axes: Vec<Axis>,
+    pub find_min: Option<FindMin>,
+    /// Points per chunk file.
+    pub chunk_size: usize,
+}
+
+impl Plan {
+    /// Number of points: the product of the axes' lengths (1 without axes).
+    pub fn points(&self) -> usize {
+        self.axes.iter().map(Axis::len).product()
+    }
+
+    /// The column names of sweep.csv.
+    pub fn columns(&self) -> Vec<String> {
+        let mut columns = vec!["point".to_string()];
+        columns.extend(self.axes.iter().map(|a| a.key.clone()));
+        columns.extend(
+            Row::columns(self.find_min.is_some())
+                .into_iter()
+                .map(str::to_string),
+        );
+        columns
+    }
+
+    /// The index of each axis at point `index` (the last axis varies fastest).
+    pub fn coordinates(&self, mut index: usize) -> Vec<usize> {
+        let mut coordinates = vec![0; self.axes.len()];
+        for (slot, axis) in coordinates.iter_mut().zip(&self.axes).rev() {
+            *slot = index % axis.len();
+            index /= axis.len();
+        }
+        coordinates
+    }
+
+    fn restored(mut self) -> Plan {
+        self.axes = self.axes.into_iter().map(Axis::restored).collect();
+        self
+    }
+}
+
+/// What a user asks for.
+#[derive(Debug, Clone, Default)]
+pub struct Request {
+    pub settings: Vec<Setting>,
+    pub axes: Vec<Axis>,
+    pub find_min: Option<(String, Interval)>,
+    /// Scanned values of the minimum search [default: [`find_min::DEFAULT_SCAN`]].
+    pub scan: Option<usize>,
+    /// Bisection tolerance [default: [`find_min::DEFAULT_TOL_SHARE`] of HI - LO].
+    pub tol: Option<f64>,
+    /// Points per chunk [default: about [`SIMULATIONS_PER_CHUNK`] simulations].
+    pub chunk_size: Option<usize>,
+}
+
+/// A sweep file: the axes, settings and search of a sweep, written as on the command line.
+///
+/// ```toml
+/// vary = ["excitation.amplitude=0.5:15:0.5", "excitation.period=log:0.2:3:40"]
+/// set = ["solver.method=tsit45", "solver.rtol=1e-8"]
+/// find_min = "excitation.amplitude=0.5:15"   # optional
+/// scan = 100                                  # optional
+/// tol = 1e-3                                  # optional
+/// ```
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SweepFile {
+    #[serde(default)]
+    pub vary: Vec<String>,
+    #[serde(default)]
+    pub set: Vec<String>,
+    pub find_min: Option<String>,
+    pub scan: Option<usize>,
+    pub tol: Option<f64>,
+    pub chunk_size: Option<usize>,
+}
+
+impl Request {
+    /// Adds a sweep file to the request; file patterns in it are relative to the file.
+    pub fn add_file(&mut self, path: &Path) -> Result<()> {
+        let text = std::fs::read_to_string(path).map_err(|e| Error::ReadModel {
+            path: path.to_path_buf(),
+            source: e,
+        })?;
+        let file: SweepFile = toml::from_str(&text).map_err(|e| Error::ParseModel {
+            path: path.to_path_buf(),
+            message: e.to_string().trim_end().to_string(),
+        })?;
+        let base = path.parent().unwrap_or(Path::new("."));
+        let in_file = |e: Error| Error::InModel {
+            path: path.to_path_buf(),
+            source: Box::new(e),
+        };
+        for text in &file.set {
+            self.settings.push(Setting::parse(text).map_err(in_file)?);
+        }
+        for text in &file.vary {
+            self.axes.push(Axis::parse(text, base).map_err(in_file)?);
+        }
+        if let Some(text) = &file.find_min {
+            self.find_min = Some(axis::parse_interval(text).map_err(in_file)?);
+        }
+        self.scan = self.scan.or(file.scan);
+        self.tol = self.tol.or(file.tol);
+        self.chunk_size = self.chunk_size.or(file.chunk_size);
+        Ok(())
+    }
+}
+
+/// A sweep ready to run: the plan, and the base model's table.
+pub struct Sweep {
+    pub plan: Plan,
+    table: toml::Table,
+    model_path: PathBuf,
+    settings: Vec<Setting>,
+    /// Record files of an `excitation.path` axis are relative to this directory (where the user
+    /// typed the pattern), not to the model file.
+    paths_base: PathBuf,
+    records: RecordCache,
+}
+
+impl Sweep {
+    /// Checks a request against the model file: keys known to the schema, axes distinct,
+    /// the minimum searched over a key that is not an axis. Values are checked per point.
+    pub fn new(model_path: &Path, request: Request) -> Result<Sweep> {
+        let model_text = std::fs::read_to_string(model_path).map_err(|e| Error::ReadModel {
+            path: model_path.to_path_buf(),
+            source: e,
+        })?;
+        let table = crate::model::read_model_table(model_path)?;
+        let find_min = match &request.find_min {
+            None => None,
+            Some((key, interval)) => {
+                let scan = request.scan.unwrap_or(find_min::DEFAULT_SCAN);
+                if !(2..=axis::MAX_POINTS).contains(&scan) {
+                    return Err(Error::invalid(
+                        "--scan",
+                        scan,
+                        &format!("must lie in 2..={}", axis::MAX_POINTS),
+                    ));
+                }
+                let tol = request
+                    .tol
+                    .unwrap_or(find_min::DEFAULT_TOL_SHARE * (interval.hi - interval.lo));
+                if !(tol > 0.0 && tol.is_finite()) {
+                    return Err(Error::invalid("--tol", tol, "must be a positive number"));
+                }
+                Some(FindMin {
+                    key: key.clone(),
+                    lo: interval.lo,
+                    hi: interval.hi,
+                    scan,
+                    tol,
+                })
+            }
+        };
+        if request.axes.is_empty() && find_min.is_none() {
+            return Err(Error::invalid(
+                "--vary",
+                "(none)",
+                "a sweep needs at least one --vary axis or --find-min",
+            ));
+        }
+        let mut keys: Vec<&str> = request.axes.iter().map(|a| a.key.as_str()).collect();
+        if let Some(f) = &find_min {
+            keys.push(&f.key);
+        }
+        for (i, key) in keys.iter().enumerate() {
+            if keys[..i].contains(key) {
+                return Err(Error::invalid(
+                    &format!("--vary {key}"),
+                    key,
+                    "each key may be varied (or searched) once",
+                ));
+            }
+        }
+        let points = request
+            .axes
+            .iter()
+            .try_fold(1usize, |n, a| n.checked_mul(a.len()))
+            .filter(|&n| n <= axis::MAX_POINTS)
+            .ok_or_else(|| {
+                Error::invalid(
+                    "--vary",
+                    request
+                        .axes
+                        .iter()
+                        .map(|a| a.len().to_string())
+                        .collect::<Vec<_>>()
+                        .join(" x "),
+                    &format!("a sweep may have at most {} points", axis::MAX_POINTS),
+                )
+            })?;
+        // Every key must exist in the schema: try the first value of each (a value's own rules
+        // are the point's business).
+        let mut probe: Vec<Setting> = request.settings.clone();
+        probe.extend(request.axes.iter().map(|a| a.setting(0)));
+        if let Some(f) = &find_min {
+            probe.push(Setting::number(&f.key, f.lo));
+        }
+        for (i, setting) in probe.iter().enumerate() {
+            if let Err(e) = read_schema(&table, &probe[..=i], model_path) {
+                let is_axis = i >= request.settings.len();
+                return Err(if is_axis {
+                    Error::invalid(
+                        &setting.key,
+                        setting.value_text(),
+                        &format!("cannot be swept: {e}"),
+                    )
+                } else {
+                    e
+                });
+            }
+        }
+        let simulations_per_point = find_min.as_ref().map_or(1, |f| f.scan + 16);
+        let chunk_size = request
+            .chunk_size
+            .unwrap_or((SIMULATIONS_PER_CHUNK / simulations_per_point).max(1));
+        if chunk_size == 0 {
+            return Err(Error::invalid("--chunk-size", 0, "must be at least 1"));
+        }
+        let plan = Plan {
+            flexrock_version: crate::run::VERSION.to_string(),
+            model_file: model_path.display().to_string(),
+            model_text,
+            settings: request
+                .settings
+                .iter()
+                .map(|s| format!("{}={}", s.key, s.value_text()))
+                .collect(),
+            axes: request.axes,
+            find_min,
+            chunk_size: chunk_size.min(points.max(1)),
+        };
+        Ok(Sweep {
+            plan,
+            table,
+            model_path: model_path.to_path_buf(),
+            settings: request.settings,
+            paths_base: std::env::current_dir().unwrap_or_default(),
+            records: RecordCache::default(),
+        })
+    }
+
+    /// Number of points.
+    pub fn points(&self) -> usize {
+        self.plan.points()
+    }
+
+    /// The settings of point `index`: the `--set` keys, then the axes' values.
+    fn settings_at(&self, index: usize) -> Vec<Setting> {
+        let mut settings = self.settings.clone();
+        for (axis, &i) in self.plan.axes.iter().zip(&self.plan.coordinates(index)) {
+            let mut setting = axis.setting(i);
+            if axis.key == "excitation.path" {
+                if let toml::Value::String(path) = &setting.value {
+                    let absolute = self.paths_base.join(path);
+                    setting.value = toml::Value::String(absolute.to_string_lossy().into_owned());
+                }
+            }
+            settings.push(setting);
+        }
+        settings
+    }
+
+    fn model(&self, settings: &[Setting]) -> Result<Model> {
+        let file = read_schema(&self.table, settings, &self.model_path)?;
+        let base_dir = self.model_path.parent().unwrap_or(Path::new("."));
+        let overrides = Overrides::default();
+        Model::from_file_cached(file, &overrides, base_dir, &self.records)
+    }
+
+    /// The row of point `index`.
+    pub fn evaluate(&self, index: usize) -> Row {
+        let settings = self.settings_at(index);
+        match &self.plan.find_min {
+            None => self.run_point(&settings),
+            Some(find) => self.search_point(&settings, find),
+        }
+    }
+
+    fn run_point(&self, settings: &[Setting]) -> Row {
+        let model = match self.model(settings) {
+            Ok(model) => model,
+            Err(e) => return Row::failure(Status::Invalid, reason(&e)),
+        };
+        let scales = Some(Scales::of(&model));
+        match crate::run::simulate_peaks(&model) {
+            Ok(solution) => Row {
+                status: Status::Ok,
+                reason: String::new(),
+                outcome: Some(Outcome::Run(RunOutcome::of(&model, &solution))),
+                scales,
+            },
+            Err(e) => Row {
+                scales,
+                ..Row::failure(Status::Failed, reason(&e))
+            },
+        }
+    }
+
+    fn search_point(&self, settings: &[Setting], find: &FindMin) -> Row {
+        let at = |value: f64| {
+            let mut settings = settings.to_vec();
+            settings.push(Setting::number(&find.key, value));
+            settings
+        };
+        let trial = |value: f64| -> std::result::Result<find_min::Trial, (Status, Error)> {
+            let model = self.model(&at(value)).map_err(|e| (Status::Invalid, e))?;
+            let solution = crate::run::simulate_peaks(&model).map_err(|e| (Status::Failed, e))?;
+            Ok(find_min::Trial {
+                overturned: solution.overturned,
+                t_overturn: solution.t_overturn,
+                steps: solution.stats.steps,
+                rhs_evaluations: solution.stats.rhs_evaluations,
+            })
+        };
+        match find_min::search(find, trial) {
+            Ok(outcome) => {
+                // The dimensionless numbers of the smallest overturning value (of HI when
+                // nothing overturned).
+                let value = outcome.min_overturning.unwrap_or(find.hi);
+                let scales = self.model(&at(value)).ok().map(|m| Scales::of(&m));
+                Row {
+                    status: Status::Ok,
+                    reason: String::new(),
+                    outcome: Some(Outcome::Minimum(outcome)),
+                    scales,
+                }
+            }
+            Err((value, (status, e))) => Row::failure(
+                status,
+                format!(
+                    "at {} = {}: {}",
+                    find.key,
+                    crate::output::shortest(value),
+                    reason(&e)
+                ),
+            ),
+        }
+    }
+}
+
+/// An error as one line of a CSV field.
+fn reason(e: &Error) -> String {
+    e.to_string().replace(['\n', '\r'], " ")
+}
+
+/// The few lines `flexrock sweep` prints; `seconds` is the wall time of this process, if it
+/// computed anything.
+pub fn report_text(report: &store::SweepReport, seconds: Option<f64>) -> String {
+    use std::fmt::Write as _;
+    let s = &report.summary;
+    let mut t = String::new();
+    let slice = match s.shard {
+        Some(shard) => format!(
+            " (shard {} of {}: points {}..{})",
+            shard.index, shard.count, s.points.first, s.points.end
+        ),
+        None => String::new(),
+    };
+    let _ = writeln!(
+        t,
+        "flexrock {}: sweep of {} points{slice} in {}",
+        crate::run::VERSION,
+        s.points.total,
+        report.dir.display()
+    );
+    let c = s.counts;
+    let _ = writeln!(
+        t,
+        "  {} ok, {} invalid, {} failed; {} overturned{}",
+        c.ok,
+        c.invalid,
+        c.failed,
+        c.overturned,
+        if s.plan.find_min.is_some() {
+            " within the searched interval"
+        } else {
+            ""
+        }
+    );
+    let _ = write!(
+        t,
+        "  {} computed now, {} found done",
+        report.computed, report.resumed
+    );
+    match seconds {
+        Some(secs) if report.computed > 0 => {
+            let _ = writeln!(
+                t,
+                " ({:.3} s, {:.0} points/s)",
+                secs,
+                report.computed as f64 / secs.max(1e-9)
+            );
+        }
+        _ => t.push('\n'),
+    }
+    for f in &report.files {
+        let _ = writeln!(t, "  wrote {}", f.display());
+    }
+    t
+}

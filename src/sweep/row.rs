@@ -1,0 +1,271 @@
+//! One row of sweep.csv: what a point's run (or minimum search) gave, and the dimensionless
+//! numbers the rocking literature plots. The column names are a contract (README, "sweep.csv").
+//!
+//! No wall-clock time appears in a row, so that a sweep writes the same file every time.
+
+use crate::automaton::EventKind;
+use crate::model::Model;
+use crate::output::shortest;
+use crate::solution::Solution;
+
+/// How a point ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Status {
+    /// The run finished (overturned or not).
+    Ok,
+    /// The point's model breaks a rule of the model file; `reason` says which.
+    Invalid,
+    /// The run could not be completed (a solver failure, a cap on steps or events).
+    Failed,
+}
+
+impl Status {
+    pub fn name(self) -> &'static str {
+        match self {
+            Status::Ok => "ok",
+            Status::Invalid => "invalid",
+            Status::Failed => "failed",
+        }
+    }
+}
+
+/// The body and excitation numbers of a point, dimensionless where the literature plots them.
+#[derive(Debug, Clone, Copy)]
+pub struct Scales {
+    /// alpha = atan(B/H), rad.
+    pub alpha: f64,
+    /// p = sqrt(3 g/(4 R)), rad/s.
+    pub p: f64,
+    /// Pre-uplift period T, s.
+    pub period: f64,
+    /// s_n, m.
+    pub uplift_displacement: f64,
+    /// Peak floor acceleration over g tan(alpha).
+    pub amplitude_over_g_tan_alpha: f64,
+    /// Peak floor acceleration over the quasi-static uplift acceleration omega^2 s_n / beta1.
+    pub amplitude_over_uplift_acceleration: f64,
+    /// (2 pi / Tp) / p, for analytic motions with a period Tp.
+    pub omega_p_over_p: Option<f64>,
+    /// T / Tp.
+    pub period_over_excitation_period: Option<f64>,
+}
+
+impl Scales {
+    pub fn of(model: &Model) -> Scales {
+        let body = &model.body;
+        let c = &model.constants;
+        let alpha = body.slenderness_angle();
+        let p = body.block_frequency_parameter();
+        let peak = model.floor.peak_acceleration();
+        let excitation_period = model.floor.period();
+        Scales {
+            alpha,
+            p,
+            period: c.period,
+            uplift_displacement: c.uplift_displacement,
+            amplitude_over_g_tan_alpha: peak / (body.gravity * alpha.tan()),
+            amplitude_over_uplift_acceleration: peak / c.quasi_static_uplift_acceleration,
+            omega_p_over_p: excitation_period.map(|tp| 2.0 * std::f64::consts::PI / tp / p),
+            period_over_excitation_period: excitation_period.map(|tp| c.period / tp),
+        }
+    }
+
+    /// Column names of [`Scales::fields`].
+    pub const COLUMNS: [&'static str; 8] = [
+        "alpha",
+        "p",
+        "T",
+        "s_n",
+        "amplitude_over_g_tan_alpha",
+        "amplitude_over_uplift_acceleration",
+        "omega_p_over_p",
+        "T_over_Tp",
+    ];
+
+    pub fn fields(&self) -> [String; 8] {
+        [
+            shortest(self.alpha),
+            shortest(self.p),
+            shortest(self.period),
+            shortest(self.uplift_displacement),
+            shortest(self.amplitude_over_g_tan_alpha),
+            shortest(self.amplitude_over_uplift_acceleration),
+            optional(self.omega_p_over_p),
+            optional(self.period_over_excitation_period),
+        ]
+    }
+}
+
+fn optional(x: Option<f64>) -> String {
+    x.map(shortest).unwrap_or_default()
+}
+
+/// What one run of a point gave.
+#[derive(Debug, Clone, Copy)]
+pub struct RunOutcome {
+    pub overturned: bool,
+    pub t_overturn: Option<f64>,
+    pub n_uplift: usize,
+    pub n_landing: usize,
+    pub max_abs_q_over_b: f64,
+    pub max_abs_r_over_b: f64,
+    pub max_abs_s_over_s_n: f64,
+    pub ended_while_rocking: bool,
+    pub steps: usize,
+    pub rhs_evaluations: usize,
+}
+
+impl RunOutcome {
+    pub fn of(model: &Model, solution: &Solution) -> RunOutcome {
+        let b = model.body.width;
+        let max_abs_q = solution.max_q.value.abs().max(solution.min_q.value.abs());
+        RunOutcome {
+            overturned: solution.overturned,
+            t_overturn: solution.t_overturn,
+            n_uplift: solution.count(EventKind::Uplift),
+            n_landing: solution.count(EventKind::Landing),
+            max_abs_q_over_b: max_abs_q / b,
+            max_abs_r_over_b: solution.max_abs_r / b,
+            max_abs_s_over_s_n: solution.max_abs_s / model.constants.uplift_displacement,
+            ended_while_rocking: solution.ended_while_rocking(),
+            steps: solution.stats.steps,
+            rhs_evaluations: solution.stats.rhs_evaluations,
+        }
+    }
+
+    pub const COLUMNS: [&'static str; 10] = [
+        "overturned",
+        "t_overturn",
+        "n_uplift",
+        "n_landing",
+        "max_abs_q_over_B",
+        "max_abs_r_over_B",
+        "max_abs_s_over_s_n",
+        "ended_while_rocking",
+        "steps",
+        "rhs_evaluations",
+    ];
+
+    pub fn fields(&self) -> [String; 10] {
+        [
+            self.overturned.to_string(),
+            optional(self.t_overturn),
+            self.n_uplift.to_string(),
+            self.n_landing.to_string(),
+            shortest(self.max_abs_q_over_b),
+            shortest(self.max_abs_r_over_b),
+            shortest(self.max_abs_s_over_s_n),
+            self.ended_while_rocking.to_string(),
+            self.steps.to_string(),
+            self.rhs_evaluations.to_string(),
+        ]
+    }
+}
+
+/// What the search for the smallest overturning value of a point found.
+#[derive(Debug, Clone, Default)]
+pub struct MinimumOutcome {
+    /// The smallest value found to overturn: the upper end of the final bracket. None when no
+    /// scanned value overturned.
+    pub min_overturning: Option<f64>,
+    /// The largest value below it found not to overturn (the lower end of the bracket). None
+    /// when the lowest value of the interval already overturned.
+    pub safe_below: Option<f64>,
+    /// The bands of scanned values that overturned, as `lo-hi` (`lo` alone for one value),
+    /// separated by `;`.
+    pub bands: String,
+    pub n_bands: usize,
+    /// Time of overturning at `min_overturning`.
+    pub t_overturn: Option<f64>,
+    /// Simulations run for the search, and their steps and right-hand-side evaluations.
+    pub simulations: usize,
+    pub steps: usize,
+    pub rhs_evaluations: usize,
+}
+
+impl MinimumOutcome {
+    pub const COLUMNS: [&'static str; 8] = [
+        "min_overturning",
+        "safe_below",
+        "overturning_bands",
+        "n_bands",
+        "t_overturn",
+        "simulations",
+        "steps",
+        "rhs_evaluations",
+    ];
+
+    pub fn fields(&self) -> [String; 8] {
+        [
+            optional(self.min_overturning),
+            optional(self.safe_below),
+            self.bands.clone(),
+            self.n_bands.to_string(),
+            optional(self.t_overturn),
+            self.simulations.to_string(),
+            self.steps.to_string(),
+            self.rhs_evaluations.to_string(),
+        ]
+    }
+}
+
+/// The result part of a row (after the point number and the axis values).
+#[derive(Debug, Clone)]
+pub enum Outcome {
+    Run(RunOutcome),
+    Minimum(MinimumOutcome),
+}
+
+/// One point's row, before formatting.
+#[derive(Debug, Clone)]
+pub struct Row {
+    pub status: Status,
+    pub reason: String,
+    pub outcome: Option<Outcome>,
+    pub scales: Option<Scales>,
+}
+
+impl Row {
+    pub fn failure(status: Status, reason: String) -> Row {
+        Row {
+            status,
+            reason,
+            outcome: None,
+            scales: None,
+        }
+    }
+
+    /// The result columns, for a sweep that searches a minimum or not.
+    pub fn columns(find_min: bool) -> Vec<&'static str> {
+        let mut columns = vec!["status", "reason"];
+        if find_min {
+            columns.extend(MinimumOutcome::COLUMNS);
+        } else {
+            columns.extend(RunOutcome::COLUMNS);
+        }
+        columns.extend(Scales::COLUMNS);
+        columns
+    }
+
+    /// The result fields, in the order of [`Row::columns`]; empty where there is no value.
+    pub fn fields(&self, find_min: bool) -> Vec<String> {
+        let mut fields = vec![self.status.name().to_string(), self.reason.clone()];
+        match &self.outcome {
+            Some(Outcome::Run(run)) => fields.extend(run.fields()),
+            Some(Outcome::Minimum(min)) => fields.extend(min.fields()),
+            None if find_min => fields.extend(std::iter::repeat_n(
+                String::new(),
+                MinimumOutcome::COLUMNS.len(),
+            )),
+            None => fields.extend(std::iter::repeat_n(
+                String::new(),
+                RunOutcome::COLUMNS.len(),
+            )),
+        }
+        match &self.scales {
+            Some(scales) => fields.extend(scales.fields()),
+            None => fields.extend(std::iter::repeat_n(String::new(), Scales::COLUMNS.len())),
+        }
+        fields
+    }
+}
