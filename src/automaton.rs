@@ -274,6 +274,30 @@ impl Automaton {
         }
     }
 
+    /// Kinetic energy of the SDOF body, Me q'^2/2.
+    pub fn kinetic_energy(&self, qdot: f64) -> f64 {
+        0.5 * self.me * qdot * qdot
+    }
+
+    /// The SDOF energy E = Me q'^2/2 + V(q) in `mode`, whose balance the solvers book.
+    pub fn energy(&self, mode: Mode, q: f64, qdot: f64) -> f64 {
+        self.kinetic_energy(qdot) + self.potential_energy(mode, q)
+    }
+
+    /// Change of the SDOF energy at an event from `from` to `to` at q, as q' jumps from
+    /// `qdot_before` to `qdot_after` (V is continuous, so this is the change of the kinetic
+    /// energy): negative when the event takes energy out.
+    pub fn event_energy_jump(
+        &self,
+        from: Mode,
+        to: Mode,
+        q: f64,
+        qdot_before: f64,
+        qdot_after: f64,
+    ) -> f64 {
+        self.energy(to, q, qdot_after) - self.energy(from, q, qdot_before)
+    }
+
     /// Power fed into the SDOF energy by the floor, -beta Me a q'.
     pub fn input_power(&self, mode: Mode, qdot: f64, floor_acc: f64) -> f64 {
         -self.participation(mode) * self.me * floor_acc * qdot

@@ -8,7 +8,8 @@ use crate::error::{Error, Result};
 use crate::solution::{Event, Sample};
 
 /// Column names of history.csv (a contract).
-pub const HISTORY_COLUMNS: [&str; 9] = [
+/// Columns are only ever appended: existing ones keep their names and places.
+pub const HISTORY_COLUMNS: [&str; 11] = [
     "t",
     "q",
     "qdot",
@@ -18,6 +19,8 @@ pub const HISTORY_COLUMNS: [&str; 9] = [
     "floor_acc",
     "F",
     "energy_residual",
+    "work_input",
+    "work_damping",
 ];
 
 /// Column names of events.csv (a contract).
@@ -129,6 +132,8 @@ pub fn history_csv(samples: &[Sample]) -> Vec<u8> {
             number(s.floor_acc),
             number(s.restoring_force),
             number(s.energy_residual),
+            number(s.work_input),
+            number(s.work_damping),
         ]);
     }
     table.into_bytes()
