@@ -4,12 +4,12 @@
 //! This is the only place where the model's dynamics are written down. It knows nothing about
 //! integrators: the adaptive diffsol driver and the fixed-step Newmark solver both drive it.
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use crate::constants::Constants;
 
 /// A discrete mode of the body.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Mode {
     /// Both toes on the floor, |q| < s_n: a linear damped oscillator.
@@ -43,7 +43,7 @@ impl Mode {
 }
 
 /// What happens at a mode change.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum EventKind {
     Uplift,

@@ -104,6 +104,18 @@ pub fn readable(x: f64) -> String {
     shortest(rounded)
 }
 
+/// A number rounded to `digits` significant digits, in the form of [`shortest`] (figure
+/// labels: 0.1524, 1085, 1.2e-7).
+pub fn significant(x: f64, digits: usize) -> String {
+    if !x.is_finite() || x == 0.0 {
+        return shortest(x);
+    }
+    let rounded = format!("{x:.prec$e}", prec = digits.max(1) - 1)
+        .parse::<f64>()
+        .unwrap_or(x);
+    shortest(rounded)
+}
+
 /// A count with its noun: "1 uplift", "2 uplifts", "0 uplifts".
 pub fn count(n: usize, singular: &str, plural: &str) -> String {
     format!("{n} {}", if n == 1 { singular } else { plural })
@@ -549,6 +561,9 @@ mod tests {
         assert_eq!(readable(0.0), "0");
         assert_eq!(readable(6e4), "6e4");
         assert_eq!(readable(31.16), "31.16");
+        assert_eq!(significant(0.15236512, 4), "0.1524");
+        assert_eq!(significant(1085.4, 4), "1085");
+        assert_eq!(significant(0.7, 4), "0.7");
         assert_eq!(count(1, "uplift", "uplifts"), "1 uplift");
         assert_eq!(count(0, "uplift", "uplifts"), "0 uplifts");
         assert_eq!(count(2, "uplift", "uplifts"), "2 uplifts");

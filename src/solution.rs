@@ -1,7 +1,7 @@
 //! What a solver returns, whichever solver it is: sampled history, event log, peaks, energy
 //! balance and statistics. [`Recorder`] builds it, so that every solver books results the same way.
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use crate::automaton::{Automaton, EventKind, Mode};
 
@@ -29,8 +29,8 @@ pub struct Sample {
     pub work_damping: f64,
 }
 
-/// One mode change.
-#[derive(Debug, Clone, Serialize)]
+/// One mode change (a row of events.csv, whose columns are these fields).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Event {
     pub index: usize,
     pub t: f64,
