@@ -429,7 +429,9 @@ fn draw_panel(
         .light_line_style(RGBColor(235, 235, 235))
         .draw()?;
 
+    // The legend lists the series first, then the reference lines.
     let mut legend: Vec<(&str, Swatch)> = Vec::new();
+    let mut levels: Vec<(&str, Swatch)> = Vec::new();
     let grey = RGBColor(150, 150, 150);
     let dark_grey = RGBColor(90, 90, 90);
     for (level, label) in &panel.reference_lines {
@@ -438,7 +440,7 @@ fn draw_panel(
             grey.stroke_width(1),
         ))?;
         if !label.is_empty() {
-            legend.push((label, Swatch::Line(grey, 1)));
+            levels.push((label, Swatch::Line(grey, 1)));
         }
     }
     for (level, label) in &panel.dashed_lines {
@@ -449,7 +451,7 @@ fn draw_panel(
             dark_grey.stroke_width(1),
         ))?;
         if !label.is_empty() {
-            legend.push((label, Swatch::Dashed(dark_grey)));
+            levels.push((label, Swatch::Dashed(dark_grey)));
         }
     }
     for (s, pieces) in &series {
@@ -475,6 +477,7 @@ fn draw_panel(
             }
         }
     }
+    legend.extend(levels);
     if legend.is_empty() {
         return Ok(());
     }
@@ -498,9 +501,14 @@ fn draw_legend(
     let font = ("sans-serif", LEGEND_FONT).into_font().color(&BLACK);
     let step = LEGEND_FONT as i32 + 8;
     let (swatch_width, gap, pad) = (24, 8, 8);
+    // plotters' estimate without font files is narrow for the sans-serif fonts viewers use
+    // (DejaVu Sans is about 0.6 em a character): take the larger of the two.
     let text_width = entries
         .iter()
-        .map(|(label, _)| area.estimate_text_size(label, &font).map_or(0, |(w, _)| w))
+        .map(|(label, _)| {
+            let estimate = area.estimate_text_size(label, &font).map_or(0, |(w, _)| w);
+            estimate.max((0.6 * (LEGEND_FONT * label.chars().count() as u32) as f64) as u32)
+        })
         .max()
         .unwrap_or(0) as i32;
     let box_width = pad + swatch_width + gap + text_width + pad;
