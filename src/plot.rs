@@ -124,8 +124,8 @@ pub enum Legend {
 }
 
 /// Width of the legend strip of [`Legend::Outside`], pixels (about 26 characters of the legend
-/// font).
-pub const LEGEND_STRIP: u32 = 250;
+/// font; longer labels run off the figure).
+pub const LEGEND_STRIP: u32 = 300;
 
 const PALETTE: [RGBColor; 8] = [
     RGBColor(0, 0, 0),
@@ -166,16 +166,17 @@ type Area<'a> = DrawingArea<SVGBackend<'a>, plotters::coord::Shift>;
 type Polyline = Vec<(f64, f64)>;
 
 const MARGIN: u32 = 12;
-const X_LABEL_AREA: u32 = 52;
-const Y_LABEL_AREA: u32 = 92;
+const X_LABEL_AREA: u32 = 60;
+const Y_LABEL_AREA: u32 = 104;
 /// Height of the title line, for the equal-aspect layout.
-const CAPTION: u32 = 34;
-/// Font sizes, pixels. A figure of 1000 pixels across printed 16 cm wide gives the tick labels
-/// about 7.5 pt and the titles about 10 pt.
-const TITLE_FONT: u32 = 22;
-const AXIS_FONT: u32 = 18;
-const TICK_FONT: u32 = 16;
-const LEGEND_FONT: u32 = 16;
+const CAPTION: u32 = 38;
+/// Font sizes as plotters takes them (the SVG gets 0.81 of these in pixels). A figure of 1150
+/// pixels across printed 16 cm wide gives the tick labels and legends about 6.5 pt and the
+/// titles about 8.5 pt; printed at half a page wide, use a figure of fewer panels across.
+const TITLE_FONT: u32 = 26;
+const AXIS_FONT: u32 = 22;
+const TICK_FONT: u32 = 20;
+const LEGEND_FONT: u32 = 20;
 /// Marker size, pixels (half the width of a marker).
 const MARKER_SIZE: i32 = 5;
 

@@ -280,13 +280,20 @@ fn csv_message(error: &csv::Error, names: &[String], record: Option<&csv::String
             line(pos)
         ),
         csv::ErrorKind::Deserialize { pos, err } => {
-            let column = err
-                .field()
-                .and_then(|i| names.get(i as usize))
+            // csv does not tell the field of a word that names no variant of an enum (mode,
+            // kind): it is the field that holds the word the message quotes.
+            let field = err.field().map(|i| i as usize).or_else(|| {
+                let text = err.kind().to_string();
+                let word = text.strip_prefix("unknown variant `")?.split('`').next()?;
+                record?.iter().position(|v| v == word)
+            });
+            let column = field
+                .and_then(|i| names.get(i))
                 .map_or_else(String::new, |name| format!("column `{name}`: "));
-            let value = err
-                .field()
-                .and_then(|i| record.and_then(|r| r.get(i as usize)))
+            let value = (err.field().is_some())
+                .then_some(field)
+                .flatten()
+                .and_then(|i| record.and_then(|r| r.get(i)))
                 .map_or_else(String::new, |v| format!("`{v}`: "));
             let what = match err.kind() {
                 csv::DeserializeErrorKind::ParseFloat(_) => "expected a number".to_string(),
@@ -397,7 +404,7 @@ fn parse_summary(bytes: &[u8], path: &Path) -> Result<RunSummaryFile> {
 pub fn events_table(events: &[Event], source: &Path) -> String {
     if events.is_empty() {
         return format!(
-            "no events in {}: the body never lifted off\n",
+            "no events in {}: no uplift, landing or overturning\n",
             source.display()
         );
     }
