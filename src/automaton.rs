@@ -4,12 +4,12 @@
 //! This is the only place where the model's dynamics are written down. It knows nothing about
 //! integrators: the adaptive diffsol driver and the fixed-step Newmark solver both drive it.
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use crate::constants::Constants;
 
 /// A discrete mode of the body.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Mode {
     /// Both toes on the floor, |q| < s_n: a linear damped oscillator.
@@ -43,7 +43,7 @@ impl Mode {
 }
 
 /// What happens at a mode change.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum EventKind {
     Uplift,
@@ -272,6 +272,30 @@ impl Automaton {
                         * (self.width * (x - self.s_n) - 0.5 * (x * x - self.s_n * self.s_n))
             }
         }
+    }
+
+    /// Kinetic energy of the SDOF body, Me q'^2/2.
+    pub fn kinetic_energy(&self, qdot: f64) -> f64 {
+        0.5 * self.me * qdot * qdot
+    }
+
+    /// The SDOF energy E = Me q'^2/2 + V(q) in `mode`, whose balance the solvers book.
+    pub fn energy(&self, mode: Mode, q: f64, qdot: f64) -> f64 {
+        self.kinetic_energy(qdot) + self.potential_energy(mode, q)
+    }
+
+    /// Change of the SDOF energy at an event from `from` to `to` at q, as q' jumps from
+    /// `qdot_before` to `qdot_after` (V is continuous, so this is the change of the kinetic
+    /// energy): negative when the event takes energy out.
+    pub fn event_energy_jump(
+        &self,
+        from: Mode,
+        to: Mode,
+        q: f64,
+        qdot_before: f64,
+        qdot_after: f64,
+    ) -> f64 {
+        self.energy(to, q, qdot_after) - self.energy(from, q, qdot_before)
     }
 
     /// Power fed into the SDOF energy by the floor, -beta Me a q'.

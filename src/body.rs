@@ -1,11 +1,11 @@
 //! The physical body: a prismatic slender elastic body standing on a rigid floor.
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
 
 /// Which set of mode-shape constants to use (MODEL.md section 2).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum ConstantSet {
     /// Constants computed exactly from the cantilever mode shape.

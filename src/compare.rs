@@ -535,6 +535,8 @@ fn compare_figure(
             x_label: "t (s)".to_string(),
             y_label: y_label.to_string(),
             series,
+            // Beside the plot: inside, it covered the curves of the last seconds.
+            legend: Legend::Outside,
             ..Panel::default()
         }
     };
@@ -544,7 +546,7 @@ fn compare_figure(
         panel("rocking part r", "r (m)", |x| x.r, false),
         panel("top velocity q'", "q' (m/s)", |x| x.qdot, false),
     ];
-    plot::figure("compare.svg", &panels, 1, (900, 300))
+    plot::figure("compare.svg", &panels, 1, (1150, 300))
 }
 
 /// The paper's Figs. 12-13: q against r and s against r, both solutions.

@@ -1,6 +1,6 @@
 //! Derived constants of the SDOF model (MODEL.md sections 2-5 and 7a).
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use crate::body::{Body, ConstantSet};
 use crate::error::{Error, Result};
@@ -20,7 +20,7 @@ pub const SELF_WEIGHT_WARNING_SHARE: f64 = 0.1;
 pub const MIN_PERIOD: f64 = 1e-4;
 
 /// The mode-shape numbers the model is built from: either exact, or as printed in the paper.
-#[derive(Debug, Clone, Copy, Serialize)]
+#[derive(Debug, Clone, Copy, Serialize, Deserialize)]
 pub struct ModeShapeIntegrals {
     /// lambda: U''(0) = lambda^2 / H^2; int U xi = 1 / lambda^2.
     pub lambda: f64,
@@ -70,7 +70,7 @@ impl ModeShapeIntegrals {
 }
 
 /// Every constant the automaton and the reports need, derived once from a [`Body`].
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct Constants {
     pub constant_set: ConstantSet,
     pub mode_shape: ModeShapeIntegrals,

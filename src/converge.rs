@@ -415,7 +415,7 @@ fn figures(summary: &ConvergeSummary) -> Result<(String, String)> {
             series: dt_series,
             log_x: true,
             log_y: true,
-            legend: Legend::LowerRight,
+            legend: Legend::Outside,
             ..Panel::default()
         });
         work_panels.push(Panel {
@@ -425,13 +425,14 @@ fn figures(summary: &ConvergeSummary) -> Result<(String, String)> {
             series: work_series,
             log_x: true,
             log_y: true,
-            legend: Legend::UpperRight,
+            // Beside the plot: inside, it covered the slowest method's curve.
+            legend: Legend::Outside,
             ..Panel::default()
         });
     }
     Ok((
-        plot::figure("convergence_dt.svg", &dt_panels, 1, (800, 380))?,
-        plot::figure("convergence_work.svg", &work_panels, 1, (800, 380))?,
+        plot::figure("convergence_dt.svg", &dt_panels, 1, (1050, 380))?,
+        plot::figure("convergence_work.svg", &work_panels, 1, (1050, 380))?,
     ))
 }
 

@@ -57,6 +57,12 @@ pub enum Error {
     #[error("{path}: {message}")]
     ReadResult { path: PathBuf, message: String },
 
+    /// A file of a run's output directory (`flexrock plot`, `flexrock events`) is missing, too
+    /// large, or not what `flexrock run` writes: the message names the column or key and what
+    /// was expected.
+    #[error("{path}: {message}")]
+    RunFile { path: PathBuf, message: String },
+
     /// The finite element analysis could not be set up or did not finish.
     #[error("finite element analysis: {0}")]
     Fem(#[from] crate::fem::FemError),
@@ -165,6 +171,7 @@ impl Error {
                 | Error::ParseModel { .. }
                 | Error::InModel { .. }
                 | Error::Record { .. }
+                | Error::RunFile { .. }
                 | Error::OutputTarget { .. }
                 | Error::Fem(crate::fem::FemError::InvalidParameter { .. })
         )

@@ -8,6 +8,8 @@
 //! - [`solver`]: solvers that drive the automaton; [`solution`]: what they return;
 //! - [`fem`]: the plane-stress finite element check of the paper's Section 3;
 //! - [`model`]: the TOML model file; [`output`]: CSV/JSON writers; [`run`]: the commands;
+//! - [`run_dir`]: a run's output directory read back (typed), and its event table;
+//!   [`run_plot`]: the figures of a run;
 //! - [`compare`], [`converge`]: Newmark against the adaptive reference; [`findings`]: the paper's
 //!   qualitative findings in numbers; [`plot`]: SVG figures from series; [`report`]: the
 //!   validation report assembled from their files;
@@ -29,6 +31,8 @@ pub mod record;
 pub mod record_tools;
 pub mod report;
 pub mod run;
+pub mod run_dir;
+pub mod run_plot;
 pub mod solution;
 pub mod solver;
 pub mod sweep;

@@ -61,6 +61,21 @@ enum Command {
         duration: Option<f64>,
         #[command(flatten)]
         set: SetArgs,
+        /// Also draw the figures of `flexrock plot` (plot_motion.svg, plot_force.svg,
+        /// plot_energy.svg), written with the run's files as one set.
+        #[arg(long)]
+        plot: bool,
+    },
+    /// Draw the figures of a run directory (history.csv, events.csv, summary.json of
+    /// `flexrock run`) into it: plot_motion.svg, plot_force.svg and plot_energy.svg.
+    Plot {
+        /// Output directory of `flexrock run`.
+        dir: PathBuf,
+    },
+    /// Print the event log of a run directory (its events.csv) as a table.
+    Events {
+        /// Output directory of `flexrock run`.
+        dir: PathBuf,
     },
     /// Parametric study: run the model at every point of a grid of model-file keys (or search
     /// the smallest overturning value at each), one row per point in sweep.csv, with sweep.json
@@ -472,6 +487,7 @@ fn execute(command: Command) -> flexrock::Result<Output> {
             variant,
             duration,
             set,
+            plot,
         } => {
             let overrides = Overrides {
                 method,
@@ -484,11 +500,27 @@ fn execute(command: Command) -> flexrock::Result<Output> {
             };
             let model = Model::load(&path, &overrides)?;
             let out = out.unwrap_or_else(|| default_out_dir(&path, ""));
-            let report = flexrock::run::run(&model, &out)?;
+            let report = flexrock::run::run_with(&model, &out, plot)?;
             Output {
                 stdout: flexrock::run::run_report_text(&model, &report).into_bytes(),
                 warnings: report.warnings.clone(),
             }
+        }
+        Command::Plot { dir } => {
+            let written = flexrock::run_plot::plot_dir(&dir)?;
+            Output::text(
+                written
+                    .iter()
+                    .map(|f| format!("wrote {}\n", f.display()))
+                    .collect::<String>(),
+            )
+        }
+        Command::Events { dir } => {
+            let events = flexrock::run_dir::read_events(&dir)?;
+            Output::text(flexrock::run_dir::events_table(
+                &events,
+                &dir.join(flexrock::run_dir::EVENTS_FILE),
+            ))
         }
         Command::Record { command } => match command {
             RecordCommand::Info { file, options } => {

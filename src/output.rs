@@ -8,7 +8,8 @@ use crate::error::{Error, Result};
 use crate::solution::{Event, Sample};
 
 /// Column names of history.csv (a contract).
-pub const HISTORY_COLUMNS: [&str; 9] = [
+/// Columns are only ever appended: existing ones keep their names and places.
+pub const HISTORY_COLUMNS: [&str; 11] = [
     "t",
     "q",
     "qdot",
@@ -18,6 +19,8 @@ pub const HISTORY_COLUMNS: [&str; 9] = [
     "floor_acc",
     "F",
     "energy_residual",
+    "work_input",
+    "work_damping",
 ];
 
 /// Column names of events.csv (a contract).
@@ -108,6 +111,18 @@ pub fn readable(x: f64) -> String {
     shortest(rounded)
 }
 
+/// A number rounded to `digits` significant digits, in the form of [`shortest`] (figure
+/// labels: 0.1524, 1085, 1.2e-7).
+pub fn significant(x: f64, digits: usize) -> String {
+    if !x.is_finite() || x == 0.0 {
+        return shortest(x);
+    }
+    let rounded = format!("{x:.prec$e}", prec = digits.max(1) - 1)
+        .parse::<f64>()
+        .unwrap_or(x);
+    shortest(rounded)
+}
+
 /// A count with its noun: "1 uplift", "2 uplifts", "0 uplifts".
 pub fn count(n: usize, singular: &str, plural: &str) -> String {
     format!("{n} {}", if n == 1 { singular } else { plural })
@@ -136,6 +151,8 @@ pub fn history_csv(samples: &[Sample]) -> Vec<u8> {
             number(s.floor_acc),
             number(s.restoring_force),
             number(s.energy_residual),
+            number(s.work_input),
+            number(s.work_damping),
         ]);
     }
     table.into_bytes()
@@ -551,6 +568,9 @@ mod tests {
         assert_eq!(readable(0.0), "0");
         assert_eq!(readable(6e4), "6e4");
         assert_eq!(readable(31.16), "31.16");
+        assert_eq!(significant(0.15236512, 4), "0.1524");
+        assert_eq!(significant(1085.4, 4), "1085");
+        assert_eq!(significant(0.7, 4), "0.7");
         assert_eq!(count(1, "uplift", "uplifts"), "1 uplift");
         assert_eq!(count(0, "uplift", "uplifts"), "0 uplifts");
         assert_eq!(count(2, "uplift", "uplifts"), "2 uplifts");

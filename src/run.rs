@@ -277,18 +277,27 @@ pub struct RunReport {
 
 /// Solves a model and writes history.csv, events.csv and summary.json into `out_dir`.
 pub fn run(model: &Model, out_dir: &Path) -> Result<RunReport> {
+    run_with(model, out_dir, false)
+}
+
+/// [`run`], and with `plots` also the figures of [`crate::run_plot`], drawn from the three
+/// files as they are about to be written and written with them as one atomic set.
+pub fn run_with(model: &Model, out_dir: &Path, plots: bool) -> Result<RunReport> {
     let solution = simulate(model)?;
-    let files = output::write_atomically(
-        out_dir,
-        &[
-            ("history.csv", output::history_csv(&solution.samples)),
-            ("events.csv", output::events_csv(&solution.events)),
-            (
-                "summary.json",
-                output::json_bytes(&summary(model, &solution)),
-            ),
-        ],
-    )?;
+    let mut files = vec![
+        ("history.csv", output::history_csv(&solution.samples)),
+        ("events.csv", output::events_csv(&solution.events)),
+        (
+            "summary.json",
+            output::json_bytes(&summary(model, &solution)),
+        ),
+    ];
+    if plots {
+        let data =
+            crate::run_dir::RunData::from_bytes(out_dir, &files[0].1, &files[1].1, &files[2].1)?;
+        files.extend(crate::run_plot::figures(&data)?);
+    }
+    let files = output::write_atomically(out_dir, &files)?;
     let warnings = warnings(model, &solution);
     Ok(RunReport {
         solution,

@@ -1,7 +1,7 @@
 //! What a solver returns, whichever solver it is: sampled history, event log, peaks, energy
 //! balance and statistics. [`Recorder`] builds it, so that every solver books results the same way.
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use crate::automaton::{Automaton, EventKind, Mode};
 use crate::solver::History;
@@ -22,10 +22,16 @@ pub struct Sample {
     pub restoring_force: f64,
     /// Energy balance error, J: see [`Recorder`].
     pub energy_residual: f64,
+    /// Work done on the SDOF body by the floor since the start, J: the integral of
+    /// [`Automaton::input_power`].
+    pub work_input: f64,
+    /// Work done by the damping term since the start, J: the integral of
+    /// [`Automaton::damping_power`] (negative while rocking; see the README's Known limits).
+    pub work_damping: f64,
 }
 
-/// One mode change.
-#[derive(Debug, Clone, Serialize)]
+/// One mode change (a row of events.csv, whose columns are these fields).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Event {
     pub index: usize,
     pub t: f64,
@@ -96,7 +102,7 @@ impl Solution {
 
 /// Books samples, events, peaks and the energy balance as a solver advances.
 ///
-/// Energy balance: with E = Me q'^2/2 + V(q) (see [`Automaton::potential_energy`]), eq. 16 gives
+/// Energy balance: with E = Me q'^2/2 + V(q) (see [`Automaton::energy`]), eq. 16 gives
 /// dE/dt = input power - damping power between events, and E jumps at events by the resets.
 /// The solver integrates the two powers; the residual
 /// `E(t) - E(0) - W_input(t) + W_damping(t) - sum of jumps` is zero for the exact solution, so its
@@ -138,16 +144,12 @@ impl<'a> Recorder<'a> {
             max_abs_r: automaton.rocking_part(mode, q0).abs(),
             mode,
             history,
-            initial_energy: Self::energy(automaton, mode, q0, qdot0),
+            initial_energy: automaton.energy(mode, q0, qdot0),
             event_jumps: 0.0,
             max_energy_residual: 0.0,
             energy_scale: 0.0,
             t_overturn: None,
         }
-    }
-
-    fn energy(automaton: &Automaton, mode: Mode, q: f64, qdot: f64) -> f64 {
-        0.5 * automaton.generalised_mass() * qdot * qdot + automaton.potential_energy(mode, q)
     }
 
     /// Records a state; `work_input` and `work_damping` are the integrals (J) of
@@ -164,7 +166,7 @@ impl<'a> Recorder<'a> {
         work_damping: f64,
     ) {
         let a = self.automaton;
-        let energy = Self::energy(a, mode, q, qdot);
+        let energy = a.energy(mode, q, qdot);
         let residual = energy - self.initial_energy - work_input + work_damping - self.event_jumps;
         self.max_energy_residual = self.max_energy_residual.max(residual.abs());
         self.energy_scale = self
@@ -186,6 +188,8 @@ impl<'a> Recorder<'a> {
             floor_acc,
             restoring_force: a.restoring_force(mode, q),
             energy_residual: residual,
+            work_input,
+            work_damping,
         });
     }
 
@@ -223,8 +227,7 @@ impl<'a> Recorder<'a> {
         self.sample(t, from, q, qdot_before, floor_acc, work_input, work_damping);
         self.mode = to;
         let a = self.automaton;
-        self.event_jumps +=
-            Self::energy(a, to, q, qdot_after) - Self::energy(a, from, q, qdot_before);
+        self.event_jumps += a.event_energy_jump(from, to, q, qdot_before, qdot_after);
         self.events.push(Event {
             index: self.events.len(),
             t,

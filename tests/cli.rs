@@ -21,7 +21,7 @@ fn run_writes_the_three_files_with_their_schemas() {
     let mut lines = history.lines();
     assert_eq!(
         lines.next().unwrap(),
-        "t,q,qdot,s,r,mode,floor_acc,F,energy_residual"
+        "t,q,qdot,s,r,mode,floor_acc,F,energy_residual,work_input,work_damping"
     );
     let rows: Vec<&str> = lines.collect();
     // Every 0.005 s over 6 s (1201 points) plus both states at every event.

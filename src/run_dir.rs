@@ -1,0 +1,464 @@
+//! A run's output directory read back: the history.csv, events.csv and summary.json that
+//! `flexrock run` writes, parsed into typed rows by column name (CSV) and by key (JSON), never by
+//! position. Used by `flexrock plot` and `flexrock events`; also holds the event log as a table
+//! for people.
+//!
+//! Every failure names the file, the line and column (or the key) and what was expected, as an
+//! input error ([`Error::RunFile`], exit code 2): nothing is written before all inputs are read.
+
+use std::fmt::Write as _;
+use std::io::Read;
+use std::path::Path;
+
+use serde::de::DeserializeOwned;
+use serde::Deserialize;
+
+use crate::automaton::Mode;
+use crate::constants::Constants;
+use crate::error::{Error, Result};
+use crate::output::{EVENT_COLUMNS, HISTORY_COLUMNS};
+use crate::solution::Event;
+
+pub const HISTORY_FILE: &str = "history.csv";
+pub const EVENTS_FILE: &str = "events.csv";
+pub const SUMMARY_FILE: &str = "summary.json";
+
+/// Largest history.csv read, bytes (1 GiB). `run` writes at most 1e6 grid rows (about 170 MB)
+/// plus two rows per event.
+pub const MAX_HISTORY_BYTES: u64 = 1 << 30;
+/// Most rows of history.csv read: the 1e6 grid rows `run` allows and room for 1.5e6 events
+/// (about 350 MB in memory).
+pub const MAX_HISTORY_ROWS: usize = 4_000_000;
+/// Largest events.csv read, bytes (256 MiB).
+pub const MAX_EVENTS_BYTES: u64 = 256 << 20;
+/// Largest summary.json read, bytes (16 MiB; `run` writes a few kB).
+pub const MAX_SUMMARY_BYTES: u64 = 16 << 20;
+
+/// One row of history.csv (see the README for the columns and units).
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+pub struct HistoryRow {
+    pub t: f64,
+    pub q: f64,
+    pub qdot: f64,
+    pub s: f64,
+    pub r: f64,
+    pub mode: Mode,
+    pub floor_acc: f64,
+    /// Restoring force F(q), N.
+    #[serde(rename = "F")]
+    pub force: f64,
+    pub energy_residual: f64,
+    pub work_input: f64,
+    pub work_damping: f64,
+}
+
+/// What the figures need from summary.json, each read by its key.
+#[derive(Debug, Clone)]
+pub struct RunSummaryFile {
+    /// The derived constants the run used: the automaton is rebuilt from them.
+    pub constants: Constants,
+    /// The energies the residual is measured against, J.
+    pub energy_scale: f64,
+    /// Largest |energy_residual|, J.
+    pub max_energy_residual: f64,
+    pub n_uplift: usize,
+    pub n_landing: usize,
+    pub t_overturn: Option<f64>,
+}
+
+/// A run directory, read.
+#[derive(Debug, Clone)]
+pub struct RunData {
+    pub history: Vec<HistoryRow>,
+    pub events: Vec<Event>,
+    pub summary: RunSummaryFile,
+}
+
+impl RunData {
+    /// Reads summary.json, events.csv and history.csv of `dir`.
+    pub fn read(dir: &Path) -> Result<Self> {
+        let summary = read_summary(dir)?;
+        let events = read_events(dir)?;
+        let path = dir.join(HISTORY_FILE);
+        let history = parse_history(bounded(&path, MAX_HISTORY_BYTES)?, &path)?;
+        Ok(RunData {
+            history,
+            events,
+            summary,
+        })
+    }
+
+    /// The same from the bytes of the three files (as `run` is about to write them into
+    /// `dir`), through the same parsers: `run --plot` draws exactly what `plot` would.
+    pub fn from_bytes(dir: &Path, history: &[u8], events: &[u8], summary: &[u8]) -> Result<Self> {
+        let unbounded = |bytes: &[u8]| Bounded {
+            reader: std::io::Cursor::new(bytes.to_vec()),
+            limit: u64::MAX,
+        };
+        Ok(RunData {
+            summary: parse_summary(summary, &dir.join(SUMMARY_FILE))?,
+            events: parse_table(
+                unbounded(events),
+                &dir.join(EVENTS_FILE),
+                &EVENT_COLUMNS,
+                usize::MAX,
+            )?,
+            history: parse_history(unbounded(history), &dir.join(HISTORY_FILE))?,
+        })
+    }
+}
+
+/// Reads events.csv of a run directory.
+pub fn read_events(dir: &Path) -> Result<Vec<Event>> {
+    let path = dir.join(EVENTS_FILE);
+    parse_table(
+        bounded(&path, MAX_EVENTS_BYTES)?,
+        &path,
+        &EVENT_COLUMNS,
+        usize::MAX,
+    )
+}
+
+/// Reads the keys of summary.json that the figures need.
+pub fn read_summary(dir: &Path) -> Result<RunSummaryFile> {
+    let path = dir.join(SUMMARY_FILE);
+    let mut bytes = Vec::new();
+    let mut source = bounded(&path, MAX_SUMMARY_BYTES)?;
+    source
+        .reader
+        .read_to_end(&mut bytes)
+        .map_err(|e| fail(&path, format!("cannot read: {e}")))?;
+    if bytes.len() as u64 > source.limit {
+        return Err(too_large(&path, source.limit));
+    }
+    parse_summary(&bytes, &path)
+}
+
+fn fail(path: &Path, message: String) -> Error {
+    Error::RunFile {
+        path: path.to_path_buf(),
+        message,
+    }
+}
+
+fn too_large(path: &Path, limit: u64) -> Error {
+    fail(
+        path,
+        format!(
+            "larger than {} MiB, the most flexrock reads of this file",
+            limit >> 20
+        ),
+    )
+}
+
+/// A reader that may yield one byte more than `limit`, so that a larger file is noticed.
+struct Bounded<R> {
+    reader: R,
+    limit: u64,
+}
+
+/// Opens an input file: a regular file only (a FIFO would block, /dev/zero never end), of at
+/// most `limit` bytes, checked before reading and enforced while reading.
+fn bounded(path: &Path, limit: u64) -> Result<Bounded<std::io::Take<std::fs::File>>> {
+    let what = match path.file_name().and_then(|n| n.to_str()) {
+        Some(HISTORY_FILE) => "the history that `flexrock run` writes",
+        Some(EVENTS_FILE) => "the event log that `flexrock run` writes",
+        _ => "the summary that `flexrock run` writes",
+    };
+    let metadata = std::fs::metadata(path)
+        .map_err(|e| fail(path, format!("cannot read it ({e}); expected {what} here")))?;
+    if !metadata.is_file() {
+        return Err(fail(
+            path,
+            format!(
+                "is {}; expected a regular file, {what}",
+                crate::output::file_kind(metadata.file_type())
+            ),
+        ));
+    }
+    if metadata.len() > limit {
+        return Err(too_large(path, limit));
+    }
+    let file = std::fs::File::open(path).map_err(|e| fail(path, format!("cannot read: {e}")))?;
+    Ok(Bounded {
+        reader: file.take(limit.saturating_add(1)),
+        limit,
+    })
+}
+
+fn parse_history<R: Read>(source: Bounded<R>, path: &Path) -> Result<Vec<HistoryRow>> {
+    let rows: Vec<HistoryRow> = parse_table(source, path, &HISTORY_COLUMNS, MAX_HISTORY_ROWS)?;
+    if rows.is_empty() {
+        return Err(fail(
+            path,
+            "has no rows; expected at least the state at the start of the run".to_string(),
+        ));
+    }
+    Ok(rows)
+}
+
+/// Parses a CSV table whose header must hold `columns` (in any order; others are ignored) into
+/// rows of `T`, each field taken by its column name.
+fn parse_table<T: DeserializeOwned, R: Read>(
+    source: Bounded<R>,
+    path: &Path,
+    columns: &[&str],
+    max_rows: usize,
+) -> Result<Vec<T>> {
+    let limit = source.limit;
+    let mut reader = csv::ReaderBuilder::new()
+        .has_headers(true)
+        .from_reader(source.reader);
+    let expected = format!(
+        "expected the columns {} that `flexrock run` writes",
+        columns.join(",")
+    );
+    let headers = reader
+        .headers()
+        .map_err(|e| fail(path, csv_message(&e, &[], None)))?
+        .clone();
+    let names: Vec<String> = headers.iter().map(str::to_string).collect();
+    for column in columns {
+        if !names.iter().any(|n| n == column) {
+            let found = if names.iter().all(|n| n.is_empty()) {
+                "the file is empty".to_string()
+            } else {
+                format!("its header is `{}`", names.join(","))
+            };
+            let hint = if column.starts_with("work_") {
+                " (a history.csv of an earlier flexrock lacks the work columns: run the model again)"
+            } else {
+                ""
+            };
+            return Err(fail(
+                path,
+                format!("no column `{column}`: {found}; {expected}{hint}"),
+            ));
+        }
+    }
+    let mut rows = Vec::new();
+    let mut record = csv::StringRecord::new();
+    loop {
+        match reader.read_record(&mut record) {
+            Ok(true) => {}
+            Ok(false) => break,
+            Err(e) => return Err(fail(path, csv_message(&e, &names, None))),
+        }
+        let row: T = record
+            .deserialize(Some(&headers))
+            .map_err(|e| fail(path, csv_message(&e, &names, Some(&record))))?;
+        if rows.len() == max_rows {
+            return Err(fail(
+                path,
+                format!("has more than {max_rows} rows, the most flexrock reads"),
+            ));
+        }
+        rows.push(row);
+    }
+    if reader.position().byte() > limit {
+        return Err(too_large(path, limit));
+    }
+    Ok(rows)
+}
+
+/// A CSV error as a message naming the line and, for a value, its column and the value.
+fn csv_message(error: &csv::Error, names: &[String], record: Option<&csv::StringRecord>) -> String {
+    let line = |pos: &Option<csv::Position>| {
+        pos.as_ref()
+            .or_else(|| record.and_then(|r| r.position()))
+            .map_or_else(String::new, |p| format!("line {}: ", p.line()))
+    };
+    match error.kind() {
+        csv::ErrorKind::Io(e) => format!("cannot read: {e}"),
+        csv::ErrorKind::Utf8 { pos, .. } => format!("{}not UTF-8 text", line(pos)),
+        csv::ErrorKind::UnequalLengths {
+            pos,
+            expected_len,
+            len,
+        } => format!(
+            "{}{len} fields where the header has {expected_len}",
+            line(pos)
+        ),
+        csv::ErrorKind::Deserialize { pos, err } => {
+            // csv does not tell the field of a word that names no variant of an enum (mode,
+            // kind): it is the field that holds the word the message quotes.
+            let field = err.field().map(|i| i as usize).or_else(|| {
+                let text = err.kind().to_string();
+                let word = text.strip_prefix("unknown variant `")?.split('`').next()?;
+                record?.iter().position(|v| v == word)
+            });
+            let column = field
+                .and_then(|i| names.get(i))
+                .map_or_else(String::new, |name| format!("column `{name}`: "));
+            let value = (err.field().is_some())
+                .then_some(field)
+                .flatten()
+                .and_then(|i| record.and_then(|r| r.get(i)))
+                .map_or_else(String::new, |v| format!("`{v}`: "));
+            let what = match err.kind() {
+                csv::DeserializeErrorKind::ParseFloat(_) => "expected a number".to_string(),
+                csv::DeserializeErrorKind::ParseInt(_) => {
+                    "expected a whole number (the event index)".to_string()
+                }
+                other => other.to_string(),
+            };
+            format!("{}{column}{value}{what}", line(pos))
+        }
+        other => format!("{other:?}"),
+    }
+}
+
+/// Parses summary.json: a JSON object, from which each key the figures need is deserialised on
+/// its own, so that an error names the key.
+fn parse_summary(bytes: &[u8], path: &Path) -> Result<RunSummaryFile> {
+    let value: serde_json::Value = serde_json::from_slice(bytes).map_err(|e| {
+        fail(
+            path,
+            format!("not valid JSON ({e}); expected the summary that `flexrock run` writes"),
+        )
+    })?;
+    let serde_json::Value::Object(map) = value else {
+        return Err(fail(
+            path,
+            "not a JSON object; expected the summary that `flexrock run` writes".to_string(),
+        ));
+    };
+    fn key<T: DeserializeOwned>(
+        map: &serde_json::Map<String, serde_json::Value>,
+        path: &Path,
+        key: &str,
+        expected: &str,
+    ) -> Result<T> {
+        let value = map
+            .get(key)
+            .ok_or_else(|| fail(path, format!("no key `{key}`; expected {expected}")))?;
+        T::deserialize(value)
+            .map_err(|e| fail(path, format!("key `{key}`: {e}; expected {expected}")))
+    }
+    let summary = RunSummaryFile {
+        constants: key(&map, path, "constants", "the derived constants of the body")?,
+        energy_scale: key(&map, path, "energy_scale", "the energy scale in J")?,
+        max_energy_residual: key(
+            &map,
+            path,
+            "max_energy_residual",
+            "the largest energy residual in J",
+        )?,
+        n_uplift: key(&map, path, "n_uplift", "the number of uplifts")?,
+        n_landing: key(&map, path, "n_landing", "the number of landings")?,
+        t_overturn: key(
+            &map,
+            path,
+            "t_overturn",
+            "the time of overturning in s, or null",
+        )?,
+    };
+    let c = &summary.constants;
+    let positive = [
+        ("constants.width", c.width),
+        ("constants.uplift_displacement", c.uplift_displacement),
+        ("constants.generalised_mass", c.generalised_mass),
+        ("constants.generalised_stiffness", c.generalised_stiffness),
+    ];
+    for (name, value) in positive {
+        if !(value.is_finite() && value > 0.0) {
+            return Err(fail(
+                path,
+                format!(
+                    "key `{name}` = {}: expected a positive number",
+                    crate::output::shortest(value)
+                ),
+            ));
+        }
+    }
+    if c.uplift_displacement >= c.width {
+        return Err(fail(
+            path,
+            format!(
+                "key `constants.uplift_displacement` = {} is not below `constants.width` = {}: \
+                 no body of the model has that",
+                crate::output::shortest(c.uplift_displacement),
+                crate::output::shortest(c.width)
+            ),
+        ));
+    }
+    for (name, value) in [
+        ("energy_scale", summary.energy_scale),
+        ("max_energy_residual", summary.max_energy_residual),
+    ] {
+        if !(value.is_finite() && value >= 0.0) {
+            return Err(fail(
+                path,
+                format!(
+                    "key `{name}` = {}: expected a number of joules, zero or more",
+                    crate::output::shortest(value)
+                ),
+            ));
+        }
+    }
+    Ok(summary)
+}
+
+/// The event log as an aligned table with a header (`flexrock events`); for an empty log, one
+/// line saying so.
+pub fn events_table(events: &[Event], source: &Path) -> String {
+    if events.is_empty() {
+        return format!(
+            "no events in {}: no uplift, landing or overturning\n",
+            source.display()
+        );
+    }
+    let header = [
+        "index",
+        "t (s)",
+        "kind",
+        "from",
+        "to",
+        "q (m)",
+        "qdot_before (m/s)",
+        "qdot_after (m/s)",
+    ];
+    let rows: Vec<[String; 8]> = events
+        .iter()
+        .map(|e| {
+            [
+                e.index.to_string(),
+                format!("{:.9}", e.t),
+                e.kind.name().to_string(),
+                e.from.name().to_string(),
+                e.to.name().to_string(),
+                format!("{:.9}", e.q),
+                format!("{:.9}", e.qdot_before),
+                format!("{:.9}", e.qdot_after),
+            ]
+        })
+        .collect();
+    let mut widths = header.map(str::len);
+    for row in &rows {
+        for (w, cell) in widths.iter_mut().zip(row) {
+            *w = (*w).max(cell.len());
+        }
+    }
+    // Numbers right-aligned, words left-aligned.
+    let numeric = [true, true, false, false, false, true, true, true];
+    let line = |cells: &[&str]| {
+        let mut text = String::new();
+        for (i, cell) in cells.iter().enumerate() {
+            let w = widths[i];
+            if i > 0 {
+                text.push_str("  ");
+            }
+            if numeric[i] {
+                let _ = write!(text, "{cell:>w$}");
+            } else {
+                let _ = write!(text, "{cell:<w$}");
+            }
+        }
+        text.trim_end().to_string() + "\n"
+    };
+    let mut t = line(&header);
+    for row in &rows {
+        t.push_str(&line(&row.each_ref().map(String::as_str)));
+    }
+    t
+}
