@@ -11,6 +11,8 @@
 //! - [`compare`], [`converge`]: Newmark against the adaptive reference; [`findings`]: the paper's
 //!   qualitative findings in numbers; [`plot`]: SVG figures from series; [`report`]: the
 //!   validation report assembled from their files.
+//! - [`rigid`]: the slender rigid block of the rigid limit (Housner's block), which the elastic
+//!   body must tend to as E grows.
 
 pub mod automaton;
 pub mod body;
@@ -27,6 +29,7 @@ pub mod plot;
 pub mod record;
 pub mod record_tools;
 pub mod report;
+pub mod rigid;
 pub mod run;
 pub mod solution;
 pub mod solver;
