@@ -61,6 +61,26 @@ impl ModeShapeIntegrals {
         }
     }
 
+    /// The rigid-limit uplift factor: the quasi-static uplift acceleration omega^2 s_n / beta1 of
+    /// the elastic model as EI -> infinity, in units of Housner's g B / H (the acceleration at which
+    /// a rigid block tips). With omega^2 = Ke/Me = c_K EI/(int U M H^3) and, as EI -> infinity,
+    /// s_n -> B M g H^2/(2 EI lambda^2) (eq. 8), omega^2 s_n / beta1 -> [c_K/(2 int U lambda^2
+    /// beta1)] g B/H. With the exact constants (c_K = lambda^3 sigma, int U = sigma/lambda,
+    /// beta1 = 4 sigma/lambda) the bracket is lambda^3/(8 sigma) = 1.122622; with the paper's
+    /// rounded ones 1.124082.
+    ///
+    /// It exceeds 1 because the one-mode model takes the base bending moment from the curvature of
+    /// the first mode, EI (lambda/H)^2 s. Under the quasi-static uniform inertia load M a that a
+    /// stiff body carries before uplift, the first mode alone gives a base moment of
+    /// 4 sigma M a H / lambda^3 = (8 sigma/lambda^3) M a H/2 = 0.891 of the exact M a H/2, so the
+    /// floor must push 1.1226 times harder before the moment reaches the weight's M g B/2. A rigid
+    /// block (and the exact statics of a stiff continuum) tips at g B/H. Once rocking, the
+    /// elastic model's rigid limit is Housner's equation (MODEL.md section 7): only the uplift
+    /// from rest differs.
+    pub fn rigid_limit_uplift_factor(&self) -> f64 {
+        self.stiffness_coefficient / (2.0 * self.int_u * self.lambda * self.lambda * self.beta1)
+    }
+
     pub fn for_set(set: ConstantSet) -> Self {
         match set {
             ConstantSet::Exact => Self::exact(),

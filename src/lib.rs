@@ -13,7 +13,9 @@
 //! - [`compare`], [`converge`]: Newmark against the adaptive reference; [`findings`]: the paper's
 //!   qualitative findings in numbers; [`plot`]: SVG figures from series; [`report`]: the
 //!   validation report assembled from their files;
-//! - [`sweep`]: parametric studies (axes, minimum overturning searches, chunks, shards, maps).
+//! - [`sweep`]: parametric studies (axes, minimum overturning searches, chunks, shards, maps);
+//! - [`rigid`]: the slender rigid block of the rigid limit (Housner's block), which the elastic
+//!   body must tend to as E grows.
 
 pub mod automaton;
 pub mod body;
@@ -30,6 +32,7 @@ pub mod plot;
 pub mod record;
 pub mod record_tools;
 pub mod report;
+pub mod rigid;
 pub mod run;
 pub mod run_dir;
 pub mod run_plot;

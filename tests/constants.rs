@@ -115,6 +115,44 @@ fn rocking_factors_tend_to_the_rigid_values() {
 }
 
 #[test]
+fn quasi_static_uplift_tends_to_the_rigid_limit_factor() {
+    // omega^2 s_n / beta1 -> lambda^3/(8 sigma) g B/H as E -> infinity (derivation at
+    // ModeShapeIntegrals::rigid_limit_uplift_factor). Algebraically: lambda^3/(8 sigma), sigma from
+    // its own definition, not from the crate.
+    let l = MODE_ROOT;
+    let sigma = (l.cosh() + l.cos()) / (l.sinh() + l.sin());
+    let factor = ModeShapeIntegrals::exact().rigid_limit_uplift_factor();
+    assert_relative_eq!(factor, l.powi(3) / (8.0 * sigma), max_relative = 1e-14);
+    assert_relative_eq!(factor, 1.122_622_058_7, max_relative = 1e-10);
+    assert_relative_eq!(
+        ModeShapeIntegrals::paper().rigid_limit_uplift_factor(),
+        1.124_082,
+        max_relative = 1e-6
+    );
+    // Numerically, from the constants the model derives: a_up/limit = x/(x + 2 sigma/lambda) with
+    // x = 2 lambda^2/gamma_g (gamma_g = M g H^2/EI), so the relative distance is
+    // -(sigma/lambda^3) gamma_g to first order: -0.205 at E = 5e6 (gamma_g = 1.845), falling with
+    // 1/E to -2.05e-9 at E x 1e8 (the stiffest body the period floor of 1e-4 s allows).
+    let (g, h, b) = (9.81, 4.0, 0.7);
+    for (scale, tolerance) in [(1e2, 3e-3), (1e4, 3e-5), (1e8, 3e-9)] {
+        let m = common::model(
+            &common::reference_body(
+                "[excitation]\nkind = \"free\"\n[simulation]\nduration = 1.0\n",
+            )
+            .replace("5.0e6", &format!("{:e}", 5.0e6 * scale)),
+        );
+        let c = &m.constants;
+        let relative = c.quasi_static_uplift_acceleration / (g * b / h) / factor - 1.0;
+        let predicted = sigma / l.powi(3) * c.gravity_parameter;
+        assert!(
+            (relative + predicted).abs() < 2.0 * predicted * predicted + 1e-13,
+            "E x {scale}: relative distance {relative:e}, first-order prediction -{predicted:e}"
+        );
+        assert!(relative.abs() < tolerance, "E x {scale}: {relative:e}");
+    }
+}
+
+#[test]
 fn period_input_gives_that_period() {
     let m = common::model(
         &common::reference_body("[excitation]\nkind = \"free\"\n[simulation]\nduration = 1.0\n")
