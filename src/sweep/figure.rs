@@ -5,7 +5,7 @@
 //!   g tan(alpha)) or period (plotted as omega_p/p);
 //! - `spectrum.svg` for a minimum search over one numeric axis: the smallest overturning value
 //!   against the axis, in physical and in dimensionless units, with the rigid block's (the
-//!   slender Housner block of the same geometry) where the rows have it.
+//!   slender Housner block of the same geometry, and the rigid limit of the elastic model).
 
 use std::path::Path;
 
@@ -371,8 +371,12 @@ fn spectrum(plan: &Plan, table: &Table, x: usize) -> Result<Vec<u8>> {
         None => None,
     };
     let y_scaled_column = table.column("amplitude_over_g_tan_alpha")?;
-    let rigid_column = table.column("rigid_min_overturning").ok();
-    let rigid_scaled_column = table.column("rigid_amplitude_over_g_tan_alpha").ok();
+    let rigid_column = table.column("rigid_min_overturning")?;
+    let rigid_scaled_column = table.column("rigid_amplitude_over_g_tan_alpha")?;
+    let limit_column = table.column("rigid_limit_min_overturning")?;
+    let limit_scaled_column = table.column("rigid_limit_amplitude_over_g_tan_alpha")?;
+    let mut limit_physical = Vec::new();
+    let mut limit_scaled = Vec::new();
     for (r, row) in table.rows.iter().enumerate() {
         let point: usize = row[0].parse().unwrap_or(0);
         let Some(xv) = axis.number(plan.coordinates(point)[x]) else {
@@ -387,11 +391,15 @@ fn spectrum(plan: &Plan, table: &Table, x: usize) -> Result<Vec<u8>> {
                 scaled.push((xs, s));
             }
         }
-        if let Some(rigid) = rigid_column.and_then(|c| table.number(r, c)) {
-            rigid_physical.push((xv, rigid));
-        }
-        if let Some(rigid) = rigid_scaled_column.and_then(|c| table.number(r, c)) {
-            rigid_scaled.push((xs, rigid));
+        for (column, points, x) in [
+            (rigid_column, &mut rigid_physical, xv),
+            (rigid_scaled_column, &mut rigid_scaled, xs),
+            (limit_column, &mut limit_physical, xv),
+            (limit_scaled_column, &mut limit_scaled, xs),
+        ] {
+            if let Some(y) = table.number(r, column) {
+                points.push((x, y));
+            }
         }
     }
     let sort = |v: &mut Vec<(f64, f64)>| v.sort_by(|a, b| a.0.total_cmp(&b.0));
@@ -400,38 +408,39 @@ fn spectrum(plan: &Plan, table: &Table, x: usize) -> Result<Vec<u8>> {
         &mut scaled,
         &mut rigid_physical,
         &mut rigid_scaled,
+        &mut limit_physical,
+        &mut limit_scaled,
     ] {
         sort(v);
     }
+    // Short labels: the legend strip holds about 26 characters.
+    let housner = "Housner block (uplift g B/H)";
+    let limit = format!(
+        "rigid limit ({:.3} g B/H)",
+        crate::constants::ModeShapeIntegrals::exact().rigid_limit_uplift_factor()
+    );
+    let curves =
+        |elastic: Vec<(f64, f64)>, rigid: Vec<(f64, f64)>, limit_curve: Vec<(f64, f64)>| {
+            vec![
+                Series::line("elastic body (flexrock)", elastic, 2).with_markers(),
+                Series::line(housner, rigid, 1),
+                Series::line(&limit, limit_curve, 4),
+            ]
+        };
     let title = format!("smallest overturning {}", find.key);
-    let mut left = Panel::new(&title, &axis.key, &find.key)
-        .with(Series::line("elastic body (flexrock)", physical, 2).with_markers());
-    if !rigid_physical.is_empty() {
-        left = left.with(Series::line(
-            "rigid block (slender Housner)",
-            rigid_physical,
-            1,
-        ));
-    }
-    left.legend = Legend::UpperLeft;
+    let mut left = Panel::new(&title, &axis.key, &find.key);
+    left.series = curves(physical, rigid_physical, limit_physical);
+    left.legend = Legend::Outside;
     let mut panels = vec![left];
     if let Some((_, x_label)) = dx {
         let mut right = Panel::new(
             "dimensionless",
             x_label,
             "peak floor acceleration / (g tan alpha)",
-        )
-        .with(Series::line("elastic body (flexrock)", scaled, 2).with_markers());
-        if !rigid_scaled.is_empty() {
-            right = right.with(Series::line(
-                "rigid block (slender Housner)",
-                rigid_scaled,
-                1,
-            ));
-        }
-        right.legend = Legend::UpperLeft;
+        );
+        right.series = curves(scaled, rigid_scaled, limit_scaled);
+        right.legend = Legend::Outside;
         panels.push(right);
     }
-    let columns = panels.len();
-    crate::plot::figure("spectrum.svg", &panels, columns, (640, 520)).map(String::into_bytes)
+    crate::plot::figure("spectrum.svg", &panels, 1, (1000, 480)).map(String::into_bytes)
 }

@@ -24,10 +24,11 @@ use serde::{Deserialize, Serialize};
 
 pub use axis::{Axis, Interval};
 pub use find_min::FindMin;
-use row::{Outcome, Row, RunOutcome, Scales, Status};
+use row::{Outcome, RigidMinima, Row, RunOutcome, Scales, Status};
 
 use crate::error::{Error, Result};
 use crate::model::{read_schema, Model, Overrides, RecordCache, Setting};
+use crate::rigid::RigidBlock;
 
 /// Simulations per chunk, roughly: a chunk is the most a kill can lose.
 pub const SIMULATIONS_PER_CHUNK: usize = 1024;
@@ -359,16 +360,48 @@ impl Sweep {
                 rhs_evaluations: solution.stats.rhs_evaluations,
             })
         };
+        let scales_at = |value: f64| self.model(&at(value)).ok().map(|m| Scales::of(&m));
         match find_min::search(find, trial) {
             Ok(outcome) => {
                 // The dimensionless numbers of the smallest overturning value (of HI when
                 // nothing overturned).
                 let value = outcome.min_overturning.unwrap_or(find.hi);
-                let scales = self.model(&at(value)).ok().map(|m| Scales::of(&m));
+                let scales = scales_at(value);
+                let rigid_minimum = |block: fn(f64, f64, f64) -> Result<RigidBlock>| {
+                    let trial = |value: f64| -> Result<find_min::Trial> {
+                        let model = self.model(&at(value))?;
+                        let b = &model.body;
+                        let block = block(b.height, b.width, b.gravity)?;
+                        let out =
+                            crate::rigid::simulate(&block, model.floor.as_ref(), model.duration)?;
+                        Ok(find_min::Trial {
+                            overturned: out.overturned,
+                            t_overturn: out.t_overturn,
+                            steps: 0,
+                            rhs_evaluations: 0,
+                        })
+                    };
+                    let min = find_min::search(find, trial)
+                        .ok()
+                        .and_then(|o| o.min_overturning);
+                    let scaled = min
+                        .and_then(scales_at)
+                        .map(|s| s.amplitude_over_g_tan_alpha);
+                    (min, scaled)
+                };
+                let (housner, housner_over_g_tan_alpha) = rigid_minimum(RigidBlock::housner);
+                let (elastic_limit, elastic_limit_over_g_tan_alpha) =
+                    rigid_minimum(RigidBlock::elastic_limit);
+                let rigid = RigidMinima {
+                    housner,
+                    housner_over_g_tan_alpha,
+                    elastic_limit,
+                    elastic_limit_over_g_tan_alpha,
+                };
                 Row {
                     status: Status::Ok,
                     reason: String::new(),
-                    outcome: Some(Outcome::Minimum(outcome)),
+                    outcome: Some(Outcome::Minimum(outcome, rigid)),
                     scales,
                 }
             }

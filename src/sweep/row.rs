@@ -209,11 +209,40 @@ impl MinimumOutcome {
     }
 }
 
+/// The same search for the rigid blocks of the body's geometry under the same floor motion:
+/// Housner's slender block (uplift at g B/H) and the block the elastic model tends to as E grows
+/// (uplift at its quasi-static uplift acceleration's limit); see [`crate::rigid`].
+#[derive(Debug, Clone, Copy, Default)]
+pub struct RigidMinima {
+    pub housner: Option<f64>,
+    pub housner_over_g_tan_alpha: Option<f64>,
+    pub elastic_limit: Option<f64>,
+    pub elastic_limit_over_g_tan_alpha: Option<f64>,
+}
+
+impl RigidMinima {
+    pub const COLUMNS: [&'static str; 4] = [
+        "rigid_min_overturning",
+        "rigid_amplitude_over_g_tan_alpha",
+        "rigid_limit_min_overturning",
+        "rigid_limit_amplitude_over_g_tan_alpha",
+    ];
+
+    pub fn fields(&self) -> [String; 4] {
+        [
+            optional(self.housner),
+            optional(self.housner_over_g_tan_alpha),
+            optional(self.elastic_limit),
+            optional(self.elastic_limit_over_g_tan_alpha),
+        ]
+    }
+}
+
 /// The result part of a row (after the point number and the axis values).
 #[derive(Debug, Clone)]
 pub enum Outcome {
     Run(RunOutcome),
-    Minimum(MinimumOutcome),
+    Minimum(MinimumOutcome, RigidMinima),
 }
 
 /// One point's row, before formatting.
@@ -240,6 +269,7 @@ impl Row {
         let mut columns = vec!["status", "reason"];
         if find_min {
             columns.extend(MinimumOutcome::COLUMNS);
+            columns.extend(RigidMinima::COLUMNS);
         } else {
             columns.extend(RunOutcome::COLUMNS);
         }
@@ -252,10 +282,13 @@ impl Row {
         let mut fields = vec![self.status.name().to_string(), self.reason.clone()];
         match &self.outcome {
             Some(Outcome::Run(run)) => fields.extend(run.fields()),
-            Some(Outcome::Minimum(min)) => fields.extend(min.fields()),
+            Some(Outcome::Minimum(min, rigid)) => {
+                fields.extend(min.fields());
+                fields.extend(rigid.fields());
+            }
             None if find_min => fields.extend(std::iter::repeat_n(
                 String::new(),
-                MinimumOutcome::COLUMNS.len(),
+                MinimumOutcome::COLUMNS.len() + RigidMinima::COLUMNS.len(),
             )),
             None => fields.extend(std::iter::repeat_n(
                 String::new(),
