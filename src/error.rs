@@ -63,6 +63,11 @@ pub enum Error {
     #[error("{path}: {message}")]
     RunFile { path: PathBuf, message: String },
 
+    /// A sweep's output directory given to `flexrock sweep merge` (or found when resuming) is not
+    /// what a sweep writes, or does not fit with the others: another sweep, a gap, an overlap.
+    #[error("{path}: {message}")]
+    SweepFile { path: PathBuf, message: String },
+
     /// The finite element analysis could not be set up or did not finish.
     #[error("finite element analysis: {0}")]
     Fem(#[from] crate::fem::FemError),
@@ -172,6 +177,7 @@ impl Error {
                 | Error::InModel { .. }
                 | Error::Record { .. }
                 | Error::RunFile { .. }
+                | Error::SweepFile { .. }
                 | Error::OutputTarget { .. }
                 | Error::Fem(crate::fem::FemError::InvalidParameter { .. })
         )

@@ -154,6 +154,16 @@ fn number(text: &str) -> std::result::Result<f64, String> {
     Ok(x)
 }
 
+/// A computed axis value rounded to 15 significant digits, so that the rounding of its
+/// arithmetic (0.1 + 2 x 0.1 = 0.30000000000000004) does not show in sweep.csv. The change is
+/// below 1e-15 of the value.
+fn tidy(x: f64) -> f64 {
+    if x == 0.0 || !x.is_finite() {
+        return x;
+    }
+    format!("{x:.14e}").parse().unwrap_or(x)
+}
+
 fn count(text: &str) -> std::result::Result<usize, String> {
     let n: usize = text
         .trim()
@@ -190,8 +200,9 @@ fn expand(key: &str, spec: &str, base_dir: &Path) -> std::result::Result<Vec<Str
                 match i {
                     0 => lo,
                     _ if i == n - 1 => hi,
-                    _ if *kind == "log" => (lo.ln() + f * (hi.ln() - lo.ln())).exp(),
-                    _ => lo + f * (hi - lo),
+                    _ if *kind == "log" => tidy((lo.ln() + f * (hi.ln() - lo.ln())).exp()),
+                    // Weighted ends: 0.2 and 1.2 in 11 steps give 0.3, not 0.30000000000000004.
+                    _ => tidy((lo * (n - 1 - i) as f64 + hi * i as f64) / (n - 1) as f64),
                 }
             };
             shortest((0..n).map(at))
@@ -209,7 +220,7 @@ fn expand(key: &str, spec: &str, base_dir: &Path) -> std::result::Result<Vec<Str
                 return Err(format!("more than {MAX_POINTS} values"));
             }
             shortest((0..=steps as usize).map(|i| {
-                let x = lo + i as f64 * step;
+                let x = tidy(lo + i as f64 * step);
                 // HI itself, not HI plus rounding, when it is a whole number of steps away.
                 if (x - hi).abs() <= 1e-9 * step {
                     hi
@@ -299,8 +310,10 @@ mod tests {
             values("0.5:1:0.1"),
             ["0.5", "0.6", "0.7", "0.8", "0.9", "1"]
         );
-        // 0.1 * 3 is 0.30000000000000004: computed from the index, 0.1 + 2 * 0.1 is not.
+        // 0.1 * 3 is 0.30000000000000004: values are rounded to 15 significant digits.
         assert_eq!(values("0:0.3:0.1"), ["0", "0.1", "0.2", "0.3"]);
+        assert_eq!(values("lin:0.2:1.2:11")[1], "0.3");
+        assert_eq!(values("0.1:0.7:0.1")[2], "0.3");
         assert_eq!(values("1:2:0.4"), ["1", "1.4", "1.8"]);
         assert_eq!(values("lin:0:1:5"), ["0", "0.25", "0.5", "0.75", "1"]);
         let log = values("log:0.2:3:40");

@@ -323,13 +323,13 @@ fn read_summary(dir: &Path) -> Result<Option<SweepSummary>> {
         Ok(bytes) => bytes,
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(None),
         Err(e) => {
-            return Err(Error::ReadResult {
+            return Err(Error::SweepFile {
                 path,
                 message: format!("cannot read: {e}"),
             })
         }
     };
-    let summary: SweepSummary = serde_json::from_slice(&bytes).map_err(|e| Error::ReadResult {
+    let summary: SweepSummary = serde_json::from_slice(&bytes).map_err(|e| Error::SweepFile {
         path: path.clone(),
         message: format!("not a flexrock sweep.json: {e}"),
     })?;
@@ -399,7 +399,7 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<SweepReport> {
             Some(summary) => parts.push((dir.clone(), summary)),
             None => {
                 let mut found = false;
-                let entries = std::fs::read_dir(dir).map_err(|e| Error::ReadResult {
+                let entries = std::fs::read_dir(dir).map_err(|e| Error::SweepFile {
                     path: dir.clone(),
                     message: format!("cannot read the directory: {e}"),
                 })?;
@@ -419,7 +419,7 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<SweepReport> {
                     match read_summary(&sub)? {
                         Some(summary) => parts.push((sub, summary)),
                         None => {
-                            return Err(Error::ReadResult {
+                            return Err(Error::SweepFile {
                                 path: sub,
                                 message: "this shard has not finished (no sweep.json): run it again to complete it"
                                     .to_string(),
@@ -428,7 +428,7 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<SweepReport> {
                     }
                 }
                 if !found {
-                    return Err(Error::ReadResult {
+                    return Err(Error::SweepFile {
                         path: dir.clone(),
                         message: "holds neither a sweep.json nor shard-K-of-N directories"
                             .to_string(),
@@ -446,7 +446,7 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<SweepReport> {
     };
     for (dir, summary) in &parts {
         if summary.plan != first.plan {
-            return Err(Error::ReadResult {
+            return Err(Error::SweepFile {
                 path: dir.join(SUMMARY_FILE),
                 message: format!(
                     "is a shard of another sweep than {} (model text, axes, settings, search, chunk size or version differ)",
@@ -463,7 +463,7 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<SweepReport> {
     for (dir, summary) in &parts {
         let r = summary.points;
         if r.first > next {
-            return Err(Error::ReadResult {
+            return Err(Error::SweepFile {
                 path: dir.clone(),
                 message: format!(
                     "points {}..{} are in none of the shards given (a gap before this shard's {}..{})",
@@ -472,7 +472,7 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<SweepReport> {
             });
         }
         if r.first < next {
-            return Err(Error::ReadResult {
+            return Err(Error::SweepFile {
                 path: dir.clone(),
                 message: format!(
                     "points {}..{} of this shard were given already by another (overlap)",
@@ -482,7 +482,7 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<SweepReport> {
             });
         }
         let path = dir.join(TABLE_FILE);
-        let bytes = std::fs::read(&path).map_err(|e| Error::ReadResult {
+        let bytes = std::fs::read(&path).map_err(|e| Error::SweepFile {
             path: path.clone(),
             message: format!("cannot read: {e}"),
         })?;
@@ -494,7 +494,7 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<SweepReport> {
         next = r.end;
     }
     if next < total {
-        return Err(Error::ReadResult {
+        return Err(Error::SweepFile {
             path: parts[parts.len() - 1].0.clone(),
             message: format!(
                 "points {next}..{total} are in none of the shards given (missing at the end)"
