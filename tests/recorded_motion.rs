@@ -6,7 +6,7 @@ mod common;
 use flexrock::automaton::Automaton;
 use flexrock::excitation::{FloorMotion, RecordedMotion};
 use flexrock::solver::adaptive::{solve, AdaptiveMethod, AdaptiveSettings};
-use flexrock::solver::InitialState;
+use flexrock::solver::{History, InitialState};
 
 /// Exact response of q'' + 2 h w q' + w^2 q = -beta a(t), a linear on each [k dt, (k+1) dt].
 fn exact_response(w: f64, h: f64, beta: f64, dt: f64, a: &[f64], t_end: f64) -> Vec<(f64, f64)> {
@@ -63,6 +63,7 @@ fn sampled_motion_matches_the_exact_piecewise_linear_response() {
             InitialState { q: 0.0, qdot: 0.0 },
             8.0,
             &settings,
+            History::Sampled,
         )
         .unwrap();
         assert!(sol.events.is_empty(), "weak enough not to uplift");
