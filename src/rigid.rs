@@ -445,6 +445,7 @@ impl<'a> Run<'a> {
             floor,
             propagator: Propagator {
                 floor,
+                quiet_after: floor.quiet_after(),
                 k: block.frequency(),
                 width: block.width,
             },
@@ -474,7 +475,15 @@ impl<'a> Run<'a> {
     }
 
     fn run(mut self) -> Result<RigidOutcome> {
+        let quiet_after = self.floor.quiet_after();
         while self.state.t < self.duration && self.state.phase != RigidPhase::Overturned {
+            // At rest on a floor at rest for good: nothing more can happen.
+            if self.state.phase == RigidPhase::Rest
+                && quiet_after.is_some_and(|quiet| self.state.t >= quiet)
+            {
+                self.state.t = self.duration;
+                break;
+            }
             let t_end = self.next_stop();
             self.outcome.steps += 1;
             self.budget
@@ -688,6 +697,8 @@ impl<'a> Run<'a> {
 #[derive(Clone, Copy)]
 struct Propagator<'a> {
     floor: &'a dyn FloorMotion,
+    /// When the floor comes to rest for good ([`FloorMotion::quiet_after`]).
+    quiet_after: Option<f64>,
     k: f64,
     width: f64,
 }
@@ -701,17 +712,23 @@ impl Propagator<'_> {
         let (sinh, cosh) = ((k * tau).sinh(), (k * tau).cosh());
         let half_sinh = (0.5 * k * tau).sinh();
         let (mut int_sinh, mut int_cosh) = (0.0, 0.0);
-        let half = 0.5 * tau;
-        for (x, w) in GAUSS_NODES.iter().zip(GAUSS_WEIGHTS) {
-            for u in [half * (1.0 - x), half * (1.0 + x)] {
-                let f = -1.5 * self.floor.acceleration(t0 + u);
-                let lag = k * (tau - u);
-                int_sinh += w * lag.sinh() * f;
-                int_cosh += w * lag.cosh() * f;
+        // Once the floor is at rest for good the forcing integrals vanish.
+        let forced = self.quiet_after.is_none_or(|quiet| t0 < quiet);
+        if forced {
+            let half = 0.5 * tau;
+            for (x, w) in GAUSS_NODES.iter().zip(GAUSS_WEIGHTS) {
+                for u in [half * (1.0 - x), half * (1.0 + x)] {
+                    let f = -1.5 * self.floor.acceleration(t0 + u);
+                    // sinh and cosh of the lag from one exponential.
+                    let grow = (k * (tau - u)).exp();
+                    let decay = 1.0 / grow;
+                    int_sinh += w * 0.5 * (grow - decay) * f;
+                    int_cosh += w * 0.5 * (grow + decay) * f;
+                }
             }
+            int_sinh *= half;
+            int_cosh *= half;
         }
-        int_sinh *= half;
-        int_cosh *= half;
         let q = q0 * cosh - 2.0 * side * self.width * half_sinh * half_sinh
             + v0 / k * sinh
             + int_sinh / k;

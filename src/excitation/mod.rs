@@ -44,6 +44,12 @@ pub trait FloorMotion: Send + Sync {
     /// Largest |a(t)| over the motion, m/s^2 (for a pulse of less than a quarter cycle, a bound).
     fn peak_acceleration(&self) -> f64;
 
+    /// A time after which the floor is at rest for good (a(t) = 0), if there is one: the end of a
+    /// pulse or a record. A solver may take the rest of the run as free motion.
+    fn quiet_after(&self) -> Option<f64> {
+        None
+    }
+
     /// The period of an analytic motion (sine, pulse), s; None for records and free vibration.
     fn period(&self) -> Option<f64> {
         None
@@ -61,6 +67,9 @@ pub trait FloorMotion: Send + Sync {
 pub struct Free;
 
 impl FloorMotion for Free {
+    fn quiet_after(&self) -> Option<f64> {
+        Some(0.0)
+    }
     fn acceleration(&self, _t: f64) -> f64 {
         0.0
     }

@@ -50,6 +50,9 @@ impl SinePulse {
 }
 
 impl FloorMotion for SinePulse {
+    fn quiet_after(&self) -> Option<f64> {
+        Some(self.end())
+    }
     fn period(&self) -> Option<f64> {
         Some(self.period)
     }

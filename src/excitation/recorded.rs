@@ -54,6 +54,9 @@ impl RecordedMotion {
 }
 
 impl FloorMotion for RecordedMotion {
+    fn quiet_after(&self) -> Option<f64> {
+        Some(self.end())
+    }
     fn acceleration(&self, t: f64) -> f64 {
         let n = self.values.len();
         if n == 0 || t < 0.0 || t > self.end() {
