@@ -579,3 +579,179 @@ fn the_spectrum_of_a_stiff_body_tends_to_the_rigid_limit() {
     assert!(stiff < soft / 5.0, "E x 1e2: {soft}, E x 1e4: {stiff}");
     assert!(housner > 1e-2, "Housner's block: {housner}");
 }
+
+#[test]
+fn records_and_scales_make_an_incremental_dynamic_analysis() {
+    let dir = scratch_dir("sweep-ida");
+    let out = dir.join("out");
+    // Run from the repository, as a user types the pattern; the records' largest samples are
+    // far below 20 g, 400 times El Centro's 0.35 g is not.
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_flexrock"))
+        .current_dir(repo(""))
+        .args([
+            "sweep",
+            "models/elcentro1940.toml",
+            "--out",
+            out.to_str().unwrap(),
+            "--vary",
+            "excitation.path=validation/records/elCentro.AT2,validation/records/A-*.AT2",
+            "--vary",
+            "excitation.scale=1,2,400",
+            "--set",
+            "excitation.tail=1",
+        ])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    // Not a terminal: no progress bar, nothing on standard error.
+    assert!(
+        o.stderr.is_empty(),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let rows = rows(&out);
+    let paths: Vec<&str> = rows.iter().map(|r| r["excitation.path"].as_str()).collect();
+    assert_eq!(
+        paths,
+        [
+            "validation/records/elCentro.AT2",
+            "validation/records/elCentro.AT2",
+            "validation/records/elCentro.AT2",
+            "validation/records/A-ELC180.AT2",
+            "validation/records/A-ELC180.AT2",
+            "validation/records/A-ELC180.AT2",
+        ]
+    );
+    for pair in rows.chunks(3) {
+        assert_eq!(pair[2]["status"], "invalid");
+        assert!(
+            pair[2]["reason"].contains("excitation.scale"),
+            "{}",
+            pair[2]["reason"]
+        );
+        // The amplitude columns are the scaled record's peak: twice as large at scale 2.
+        let ratio = number(&pair[1], "amplitude_over_g_tan_alpha")
+            / number(&pair[0], "amplitude_over_g_tan_alpha");
+        assert!((ratio - 2.0).abs() < 1e-12, "{ratio}");
+        assert_eq!(pair[0]["omega_p_over_p"], "");
+        // Each row is the run of its point.
+        for row in &pair[..2] {
+            let overrides = Overrides {
+                settings: vec![
+                    Setting::parse(&format!(
+                        "excitation.path={}",
+                        repo(&row["excitation.path"]).display()
+                    ))
+                    .unwrap(),
+                    Setting::parse(&format!("excitation.scale={}", row["excitation.scale"]))
+                        .unwrap(),
+                    Setting::parse("excitation.tail=1").unwrap(),
+                ],
+                ..Overrides::default()
+            };
+            let model = Model::load(&repo("models/elcentro1940.toml"), &overrides).unwrap();
+            let solution = flexrock::run::simulate(&model).unwrap();
+            assert_eq!(row["overturned"], solution.overturned.to_string());
+            assert_eq!(row["steps"], solution.stats.steps.to_string());
+        }
+    }
+}
+
+#[test]
+fn set_on_run_gives_the_run_of_the_edited_file() {
+    let dir = scratch_dir("sweep-set-run");
+    let text = std::fs::read_to_string(repo("models/sine-pulse.toml"))
+        .unwrap()
+        .replace("amplitude = 3.0 ", "amplitude = 3.5 ");
+    assert!(text.contains("amplitude = 3.5"));
+    let edited = dir.join("edited.toml");
+    std::fs::write(&edited, text).unwrap();
+    let (a, b) = (dir.join("a"), dir.join("b"));
+    run(&[
+        "run",
+        edited.to_str().unwrap(),
+        "--out",
+        a.to_str().unwrap(),
+    ]);
+    run(&[
+        "run",
+        repo("models/sine-pulse.toml").to_str().unwrap(),
+        "--out",
+        b.to_str().unwrap(),
+        "--set",
+        "excitation.amplitude=3.5",
+    ]);
+    for file in ["history.csv", "events.csv"] {
+        assert_eq!(
+            std::fs::read(a.join(file)).unwrap(),
+            std::fs::read(b.join(file)).unwrap(),
+            "{file}"
+        );
+    }
+    // A set value is checked by the file's rules, and the message names --set.
+    let o = flexrock(&[
+        "run",
+        repo("models/sine-pulse.toml").to_str().unwrap(),
+        "--out",
+        dir.join("c").to_str().unwrap(),
+        "--set",
+        "excitation.period=-1",
+    ]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr.contains("--set excitation.period = -1"), "{stderr}");
+    assert!(!dir.join("c").exists());
+}
+
+#[test]
+fn a_sweep_file_is_the_flags_written_down() {
+    let dir = scratch_dir("sweep-file");
+    let file = dir.join("plan.toml");
+    std::fs::write(
+        &file,
+        "vary = [\"excitation.period=0.6,0.9\"]\nset = [\"excitation.shape=symmetric\"]\n\
+         find_min = \"excitation.amplitude=1:12\"\nscan = 12\ntol = 0.01\n",
+    )
+    .unwrap();
+    let (a, b) = (dir.join("a"), dir.join("b"));
+    let model = pulse_model();
+    let model = model.to_str().unwrap();
+    run(&[
+        "sweep",
+        model,
+        "--out",
+        a.to_str().unwrap(),
+        "--sweep-file",
+        file.to_str().unwrap(),
+    ]);
+    run(&[
+        "sweep",
+        model,
+        "--out",
+        b.to_str().unwrap(),
+        "--vary",
+        "excitation.period=0.6,0.9",
+        "--set",
+        "excitation.shape=symmetric",
+        "--find-min",
+        "excitation.amplitude=1:12",
+        "--scan",
+        "12",
+        "--tol",
+        "0.01",
+    ]);
+    assert_eq!(files_of(&a), files_of(&b));
+    // An unknown key of the sweep file is refused, naming it.
+    std::fs::write(&file, "vary = [\"excitation.period=1,2\"]\nvry = 1\n").unwrap();
+    let o = flexrock(&[
+        "sweep",
+        model,
+        "--out",
+        dir.join("c").to_str().unwrap(),
+        "--sweep-file",
+        file.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("vry"));
+    assert!(!dir.join("c").exists());
+}

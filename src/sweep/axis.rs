@@ -19,8 +19,10 @@ use serde::{Deserialize, Serialize};
 use crate::error::{Error, Result};
 use crate::model::{check_key, value_text, Setting};
 
-/// Most values one axis may take, and most points a sweep may have.
+/// Most points a sweep may have (a week of a 2-core machine at 6 ms a point).
 pub const MAX_POINTS: usize = 100_000_000;
+/// Most values one axis (or a minimum search's scan) may take: their text is held in memory.
+pub const MAX_AXIS_VALUES: usize = 1_000_000;
 
 /// One axis: a model-file key and its values, in order.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -169,8 +171,8 @@ fn count(text: &str) -> std::result::Result<usize, String> {
         .trim()
         .parse()
         .map_err(|_| format!("the count \"{}\" is not a whole number", text.trim()))?;
-    if n == 0 || n > MAX_POINTS {
-        return Err(format!("the count {n} must lie in 1..={MAX_POINTS}"));
+    if n == 0 || n > MAX_AXIS_VALUES {
+        return Err(format!("the count {n} must lie in 1..={MAX_AXIS_VALUES}"));
     }
     Ok(n)
 }
@@ -216,8 +218,8 @@ fn expand(key: &str, spec: &str, base_dir: &Path) -> std::result::Result<Vec<Str
                 return Err("HI must not be below LO".to_string());
             }
             let steps = ((hi - lo) / step + 1e-9).floor();
-            if steps + 1.0 > MAX_POINTS as f64 {
-                return Err(format!("more than {MAX_POINTS} values"));
+            if steps + 1.0 > MAX_AXIS_VALUES as f64 {
+                return Err(format!("more than {MAX_AXIS_VALUES} values"));
             }
             shortest((0..=steps as usize).map(|i| {
                 let x = tidy(lo + i as f64 * step);

@@ -177,11 +177,11 @@ impl Sweep {
             None => None,
             Some((key, interval)) => {
                 let scan = request.scan.unwrap_or(find_min::DEFAULT_SCAN);
-                if !(2..=axis::MAX_POINTS).contains(&scan) {
+                if !(2..=axis::MAX_AXIS_VALUES).contains(&scan) {
                     return Err(Error::invalid(
                         "--scan",
                         scan,
-                        &format!("must lie in 2..={}", axis::MAX_POINTS),
+                        &format!("must lie in 2..={}", axis::MAX_AXIS_VALUES),
                     ));
                 }
                 let tol = request
