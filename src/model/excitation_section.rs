@@ -13,11 +13,15 @@ use crate::excitation::{
 };
 use crate::record::{read_record, Record, RecordFormat};
 
+/// A record is known by its path, format and given sampling interval (as bits).
+type RecordKey = (PathBuf, Option<RecordFormat>, Option<u64>);
+type RecordMap = HashMap<RecordKey, Arc<Record>>;
+
 /// Records read once and shared: a sweep builds thousands of models from a few record files.
 /// A record is known by its path, format and given sampling interval.
 #[derive(Debug, Default)]
 pub struct RecordCache {
-    records: Mutex<HashMap<(PathBuf, Option<RecordFormat>, Option<u64>), Arc<Record>>>,
+    records: Mutex<RecordMap>,
 }
 
 impl RecordCache {
@@ -37,10 +41,7 @@ impl RecordCache {
         Ok(record)
     }
 
-    fn lock(
-        &self,
-    ) -> std::sync::MutexGuard<'_, HashMap<(PathBuf, Option<RecordFormat>, Option<u64>), Arc<Record>>>
-    {
+    fn lock(&self) -> std::sync::MutexGuard<'_, RecordMap> {
         // A panic elsewhere cannot leave the map half-updated: insert is one call.
         self.records.lock().unwrap_or_else(|e| e.into_inner())
     }

@@ -108,7 +108,7 @@ pub fn parse_interval(text: &str) -> Result<(String, Interval)> {
     };
     let lo = number(lo).map_err(|rule| Error::invalid(&flag, spec, &rule))?;
     let hi = number(hi).map_err(|rule| Error::invalid(&flag, spec, &rule))?;
-    if !(lo < hi) {
+    if lo >= hi {
         return Err(Error::invalid(&flag, spec, "LO must be below HI"));
     }
     Ok((key.to_string(), Interval { lo, hi }))
@@ -211,7 +211,7 @@ fn expand(key: &str, spec: &str, base_dir: &Path) -> std::result::Result<Vec<Str
         }
         [lo, hi, step] if number(lo).is_ok() => {
             let (lo, hi, step) = (number(lo)?, number(hi)?, number(step)?);
-            if !(step > 0.0) {
+            if step <= 0.0 {
                 return Err("STEP must be positive".to_string());
             }
             if hi < lo {

@@ -515,3 +515,76 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<SweepReport> {
         files,
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn plan(points: usize, chunk_size: usize) -> Plan {
+        Plan {
+            flexrock_version: String::new(),
+            model_file: String::new(),
+            model_text: String::new(),
+            settings: Vec::new(),
+            axes: vec![super::super::Axis::new(
+                "excitation.amplitude",
+                (0..points).map(|i| i.to_string()).collect(),
+            )],
+            find_min: None,
+            chunk_size,
+        }
+    }
+
+    #[test]
+    fn shards_cover_every_point_once_in_whole_chunks() {
+        for (points, chunk, count) in [(100, 7, 3), (10, 3, 5), (5, 10, 3), (1000, 1, 7)] {
+            let plan = plan(points, chunk);
+            let mut next = 0;
+            for index in 1..=count {
+                let r = point_range(&plan, Some(Shard { index, count }));
+                assert_eq!(r.first, next, "{points} {chunk} {count}");
+                assert!(r.first % chunk == 0 || r.first == points);
+                next = r.end;
+            }
+            assert_eq!(next, points);
+            let all = point_range(&plan, None);
+            assert_eq!((all.first, all.end, all.total), (0, points, points));
+        }
+    }
+
+    #[test]
+    fn shard_flags_and_slurm_variables() {
+        assert_eq!(Shard::parse("2/5").unwrap(), Shard { index: 2, count: 5 });
+        for bad in ["0/3", "4/3", "1", "a/b", "1/0", "-1/3"] {
+            assert!(Shard::parse(bad).is_err(), "{bad}");
+        }
+        let env = |vars: &'static [(&'static str, &'static str)]| {
+            move |name: &str| {
+                vars.iter()
+                    .find(|(k, _)| *k == name)
+                    .map(|(_, v)| v.to_string())
+            }
+        };
+        assert_eq!(Shard::from_slurm(env(&[])).unwrap(), None);
+        const ARRAY: [(&str, &str); 2] = [
+            ("SLURM_ARRAY_TASK_ID", "7"),
+            ("SLURM_ARRAY_TASK_COUNT", "3"),
+        ];
+        // Without SLURM_ARRAY_TASK_MIN the ids start at 0: 7 is out of range.
+        assert!(Shard::from_slurm(env(&ARRAY)).is_err());
+        const WITH_MIN: [(&str, &str); 3] = [
+            ("SLURM_ARRAY_TASK_ID", "7"),
+            ("SLURM_ARRAY_TASK_COUNT", "3"),
+            ("SLURM_ARRAY_TASK_MIN", "5"),
+        ];
+        assert_eq!(
+            Shard::from_slurm(env(&WITH_MIN)).unwrap(),
+            Some(Shard { index: 3, count: 3 })
+        );
+        const BAD: [(&str, &str); 2] = [
+            ("SLURM_ARRAY_TASK_ID", "x"),
+            ("SLURM_ARRAY_TASK_COUNT", "3"),
+        ];
+        assert!(Shard::from_slurm(env(&BAD)).is_err());
+    }
+}
