@@ -52,7 +52,7 @@ const FILE_NAMES: Names = Names {
 /// Every rule is here, the size limits of `crate::fem` included. Without a `[fem]` section the
 /// defaults are not checked against the simulated time (a time step longer than a short run,
 /// too many steps for a long one): `flexrock run` must not fail for settings that only
-/// `flexrock fem` uses, and that command checks them all ([`fem_with_overrides`]).
+/// `flexrock fem` uses, and that command checks them all (`fem_with_overrides`).
 pub fn fem_from_section(
     file: &ModelFile,
     body: &Body,
