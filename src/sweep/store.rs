@@ -543,7 +543,7 @@ mod tests {
             for index in 1..=count {
                 let r = point_range(&plan, Some(Shard { index, count }));
                 assert_eq!(r.first, next, "{points} {chunk} {count}");
-                assert!(r.first % chunk == 0 || r.first == points);
+                assert!(r.first.is_multiple_of(chunk) || r.first == points);
                 next = r.end;
             }
             assert_eq!(next, points);
