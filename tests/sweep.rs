@@ -409,6 +409,25 @@ fn a_directory_of_another_sweep_is_refused_and_left_alone() {
     assert_eq!(o.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&o.stderr).contains("another sweep"));
     assert_eq!(files_of(&dir), before);
+    // The same sweep named by another path (from another directory) is recognised as done.
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_flexrock"))
+        .current_dir(repo(""))
+        .args([
+            "sweep",
+            "models/pulse-map.toml",
+            "--out",
+            dir.to_str().unwrap(),
+            "--vary",
+            "excitation.period=lin:0.3:1.5:24",
+            "--vary",
+            "excitation.amplitude=lin:1:8:20",
+            "--quiet",
+        ])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(String::from_utf8_lossy(&o.stdout).contains("0 computed now"));
+    assert_eq!(files_of(&dir), before);
 }
 
 #[test]

@@ -78,6 +78,16 @@ impl Plan {
         coordinates
     }
 
+    /// True when `other` computes the same points: everything but the model file's name as
+    /// typed (its text is compared), so that a sweep resumed from another directory, or a shard
+    /// started there, is recognised.
+    pub fn same_sweep(&self, other: &Plan) -> bool {
+        Plan {
+            model_file: other.model_file.clone(),
+            ..self.clone()
+        } == *other
+    }
+
     fn restored(mut self) -> Plan {
         self.axes = self.axes.into_iter().map(Axis::restored).collect();
         self

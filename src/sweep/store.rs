@@ -176,7 +176,7 @@ pub fn run(
     let range = point_range(plan, shard);
 
     if let Some(summary) = read_summary(&dir)? {
-        if summary.plan != *plan || summary.shard != shard {
+        if !summary.plan.same_sweep(plan) || summary.shard != shard {
             return Err(other_sweep(&dir.join(SUMMARY_FILE)));
         }
         // Done before: an interrupted clean-up may have left the chunks.
@@ -200,11 +200,9 @@ pub fn run(
     match std::fs::read(&plan_path) {
         Ok(bytes) => {
             let stored: Option<RunningPlan> = serde_json::from_slice(&bytes).ok();
-            if stored.map(|s| RunningPlan {
-                plan: s.plan.restored(),
-                shard: s.shard,
-            }) != Some(running.clone())
-            {
+            let same =
+                stored.is_some_and(|s| s.shard == shard && s.plan.restored().same_sweep(plan));
+            if !same {
                 return Err(other_sweep(&plan_path));
             }
         }
@@ -445,7 +443,7 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<SweepReport> {
         ));
     };
     for (dir, summary) in &parts {
-        if summary.plan != first.plan {
+        if !summary.plan.same_sweep(&first.plan) {
             return Err(Error::SweepFile {
                 path: dir.join(SUMMARY_FILE),
                 message: format!(
