@@ -122,13 +122,23 @@ fn matches_the_independent_solution(method: &str) {
 
         // Samples of q on the independent solution's grid, from our history (both sampled exactly
         // at those times: the grid is a multiple of output_dt).
+        // Every sample of the reference must be matched: a test that matched none would pass.
         let mut worst_q: f64 = 0.0;
-        for sample in expected["samples"].as_array().unwrap() {
+        let expected_samples = expected["samples"].as_array().unwrap();
+        let mut matched = 0;
+        for sample in expected_samples {
             let (t, q) = (sample[0].as_f64().unwrap(), sample[1].as_f64().unwrap());
             if let Some(s) = sol.samples.iter().find(|s| (s.t - t).abs() < 1e-12) {
                 worst_q = worst_q.max((s.q - q).abs());
+                matched += 1;
             }
         }
+        assert!(!expected_samples.is_empty(), "{name}: the reference has no samples");
+        assert_eq!(
+            matched,
+            expected_samples.len(),
+            "{name}: only {matched} of the reference's samples fall on the history's grid"
+        );
         assert!(worst_q < 1e-6, "{name}: q off by {worst_q:e}");
         report.push(format!("{method} {name}: {} events, worst event time {worst_t:.1e} s, peaks {dmax:.1e}/{dmin:.1e} m, q {worst_q:.1e} m", sol.events.len()));
     }
