@@ -133,7 +133,10 @@ fn matches_the_independent_solution(method: &str) {
                 matched += 1;
             }
         }
-        assert!(!expected_samples.is_empty(), "{name}: the reference has no samples");
+        assert!(
+            !expected_samples.is_empty(),
+            "{name}: the reference has no samples"
+        );
         assert_eq!(
             matched,
             expected_samples.len(),

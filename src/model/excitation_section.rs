@@ -47,26 +47,161 @@ impl RecordCache {
     }
 }
 
-/// Which keys each excitation kind takes (all others are errors).
-const EXCITATION_KEYS: &[(&str, &[&str])] = &[
-    ("paper-sine", &["amplitude", "period", "ramp"]),
-    ("harmonic", &["amplitude", "period"]),
-    (
-        "sine-pulse",
-        &["amplitude", "period", "cycles", "shape", "tail"],
-    ),
-    ("ricker", &["amplitude", "period", "center"]),
-    (
-        "record",
-        &[
-            "path", "format", "units", "scale", "start", "end", "tail", "dt",
-        ],
-    ),
-    ("free", &[]),
-];
+/// The kinds of `[excitation]`. Each knows its name, the keys it takes and which of them must be
+/// given; [`floor_from_section`] builds each with an exhaustive match, so that a kind added here
+/// cannot fall through to another's motion.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Kind {
+    PaperSine,
+    Harmonic,
+    SinePulse,
+    Ricker,
+    Record,
+    Free,
+}
 
-/// Keys that must be given for a kind (the others have defaults).
-const REQUIRED_EXCITATION_KEYS: &[&str] = &["amplitude", "period", "ramp", "center", "path"];
+impl Kind {
+    const ALL: [Kind; 6] = [
+        Kind::PaperSine,
+        Kind::Harmonic,
+        Kind::SinePulse,
+        Kind::Ricker,
+        Kind::Record,
+        Kind::Free,
+    ];
+
+    fn name(self) -> &'static str {
+        match self {
+            Kind::PaperSine => "paper-sine",
+            Kind::Harmonic => "harmonic",
+            Kind::SinePulse => "sine-pulse",
+            Kind::Ricker => "ricker",
+            Kind::Record => "record",
+            Kind::Free => "free",
+        }
+    }
+
+    /// The keys this kind takes (any other given key is an error).
+    fn keys(self) -> &'static [Key] {
+        use Key::*;
+        match self {
+            Kind::PaperSine => &[Amplitude, Period, Ramp],
+            Kind::Harmonic => &[Amplitude, Period],
+            Kind::SinePulse => &[Amplitude, Period, Cycles, Shape, Tail],
+            Kind::Ricker => &[Amplitude, Period, Center],
+            Kind::Record => &[Path, Format, Units, Scale, Start, End, Tail, Dt],
+            Kind::Free => &[],
+        }
+    }
+
+    /// The keys of [`Kind::keys`] that have no default.
+    fn required(self) -> &'static [Key] {
+        use Key::*;
+        match self {
+            Kind::PaperSine => &[Amplitude, Period, Ramp],
+            Kind::Harmonic | Kind::SinePulse => &[Amplitude, Period],
+            Kind::Ricker => &[Amplitude, Period, Center],
+            Kind::Record => &[Path],
+            Kind::Free => &[],
+        }
+    }
+}
+
+/// The keys of `[excitation]` besides `kind`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Key {
+    Amplitude,
+    Period,
+    Ramp,
+    Cycles,
+    Shape,
+    Center,
+    Path,
+    Format,
+    Units,
+    Scale,
+    Start,
+    End,
+    Tail,
+    Dt,
+}
+
+impl Key {
+    const ALL: [Key; 14] = [
+        Key::Amplitude,
+        Key::Period,
+        Key::Ramp,
+        Key::Cycles,
+        Key::Shape,
+        Key::Center,
+        Key::Path,
+        Key::Format,
+        Key::Units,
+        Key::Scale,
+        Key::Start,
+        Key::End,
+        Key::Tail,
+        Key::Dt,
+    ];
+
+    fn name(self) -> &'static str {
+        match self {
+            Key::Amplitude => "amplitude",
+            Key::Period => "period",
+            Key::Ramp => "ramp",
+            Key::Cycles => "cycles",
+            Key::Shape => "shape",
+            Key::Center => "center",
+            Key::Path => "path",
+            Key::Format => "format",
+            Key::Units => "units",
+            Key::Scale => "scale",
+            Key::Start => "start",
+            Key::End => "end",
+            Key::Tail => "tail",
+            Key::Dt => "dt",
+        }
+    }
+
+    /// The value the section gives the key, as text, if any. The section is taken apart field
+    /// by field, so that a field added to it without a key here does not compile.
+    fn given(self, s: &ExcitationSection) -> Option<String> {
+        let ExcitationSection {
+            kind: _,
+            amplitude,
+            period,
+            ramp,
+            cycles,
+            shape,
+            center,
+            path,
+            format,
+            units,
+            scale,
+            start,
+            end,
+            tail,
+            dt,
+        } = s;
+        let number = |x: &Option<f64>| x.map(|v| v.to_string());
+        match self {
+            Key::Amplitude => number(amplitude),
+            Key::Period => number(period),
+            Key::Ramp => number(ramp),
+            Key::Cycles => number(cycles),
+            Key::Shape => shape.clone(),
+            Key::Center => number(center),
+            Key::Path => path.clone(),
+            Key::Format => format.clone(),
+            Key::Units => units.clone(),
+            Key::Scale => number(scale),
+            Key::Start => number(start),
+            Key::End => number(end),
+            Key::Tail => number(tail),
+            Key::Dt => number(dt),
+        }
+    }
+}
 
 /// The floor motion of the `[excitation]` section, and its natural length if it has one.
 pub(super) fn floor_from_section(
@@ -74,53 +209,35 @@ pub(super) fn floor_from_section(
     base_dir: &Path,
     records: &RecordCache,
 ) -> Result<(Box<dyn FloorMotion>, Option<f64>)> {
-    let kind = s.kind.as_str();
-    let allowed = EXCITATION_KEYS
-        .iter()
-        .find(|(k, _)| *k == kind)
-        .map(|(_, keys)| *keys)
+    let kind = Kind::ALL
+        .into_iter()
+        .find(|k| k.name() == s.kind)
         .ok_or_else(|| {
-            let kinds: Vec<String> = EXCITATION_KEYS
+            let kinds: Vec<String> = Kind::ALL
                 .iter()
-                .map(|(k, _)| format!("\"{k}\""))
+                .map(|k| format!("\"{}\"", k.name()))
                 .collect();
             Error::invalid(
                 "excitation.kind",
-                format!("\"{kind}\""),
+                format!("\"{}\"", s.kind),
                 &format!("must be one of {}", kinds.join(", ")),
             )
         })?;
-    let given: [(&str, Option<String>); 14] = [
-        ("amplitude", s.amplitude.map(|v| v.to_string())),
-        ("period", s.period.map(|v| v.to_string())),
-        ("ramp", s.ramp.map(|v| v.to_string())),
-        ("cycles", s.cycles.map(|v| v.to_string())),
-        ("shape", s.shape.clone()),
-        ("center", s.center.map(|v| v.to_string())),
-        ("path", s.path.clone()),
-        ("format", s.format.clone()),
-        ("units", s.units.clone()),
-        ("scale", s.scale.map(|v| v.to_string())),
-        ("start", s.start.map(|v| v.to_string())),
-        ("end", s.end.map(|v| v.to_string())),
-        ("tail", s.tail.map(|v| v.to_string())),
-        ("dt", s.dt.map(|v| v.to_string())),
-    ];
-    for (key, value) in &given {
-        let wanted = allowed.contains(key);
-        match value {
+    for key in Key::ALL {
+        let wanted = kind.keys().contains(&key);
+        match key.given(s) {
             Some(v) if !wanted => {
                 return Err(Error::invalid(
-                    &format!("excitation.{key}"),
+                    &format!("excitation.{}", key.name()),
                     v,
-                    &format!("not a parameter of kind = \"{kind}\""),
+                    &format!("not a parameter of kind = \"{}\"", kind.name()),
                 ))
             }
-            None if wanted && REQUIRED_EXCITATION_KEYS.contains(key) => {
+            None if kind.required().contains(&key) => {
                 return Err(Error::invalid(
-                    &format!("excitation.{key}"),
+                    &format!("excitation.{}", key.name()),
                     "(missing)",
-                    &format!("required for kind = \"{kind}\""),
+                    &format!("required for kind = \"{}\"", kind.name()),
                 ))
             }
             _ => {}
@@ -135,7 +252,7 @@ pub(super) fn floor_from_section(
         ));
     }
     let period = s.period.unwrap_or(1.0);
-    if allowed.contains(&"period")
+    if kind.keys().contains(&Key::Period)
         && (period.is_nan() || !period.is_finite() || period < MIN_EXCITATION_PERIOD)
     {
         return Err(Error::invalid(
@@ -145,13 +262,13 @@ pub(super) fn floor_from_section(
         ));
     }
     let floor: Box<dyn FloorMotion> = match kind {
-        "paper-sine" => {
+        Kind::PaperSine => {
             let ramp = s.ramp.unwrap_or(0.0);
             positive("excitation.ramp", ramp)?;
             Box::new(PaperSine::new(amplitude, period, ramp))
         }
-        "harmonic" => Box::new(Harmonic { amplitude, period }),
-        "sine-pulse" => {
+        Kind::Harmonic => Box::new(Harmonic { amplitude, period }),
+        Kind::SinePulse => {
             let cycles = s.cycles.unwrap_or(1.0);
             positive("excitation.cycles", cycles)?;
             let shape = match s.shape.as_deref().unwrap_or("antisymmetric") {
@@ -174,7 +291,7 @@ pub(super) fn floor_from_section(
             };
             return finish_analytic(Box::new(pulse), amplitude, s, natural);
         }
-        "ricker" => {
+        Kind::Ricker => {
             let center = s.center.unwrap_or(0.0);
             if !center.is_finite() {
                 return Err(Error::invalid(
@@ -189,7 +306,7 @@ pub(super) fn floor_from_section(
                 center,
             })
         }
-        "record" => {
+        Kind::Record => {
             let (record, tail) = recorded_motion(s, base_dir, records)?;
             let (peak, t_peak) = record.peak();
             if !within_floor_limit(peak) {
@@ -211,7 +328,7 @@ pub(super) fn floor_from_section(
             let length = record.end() + tail;
             return Ok((Box::new(record), Some(length)));
         }
-        _ => Box::new(Free),
+        Kind::Free => Box::new(Free),
     };
     finish_analytic(floor, amplitude, s, None)
 }
@@ -362,5 +479,27 @@ fn record_format_of(path: &Path) -> Option<RecordFormat> {
         "at2" => Some(RecordFormat::PeerAt2),
         "csv" => Some(RecordFormat::Csv),
         _ => None,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_kind_requires_only_keys_it_takes_and_names_itself_once() {
+        for kind in Kind::ALL {
+            for key in kind.required() {
+                assert!(kind.keys().contains(key), "{kind:?} requires {key:?}");
+            }
+            assert_eq!(
+                Kind::ALL.iter().filter(|k| k.name() == kind.name()).count(),
+                1
+            );
+        }
+        let mut names: Vec<&str> = Key::ALL.iter().map(|k| k.name()).collect();
+        names.sort();
+        names.dedup();
+        assert_eq!(names.len(), Key::ALL.len());
     }
 }
