@@ -54,6 +54,13 @@ pub(crate) fn check_atol(key: &str, atol: f64, width: f64) -> Result<()> {
     }
 }
 
+/// The family of methods a `[solver]` key belongs to.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Family {
+    Adaptive,
+    Newmark,
+}
+
 pub(super) fn solver_from_section(
     s: &SolverSection,
     duration: f64,
@@ -70,17 +77,29 @@ pub(super) fn solver_from_section(
             "must be \"bdf\", \"esdirk34\", \"tr-bdf2\", \"tsit45\" or \"newmark\"",
         ));
     }
-    // Keys of the other family of methods are mistakes, not silently ignored settings.
-    let foreign: [(&str, Option<String>); 6] = [
-        ("rtol", s.rtol.map(|v| v.to_string())),
-        ("atol", s.atol.map(|v| v.to_string())),
-        ("dt", s.dt.map(|v| v.to_string())),
-        ("newmark_beta", s.newmark_beta.map(|v| v.to_string())),
-        ("newmark_gamma", s.newmark_gamma.map(|v| v.to_string())),
-        ("newmark_variant", s.newmark_variant.clone()),
+    // Keys of the other family of methods are mistakes, not silently ignored settings. The
+    // section is taken apart field by field, so that a new key must be placed in a family.
+    let SolverSection {
+        method: _,
+        output_dt: _,
+        rtol,
+        atol,
+        dt,
+        newmark_beta,
+        newmark_gamma,
+        newmark_variant,
+    } = s;
+    let number = |x: &Option<f64>| x.map(|v| v.to_string());
+    let family_keys: [(&str, Option<String>, Family); 6] = [
+        ("rtol", number(rtol), Family::Adaptive),
+        ("atol", number(atol), Family::Adaptive),
+        ("dt", number(dt), Family::Newmark),
+        ("newmark_beta", number(newmark_beta), Family::Newmark),
+        ("newmark_gamma", number(newmark_gamma), Family::Newmark),
+        ("newmark_variant", newmark_variant.clone(), Family::Newmark),
     ];
-    for (i, (key, value)) in foreign.iter().enumerate() {
-        let belongs_to_newmark = i >= 2;
+    for (key, value, family) in &family_keys {
+        let belongs_to_newmark = *family == Family::Newmark;
         if let Some(v) = value {
             if belongs_to_newmark != is_newmark {
                 return Err(Error::invalid(
