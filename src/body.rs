@@ -95,10 +95,6 @@ impl Body {
         let half_diagonal = 0.5 * self.height.hypot(self.width);
         (3.0 * self.gravity / (4.0 * half_diagonal)).sqrt()
     }
-
-    pub fn mass_per_height(&self) -> f64 {
-        self.mass / self.height
-    }
 }
 
 /// Rejects zero, negative, NaN and infinite values.

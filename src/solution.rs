@@ -244,10 +244,6 @@ impl<'a> Recorder<'a> {
         self.sample(t, to, q, qdot_after, floor_acc, work_input, work_damping);
     }
 
-    pub fn events(&self) -> &[Event] {
-        &self.events
-    }
-
     pub fn finish(self, final_time: f64, final_mode: Mode, stats: SolverStats) -> Solution {
         Solution {
             samples: self.samples,
