@@ -43,6 +43,17 @@ pub struct Body {
     pub constant_set: ConstantSet,
 }
 
+/// Mass of a prism of `density` (kg/m^3) and size H x B x D (m), kg.
+pub fn prism_mass(density: f64, height: f64, width: f64, depth: f64) -> f64 {
+    density * height * width * depth
+}
+
+/// EI = E D B^3 / 12 of a solid rectangular section of width B (in the plane of motion) and
+/// depth D, N m^2.
+pub fn solid_section_flexural_rigidity(youngs_modulus: f64, width: f64, depth: f64) -> f64 {
+    youngs_modulus * depth * width.powi(3) / 12.0
+}
+
 impl Body {
     /// Checks the rules that do not need the derived constants; `Constants::new` checks the rest
     /// (stability under self-weight, slenderness).

@@ -8,6 +8,19 @@ use crate::error::{Error, Result};
 /// First root of cos L cosh L = -1 (first cantilever mode).
 pub const MODE_ROOT: f64 = 1.875_104_068_711_961;
 
+/// sigma = (cosh L + cos L)/(sinh L + sin L) of the first cantilever mode (MODEL.md section 2).
+pub fn mode_sigma() -> f64 {
+    let l = MODE_ROOT;
+    (l.cosh() + l.cos()) / (l.sinh() + l.sin())
+}
+
+/// The first cantilever mode U(xi), scaled to U(1) = 1 (MODEL.md section 2).
+pub fn cantilever_mode(xi: f64) -> f64 {
+    let (l, sigma) = (MODE_ROOT, mode_sigma());
+    let z = l * xi;
+    (z.cosh() - z.cos() - sigma * (z.sinh() - z.sin())) / 2.0
+}
+
 /// Value of M g H^2 / EI at which a uniform cantilever buckles under its own weight.
 pub const SELF_WEIGHT_BUCKLING_PARAMETER: f64 = 7.837;
 
@@ -37,7 +50,7 @@ pub struct ModeShapeIntegrals {
 impl ModeShapeIntegrals {
     pub fn exact() -> Self {
         let l = MODE_ROOT;
-        let sigma = (l.cosh() + l.cos()) / (l.sinh() + l.sin());
+        let sigma = mode_sigma();
         let int_u = sigma / l;
         let int_u2 = 0.25;
         ModeShapeIntegrals {

@@ -213,12 +213,12 @@ impl FemBody {
 
     /// Total mass M, kg.
     pub fn mass(&self) -> f64 {
-        self.density * self.height * self.width * self.depth
+        crate::body::prism_mass(self.density, self.height, self.width, self.depth)
     }
 
     /// Flexural rigidity EI = E D B³/12, N m².
     pub fn flexural_rigidity(&self) -> f64 {
-        self.youngs_modulus * self.depth * self.width.powi(3) / 12.0
+        crate::body::solid_section_flexural_rigidity(self.youngs_modulus, self.width, self.depth)
     }
 }
 
@@ -740,7 +740,7 @@ fn highest_frequency_of(model: &Model) -> Result<f64, FemError> {
 /// (= 0.551 T_min), s. Uses the elastic K with the base free; K_σ lowers ω_max slightly, so the
 /// limit is on the safe side. Stiffness-proportional damping does not change it (γ = 1/2).
 pub fn stability_limit(body: &FemBody, nx: usize, ny: usize) -> Result<f64, FemError> {
-    Ok(12f64.sqrt() / highest_frequency(body, nx, ny)?)
+    Ok(crate::solver::newmark::linear_acceleration_omega_dt() / highest_frequency(body, nx, ny)?)
 }
 
 /// Undamped stability limit of a scheme for a highest frequency `omega_max` (rad/s), s;
@@ -750,29 +750,19 @@ pub fn stability_limit(body: &FemBody, nx: usize, ny: usize) -> Result<f64, FemE
 pub fn critical_time_step(scheme: TimeScheme, omega_max: f64) -> Option<f64> {
     match scheme {
         TimeScheme::Newmark { beta, gamma } => {
-            if 2.0 * beta >= gamma {
-                None
-            } else {
-                Some(1.0 / (omega_max * (gamma / 2.0 - beta).sqrt()))
-            }
+            crate::solver::newmark::critical_omega_dt(beta, gamma).map(|limit| limit / omega_max)
         }
         TimeScheme::WilsonTheta { theta } => {
             if theta >= 1.37 {
                 None
             } else {
-                Some(12f64.sqrt() / omega_max)
+                Some(crate::solver::newmark::linear_acceleration_omega_dt() / omega_max)
             }
         }
     }
 }
 
-/// Cantilever first mode shape U(ξ), U(1) = 1 (MODEL.md section 2).
-pub(crate) fn cantilever_mode(xi: f64) -> f64 {
-    const L: f64 = 1.875_104_068_711_961;
-    let sig = (L.cosh() + L.cos()) / (L.sinh() + L.sin());
-    let z = L * xi;
-    (z.cosh() - z.cos() - sig * (z.sinh() - z.sin())) / 2.0
-}
+pub(crate) use crate::constants::cantilever_mode;
 
 /// Top-displacement decomposition shared by the dynamic and static analyses:
 /// (q, rocking, slipping, flexural, shearing).

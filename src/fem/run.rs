@@ -167,7 +167,8 @@ pub fn analyse(model: &Model, setup: &FemSetup) -> Result<FemAnalysis> {
     let started = Instant::now();
     let result = simulate(&setup.body, &setup.settings, &floor)?;
     let wall_time_s = started.elapsed().as_secs_f64();
-    let linear_acceleration_limit = 12f64.sqrt() / result.highest_frequency;
+    let linear_acceleration_limit =
+        crate::solver::newmark::linear_acceleration_omega_dt() / result.highest_frequency;
     let mut warnings = Vec::new();
     if let Some(limit) = result.critical_time_step {
         if setup.settings.dt > limit {

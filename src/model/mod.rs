@@ -546,7 +546,7 @@ fn body_from_section(s: &BodySection) -> Result<Body> {
     let mass = match exactly_one("body", &[("density", s.density), ("mass", s.mass)])? {
         (0, density) => {
             positive("body.density", density)?;
-            density * s.height * s.width * depth
+            crate::body::prism_mass(density, s.height, s.width, depth)
         }
         (_, mass) => {
             positive("body.mass", mass)?;
@@ -563,7 +563,7 @@ fn body_from_section(s: &BodySection) -> Result<Body> {
     )? {
         (0, e) => {
             positive("body.youngs_modulus", e)?;
-            e * depth * s.width.powi(3) / 12.0
+            crate::body::solid_section_flexural_rigidity(e, s.width, depth)
         }
         (1, ei) => {
             positive("body.flexural_rigidity", ei)?;

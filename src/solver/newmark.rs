@@ -100,6 +100,12 @@ pub fn critical_omega_dt(beta: f64, gamma: f64) -> Option<f64> {
     (margin > 0.0).then(|| 1.0 / margin.sqrt())
 }
 
+/// omega dt at the stability limit of the linear acceleration method (beta = 1/6, gamma = 1/2):
+/// sqrt(12), dt = 0.551 T.
+pub fn linear_acceleration_omega_dt() -> f64 {
+    critical_omega_dt(1.0 / 6.0, 0.5).unwrap_or(f64::INFINITY)
+}
+
 /// The state at a step end.
 #[derive(Debug, Clone, Copy)]
 struct State {
