@@ -75,6 +75,25 @@ impl Record {
     }
 }
 
+/// Names of the units of acceleration a record may be in (the values of `excitation.units` and
+/// `--units`), for messages.
+pub const UNIT_NAMES: &str = "\"g\", \"m/s2\" or \"cm/s2\"";
+
+/// The canonical name of the unit `units` named by the key or flag `key`, and its factor to
+/// m/s^2 (g is standard gravity, whatever a body's `gravity`).
+pub fn acceleration_unit(key: &str, units: &str) -> crate::Result<(&'static str, f64)> {
+    match units {
+        "g" => Ok(("g", crate::model::STANDARD_GRAVITY)),
+        "m/s2" => Ok(("m/s2", 1.0)),
+        "cm/s2" => Ok(("cm/s2", 0.01)),
+        other => Err(crate::Error::invalid(
+            key,
+            format!("\"{other}\""),
+            &format!("must be {UNIT_NAMES}"),
+        )),
+    }
+}
+
 /// The file layouts [`read_record`] understands.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum RecordFormat {
@@ -85,6 +104,19 @@ pub enum RecordFormat {
 }
 
 impl RecordFormat {
+    /// The format named `name` (`peer-at2`, `csv`) by a model file key or flag `key`.
+    pub fn from_name(key: &str, name: &str) -> crate::Result<Self> {
+        match name {
+            "peer-at2" => Ok(Self::PeerAt2),
+            "csv" => Ok(Self::Csv),
+            other => Err(crate::Error::invalid(
+                key,
+                format!("\"{other}\""),
+                "must be \"peer-at2\" or \"csv\"",
+            )),
+        }
+    }
+
     /// The format implied by a file's extension (`.AT2`/`.at2`, `.csv`; any letter case).
     pub fn from_extension(path: &Path) -> Option<Self> {
         let extension = path.extension()?.to_str()?;

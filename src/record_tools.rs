@@ -37,18 +37,9 @@ pub fn load(
     dt: Option<f64>,
     units: Option<&str>,
 ) -> Result<LoadedRecord> {
-    let format = match format {
-        None => None,
-        Some("peer-at2") => Some(RecordFormat::PeerAt2),
-        Some("csv") => Some(RecordFormat::Csv),
-        Some(other) => {
-            return Err(Error::invalid(
-                "--format",
-                format!("\"{other}\""),
-                "must be \"peer-at2\" or \"csv\"",
-            ))
-        }
-    };
+    let format = format
+        .map(|name| RecordFormat::from_name("--format", name))
+        .transpose()?;
     if let Some(u) = units {
         unit_factor(u)?;
     }
@@ -104,16 +95,7 @@ fn header_units(record: &Record) -> Option<(&'static str, &'static str)> {
 
 /// The unit's canonical name and its factor to m/s^2.
 pub fn unit_factor(units: &str) -> Result<(&'static str, f64)> {
-    match units {
-        "g" => Ok(("g", STANDARD_GRAVITY)),
-        "m/s2" => Ok(("m/s2", 1.0)),
-        "cm/s2" => Ok(("cm/s2", 0.01)),
-        other => Err(Error::invalid(
-            "--units",
-            format!("\"{other}\""),
-            "must be \"g\", \"m/s2\" or \"cm/s2\"",
-        )),
-    }
+    crate::record::acceleration_unit("--units", units)
 }
 
 /// What the reader understood, for `flexrock record info`.

@@ -372,18 +372,11 @@ fn recorded_motion(
 ) -> Result<(RecordedMotion, f64)> {
     let relative = s.path.clone().unwrap_or_default();
     let path = base_dir.join(&relative);
-    let format = match s.format.as_deref() {
-        None => None,
-        Some("peer-at2") => Some(RecordFormat::PeerAt2),
-        Some("csv") => Some(RecordFormat::Csv),
-        Some(other) => {
-            return Err(Error::invalid(
-                "excitation.format",
-                format!("\"{other}\""),
-                "must be \"peer-at2\" or \"csv\"",
-            ))
-        }
-    };
+    let format = s
+        .format
+        .as_deref()
+        .map(|name| RecordFormat::from_name("excitation.format", name))
+        .transpose()?;
     if let Some(dt) = s.dt {
         positive("excitation.dt", dt)?;
     }
@@ -394,7 +387,7 @@ fn recorded_motion(
             source: e,
         })?;
     let is_at2 = matches!(format, Some(RecordFormat::PeerAt2))
-        || (format.is_none() && record_format_of(&path) == Some(RecordFormat::PeerAt2));
+        || (format.is_none() && RecordFormat::from_extension(&path) == Some(RecordFormat::PeerAt2));
     let units = match (s.units.as_deref(), is_at2) {
         (Some(u), _) => u,
         (None, true) => "g",
@@ -402,22 +395,11 @@ fn recorded_motion(
             return Err(Error::invalid(
                 "excitation.units",
                 "(missing)",
-                "required for CSV records: \"g\", \"m/s2\" or \"cm/s2\"",
+                &format!("required for CSV records: {}", crate::record::UNIT_NAMES),
             ))
         }
     };
-    let unit_factor = match units {
-        "g" => STANDARD_GRAVITY,
-        "m/s2" => 1.0,
-        "cm/s2" => 0.01,
-        other => {
-            return Err(Error::invalid(
-                "excitation.units",
-                format!("\"{other}\""),
-                "must be \"g\", \"m/s2\" or \"cm/s2\"",
-            ))
-        }
-    };
+    let (units, unit_factor) = crate::record::acceleration_unit("excitation.units", units)?;
     let scale = s.scale.unwrap_or(1.0);
     if !scale.is_finite() {
         return Err(Error::invalid(
@@ -472,14 +454,6 @@ fn recorded_motion(
         ),
         tail,
     ))
-}
-
-fn record_format_of(path: &Path) -> Option<RecordFormat> {
-    match path.extension()?.to_str()?.to_ascii_lowercase().as_str() {
-        "at2" => Some(RecordFormat::PeerAt2),
-        "csv" => Some(RecordFormat::Csv),
-        _ => None,
-    }
 }
 
 #[cfg(test)]
