@@ -32,14 +32,15 @@ fn fem_runs(c: &mut Criterion) {
             "average-acceleration",
         ),
     ] {
-        let mut settings = model.fem.settings.clone();
+        let setup = model
+            .fem_with(&Default::default())
+            .expect("the [fem] section is valid");
+        let mut settings = setup.settings.clone();
         settings.nx = nx;
         settings.ny = ny;
         settings.scheme = scheme;
         group.bench_function(format!("{nx}x{ny} {name} dt=0.0071"), |b| {
-            b.iter(|| {
-                simulate(&model.fem.body, std::hint::black_box(&settings), &floor).expect("runs")
-            })
+            b.iter(|| simulate(&setup.body, std::hint::black_box(&settings), &floor).expect("runs"))
         });
     }
     group.finish();

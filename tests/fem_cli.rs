@@ -386,3 +386,27 @@ fn bad_command_line_values_are_refused_too() {
         assert!(!out.exists());
     }
 }
+
+#[test]
+fn a_fem_section_the_analysis_refuses_does_not_stop_run() {
+    let dir = common::scratch_dir("fem-section-run");
+    let model = dir.join("model.toml");
+    let text = std::fs::read_to_string(common::reference_model()).unwrap() + "\n[fem]\nnx = 0\n";
+    std::fs::write(&model, text).unwrap();
+    let o = common::flexrock(&[
+        "run",
+        model.to_str().unwrap(),
+        "--out",
+        dir.join("run").to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let o = common::flexrock(&[
+        "fem",
+        model.to_str().unwrap(),
+        "--out",
+        dir.join("fem").to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("fem.nx"));
+    assert!(!dir.join("fem").exists());
+}

@@ -45,25 +45,13 @@ const FILE_NAMES: Names = Names {
     scheme: "fem.scheme",
 };
 
-/// Builds the finite element analysis from `[body]` and `[fem]`. The plane-stress body takes
-/// E = 12 EI/(D B^3) and the density M/(H B D) from the validated body, so every way of giving
-/// the stiffness and the mass works; the damping period defaults to the pre-uplift period T.
-///
-/// Every rule is here, the size limits of `crate::fem` included. Without a `[fem]` section the
-/// defaults are not checked against the simulated time (a time step longer than a short run,
-/// too many steps for a long one): `flexrock run` must not fail for settings that only
-/// `flexrock fem` uses, and that command checks them all (`fem_with_overrides`).
-pub fn fem_from_section(
-    file: &ModelFile,
-    body: &Body,
-    constants: &Constants,
-    simulation_duration: f64,
-) -> Result<FemSetup> {
-    fem_setup(file, body, constants, simulation_duration, &FILE_NAMES)
-}
-
-/// The analysis with command-line values in place of the file's, checked by the same rules;
-/// messages name the flag (`--nx`, `--ny`, `--dt`, `--scheme`) of a value from the command line.
+/// Builds the finite element analysis from `[body]` and `[fem]`, with command-line values in
+/// place of the file's, checked by the same rules; messages name the model-file key, or the flag
+/// (`--nx`, `--ny`, `--dt`, `--scheme`) of a value from the command line. The plane-stress body
+/// takes E = 12 EI/(D B^3) and the density M/(H B D) from the validated body, so every way of
+/// giving the stiffness and the mass works; the damping period defaults to the pre-uplift period
+/// T. Every rule is here, the size limits of `crate::fem` included. Only `flexrock fem` builds
+/// it: `run` and `sweep` do not fail for settings that only the finite element analysis uses.
 pub fn fem_with_overrides(
     file: &ModelFile,
     body: &Body,

@@ -16,8 +16,8 @@ use excitation_section::floor_from_section;
 pub use excitation_section::RecordCache;
 pub use excitation_section::STANDARD_GRAVITY;
 pub use fem_section::{
-    fem_from_section, FemSetup, DEFAULT_FEM_DT, DEFAULT_FEM_MU_K, DEFAULT_FEM_MU_S, DEFAULT_FEM_NX,
-    DEFAULT_FEM_NY, DEFAULT_FEM_THETA, DEFAULT_POISSON_RATIO, FEM_SNAPSHOT_TIMES,
+    FemSetup, DEFAULT_FEM_DT, DEFAULT_FEM_MU_K, DEFAULT_FEM_MU_S, DEFAULT_FEM_NX, DEFAULT_FEM_NY,
+    DEFAULT_FEM_THETA, DEFAULT_POISSON_RATIO, FEM_SNAPSHOT_TIMES,
 };
 use solver_section::{check_rtol, newmark_from_section, solver_from_section};
 pub use solver_section::{
@@ -48,7 +48,7 @@ pub struct ModelFile {
     pub simulation: SimulationSection,
     #[serde(default)]
     pub solver: SolverSection,
-    /// Settings of `flexrock fem` (optional; see [`fem_from_section`]).
+    /// Settings of `flexrock fem` (optional; see [`Model::fem_with`]).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub fem: Option<FemSection>,
 }
@@ -313,8 +313,6 @@ pub struct Model {
     pub initial: InitialState,
     pub duration: f64,
     pub solver: SolverSettings,
-    /// The finite element analysis as the `[fem]` section (or its defaults) describes it.
-    pub fem: FemSetup,
 }
 
 impl Model {
@@ -425,7 +423,6 @@ impl Model {
         }
         let initial = initial_from_section(&file.simulation, &body)?;
         let solver = solver_from_section(&file.solver, duration, constants.omega, body.width)?;
-        let fem = fem_from_section(&file, &body, &constants, duration)?;
         Ok(Model {
             path: None,
             file,
@@ -435,12 +432,13 @@ impl Model {
             initial,
             duration,
             solver,
-            fem,
         })
     }
 
-    /// The finite element setup with command-line overrides applied (checked like the file;
-    /// messages name the flags).
+    /// The finite element setup of the `[fem]` section (or its defaults) with command-line
+    /// overrides applied, checked like the file (messages name the flags). Only `flexrock fem`
+    /// asks for it: a `[fem]` section the finite element analysis would refuse does not stop
+    /// `run` or `sweep`.
     pub fn fem_with(&self, overrides: &FemOverrides) -> Result<FemSetup> {
         fem_section::fem_with_overrides(
             &self.file,
