@@ -77,10 +77,12 @@ impl Axis {
         (0..self.values.len()).all(|i| self.number(i).is_some())
     }
 
+    /// Number of values.
     pub fn len(&self) -> usize {
         self.values.len()
     }
 
+    /// True for an axis without values (never made by [`Axis::parse`]).
     pub fn is_empty(&self) -> bool {
         self.values.is_empty()
     }
@@ -94,7 +96,9 @@ impl Axis {
 /// The interval of `--find-min KEY=LO:HI`.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Interval {
+    /// Lower end.
     pub lo: f64,
+    /// Upper end.
     pub hi: f64,
 }
 

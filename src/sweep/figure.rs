@@ -18,7 +18,9 @@ use crate::plot::{Legend, Panel, Series};
 
 /// sweep.csv read back: its columns and rows of text.
 pub struct Table {
+    /// Column names, from the header.
     pub columns: Vec<String>,
+    /// The fields of each row, as text.
     pub rows: Vec<Vec<String>>,
     path: std::path::PathBuf,
 }

@@ -25,7 +25,9 @@ const MAX_BISECTIONS: usize = 200;
 pub struct FindMin {
     /// The model-file key, e.g. `excitation.amplitude`.
     pub key: String,
+    /// Lower end of the interval searched.
     pub lo: f64,
+    /// Upper end of the interval searched.
     pub hi: f64,
     /// Values scanned from `lo` to `hi`, both included.
     pub scan: usize,
@@ -49,9 +51,13 @@ impl FindMin {
 /// One run of the search: overturned or not, when, and its cost.
 #[derive(Debug, Clone, Copy)]
 pub struct Trial {
+    /// The body overturned.
     pub overturned: bool,
+    /// When, s.
     pub t_overturn: Option<f64>,
+    /// Accepted steps of the run.
     pub steps: usize,
+    /// Right-hand-side evaluations of the run.
     pub rhs_evaluations: usize,
 }
 

@@ -1,3 +1,4 @@
+#![warn(missing_docs)]
 //! Parametric studies: one model file, axes over any of its numeric keys (and over record
 //! files), one row per point in sweep.csv.
 //!
@@ -37,6 +38,7 @@ pub const SIMULATIONS_PER_CHUNK: usize = 1024;
 /// sweep (to resume it, or to merge its shards) and to say how the results were made.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Plan {
+    /// Version of flexrock that made the results.
     pub flexrock_version: String,
     /// The model file as named on the command line.
     pub model_file: String,
@@ -44,7 +46,9 @@ pub struct Plan {
     pub model_text: String,
     /// `--set` keys, as `key=value`.
     pub settings: Vec<String>,
+    /// The axes, the last varying fastest.
     pub axes: Vec<Axis>,
+    /// The minimum search, if the sweep makes one at each point.
     pub find_min: Option<FindMin>,
     /// Points per chunk file.
     pub chunk_size: usize,
@@ -97,8 +101,11 @@ impl Plan {
 /// What a user asks for.
 #[derive(Debug, Clone, Default)]
 pub struct Request {
+    /// `--set` keys, applied to every point before its axis values.
     pub settings: Vec<Setting>,
+    /// `--vary` axes.
     pub axes: Vec<Axis>,
+    /// `--find-min KEY=LO:HI`.
     pub find_min: Option<(String, Interval)>,
     /// Scanned values of the minimum search [default: [`find_min::DEFAULT_SCAN`]].
     pub scan: Option<usize>,
@@ -120,13 +127,19 @@ pub struct Request {
 #[derive(Debug, Clone, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SweepFile {
+    /// As `--vary`.
     #[serde(default)]
     pub vary: Vec<String>,
+    /// As `--set`.
     #[serde(default)]
     pub set: Vec<String>,
+    /// As `--find-min`.
     pub find_min: Option<String>,
+    /// As `--scan`.
     pub scan: Option<usize>,
+    /// As `--tol`.
     pub tol: Option<f64>,
+    /// As `--chunk-size`.
     pub chunk_size: Option<usize>,
 }
 
@@ -164,6 +177,7 @@ impl Request {
 
 /// A sweep ready to run: the plan, and the base model's table.
 pub struct Sweep {
+    /// What is computed.
     pub plan: Plan,
     table: toml::Table,
     model_path: PathBuf,

@@ -20,6 +20,7 @@ pub enum Status {
 }
 
 impl Status {
+    /// The name in the `status` column.
     pub fn name(self) -> &'static str {
         match self {
             Status::Ok => "ok",
@@ -51,6 +52,7 @@ pub struct Scales {
 }
 
 impl Scales {
+    /// The numbers of a point's model.
     pub fn of(model: &Model) -> Scales {
         let body = &model.body;
         let c = &model.constants;
@@ -82,6 +84,7 @@ impl Scales {
         "T_over_Tp",
     ];
 
+    /// The fields, in the order of [`Scales::COLUMNS`].
     pub fn fields(&self) -> [String; 8] {
         [
             shortest(self.alpha),
@@ -103,19 +106,30 @@ fn optional(x: Option<f64>) -> String {
 /// What one run of a point gave.
 #[derive(Debug, Clone, Copy)]
 pub struct RunOutcome {
+    /// The body overturned within the duration.
     pub overturned: bool,
+    /// When, s.
     pub t_overturn: Option<f64>,
+    /// Number of uplifts.
     pub n_uplift: usize,
+    /// Number of landings.
     pub n_landing: usize,
+    /// Largest |q| over B.
     pub max_abs_q_over_b: f64,
+    /// Largest |r| (rocking part) over B.
     pub max_abs_r_over_b: f64,
+    /// Largest |s| (flexural part) over s_n.
     pub max_abs_s_over_s_n: f64,
+    /// The run ended with the body rocking.
     pub ended_while_rocking: bool,
+    /// Accepted steps.
     pub steps: usize,
+    /// Right-hand-side evaluations.
     pub rhs_evaluations: usize,
 }
 
 impl RunOutcome {
+    /// What a solution of a point's model gave.
     pub fn of(model: &Model, solution: &Solution) -> RunOutcome {
         let b = model.body.width;
         let max_abs_q = solution.max_q.value.abs().max(solution.min_q.value.abs());
@@ -133,6 +147,7 @@ impl RunOutcome {
         }
     }
 
+    /// Column names of [`RunOutcome::fields`].
     pub const COLUMNS: [&'static str; 10] = [
         "overturned",
         "t_overturn",
@@ -146,6 +161,7 @@ impl RunOutcome {
         "rhs_evaluations",
     ];
 
+    /// The fields, in the order of [`RunOutcome::COLUMNS`].
     pub fn fields(&self) -> [String; 10] {
         [
             self.overturned.to_string(),
@@ -174,16 +190,20 @@ pub struct MinimumOutcome {
     /// The bands of scanned values that overturned, as `lo-hi` (`lo` alone for one value),
     /// separated by `;`.
     pub bands: String,
+    /// Number of bands.
     pub n_bands: usize,
     /// Time of overturning at `min_overturning`.
     pub t_overturn: Option<f64>,
     /// Simulations run for the search, and their steps and right-hand-side evaluations.
     pub simulations: usize,
+    /// Accepted steps of all the search's runs.
     pub steps: usize,
+    /// Right-hand-side evaluations of all the search's runs.
     pub rhs_evaluations: usize,
 }
 
 impl MinimumOutcome {
+    /// Column names of [`MinimumOutcome::fields`].
     pub const COLUMNS: [&'static str; 8] = [
         "min_overturning",
         "safe_below",
@@ -195,6 +215,7 @@ impl MinimumOutcome {
         "rhs_evaluations",
     ];
 
+    /// The fields, in the order of [`MinimumOutcome::COLUMNS`].
     pub fn fields(&self) -> [String; 8] {
         [
             optional(self.min_overturning),
@@ -214,13 +235,18 @@ impl MinimumOutcome {
 /// (uplift at its quasi-static uplift acceleration's limit); see [`crate::rigid`].
 #[derive(Debug, Clone, Copy, Default)]
 pub struct RigidMinima {
+    /// Housner's block's smallest overturning value.
     pub housner: Option<f64>,
+    /// Its peak floor acceleration over g tan(alpha).
     pub housner_over_g_tan_alpha: Option<f64>,
+    /// The rigid limit's smallest overturning value.
     pub elastic_limit: Option<f64>,
+    /// Its peak floor acceleration over g tan(alpha).
     pub elastic_limit_over_g_tan_alpha: Option<f64>,
 }
 
 impl RigidMinima {
+    /// Column names of [`RigidMinima::fields`].
     pub const COLUMNS: [&'static str; 4] = [
         "rigid_min_overturning",
         "rigid_amplitude_over_g_tan_alpha",
@@ -228,6 +254,7 @@ impl RigidMinima {
         "rigid_limit_amplitude_over_g_tan_alpha",
     ];
 
+    /// The fields, in the order of [`RigidMinima::COLUMNS`].
     pub fn fields(&self) -> [String; 4] {
         [
             optional(self.housner),
@@ -241,20 +268,27 @@ impl RigidMinima {
 /// The result part of a row (after the point number and the axis values).
 #[derive(Debug, Clone)]
 pub enum Outcome {
+    /// One run of the point.
     Run(RunOutcome),
+    /// A minimum search at the point, for the elastic body and the rigid blocks.
     Minimum(MinimumOutcome, RigidMinima),
 }
 
 /// One point's row, before formatting.
 #[derive(Debug, Clone)]
 pub struct Row {
+    /// How the point ended.
     pub status: Status,
+    /// Why it is invalid or failed (empty when ok).
     pub reason: String,
+    /// What it gave, when ok.
     pub outcome: Option<Outcome>,
+    /// Its body and excitation numbers, when its model is valid.
     pub scales: Option<Scales>,
 }
 
 impl Row {
+    /// A row of a point that is invalid or failed.
     pub fn failure(status: Status, reason: String) -> Row {
         Row {
             status,

@@ -25,7 +25,9 @@ use crate::output;
 /// writes `--shard 3/8`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 pub struct Shard {
+    /// K, 1-based.
     pub index: usize,
+    /// N.
     pub count: usize,
 }
 
@@ -92,8 +94,11 @@ impl Shard {
 /// The points of a directory's rows: [first, end) of total.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 pub struct PointRange {
+    /// First point.
     pub first: usize,
+    /// One past the last point.
     pub end: usize,
+    /// Points of the whole sweep.
     pub total: usize,
 }
 
@@ -101,20 +106,28 @@ pub struct PointRange {
 /// that overturned somewhere in the interval).
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
 pub struct Counts {
+    /// Rows with status ok.
     pub ok: usize,
+    /// Rows with status invalid.
     pub invalid: usize,
+    /// Rows with status failed.
     pub failed: usize,
+    /// Points that overturned.
     pub overturned: usize,
 }
 
 /// sweep.json.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct SweepSummary {
+    /// Version of flexrock that wrote it.
     pub flexrock_version: String,
+    /// What was computed.
     pub plan: Plan,
     /// Set for a shard's directory; absent for a whole sweep (also a merged one).
     pub shard: Option<Shard>,
+    /// The points of this directory's rows.
     pub points: PointRange,
+    /// Counts of its rows.
     pub counts: Counts,
     /// sweep.csv's columns, in order.
     pub columns: Vec<String>,
@@ -125,12 +138,15 @@ pub struct SweepSummary {
 /// What `flexrock sweep` reports.
 #[derive(Debug)]
 pub struct SweepReport {
+    /// The directory written.
     pub dir: PathBuf,
+    /// Its sweep.json.
     pub summary: SweepSummary,
     /// Points computed by this process (0 when the directory already held the whole result).
     pub computed: usize,
     /// Points found on disk from an earlier, interrupted run.
     pub resumed: usize,
+    /// The files written.
     pub files: Vec<PathBuf>,
 }
 
@@ -142,7 +158,9 @@ const TABLE_FILE: &str = "sweep.csv";
 /// Progress of a sweep, for a progress bar: points done (including resumed ones) of the points
 /// this process is to do.
 pub trait Progress: Sync {
+    /// The sweep (or shard) has `total` points, of which `done` were found on disk.
     fn start(&self, total: usize, done: usize);
+    /// `points` more are done.
     fn advance(&self, points: usize);
 }
 
