@@ -46,9 +46,15 @@ Numerics
   before the event, so that event times and peak values carry the integrator's
   accuracy instead of the interpolant's (this matters for Radau, whose
   interpolant is only cubic).
-* Integration is also stopped exactly at the end of the paper-sine ramp and at
-  every sample time (0, 0.25, 0.5, ... s), so that samples are step end points,
-  not interpolated values.
+* Integration is also stopped exactly at the end of the paper-sine ramp, at the
+  end of a sine pulse and at every sample time (0, 0.25, 0.5, ... s), so that
+  samples are step end points, not interpolated values.  On a segment that ends at
+  a sine pulse's end the pulse formula is used up to and including that end (the
+  left limit), so no step sees the cosine pulse's jump A -> 0.
+
+Floor motions: paper-sine, harmonic, free (the cases below) and sine-pulse
+(A sin(2 pi t/Tp) for shape "antisymmetric", A cos(2 pi t/Tp) for "symmetric",
+for 0 <= t < cycles Tp, then 0), used by validation/sweep/compare.py.
 
 Run from the repository root:
 
@@ -168,6 +174,16 @@ class Excitation:
             self.ramp = float(exc["ramp"])
             self.coef = ramp_coefficients(self.A, self.Tp, self.ramp)
             self.breaks = [self.ramp]
+        elif self.kind == "sine-pulse":
+            # A sin(2 pi t/Tp) ("antisymmetric") or A cos(2 pi t/Tp) ("symmetric") for
+            # 0 <= t < cycles Tp, then a = 0.  The pulse end is a break: a kink for the
+            # sine, a jump (A -> 0) for the cosine.
+            self.shape = exc.get("shape", "antisymmetric")
+            if self.shape not in ("antisymmetric", "symmetric"):
+                raise ValueError(self.shape)
+            self.cycles = int(exc.get("cycles", 1))
+            self.end = self.cycles * self.Tp
+            self.breaks = [self.end]
         elif self.kind not in ("harmonic", "free"):
             raise ValueError(self.kind)
 
@@ -177,7 +193,28 @@ class Excitation:
         if self.kind == "paper-sine" and t < self.ramp:
             c1, c2, c3 = self.coef
             return t * (c1 + t * (c2 + t * c3))
+        if self.kind == "sine-pulse":
+            if t >= self.end:
+                return 0.0
+            return self._pulse(t)
         return self.A * math.sin(self.w * t)
+
+    def _pulse(self, t: float) -> float:
+        if self.shape == "symmetric":
+            return self.A * math.cos(self.w * t)
+        return self.A * math.sin(self.w * t)
+
+    def piece(self, t0: float):
+        """a(t) on the integration segment that starts at t0.  Segments never straddle a
+        break (simulate stops at every break), so on a segment that starts before the
+        pulse end the pulse formula holds on the closed segment, including its right end:
+        the last stage of a step that ends exactly at the pulse end sees the left limit
+        of the cosine pulse (A), not the rest value (0)."""
+        if self.kind != "sine-pulse":
+            return self
+        if t0 < self.end:
+            return self._pulse
+        return lambda t: 0.0  # noqa: E731
 
 
 # --------------------------------------------------------------------------
@@ -205,11 +242,12 @@ class Rocker:
             return Ke * s_n * (B - q) / (B - s_n), slope
         return -Ke * s_n * (B + q) / (B - s_n), slope
 
-    def rhs(self, mode):
+    def rhs(self, mode, t0=0.0):
+        """Right-hand side in a mode, on the integration segment that starts at t0."""
         k = self.k
         Me, c = k["Me"], k["c"]
         nu, beta = self.params(mode)
-        a = self.a
+        a = self.a.piece(t0)
 
         def f(t, y):
             q, qd = y
@@ -259,7 +297,7 @@ def _ivp(sys_, mode, t0, t1, y0, method, rtol, atol, max_step, events=None):
     kw = dict(method=method, rtol=rtol, atol=atol, max_step=max_step)
     if method in ("Radau", "BDF", "LSODA"):
         kw["jac"] = sys_.jac(mode)
-    return solve_ivp(sys_.rhs(mode), (t0, t1), y0, events=events, **kw)
+    return solve_ivp(sys_.rhs(mode, t0), (t0, t1), y0, events=events, **kw)
 
 
 def simulate(case: dict, method="DOP853", rtol=RTOL_REF, atol=ATOL_REF,
@@ -330,7 +368,7 @@ def simulate(case: dict, method="DOP853", rtol=RTOL_REF, atol=ATOL_REF,
         if sol.status < 0:
             raise RuntimeError(sol.message)
         nfev += sol.nfev
-        f = sys_.rhs(mode)
+        f = sys_.rhs(mode, t)
         step_t = sol.t
         step_y = sol.y
 
