@@ -41,6 +41,12 @@ pub trait FloorMotion: Send + Sync {
         &[]
     }
 
+    /// True when a(t) itself jumps at the breakpoint `t` (not only its slope): an adaptive
+    /// multistep method must then restart there, as at an event.
+    fn jumps_at(&self, _t: f64) -> bool {
+        false
+    }
+
     /// Largest |a(t)| over the motion, m/s^2 (for a pulse of less than a quarter cycle, a bound).
     fn peak_acceleration(&self) -> f64;
 

@@ -70,6 +70,16 @@ impl FloorMotion for SinePulse {
     fn breakpoints(&self) -> &[f64] {
         &self.breakpoints
     }
+    fn jumps_at(&self, t: f64) -> bool {
+        // The pulse's own value at its end, which the floor drops from to rest: A for a cosine
+        // pulse, 0 for a whole number of sine cycles.
+        let phase = 2.0 * PI * self.cycles;
+        let last = match self.shape {
+            PulseShape::Antisymmetric => phase.sin(),
+            PulseShape::Symmetric => phase.cos(),
+        };
+        t == self.end() && (self.amplitude * last).abs() > 1e-12 * self.amplitude.abs()
+    }
     fn peak_acceleration(&self) -> f64 {
         self.amplitude.abs()
     }

@@ -384,6 +384,15 @@ impl<'d> Driver<'d> {
                     {
                         self.snap_to_stop(&mut solver, stop, step_end - start.t);
                         let now = solver.state().t;
+                        if self.floor.jumps_at(stop) {
+                            // The floor jumps here: restart the method from the state, with
+                            // the derivative of the new floor value, as at an event. BDF's
+                            // history across the jump would otherwise ask for steps below the
+                            // minimum at tight tolerances.
+                            let y = [solver.state().y[0], solver.state().y[1]];
+                            let floor_acc = self.floor.acceleration(stop);
+                            self.set_state(&mut solver, self.mode.get(), now, y, floor_acc);
+                        }
                         // A grid time at the stop, if the step ended just short of it.
                         self.emit(&solver, &mut recorder, &mut sampler, now, true)?;
                         if stop_index + 1 == stops.len() {
