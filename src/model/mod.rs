@@ -447,6 +447,18 @@ impl Model {
             self.duration,
             overrides,
         )
+        .map_err(|e| match (e, &self.path) {
+            // A value of the file names the file; a flag's value names the flag.
+            (e @ Error::InvalidParameter { .. }, Some(path))
+                if !matches!(&e, Error::InvalidParameter { key, .. } if key.starts_with("--")) =>
+            {
+                Error::InModel {
+                    path: path.clone(),
+                    source: Box::new(e),
+                }
+            }
+            (e, _) => e,
+        })
     }
 }
 
