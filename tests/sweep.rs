@@ -774,3 +774,35 @@ fn a_sweep_file_is_the_flags_written_down() {
     assert!(String::from_utf8_lossy(&o.stderr).contains("vry"));
     assert!(!dir.join("c").exists());
 }
+
+#[test]
+fn the_rows_in_memory_are_the_rows_of_sweep_csv() {
+    use flexrock::sweep::{store, Axis, Request, Sweep};
+    let dir = scratch_dir("sweep-in-memory");
+    status_ok(&mut grid_sweep(&dir, &[]));
+    let request = Request {
+        axes: vec![
+            Axis::parse("excitation.period=lin:0.3:1.5:24", Path::new(".")).unwrap(),
+            Axis::parse("excitation.amplitude=lin:1:8:20", Path::new(".")).unwrap(),
+        ],
+        ..Request::default()
+    };
+    let sweep = Sweep::new(&pulse_model(), request).unwrap();
+    let rows = store::rows(&sweep, &store::Silent);
+    let mut table = flexrock::output::Table::new(
+        &sweep
+            .plan
+            .columns()
+            .iter()
+            .map(String::as_str)
+            .collect::<Vec<_>>(),
+    );
+    for row in rows {
+        table.row(row);
+    }
+    let written = std::fs::read(dir.join("sweep.csv")).unwrap();
+    assert_eq!(
+        String::from_utf8(table.into_bytes()).unwrap(),
+        String::from_utf8(written).unwrap()
+    );
+}

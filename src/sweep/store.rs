@@ -249,15 +249,7 @@ pub fn run(
     let mut computed = 0;
     for &c in &pending {
         let points = chunk_points(plan, c, range.end);
-        let rows: Vec<Vec<String>> = points
-            .clone()
-            .into_par_iter()
-            .map(|i| {
-                let row = sweep.evaluate(i);
-                progress.advance(1);
-                row_fields(plan, i, &row)
-            })
-            .collect();
+        let rows = rows_of(sweep, points.clone(), progress);
         let mut table = output::Table::without_header();
         for fields in rows {
             table.row(fields);
@@ -285,6 +277,30 @@ pub fn run(
         resumed,
         files,
     })
+}
+
+/// The rows of sweep.csv for every point, in point order, computed in parallel in memory (no
+/// file is read or written): the fields of each row as the file has them, under the header
+/// [`Plan::columns`]. What the Python bindings return; [`run`] writes the same rows.
+pub fn rows(sweep: &Sweep, progress: &dyn Progress) -> Vec<Vec<String>> {
+    progress.start(sweep.points(), 0);
+    rows_of(sweep, 0..sweep.points(), progress)
+}
+
+/// The rows of the points `points`, in point order.
+fn rows_of(
+    sweep: &Sweep,
+    points: std::ops::Range<usize>,
+    progress: &dyn Progress,
+) -> Vec<Vec<String>> {
+    points
+        .into_par_iter()
+        .map(|i| {
+            let row = sweep.evaluate(i);
+            progress.advance(1);
+            row_fields(&sweep.plan, i, &row)
+        })
+        .collect()
 }
 
 /// The points of shard `shard` (all of them without one): whole chunks, split as evenly as

@@ -1,0 +1,161 @@
+"""The Python bindings against the command line: the same numbers to the last digit.
+
+The flexrock binary is found by FLEXROCK_BIN, else target/release/flexrock, else built with
+`cargo run --release --bin flexrock --` from the repository root.
+"""
+
+import csv
+import json
+import os
+import shutil
+import subprocess
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import flexrock
+
+ROOT = Path(__file__).resolve().parents[2]
+MODEL = ROOT / "models" / "ichinose1986.toml"
+
+
+def cli():
+    if os.environ.get("FLEXROCK_BIN"):
+        return [os.environ["FLEXROCK_BIN"]]
+    binary = ROOT / "target" / "release" / "flexrock"
+    if binary.is_file():
+        return [str(binary)]
+    if shutil.which("cargo"):
+        return ["cargo", "run", "--quiet", "--release", "--bin", "flexrock", "--"]
+    pytest.skip("no flexrock binary: set FLEXROCK_BIN")
+
+
+def run_cli(*args):
+    subprocess.run(cli() + [str(a) for a in args], cwd=ROOT, check=True, capture_output=True)
+
+
+def read_csv(path):
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def same_as_cli(result, out):
+    history = read_csv(out / "history.csv")
+    assert len(history) == len(result.t)
+    for name in history[0]:
+        column = getattr(result, name)
+        for i, row in enumerate(history):
+            if name == "mode":
+                assert column[i] == row[name]
+            else:
+                assert column[i] == float(row[name]), (name, i)
+    events = read_csv(out / "events.csv")
+    assert len(events) == len(result.events)
+    for mine, theirs in zip(result.events, events):
+        for key, text in theirs.items():
+            value = mine[key]
+            assert (str(value) if isinstance(value, (str, int)) else value) == (
+                text if isinstance(value, (str, int)) else float(text)
+            ), key
+    summary = json.loads((out / "summary.json").read_text())
+    for key in ["max_q", "t_max_q", "min_q", "t_min_q", "n_uplift", "n_landing", "overturned",
+                "t_overturn", "max_energy_residual", "final_time", "final_mode", "T", "s_n",
+                "constants", "body", "inputs", "warnings"]:
+        assert result.summary[key] == summary[key], key
+    for key in ["steps", "rhs_evaluations", "method"]:
+        assert result.summary["statistics"][key] == summary["statistics"][key], key
+
+
+def test_simulate_equals_the_command_line(tmp_path):
+    run_cli("run", MODEL, "--out", tmp_path)
+    result = flexrock.simulate(flexrock.Model.from_file(MODEL))
+    same_as_cli(result, tmp_path)
+    assert result.summary["n_uplift"] > 0
+    assert result.q.dtype == np.float64
+
+
+def test_method_and_tolerances_as_the_flags(tmp_path):
+    run_cli("run", MODEL, "--out", tmp_path, "--method", "tsit45", "--rtol", "1e-8", "--atol", "1e-12")
+    model = flexrock.Model.from_file(MODEL)
+    same_as_cli(flexrock.simulate(model, method="tsit45", rtol=1e-8, atol=1e-12), tmp_path)
+
+
+def test_set_is_editing_the_file(tmp_path):
+    text = MODEL.read_text()
+    model = flexrock.Model.from_toml(text)
+    model.set("excitation.amplitude", 4.0)
+    model.set("solver.method", "tsit45")
+    run_cli("run", MODEL, "--out", tmp_path / "out", "--set", "excitation.amplitude=4.0",
+            "--set", "solver.method=tsit45")
+    result = flexrock.simulate(model)
+    same_as_cli(result, tmp_path / "out")
+    base = flexrock.simulate(flexrock.Model.from_file(MODEL))
+    assert base.summary["max_q"] != result.summary["max_q"]
+    assert model.settings == ["excitation.amplitude=4", "solver.method=tsit45"]
+
+
+def test_bad_keys_and_values_raise_with_the_key():
+    model = flexrock.Model.from_file(MODEL)
+    with pytest.raises(flexrock.FlexrockError, match="excitation.period"):
+        model.set("excitation.period", -1.0)
+    with pytest.raises(flexrock.FlexrockError, match="nonsense"):
+        model.set("excitation.nonsense", 1.0)
+    with pytest.raises(flexrock.FlexrockError, match="solver.rtol"):
+        model.set("solver.rtol", 5.0)
+    with pytest.raises(ValueError):
+        flexrock.Model.from_toml("[body]\nheight = 1\n")
+    with pytest.raises(flexrock.FlexrockError):
+        flexrock.simulate(model, method="nonsense")
+    # A refused value leaves the model as it was.
+    assert model.settings == []
+
+
+def test_props_are_the_json_of_props():
+    props = flexrock.props(flexrock.Model.from_file(MODEL))
+    assert props["constants"]["period"] > 0
+    assert props["body"]["height"] > 0
+
+
+def test_sweep_equals_the_command_line(tmp_path):
+    run_cli("sweep", MODEL, "--out", tmp_path, "--quiet", "--vary", "excitation.amplitude=2,4.5",
+            "--vary", "excitation.period=0.5,1,1.5")
+    rows = read_csv(tmp_path / "sweep.csv")
+    got = flexrock.sweep(flexrock.Model.from_file(MODEL),
+                         {"excitation.amplitude": [2, 4.5], "excitation.period": [0.5, 1.0, 1.5]})
+    assert list(got) == list(rows[0])
+    for name, column in got.items():
+        assert len(column) == len(rows)
+        for value, row in zip(column, rows):
+            text = row[name]
+            if isinstance(value, str):
+                assert value == text, name
+            elif text == "":
+                assert np.isnan(value), name
+            else:
+                assert value == float(text), name
+
+
+def test_sweep_of_a_model_text_with_a_minimum_search(tmp_path):
+    run_cli("sweep", MODEL, "--out", tmp_path, "--quiet", "--vary", "excitation.period=0.5,1",
+            "--find-min", "excitation.amplitude=1:20", "--scan", "8")
+    rows = read_csv(tmp_path / "sweep.csv")
+    got = flexrock.sweep(flexrock.Model.from_toml(MODEL.read_text()),
+                         {"excitation.period": [0.5, 1.0]},
+                         find_min=("excitation.amplitude", 1.0, 20.0), scan=8)
+    assert list(got) == list(rows[0])
+    for name, column in got.items():
+        for value, row in zip(column, rows):
+            if isinstance(value, str):
+                assert value == row[name], name
+            elif row[name] == "":
+                assert np.isnan(value), name
+            else:
+                assert value == float(row[name]), name
+
+
+def test_to_pandas():
+    pandas = pytest.importorskip("pandas")
+    frame = flexrock.simulate(flexrock.Model.from_file(MODEL)).to_pandas()
+    assert isinstance(frame, pandas.DataFrame)
+    assert list(frame.columns)[:5] == ["t", "q", "qdot", "s", "r"]
