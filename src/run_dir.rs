@@ -11,13 +11,11 @@ use std::io::Read;
 use std::path::Path;
 
 use serde::de::DeserializeOwned;
-use serde::Deserialize;
 
-use crate::automaton::Mode;
 use crate::constants::Constants;
 use crate::error::{Error, Result};
 use crate::output::{EVENT_COLUMNS, HISTORY_COLUMNS};
-use crate::solution::Event;
+use crate::solution::{Event, Sample};
 
 pub const HISTORY_FILE: &str = "history.csv";
 pub const EVENTS_FILE: &str = "events.csv";
@@ -34,23 +32,8 @@ pub const MAX_EVENTS_BYTES: u64 = 256 << 20;
 /// Largest summary.json read, bytes (16 MiB; `run` writes a few kB).
 pub const MAX_SUMMARY_BYTES: u64 = 16 << 20;
 
-/// One row of history.csv (see the README for the columns and units).
-#[derive(Debug, Clone, PartialEq, Deserialize)]
-pub struct HistoryRow {
-    pub t: f64,
-    pub q: f64,
-    pub qdot: f64,
-    pub s: f64,
-    pub r: f64,
-    pub mode: Mode,
-    pub floor_acc: f64,
-    /// Restoring force F(q), N.
-    #[serde(rename = "F")]
-    pub force: f64,
-    pub energy_residual: f64,
-    pub work_input: f64,
-    pub work_damping: f64,
-}
+/// One row of history.csv, read back: the [`Sample`] the run wrote.
+pub type HistoryRow = Sample;
 
 /// What the figures need from summary.json, each read by its key.
 #[derive(Debug, Clone)]

@@ -137,7 +137,7 @@ pub fn force_panels(data: &RunData, automaton: &Automaton) -> Vec<Panel> {
     // The run's path first and wide, the model's curve over it and thin: where the run went,
     // the black line runs inside a red band.
     let mut force = Panel::new("restoring force F(q) (Fig. 3)", "q (m)", "F (N)")
-        .with(Series::line("this run", series(h, |r| (r.q, r.force)), 1).with_width(6))
+        .with(Series::line("this run", series(h, |r| (r.q, r.restoring_force)), 1).with_width(6))
         .with(Series::line("model F(q)", restoring_force_curve(automaton), 0).with_width(1));
     // F has the sign of q: the upper left quarter is empty.
     force.legend = Legend::UpperLeft;

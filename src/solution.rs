@@ -6,8 +6,9 @@ use serde::{Deserialize, Serialize};
 use crate::automaton::{Automaton, EventKind, Mode};
 use crate::solver::History;
 
-/// One row of the history.
-#[derive(Debug, Clone, Serialize)]
+/// One row of the history (a row of history.csv, whose columns are these fields; the restoring
+/// force is the column `F`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Sample {
     pub t: f64,
     pub q: f64,
@@ -19,6 +20,7 @@ pub struct Sample {
     pub mode: Mode,
     pub floor_acc: f64,
     /// Restoring force (base shear) F(q), N.
+    #[serde(rename = "F")]
     pub restoring_force: f64,
     /// Energy balance error, J: see [`Recorder`].
     pub energy_residual: f64,
