@@ -267,7 +267,10 @@ fn sweep(args: SweepArgs) -> flexrock::Result<Output> {
     use flexrock::sweep::{axis, store, Axis, Request, Sweep};
     if let Some(SweepCommand::Merge { dirs, out }) = args.command {
         let report = store::merge(&dirs, &out)?;
-        return Ok(Output::text(flexrock::sweep::report_text(&report, None)));
+        return Ok(Output {
+            stdout: flexrock::sweep::report_text(&report, None).into_bytes(),
+            warnings: flexrock::sweep::warnings(&report),
+        });
     }
     let Some(path) = args.model else {
         return Err(flexrock::Error::invalid(
@@ -327,10 +330,11 @@ fn sweep(args: SweepArgs) -> flexrock::Result<Output> {
     let started = std::time::Instant::now();
     let report = store::run(&sweep, &out, shard, &ProgressBar(bar.clone()))?;
     bar.finish_and_clear();
-    Ok(Output::text(flexrock::sweep::report_text(
-        &report,
-        Some(started.elapsed().as_secs_f64()),
-    )))
+    Ok(Output {
+        stdout: flexrock::sweep::report_text(&report, Some(started.elapsed().as_secs_f64()))
+            .into_bytes(),
+        warnings: flexrock::sweep::warnings(&report),
+    })
 }
 
 /// `--set KEY=VALUE`, any number of times: a model-file key set from the command line.

@@ -239,7 +239,7 @@ pub const ENERGY_RESIDUAL_WARNING_SHARE: f64 = 1e-2;
 pub fn warnings(model: &Model, solution: &Solution) -> Vec<String> {
     let mut warnings = Vec::new();
     let scale = solution.energy_scale;
-    if solution.max_energy_residual > ENERGY_RESIDUAL_WARNING_SHARE * scale {
+    if solution.energy_residual_share() > ENERGY_RESIDUAL_WARNING_SHARE {
         warnings.push(format!(
             "the energy residual reached {:.3e} J, {:.1} % of the energy scale {:.3e} J (above {} %): \
              the solution is no more accurate than that; tighten the tolerance (or the Newmark step)",

@@ -100,6 +100,16 @@ impl Solution {
     pub fn ended_while_rocking(&self) -> bool {
         matches!(self.final_mode, Mode::RockRight | Mode::RockLeft)
     }
+
+    /// The largest energy residual as a share of the energy scale (0 when nothing moved): how
+    /// far the integration is from the exact solution's energy books.
+    pub fn energy_residual_share(&self) -> f64 {
+        if self.energy_scale > 0.0 {
+            self.max_energy_residual / self.energy_scale
+        } else {
+            0.0
+        }
+    }
 }
 
 /// Books samples, events, peaks and the energy balance as a solver advances.

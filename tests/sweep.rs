@@ -806,3 +806,45 @@ fn the_rows_in_memory_are_the_rows_of_sweep_csv() {
         String::from_utf8(written).unwrap()
     );
 }
+
+#[test]
+fn a_loose_tolerance_is_flagged_point_by_point_and_on_standard_error() {
+    let dir = scratch_dir("sweep-loose");
+    let sweep = |out: &Path, rtol: &str| {
+        let o = flexrock(&[
+            "sweep",
+            pulse_model().to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+            "--vary",
+            "excitation.period=lin:0.6:1.2:7",
+            "--vary",
+            "excitation.amplitude=lin:1.5:3:7",
+            "--set",
+            &format!("solver.rtol={rtol}"),
+            "--set",
+            "solver.atol=1e-6",
+        ]);
+        assert!(o.status.success());
+        String::from_utf8_lossy(&o.stderr).into_owned()
+    };
+    let (loose, tight) = (dir.join("loose"), dir.join("tight"));
+    let loose_stderr = sweep(&loose, "1e-2");
+    let tight_stderr = sweep(&tight, "1e-8");
+    assert!(tight_stderr.is_empty(), "{tight_stderr}");
+    assert!(
+        loose_stderr.contains("energy_residual_share"),
+        "{loose_stderr}"
+    );
+    // Every point whose uplift count the loose run got wrong is flagged.
+    let (loose, tight) = (rows(&loose), rows(&tight));
+    let mut wrong = 0;
+    for (l, t) in loose.iter().zip(&tight) {
+        assert!(number(t, "energy_residual_share") < 1e-2);
+        if l["n_uplift"] != t["n_uplift"] {
+            wrong += 1;
+            assert!(number(l, "energy_residual_share") > 1e-2, "{l:?}");
+        }
+    }
+    assert!(wrong > 0, "the loose map should get some points wrong");
+}

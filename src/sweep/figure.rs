@@ -75,8 +75,19 @@ impl Table {
         } else {
             self.column("overturned")?
         };
+        let share = if find_min {
+            None
+        } else {
+            Some(self.column("energy_residual_share")?)
+        };
         let mut counts = Counts::default();
-        for row in &self.rows {
+        for (r, row) in self.rows.iter().enumerate() {
+            if share
+                .and_then(|c| self.number(r, c))
+                .is_some_and(|s| s > crate::run::ENERGY_RESIDUAL_WARNING_SHARE)
+            {
+                counts.inaccurate += 1;
+            }
             match row[status].as_str() {
                 "ok" => counts.ok += 1,
                 "invalid" => counts.invalid += 1,

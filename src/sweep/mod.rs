@@ -447,6 +447,22 @@ fn reason(e: &Error) -> String {
     e.to_string().replace(['\n', '\r'], " ")
 }
 
+/// What a reader of a sweep must know (printed on standard error): points whose runs are no
+/// more accurate than their energy residual says.
+pub fn warnings(report: &store::SweepReport) -> Vec<String> {
+    let inaccurate = report.summary.counts.inaccurate;
+    if inaccurate == 0 {
+        return Vec::new();
+    }
+    vec![format!(
+        "{inaccurate} of {} points have an energy residual above {} % of their energy scale \
+         (column energy_residual_share): their results are no more accurate than that; tighten \
+         solver.rtol (--set solver.rtol=...)",
+        report.summary.points.end - report.summary.points.first,
+        100.0 * crate::run::ENERGY_RESIDUAL_WARNING_SHARE
+    )]
+}
+
 /// The few lines `flexrock sweep` prints; `seconds` is the wall time of this process, if it
 /// computed anything.
 pub fn report_text(report: &store::SweepReport, seconds: Option<f64>) -> String {

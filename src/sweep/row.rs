@@ -122,6 +122,9 @@ pub struct RunOutcome {
     pub max_abs_s_over_s_n: f64,
     /// The run ended with the body rocking.
     pub ended_while_rocking: bool,
+    /// The largest energy residual over the energy scale (see [`Solution::energy_residual_share`]);
+    /// beyond [`crate::run::ENERGY_RESIDUAL_WARNING_SHARE`] the run is no more accurate than that.
+    pub energy_residual_share: f64,
     /// Accepted steps.
     pub steps: usize,
     /// Right-hand-side evaluations.
@@ -142,13 +145,14 @@ impl RunOutcome {
             max_abs_r_over_b: solution.max_abs_r / b,
             max_abs_s_over_s_n: solution.max_abs_s / model.constants.uplift_displacement,
             ended_while_rocking: solution.ended_while_rocking(),
+            energy_residual_share: solution.energy_residual_share(),
             steps: solution.stats.steps,
             rhs_evaluations: solution.stats.rhs_evaluations,
         }
     }
 
     /// Column names of [`RunOutcome::fields`].
-    pub const COLUMNS: [&'static str; 10] = [
+    pub const COLUMNS: [&'static str; 11] = [
         "overturned",
         "t_overturn",
         "n_uplift",
@@ -157,12 +161,13 @@ impl RunOutcome {
         "max_abs_r_over_B",
         "max_abs_s_over_s_n",
         "ended_while_rocking",
+        "energy_residual_share",
         "steps",
         "rhs_evaluations",
     ];
 
     /// The fields, in the order of [`RunOutcome::COLUMNS`].
-    pub fn fields(&self) -> [String; 10] {
+    pub fn fields(&self) -> [String; 11] {
         [
             self.overturned.to_string(),
             optional(self.t_overturn),
@@ -172,6 +177,7 @@ impl RunOutcome {
             shortest(self.max_abs_r_over_b),
             shortest(self.max_abs_s_over_s_n),
             self.ended_while_rocking.to_string(),
+            shortest(self.energy_residual_share),
             self.steps.to_string(),
             self.rhs_evaluations.to_string(),
         ]

@@ -114,6 +114,9 @@ pub struct Counts {
     pub failed: usize,
     /// Points that overturned.
     pub overturned: usize,
+    /// Runs whose energy residual exceeds [`crate::run::ENERGY_RESIDUAL_WARNING_SHARE`] of their
+    /// energy scale: no more accurate than that (a sweep with a minimum search has none).
+    pub inaccurate: usize,
 }
 
 /// sweep.json.
