@@ -273,6 +273,46 @@ fn bad_requests_are_refused_before_anything_is_written() {
             vec!["--find-min", "excitation.amplitude=1:5", "--scan", "1"],
             "--scan",
         ),
+        (
+            "nan tol",
+            vec!["--find-min", "excitation.amplitude=1:5", "--tol", "nan"],
+            "--tol",
+        ),
+        (
+            "zero chunk",
+            vec!["--vary", "excitation.period=1,2", "--chunk-size", "0"],
+            "--chunk-size",
+        ),
+        (
+            "zero threads",
+            vec!["--vary", "excitation.period=1,2", "--threads", "0"],
+            "--threads",
+        ),
+        (
+            "huge axis",
+            vec!["--vary", "excitation.period=lin:0.1:1:1000000000"],
+            "1000000",
+        ),
+        (
+            "too many points",
+            vec![
+                "--vary",
+                "excitation.period=lin:0.1:1:1000000",
+                "--vary",
+                "excitation.amplitude=lin:0.1:1:1000",
+            ],
+            "at most",
+        ),
+        (
+            "missing sweep file",
+            vec!["--sweep-file", "/nonexistent/sweep.toml"],
+            "sweep.toml",
+        ),
+        (
+            "device sweep file",
+            vec!["--sweep-file", "/dev/zero"],
+            "character device",
+        ),
     ] {
         let dir = scratch_dir(&format!("sweep-refused-{}", name.replace(' ', "-")));
         let out = dir.join("out");
@@ -847,4 +887,21 @@ fn a_loose_tolerance_is_flagged_point_by_point_and_on_standard_error() {
         }
     }
     assert!(wrong > 0, "the loose map should get some points wrong");
+}
+
+#[test]
+fn a_device_as_the_model_is_refused_not_read_forever() {
+    let dir = scratch_dir("sweep-dev-zero");
+    let out = dir.join("out");
+    let o = flexrock(&[
+        "sweep",
+        "/dev/zero",
+        "--vary",
+        "excitation.amplitude=1,2",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("character device"));
+    assert!(!out.exists());
 }

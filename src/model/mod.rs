@@ -156,7 +156,7 @@ pub const MAX_MODEL_FILE_BYTES: u64 = 1024 * 1024;
 
 /// The text of a model file: only a regular file of at most [`MAX_MODEL_FILE_BYTES`] (so that
 /// /dev/zero or a FIFO is refused rather than read until memory runs out).
-fn read_model_text(path: &Path) -> Result<String> {
+pub(crate) fn read_model_text(path: &Path) -> Result<String> {
     use std::io::Read as _;
     let refuse = |source| Error::ReadModel {
         path: path.to_path_buf(),
@@ -189,10 +189,13 @@ fn read_model_text(path: &Path) -> Result<String> {
     Ok(text)
 }
 
-/// A model file's TOML table, as written (the schema is checked by [`read_schema`]).
-pub fn read_model_table(path: &Path) -> Result<toml::Table> {
+/// A model file's text and its TOML table, as written (the schema is checked by
+/// [`read_schema`]); the file is read as [`Model::load`] reads it (a regular file of at most
+/// [`MAX_MODEL_FILE_BYTES`]).
+pub fn read_model_table(path: &Path) -> Result<(String, toml::Table)> {
     let text = read_model_text(path)?;
-    parse_table(&text, path)
+    let table = parse_table(&text, path)?;
+    Ok((text, table))
 }
 
 fn parse_table(text: &str, source: &Path) -> Result<toml::Table> {

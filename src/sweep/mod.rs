@@ -146,9 +146,13 @@ pub struct SweepFile {
 impl Request {
     /// Adds a sweep file to the request; file patterns in it are relative to the file.
     pub fn add_file(&mut self, path: &Path) -> Result<()> {
-        let text = std::fs::read_to_string(path).map_err(|e| Error::ReadModel {
-            path: path.to_path_buf(),
-            source: e,
+        // Read as a model file is (a regular file of limited size), so that /dev/zero is refused.
+        let text = crate::model::read_model_text(path).map_err(|e| match e {
+            Error::ReadModel { path, source } => Error::SweepFile {
+                path,
+                message: format!("cannot read the sweep file: {source}"),
+            },
+            other => other,
         })?;
         let file: SweepFile = toml::from_str(&text).map_err(|e| Error::ParseModel {
             path: path.to_path_buf(),
@@ -192,11 +196,7 @@ impl Sweep {
     /// Checks a request against the model file: keys known to the schema, axes distinct,
     /// the minimum searched over a key that is not an axis. Values are checked per point.
     pub fn new(model_path: &Path, request: Request) -> Result<Sweep> {
-        let model_text = std::fs::read_to_string(model_path).map_err(|e| Error::ReadModel {
-            path: model_path.to_path_buf(),
-            source: e,
-        })?;
-        let table = crate::model::read_model_table(model_path)?;
+        let (model_text, table) = crate::model::read_model_table(model_path)?;
         let find_min = match &request.find_min {
             None => None,
             Some((key, interval)) => {
