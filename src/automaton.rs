@@ -78,7 +78,10 @@ impl Guard {
     }
 }
 
-/// The automaton, built once from the derived constants.
+/// The automaton, built once from the derived constants. The restoring force has one home,
+/// [`Automaton::restoring_force`], and everything else (its slope, the potential, the flexural
+/// part) follows from the two branches the variant's [`Constants`] supply: F = Ke q before uplift,
+/// F = F' (q - q_topple) while rocking, with s linear in q there as well.
 #[derive(Debug, Clone)]
 pub struct Automaton {
     me: f64,
@@ -86,6 +89,13 @@ pub struct Automaton {
     damping_coefficient: f64,
     s_n: f64,
     width: f64,
+    /// F' while rocking (negative), N/m.
+    rocking_stiffness: f64,
+    /// |q| where F = 0 while rocking: the overturning guard.
+    topple: f64,
+    /// ds/dq while rocking, and s at q_topple.
+    rocking_flexural_slope: f64,
+    flexural_part_at_topple: f64,
     beta1: f64,
     nu2: f64,
     beta2: f64,
@@ -94,6 +104,7 @@ pub struct Automaton {
 }
 
 impl Automaton {
+    /// The automaton of the body whose constants are `constants`.
     pub fn new(constants: &Constants) -> Self {
         Automaton {
             me: constants.generalised_mass,
@@ -101,6 +112,10 @@ impl Automaton {
             damping_coefficient: constants.damping_coefficient,
             s_n: constants.uplift_displacement,
             width: constants.width,
+            rocking_stiffness: constants.rocking_stiffness,
+            topple: constants.topple_displacement,
+            rocking_flexural_slope: constants.rocking_flexural_slope,
+            flexural_part_at_topple: constants.flexural_part_at_topple,
             beta1: constants.beta1,
             nu2: constants.nu2,
             beta2: constants.beta2,
@@ -109,16 +124,24 @@ impl Automaton {
         }
     }
 
+    /// Me, kg.
     pub fn generalised_mass(&self) -> f64 {
         self.me
     }
 
+    /// s_n, m.
     pub fn uplift_displacement(&self) -> f64 {
         self.s_n
     }
 
+    /// B, m.
     pub fn width(&self) -> f64 {
         self.width
+    }
+
+    /// |q| at which the body falls over (B in the paper's model), m.
+    pub fn topple_displacement(&self) -> f64 {
+        self.topple
     }
 
     /// The mode a body starts in: rocking about the matching toe when |q0| > s_n.
@@ -164,7 +187,7 @@ impl Automaton {
                 to: Mode::PreUplift,
             },
             GuardSlot::Overturn => Guard {
-                level: side * self.width,
+                level: side * self.topple,
                 direction: side,
                 kind: EventKind::Overturn,
                 to: Mode::Overturned,
@@ -215,7 +238,7 @@ impl Automaton {
             Mode::PreUplift => self.ke * q,
             Mode::RockRight | Mode::RockLeft => {
                 let side = mode.rocking_sign();
-                side * self.ke * self.s_n * (self.width - side * q) / (self.width - self.s_n)
+                self.rocking_stiffness * (q - side * self.topple)
             }
             Mode::Overturned => 0.0,
         }
@@ -225,7 +248,7 @@ impl Automaton {
     pub fn restoring_stiffness(&self, mode: Mode) -> f64 {
         match mode {
             Mode::PreUplift => self.ke,
-            Mode::RockRight | Mode::RockLeft => -self.ke * self.s_n / (self.width - self.s_n),
+            Mode::RockRight | Mode::RockLeft => self.rocking_stiffness,
             Mode::Overturned => 0.0,
         }
     }
@@ -264,12 +287,13 @@ impl Automaton {
         match mode {
             Mode::PreUplift => 0.5 * self.ke * q * q,
             Mode::RockRight | Mode::RockLeft | Mode::Overturned => {
-                let x = q.abs();
-                let slope = self.ke * self.s_n / (self.width - self.s_n);
+                // nu2 times the integral of F' (x - q_topple) from s_n to |q|.
+                let (x, t) = (q.abs(), self.topple);
                 0.5 * self.ke * self.s_n * self.s_n
                     + self.nu2
-                        * slope
-                        * (self.width * (x - self.s_n) - 0.5 * (x * x - self.s_n * self.s_n))
+                        * self.rocking_stiffness
+                        * 0.5
+                        * ((x - t) * (x - t) - (self.s_n - t) * (self.s_n - t))
             }
         }
     }
@@ -308,15 +332,23 @@ impl Automaton {
         self.damping(mode) * qdot * qdot
     }
 
-    /// Flexural part s of q (eq. 9).
+    /// Flexural part s of q (eq. 9; validation/SELF-WEIGHT.md for the consistent variant).
     pub fn flexural_part(&self, mode: Mode, q: f64) -> f64 {
         match mode {
             Mode::PreUplift => q,
             _ => {
                 let side = if q >= 0.0 { 1.0 } else { -1.0 };
-                side * self.s_n * (self.width - side * q) / (self.width - self.s_n)
+                side * self.flexural_part_at_topple
+                    + self.rocking_flexural_slope * (q - side * self.topple)
             }
         }
+    }
+
+    /// |s| on the rocking branch where the rocking part is |r| = `abs_r` (the s-r relation of the
+    /// paper's Fig. 13, s_n (1 - |r|/B) in the paper's model): s and r are both linear in q there.
+    pub fn flexural_part_at_rocking_part(&self, abs_r: f64) -> f64 {
+        let slope = self.rocking_flexural_slope;
+        self.s_n + slope / (1.0 - slope) * abs_r
     }
 
     /// Rocking part r = q - s of q (eq. 9).

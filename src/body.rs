@@ -23,6 +23,36 @@ impl ConstantSet {
     }
 }
 
+/// How the model treats the body's own weight in bending (`[body] self_weight`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum SelfWeight {
+    /// As the paper: the weight's moment about the toe, but no weight in the bending
+    /// (MODEL.md sections 2-5).
+    Paper,
+    /// The self-weight-consistent variant (validation/SELF-WEIGHT.md): the flexural shape is the
+    /// first mode of a cantilever carrying its own weight, the weight's P-Delta enters the
+    /// stiffness, and the rocking branch follows equilibrium about the pivot toe.
+    Consistent,
+}
+
+impl SelfWeight {
+    /// The model-file spelling.
+    pub fn name(self) -> &'static str {
+        match self {
+            SelfWeight::Paper => "paper",
+            SelfWeight::Consistent => "consistent",
+        }
+    }
+
+    /// The variant spelled `name` in a model file.
+    pub fn from_name(name: &str) -> Option<Self> {
+        [SelfWeight::Paper, SelfWeight::Consistent]
+            .into_iter()
+            .find(|v| v.name() == name)
+    }
+}
+
 /// A validated body. All quantities in SI units.
 #[derive(Debug, Clone, Serialize)]
 pub struct Body {
@@ -41,6 +71,8 @@ pub struct Body {
     /// g, m/s^2.
     pub gravity: f64,
     pub constant_set: ConstantSet,
+    /// Which variant of the model: the paper's, or self-weight-consistent.
+    pub self_weight: SelfWeight,
 }
 
 /// Mass of a prism of `density` (kg/m^3) and size H x B x D (m), kg.
@@ -93,7 +125,12 @@ impl Body {
         Ok(self)
     }
 
-    /// Mass per unit height, kg/m.
+    /// gamma_g = M g H^2/EI: the weight's share in the bending (MODEL.md 7a); a uniform
+    /// cantilever buckles under its own weight at 7.837.
+    pub fn gravity_parameter(&self) -> f64 {
+        self.mass * self.gravity * self.height * self.height / self.flexural_rigidity
+    }
+
     /// alpha = atan(B/H), the slenderness angle of the rocking literature (Housner 1963): a rigid
     /// block starts to rock at a floor acceleration of g tan(alpha).
     pub fn slenderness_angle(&self) -> f64 {

@@ -336,7 +336,7 @@ fn solution_summary<'a>(
         min_q: s.min_q,
         max_energy_residual: s.max_energy_residual,
         statistics: &s.stats,
-        findings: findings::measure(s, model.constants.uplift_displacement, model.body.width),
+        findings: findings::measure(s, &crate::automaton::Automaton::new(&model.constants)),
     }
 }
 

@@ -8,7 +8,7 @@
 
 use serde::Serialize;
 
-use crate::automaton::Mode;
+use crate::automaton::{Automaton, Mode};
 use crate::solution::Solution;
 
 /// One rocking episode: a run of samples in a rocking mode.
@@ -37,9 +37,10 @@ pub struct Findings {
     pub s_never_exceeds_s_n: bool,
     /// Largest |r| over samples with |q| <= s_n (the paper: 0).
     pub max_abs_r_where_abs_q_within_s_n: f64,
-    /// Largest |r - B (|q| - s_n)/(B - s_n)| while rocking (Fig. 12, eq. 9b).
+    /// Largest ||r| - r(|q|)| while rocking, r(q) the rocking branch (Fig. 12; B (|q| - s_n)/(B - s_n)
+    /// in the paper's model, eq. 9b).
     pub max_q_r_relation_residual: f64,
-    /// Largest ||s| - s_n (1 - |r|/B)| while rocking (Fig. 13).
+    /// Largest ||s| - s(|r|)| while rocking (Fig. 13; s_n (1 - |r|/B) in the paper's model).
     pub max_s_r_relation_residual: f64,
     /// Rocking episodes with a dent (depth > 0) in s.
     pub rocking_episodes: usize,
@@ -47,8 +48,10 @@ pub struct Findings {
     pub dents: Vec<Dent>,
 }
 
-/// Measures the findings on `solution`, whose body has uplift displacement `s_n` and width `b`.
-pub fn measure(solution: &Solution, s_n: f64, b: f64) -> Findings {
+/// Measures the findings on `solution` of the body whose automaton is `automaton`. The q-r and s-r
+/// relations are the automaton's rocking branch, whatever mode a solver recorded at a sample.
+pub fn measure(solution: &Solution, automaton: &Automaton) -> Findings {
+    let (s_n, b) = (automaton.uplift_displacement(), automaton.width());
     let mut max_abs_s: f64 = 0.0;
     let mut max_r_inside: f64 = 0.0;
     let mut q_r: f64 = 0.0;
@@ -62,8 +65,9 @@ pub fn measure(solution: &Solution, s_n: f64, b: f64) -> Findings {
         }
         let rocking = matches!(x.mode, Mode::RockRight | Mode::RockLeft);
         if rocking {
-            q_r = q_r.max((x.r.abs() - b * (x.q.abs() - s_n) / (b - s_n)).abs());
-            s_r = s_r.max((x.s.abs() - s_n * (1.0 - x.r.abs() / b)).abs());
+            let branch_r = automaton.rocking_part(Mode::RockRight, x.q.abs());
+            q_r = q_r.max((x.r.abs() - branch_r).abs());
+            s_r = s_r.max((x.s.abs() - automaton.flexural_part_at_rocking_part(x.r.abs())).abs());
             let episode = open.get_or_insert(Dent {
                 t_start: x.t,
                 t_end: x.t,

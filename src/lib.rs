@@ -58,6 +58,7 @@ pub mod error;
 pub mod excitation;
 pub mod fem;
 pub mod findings;
+pub mod flexural_shape;
 pub mod model;
 pub mod output;
 pub mod plot;

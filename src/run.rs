@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 use serde::Serialize;
 
 use crate::automaton::{Automaton, EventKind};
-use crate::body::Body;
+use crate::body::{Body, SelfWeight};
 use crate::constants::{Constants, SELF_WEIGHT_BUCKLING_PARAMETER, SELF_WEIGHT_WARNING_SHARE};
 use crate::error::Result;
 use crate::excitation::FloorMotion;
@@ -93,6 +93,12 @@ pub fn properties_table(model: &Model) -> String {
         "",
         "\"exact\" or the paper's rounded values",
     );
+    row(
+        "self weight",
+        c.self_weight.name().to_string(),
+        "",
+        "\"paper\" or \"consistent\" (the weight in the bending)",
+    );
     row("generalised mass Me", fmt(c.generalised_mass), "kg", "");
     row(
         "generalised stiffness Ke",
@@ -119,7 +125,6 @@ pub fn properties_table(model: &Model) -> String {
         "m",
         "top displacement at uplift",
     );
-    row("nu1", fmt(c.nu1), "", "effectiveness, pre-uplift");
     row("beta1", fmt(c.beta1), "", "participation, pre-uplift");
     row("nu2", fmt(c.nu2), "", "effectiveness, rocking");
     row("beta2", fmt(c.beta2), "", "participation, rocking");
@@ -129,6 +134,30 @@ pub fn properties_table(model: &Model) -> String {
         fmt(c.zeta_landing),
         "",
         "q' -> q'/zetaL at landing",
+    );
+    row(
+        "rocking stiffness F'",
+        fmt(c.rocking_stiffness),
+        "N/m",
+        "dF/dq while rocking",
+    );
+    row(
+        "rocking flexural slope ds/dq",
+        fmt(c.rocking_flexural_slope),
+        "",
+        "while rocking",
+    );
+    row(
+        "topple displacement",
+        fmt(c.topple_displacement),
+        "m",
+        "|q| where F = 0: overturning",
+    );
+    row(
+        "flexural part there",
+        fmt(c.flexural_part_at_topple),
+        "m",
+        "",
     );
     row(
         "quasi-static uplift acceleration",
@@ -146,7 +175,10 @@ pub fn properties_table(model: &Model) -> String {
         "  ratio to 7.837 (buckling)",
         fmt(c.gravity_parameter_ratio),
         "",
-        "self-weight left out of bending; see README",
+        match c.self_weight {
+            SelfWeight::Paper => "self-weight left out of bending; see README",
+            SelfWeight::Consistent => "self-weight in the bending",
+        },
     );
     t
 }
@@ -250,10 +282,11 @@ pub fn warnings(model: &Model, solution: &Solution) -> Vec<String> {
         ));
     }
     let c = &model.constants;
-    if c.gravity_parameter_ratio > SELF_WEIGHT_WARNING_SHARE {
+    if c.self_weight == SelfWeight::Paper && c.gravity_parameter_ratio > SELF_WEIGHT_WARNING_SHARE {
         warnings.push(format!(
             "M g H^2/EI = {:.4} is {:.3} of its buckling value {SELF_WEIGHT_BUCKLING_PARAMETER} (above {}): \
-             the self-weight the model leaves out of bending matters for this body (README, Known limits)",
+             the self-weight the paper's model leaves out of bending matters for this body; \
+             body.self_weight = \"consistent\" puts it in (README, Known limits)",
             c.gravity_parameter, c.gravity_parameter_ratio, SELF_WEIGHT_WARNING_SHARE
         ));
     }

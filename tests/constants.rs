@@ -23,7 +23,8 @@ fn mode_shape_integrals_match_the_table() {
     assert_eq!(paper.int_u, 0.3915);
     assert_eq!(paper.int_u2, 0.2503);
     assert_eq!(paper.beta1, 1.564);
-    assert_eq!(paper.lambda, 1.8751);
+    assert_eq!(paper.base_moment_coefficient, 1.8751 * 1.8751);
+    assert_eq!(paper.int_u_xi, 1.0 / (1.8751 * 1.8751));
 }
 
 #[test]

@@ -29,7 +29,7 @@ use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
-use crate::body::{positive, Body, ConstantSet};
+use crate::body::{positive, Body, ConstantSet, SelfWeight};
 use crate::constants::Constants;
 use crate::error::{Error, Result};
 use crate::excitation::FloorMotion;
@@ -67,6 +67,8 @@ pub struct BodySection {
     pub damping_ratio: Option<f64>,
     pub gravity: Option<f64>,
     pub constants: Option<String>,
+    /// "paper" (default) or "consistent": how the weight enters the bending.
+    pub self_weight: Option<String>,
     /// Poisson's ratio, used only by the finite element analysis.
     pub poisson_ratio: Option<f64>,
 }
@@ -551,6 +553,24 @@ fn body_from_section(s: &BodySection) -> Result<Body> {
             ))
         }
     };
+    let self_weight = match s.self_weight.as_deref() {
+        None => SelfWeight::Paper,
+        Some(name) => SelfWeight::from_name(name).ok_or_else(|| {
+            Error::invalid(
+                "body.self_weight",
+                format!("\"{name}\""),
+                "must be \"paper\" (the paper's model) or \"consistent\" (the weight in the bending)",
+            )
+        })?,
+    };
+    if self_weight == SelfWeight::Consistent && constant_set == ConstantSet::Paper {
+        return Err(Error::invalid(
+            "body.constants",
+            "\"paper\" (with body.self_weight = \"consistent\")",
+            "the paper's rounded constants belong to the paper's mode shape; the consistent \
+             variant computes its own, so use constants = \"exact\"",
+        ));
+    }
     positive("body.height", s.height)?;
     positive("body.width", s.width)?;
     let depth = s.depth.unwrap_or(DEFAULT_DEPTH);
@@ -566,7 +586,26 @@ fn body_from_section(s: &BodySection) -> Result<Body> {
             mass
         }
     };
-    let flexural_rigidity = match exactly_one(
+    let damping_ratio = s.damping_ratio.unwrap_or(DEFAULT_DAMPING_RATIO);
+    if !damping_ratio.is_finite() {
+        return Err(Error::invalid(
+            "body.damping_ratio",
+            damping_ratio,
+            "the damping ratio must lie in [0, 1)",
+        ));
+    }
+    let mut body = Body {
+        height: s.height,
+        width: s.width,
+        depth,
+        mass,
+        flexural_rigidity: f64::NAN,
+        damping_ratio,
+        gravity: s.gravity.unwrap_or(DEFAULT_GRAVITY),
+        constant_set,
+        self_weight,
+    };
+    body.flexural_rigidity = match exactly_one(
         "body",
         &[
             ("youngs_modulus", s.youngs_modulus),
@@ -584,28 +623,11 @@ fn body_from_section(s: &BodySection) -> Result<Body> {
         }
         (_, period) => {
             positive("body.period", period)?;
-            Constants::flexural_rigidity_for_period(period, mass, s.height, constant_set)
+            positive("body.gravity", body.gravity)?;
+            Constants::flexural_rigidity_for_period(period, &body)?
         }
     };
-    let damping_ratio = s.damping_ratio.unwrap_or(DEFAULT_DAMPING_RATIO);
-    if !damping_ratio.is_finite() {
-        return Err(Error::invalid(
-            "body.damping_ratio",
-            damping_ratio,
-            "the damping ratio must lie in [0, 1)",
-        ));
-    }
-    Body {
-        height: s.height,
-        width: s.width,
-        depth,
-        mass,
-        flexural_rigidity,
-        damping_ratio,
-        gravity: s.gravity.unwrap_or(DEFAULT_GRAVITY),
-        constant_set,
-    }
-    .validated()
+    body.validated()
 }
 
 fn initial_from_section(s: &SimulationSection, body: &Body) -> Result<InitialState> {
