@@ -183,7 +183,7 @@ pub const MAX_RECORD_BYTES: u64 = 64 * 1024 * 1024;
 
 /// A number in a message (shortest exact form: `1e-300`, not 300 zeros).
 fn shown(x: f64) -> String {
-    crate::output::shortest(x)
+    crate::format::shortest(x)
 }
 
 /// Everything that can go wrong reading a record. Each message names the file (and line).
@@ -735,7 +735,7 @@ fn read_bounded(path: &Path, source: &str) -> Result<Vec<u8>, RecordError> {
     if !metadata.is_file() {
         return Err(RecordError::NotRegularFile {
             file: source.to_string(),
-            found: crate::output::file_kind(metadata.file_type()),
+            found: crate::format::file_kind(metadata.file_type()),
         });
     }
     if metadata.len() > MAX_RECORD_BYTES {
