@@ -801,11 +801,11 @@ mod tests {
 
     const EL_CENTRO: &str = concat!(
         env!("CARGO_MANIFEST_DIR"),
-        "/validation/records/elCentro.AT2"
+        "/../validation/records/elCentro.AT2"
     );
     const ANLA196: &str = concat!(
         env!("CARGO_MANIFEST_DIR"),
-        "/validation/records/ANLA196.AT2"
+        "/../validation/records/ANLA196.AT2"
     );
 
     fn read_text(path: &str) -> String {
@@ -1224,7 +1224,7 @@ mod tests {
     fn read_record_reports_missing_files_and_unknown_extensions() {
         let missing = concat!(
             env!("CARGO_MANIFEST_DIR"),
-            "/validation/records/missing.AT2"
+            "/../validation/records/missing.AT2"
         );
         let message = error_message(read_record(Path::new(missing), None, None));
         assert!(
