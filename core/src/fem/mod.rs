@@ -129,7 +129,7 @@ mod tests;
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
-pub use dynamics::simulate;
+pub use dynamics::simulate_fem;
 pub use pushover::pushover;
 
 use banded::BandedSym;
@@ -372,7 +372,7 @@ pub struct Snapshot {
     pub displacements: Vec<[f64; 2]>,
 }
 
-/// Result of [`simulate`].
+/// Result of [`simulate_fem`].
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct FemResult {
     /// One entry per time step, t = 0 first.
