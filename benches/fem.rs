@@ -3,7 +3,7 @@
 use std::path::Path;
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use flexrock::fem::{pushover, simulate, BaseSupport, FemBody, TimeScheme};
+use flexrock::fem::{pushover, simulate_fem, BaseSupport, FemBody, TimeScheme};
 use flexrock::model::{Model, Overrides};
 
 fn fem_runs(c: &mut Criterion) {
@@ -40,7 +40,9 @@ fn fem_runs(c: &mut Criterion) {
         settings.ny = ny;
         settings.scheme = scheme;
         group.bench_function(format!("{nx}x{ny} {name} dt=0.0071"), |b| {
-            b.iter(|| simulate(&setup.body, std::hint::black_box(&settings), &floor).expect("runs"))
+            b.iter(|| {
+                simulate_fem(&setup.body, std::hint::black_box(&settings), &floor).expect("runs")
+            })
         });
     }
     group.finish();

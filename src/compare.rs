@@ -175,7 +175,7 @@ pub struct GridDifferences {
 
 /// Two solutions of one model measured against each other.
 #[derive(Debug, Clone, Serialize)]
-pub struct Comparison {
+pub struct NewmarkComparison {
     pub events: EventAgreement,
     pub peaks: PeakComparison,
     pub grid: GridDifferences,
@@ -205,7 +205,7 @@ pub fn compare(
     other: &Solution,
     output_dt: f64,
     max_shift: f64,
-) -> Comparison {
+) -> NewmarkComparison {
     let pairs = match_events(&reference.events, &other.events, max_shift);
     let differences: Vec<(usize, f64)> = pairs
         .iter()
@@ -273,7 +273,7 @@ pub fn compare(
         t_max_abs_q_difference: t_worst,
         max_abs_qdot_difference: worst_qdot,
     };
-    Comparison {
+    NewmarkComparison {
         events,
         peaks,
         grid,
@@ -353,7 +353,7 @@ pub struct CompareSummary<'a> {
     pub max_event_shift: f64,
     pub reference: SolutionSummary<'a>,
     pub newmark: SolutionSummary<'a>,
-    pub comparison: &'a Comparison,
+    pub comparison: &'a NewmarkComparison,
 }
 
 /// Result of `flexrock compare`.
@@ -362,7 +362,7 @@ pub struct CompareReport {
     pub newmark: Solution,
     pub reference_settings: SolverSettings,
     pub newmark_settings: SolverSettings,
-    pub comparison: Comparison,
+    pub comparison: NewmarkComparison,
     pub files: Vec<PathBuf>,
 }
 

@@ -504,7 +504,7 @@ fn execute(command: Command) -> flexrock::Result<Output> {
             };
             let model = Model::load(&path, &overrides)?;
             let out = out.unwrap_or_else(|| default_out_dir(&path, ""));
-            let report = flexrock::run::run_with(&model, &out, plot)?;
+            let report = flexrock::run::run_to_dir_with(&model, &out, plot)?;
             Output {
                 stdout: flexrock::run::run_report_text(&model, &report).into_bytes(),
                 warnings: report.warnings.clone(),

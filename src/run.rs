@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 
 use serde::Serialize;
 
-use crate::automaton::{Automaton, EventKind};
+use crate::automaton::EventKind;
 use crate::body::{Body, SelfWeight};
 use crate::constants::{Constants, SELF_WEIGHT_BUCKLING_PARAMETER, SELF_WEIGHT_WARNING_SHARE};
 use crate::error::Result;
@@ -14,58 +14,11 @@ use crate::model::STANDARD_GRAVITY;
 use crate::model::{Model, ModelFile};
 use crate::output;
 use crate::solution::{Solution, SolverStats};
-use crate::solver::{adaptive, newmark};
-use crate::solver::{History, InitialState, SolverSettings};
+use crate::solver::{InitialState, SolverSettings};
 
-/// Version of flexrock that made a result.
-pub const VERSION: &str = env!("CARGO_PKG_VERSION");
-
-/// Solves a model with the solver its settings name.
-pub fn simulate(model: &Model) -> Result<Solution> {
-    simulate_with(model, &model.solver)
-}
-
-/// Solves a model with the given solver settings instead of its own.
-pub fn simulate_with(model: &Model, settings: &SolverSettings) -> Result<Solution> {
-    solve(model, settings, History::Sampled)
-}
-
-/// Solves a model with its own solver, keeping no history: events, peaks and statistics only
-/// (what a sweep needs of each of its points).
-pub fn simulate_peaks(model: &Model) -> Result<Solution> {
-    solve(model, &model.solver, History::PeaksOnly)
-}
-
-fn solve(model: &Model, settings: &SolverSettings, history: History) -> Result<Solution> {
-    let automaton = Automaton::new(&model.constants);
-    let (floor, initial, duration) = (model.floor.as_ref(), model.initial, model.duration);
-    match settings {
-        SolverSettings::Adaptive(s) => {
-            adaptive::solve(&automaton, floor, initial, duration, s, history)
-        }
-        SolverSettings::Newmark(s) => {
-            newmark::solve(&automaton, floor, initial, duration, s, history)
-        }
-    }
-}
-
-/// What `flexrock props` prints: the body as understood and its derived constants.
-#[derive(Debug, Serialize)]
-pub struct Properties<'a> {
-    pub flexrock_version: &'static str,
-    pub model_file: Option<String>,
-    pub body: &'a Body,
-    pub constants: &'a Constants,
-}
-
-pub fn properties(model: &Model) -> Properties<'_> {
-    Properties {
-        flexrock_version: VERSION,
-        model_file: model.path.as_ref().map(|p| p.display().to_string()),
-        body: &model.body,
-        constants: &model.constants,
-    }
-}
+pub use flexrock_core::simulate::{
+    properties, simulate, simulate_peaks, simulate_with, Properties, VERSION,
+};
 
 /// The human-readable table of `flexrock props`.
 pub fn properties_table(model: &Model) -> String {
@@ -309,13 +262,13 @@ pub struct RunReport {
 }
 
 /// Solves a model and writes history.csv, events.csv and summary.json into `out_dir`.
-pub fn run(model: &Model, out_dir: &Path) -> Result<RunReport> {
-    run_with(model, out_dir, false)
+pub fn run_to_dir(model: &Model, out_dir: &Path) -> Result<RunReport> {
+    run_to_dir_with(model, out_dir, false)
 }
 
-/// [`run`], and with `plots` also the figures of [`crate::run_plot`], drawn from the three
+/// [`run_to_dir`], and with `plots` also the figures of [`crate::run_plot`], drawn from the three
 /// files as they are about to be written and written with them as one atomic set.
-pub fn run_with(model: &Model, out_dir: &Path, plots: bool) -> Result<RunReport> {
+pub fn run_to_dir_with(model: &Model, out_dir: &Path, plots: bool) -> Result<RunReport> {
     let solution = simulate(model)?;
     let mut files = vec![
         ("history.csv", output::history_csv(&solution.samples)),

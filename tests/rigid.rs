@@ -5,7 +5,8 @@
 
 use flexrock::excitation::{FloorMotion, Free, Harmonic, PulseShape, SinePulse};
 use flexrock::rigid::{
-    simulate, simulate_from, RigidBlock, RigidEventKind, RigidOutcome, RigidPhase, RigidSettings,
+    simulate_block, simulate_from, RigidBlock, RigidEventKind, RigidOutcome, RigidPhase,
+    RigidSettings,
 };
 use flexrock::solver::InitialState;
 
@@ -172,12 +173,12 @@ fn uplift_starts_at_the_uplift_acceleration() {
     for block in [housner(), elastic_limit()] {
         let a_up = block.uplift_acceleration();
         for sign in [1.0, -1.0] {
-            let o = simulate(&block, &Constant(-sign * 0.999 * a_up), 5.0).unwrap();
+            let o = simulate_block(&block, &Constant(-sign * 0.999 * a_up), 5.0).unwrap();
             assert_eq!(o.n_uplift, 0);
             assert_eq!(o.final_state.phase, RigidPhase::Rest);
             assert_eq!(o.max_abs_q, 0.0);
 
-            let o = simulate(&block, &Constant(-sign * 1.001 * a_up), 0.5).unwrap();
+            let o = simulate_block(&block, &Constant(-sign * 1.001 * a_up), 0.5).unwrap();
             assert_eq!(o.first_uplift, Some(0.0));
             let side = if sign > 0.0 {
                 RigidPhase::RockRight
@@ -188,7 +189,7 @@ fn uplift_starts_at_the_uplift_acceleration() {
             assert!(o.final_state.q * sign > 0.0);
         }
         let period = 1.0;
-        let o = simulate(
+        let o = simulate_block(
             &block,
             &Harmonic {
                 amplitude: 0.99 * a_up,
@@ -199,7 +200,7 @@ fn uplift_starts_at_the_uplift_acceleration() {
         .unwrap();
         assert_eq!(o.n_uplift, 0);
         let amplitude = 1.01 * a_up;
-        let o = simulate(&block, &Harmonic { amplitude, period }, 0.5).unwrap();
+        let o = simulate_block(&block, &Harmonic { amplitude, period }, 0.5).unwrap();
         let expected = period * (a_up / amplitude).asin() / (2.0 * std::f64::consts::PI);
         let t = o.first_uplift.expect("lifts");
         assert!((t - expected).abs() < 1e-14, "{t} against {expected}");
@@ -216,7 +217,7 @@ fn a_constant_push_overturns_at_the_closed_form_time() {
         for c in [1.5 * G * B / H, 3.0 * G * B / H] {
             let amplitude = c * H / G - B;
             let t_ov = (c / (c - G * B / H)).acosh() / k();
-            let o = simulate(&block, &Constant(-c), 10.0).unwrap();
+            let o = simulate_block(&block, &Constant(-c), 10.0).unwrap();
             let t = o.t_overturn.expect("overturns");
             assert!(
                 (t - t_ov).abs() < 1e-12 * t_ov,
@@ -226,7 +227,7 @@ fn a_constant_push_overturns_at_the_closed_form_time() {
             assert_eq!(o.n_impact, 0);
 
             let t = 0.7 * t_ov;
-            let o = simulate(&block, &Constant(-c), t).unwrap();
+            let o = simulate_block(&block, &Constant(-c), t).unwrap();
             let q = amplitude * ((k() * t).cosh() - 1.0);
             let v = k() * amplitude * (k() * t).sinh();
             assert!(
@@ -328,7 +329,7 @@ fn meaningless_input_is_refused() {
         assert!(RigidBlock::housner(x, B, G).is_err());
         assert!(RigidBlock::housner(H, x, G).is_err());
         assert!(RigidBlock::elastic_limit(H, B, x).is_err());
-        let err = simulate(&housner(), &Free, x).unwrap_err();
+        let err = simulate_block(&housner(), &Free, x).unwrap_err();
         assert!(err.is_input_error(), "{err}");
     }
     let err = RigidBlock::housner(H, H, G).unwrap_err();
@@ -357,10 +358,10 @@ fn meaningless_input_is_refused() {
         .unwrap_err();
         assert!(err.is_input_error(), "{err}");
     }
-    let err = simulate(&housner(), &Constant(1e6), 1.0).unwrap_err();
+    let err = simulate_block(&housner(), &Constant(1e6), 1.0).unwrap_err();
     assert!(err.to_string().contains("20 g"), "{err}");
     // A floor that is not a number ends the run with an error, not a panic or a hang.
-    let err = simulate(&housner(), &Nan, 1.0).unwrap_err();
+    let err = simulate_block(&housner(), &Nan, 1.0).unwrap_err();
     assert!(!err.is_input_error(), "{err}");
 }
 
@@ -451,8 +452,8 @@ fn a_stiff_elastic_body_tends_to_the_elastic_limit_block() {
     let mut worst = [[0.0_f64; 3]; 4];
     for c in &cases {
         let pulse = SinePulse::new(c.amplitude, c.period, 1.0, PulseShape::Antisymmetric);
-        let rigid = simulate(&limit, &pulse, duration).unwrap();
-        let reference = simulate(&housner, &pulse, duration).unwrap();
+        let rigid = simulate_block(&limit, &pulse, duration).unwrap();
+        let reference = simulate_block(&housner, &pulse, duration).unwrap();
         let rigid_up = rigid.first_uplift.unwrap();
         let housner_up = reference.first_uplift.unwrap() - rigid_up;
         for (i, scale) in scales.iter().enumerate() {

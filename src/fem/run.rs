@@ -8,7 +8,7 @@ use std::time::Instant;
 use serde::Serialize;
 
 use super::{
-    critical_time_step, fixed_base_periods, simulate, ContactEvent, ContactState, FemResult,
+    critical_time_step, fixed_base_periods, simulate_fem, ContactEvent, ContactState, FemResult,
     FemStep, TimeScheme,
 };
 use crate::automaton::EventKind;
@@ -165,7 +165,7 @@ pub fn analyse(model: &Model, setup: &FemSetup) -> Result<FemAnalysis> {
     setup.settings.initial_rotation = model.initial.q / setup.body.height;
     let floor = |t: f64| model.floor.acceleration(t);
     let started = Instant::now();
-    let result = simulate(&setup.body, &setup.settings, &floor)?;
+    let result = simulate_fem(&setup.body, &setup.settings, &floor)?;
     let wall_time_s = started.elapsed().as_secs_f64();
     let linear_acceleration_limit =
         crate::solver::newmark::linear_acceleration_omega_dt() / result.highest_frequency;
@@ -527,7 +527,7 @@ fn run_files(model: &Model, a: &FemAnalysis) -> Result<Vec<(&'static str, Vec<u8
 /// Result of `flexrock fem`.
 pub struct FemReport {
     pub analysis: FemAnalysis,
-    pub comparison: Option<Comparison>,
+    pub comparison: Option<FemComparison>,
     pub files: Vec<PathBuf>,
 }
 
@@ -544,7 +544,7 @@ pub fn fem(model: &Model, setup: &FemSetup, out_dir: &Path) -> Result<FemReport>
 
 /// One row of the comparison table.
 #[derive(Debug, Clone, Serialize)]
-pub struct ComparisonRow {
+pub struct FemComparisonRow {
     pub quantity: String,
     pub sdof: f64,
     pub fem: f64,
@@ -555,8 +555,8 @@ pub struct ComparisonRow {
 
 /// The SDOF model and the FEM side by side.
 #[derive(Debug, Clone, Serialize)]
-pub struct Comparison {
-    pub rows: Vec<ComparisonRow>,
+pub struct FemComparison {
+    pub rows: Vec<FemComparisonRow>,
     pub sdof_uplift_times: Vec<f64>,
     pub fem_uplift_times: Vec<f64>,
 }
@@ -588,7 +588,7 @@ fn rocking_branch(points: impl Iterator<Item = (f64, f64)>, width: f64) -> Vec<(
         .collect()
 }
 
-pub fn compare_solutions(model: &Model, sdof: &Solution, a: &FemAnalysis) -> Comparison {
+pub fn compare_solutions(model: &Model, sdof: &Solution, a: &FemAnalysis) -> FemComparison {
     let steps = &a.result.steps;
     let p = peaks(steps);
     let width = model.body.width;
@@ -620,7 +620,7 @@ pub fn compare_solutions(model: &Model, sdof: &Solution, a: &FemAnalysis) -> Com
         width,
     ));
     let nan = (f64::NAN, f64::NAN);
-    let row = |quantity: &str, sdof: f64, fem: f64| ComparisonRow {
+    let row = |quantity: &str, sdof: f64, fem: f64| FemComparisonRow {
         quantity: quantity.to_string(),
         sdof,
         fem,
@@ -631,7 +631,7 @@ pub fn compare_solutions(model: &Model, sdof: &Solution, a: &FemAnalysis) -> Com
         row("t of max q (s)", sdof.max_q.t, p.t_max_q),
         row("min q (m)", sdof.min_q.value, p.min_q),
         row("t of min q (s)", sdof.min_q.t, p.t_min_q),
-        ComparisonRow {
+        FemComparisonRow {
             is_count: true,
             ..row(
                 "uplifts",
@@ -682,14 +682,14 @@ pub fn compare_solutions(model: &Model, sdof: &Solution, a: &FemAnalysis) -> Com
             s_r_fem.unwrap_or(nan).1,
         ),
     ];
-    Comparison {
+    FemComparison {
         rows,
         sdof_uplift_times,
         fem_uplift_times,
     }
 }
 
-pub fn comparison_csv(c: &Comparison) -> Vec<u8> {
+pub fn comparison_csv(c: &FemComparison) -> Vec<u8> {
     let mut table = Table::new(&["quantity", "sdof", "fem"]);
     for r in &c.rows {
         table.row([r.quantity.clone(), number(r.sdof), number(r.fem)]);
@@ -698,7 +698,7 @@ pub fn comparison_csv(c: &Comparison) -> Vec<u8> {
 }
 
 /// The comparison as a text table.
-pub fn comparison_text(c: &Comparison) -> String {
+pub fn comparison_text(c: &FemComparison) -> String {
     let mut t = String::new();
     let _ = writeln!(t, "  {:<36} {:>12} {:>12}", "quantity", "SDOF", "FEM");
     for r in &c.rows {

@@ -396,8 +396,11 @@ impl Sweep {
                         let model = self.model(&at(value))?;
                         let b = &model.body;
                         let block = block(b.height, b.width, b.gravity)?;
-                        let out =
-                            crate::rigid::simulate(&block, model.floor.as_ref(), model.duration)?;
+                        let out = crate::rigid::simulate_block(
+                            &block,
+                            model.floor.as_ref(),
+                            model.duration,
+                        )?;
                         Ok(find_min::Trial {
                             overturned: out.overturned,
                             t_overturn: out.t_overturn,

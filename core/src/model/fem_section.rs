@@ -7,7 +7,7 @@ use crate::body::{positive, Body};
 use crate::constants::Constants;
 use crate::error::{Error, Result};
 use crate::fem::{check_run_size, BaseSupport, FemBody, FemSettings, SizeLimit, TimeScheme};
-use crate::output::readable;
+use crate::format::readable;
 
 pub const DEFAULT_POISSON_RATIO: f64 = 0.25;
 

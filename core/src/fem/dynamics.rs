@@ -24,7 +24,7 @@ const FACTOR_CACHE_SIZE: usize = 256;
 /// exceeds the stability limit of a conditionally stable scheme, see
 /// [`FemResult::critical_time_step`]). A run stops early, without error, when |q| exceeds the
 /// width (overturning, [`FemResult::overturned_at`]).
-pub fn simulate(
+pub fn simulate_fem(
     body: &FemBody,
     settings: &FemSettings,
     floor_acc: &dyn Fn(f64) -> f64,

@@ -90,7 +90,7 @@ impl Setting {
 /// A value as a user reads it: numbers in their shortest exact form, strings bare.
 pub fn value_text(value: &toml::Value) -> String {
     match value {
-        toml::Value::Float(x) => crate::output::shortest(*x),
+        toml::Value::Float(x) => crate::format::shortest(*x),
         toml::Value::String(s) => s.clone(),
         other => other.to_string(),
     }

@@ -183,7 +183,7 @@ pub const MAX_RECORD_BYTES: u64 = 64 * 1024 * 1024;
 
 /// A number in a message (shortest exact form: `1e-300`, not 300 zeros).
 fn shown(x: f64) -> String {
-    crate::output::shortest(x)
+    crate::format::shortest(x)
 }
 
 /// Everything that can go wrong reading a record. Each message names the file (and line).
@@ -735,7 +735,7 @@ fn read_bounded(path: &Path, source: &str) -> Result<Vec<u8>, RecordError> {
     if !metadata.is_file() {
         return Err(RecordError::NotRegularFile {
             file: source.to_string(),
-            found: crate::output::file_kind(metadata.file_type()),
+            found: crate::format::file_kind(metadata.file_type()),
         });
     }
     if metadata.len() > MAX_RECORD_BYTES {
@@ -801,11 +801,11 @@ mod tests {
 
     const EL_CENTRO: &str = concat!(
         env!("CARGO_MANIFEST_DIR"),
-        "/validation/records/elCentro.AT2"
+        "/../validation/records/elCentro.AT2"
     );
     const ANLA196: &str = concat!(
         env!("CARGO_MANIFEST_DIR"),
-        "/validation/records/ANLA196.AT2"
+        "/../validation/records/ANLA196.AT2"
     );
 
     fn read_text(path: &str) -> String {
@@ -1224,7 +1224,7 @@ mod tests {
     fn read_record_reports_missing_files_and_unknown_extensions() {
         let missing = concat!(
             env!("CARGO_MANIFEST_DIR"),
-            "/validation/records/missing.AT2"
+            "/../validation/records/missing.AT2"
         );
         let message = error_message(read_record(Path::new(missing), None, None));
         assert!(

@@ -435,7 +435,7 @@ fn released_tilted_body_lands(body: FemBody) {
         initial_rotation: theta0,
         ..FemSettings::paper()
     };
-    let result = simulate(&body, &settings, &|_| 0.0).unwrap();
+    let result = simulate_fem(&body, &settings, &|_| 0.0).unwrap();
     let first_landing = result
         .events
         .iter()
@@ -479,7 +479,7 @@ fn frictionless_base_slides_under_floor_acceleration() {
             mu_k,
             ..FemSettings::paper()
         };
-        simulate(&body, &settings, &|t| if t > 0.0 { acc } else { 0.0 }).unwrap()
+        simulate_fem(&body, &settings, &|t| if t > 0.0 { acc } else { 0.0 }).unwrap()
     };
     let frictionless = run(0.0, 0.0, acc);
     let last = frictionless.steps.last().unwrap();
@@ -512,7 +512,7 @@ fn paper_run_parts_sum_and_snapshots() {
         snapshot_times: vec![0.9, 1.0, 1.1],
         ..FemSettings::paper()
     };
-    let result = simulate(&body, &settings, &paper_floor_acceleration).unwrap();
+    let result = simulate_fem(&body, &settings, &paper_floor_acceleration).unwrap();
     assert_eq!(result.steps.len(), 846);
     for s in &result.steps {
         let sum = s.rocking + s.slipping + s.flexural + s.shearing;
@@ -535,7 +535,7 @@ fn invalid_input_is_reported_not_panicked() {
     let bad = |f: &dyn Fn(&mut FemSettings)| {
         let mut s = FemSettings::paper();
         f(&mut s);
-        name_of(simulate(&body, &s, &zero))
+        name_of(simulate_fem(&body, &s, &zero))
     };
     assert_eq!(bad(&|s| s.nx = 0), "nx");
     assert_eq!(bad(&|s| s.ny = 0), "ny");
@@ -556,7 +556,7 @@ fn invalid_input_is_reported_not_panicked() {
     let bad_body = |f: &dyn Fn(&mut FemBody)| {
         let mut b = FemBody::reference();
         f(&mut b);
-        name_of(simulate(&b, &FemSettings::paper(), &zero))
+        name_of(simulate_fem(&b, &FemSettings::paper(), &zero))
     };
     assert_eq!(bad_body(&|b| b.poisson_ratio = 0.5), "poisson_ratio");
     assert_eq!(bad_body(&|b| b.youngs_modulus = -1.0), "youngs_modulus");

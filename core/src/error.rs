@@ -42,7 +42,7 @@ pub enum Error {
     },
 
     /// The integrator could not continue.
-    #[error("the {method} solver failed at t = {} s: {message}", crate::output::readable(*.t))]
+    #[error("the {method} solver failed at t = {} s: {message}", crate::format::readable(*.t))]
     Solver {
         method: String,
         t: f64,
@@ -106,20 +106,20 @@ pub enum Error {
 }
 
 /// A value quoted in an error message. Numbers appear in their shortest exact form
-/// ([`crate::output::shortest`]), so that 1e300 reads `1e300`, not 301 digits.
+/// ([`crate::format::shortest`]), so that 1e300 reads `1e300`, not 301 digits.
 pub trait Quoted {
     fn quoted(&self) -> String;
 }
 
 impl Quoted for f64 {
     fn quoted(&self) -> String {
-        crate::output::shortest(*self)
+        crate::format::shortest(*self)
     }
 }
 
 impl Quoted for f32 {
     fn quoted(&self) -> String {
-        crate::output::shortest(f64::from(*self))
+        crate::format::shortest(f64::from(*self))
     }
 }
 

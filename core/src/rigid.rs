@@ -337,7 +337,7 @@ pub struct RigidOutcome {
 }
 
 /// Simulates the block from rest over [0, duration] with the default settings.
-pub fn simulate(
+pub fn simulate_block(
     block: &RigidBlock,
     floor: &dyn FloorMotion,
     duration: f64,

@@ -158,7 +158,7 @@ pub const MAX_MODEL_FILE_BYTES: u64 = 1024 * 1024;
 
 /// The text of a model file: only a regular file of at most [`MAX_MODEL_FILE_BYTES`] (so that
 /// /dev/zero or a FIFO is refused rather than read until memory runs out).
-pub(crate) fn read_model_text(path: &Path) -> Result<String> {
+pub fn read_model_text(path: &Path) -> Result<String> {
     use std::io::Read as _;
     let refuse = |source| Error::ReadModel {
         path: path.to_path_buf(),
@@ -174,7 +174,7 @@ pub(crate) fn read_model_text(path: &Path) -> Result<String> {
     if !metadata.is_file() {
         return Err(invalid(format!(
             "it is {}; a model file must be a regular file",
-            crate::output::file_kind(metadata.file_type())
+            crate::format::file_kind(metadata.file_type())
         )));
     }
     let mut text = String::new();

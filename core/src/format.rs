@@ -1,0 +1,129 @@
+//! Numbers and file kinds for people: the formatting every message, table and file of flexrock
+//! shares (one home; the command layer's `output` module re-exports it).
+
+/// Formats a number so that it reads back exactly (shortest round-trip form).
+pub fn number(x: f64) -> String {
+    format!("{x}")
+}
+
+/// A number as a person would type it, for messages and help texts: its shortest round-trip
+/// digits, in exponent form when that is shorter by two characters or more (1e-4, 1e300, 2e5;
+/// but 0.005, 0.0003125, 43.98). It reads back exactly, and 1e300 or 1e-300 never print as
+/// 301 digits.
+pub fn shortest(x: f64) -> String {
+    let plain = format!("{x}");
+    if !x.is_finite() {
+        return plain;
+    }
+    let exponent = format!("{x:e}");
+    if exponent.len() + 2 <= plain.len() {
+        exponent
+    } else {
+        plain
+    }
+}
+
+/// A number in exponent form (1e-8, 2.5e-3), as tolerances are written.
+pub fn scientific(x: f64) -> String {
+    format!("{x:e}")
+}
+
+/// Significant digits of [`readable`].
+const READABLE_DIGITS: usize = 12;
+
+/// A computed quantity for people: rounded to 12 significant digits, then in the form of
+/// [`shortest`], so that a sum such as 43.980000000000004 prints as 43.98.
+pub fn readable(x: f64) -> String {
+    if !x.is_finite() || x == 0.0 {
+        return shortest(x);
+    }
+    let rounded = format!("{x:.prec$e}", prec = READABLE_DIGITS - 1)
+        .parse::<f64>()
+        .unwrap_or(x);
+    shortest(rounded)
+}
+
+/// A number rounded to `digits` significant digits, in the form of [`shortest`] (figure
+/// labels: 0.1524, 1085, 1.2e-7).
+pub fn significant(x: f64, digits: usize) -> String {
+    if !x.is_finite() || x == 0.0 {
+        return shortest(x);
+    }
+    let rounded = format!("{x:.prec$e}", prec = digits.max(1) - 1)
+        .parse::<f64>()
+        .unwrap_or(x);
+    shortest(rounded)
+}
+
+/// A count with its noun: "1 uplift", "2 uplifts", "0 uplifts".
+pub fn count(n: usize, singular: &str, plural: &str) -> String {
+    format!("{n} {}", if n == 1 { singular } else { plural })
+}
+
+/// Values as a comma-separated list, each in the form `format` gives ([`shortest`],
+/// [`scientific`]), as a user types them after a flag such as `--dt`.
+pub fn list(values: &[f64], format: fn(f64) -> String) -> String {
+    values
+        .iter()
+        .map(|&x| format(x))
+        .collect::<Vec<_>>()
+        .join(",")
+}
+
+/// What a file system entry is, for messages: "a directory", "a FIFO (named pipe)", ...
+pub fn file_kind(file_type: std::fs::FileType) -> &'static str {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        if file_type.is_fifo() {
+            return "a FIFO (named pipe)";
+        }
+        if file_type.is_char_device() {
+            return "a character device";
+        }
+        if file_type.is_block_device() {
+            return "a block device";
+        }
+        if file_type.is_socket() {
+            return "a socket";
+        }
+    }
+    if file_type.is_dir() {
+        "a directory"
+    } else if file_type.is_file() {
+        "a regular file"
+    } else {
+        "a special file"
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn numbers_for_people() {
+        assert_eq!(shortest(1e300), "1e300");
+        assert_eq!(shortest(-1e-300), "-1e-300");
+        assert_eq!(shortest(0.005), "0.005");
+        assert_eq!(shortest(0.0003125), "0.0003125");
+        assert_eq!(shortest(1e-4), "1e-4");
+        assert_eq!(shortest(43.980000000000004), "43.980000000000004");
+        assert_eq!(shortest(f64::NAN), "NaN");
+        assert_eq!(shortest(f64::NEG_INFINITY), "-inf");
+        assert_eq!(readable(43.980000000000004), "43.98");
+        assert_eq!(readable(0.1 + 0.2), "0.3");
+        assert_eq!(readable(1.0 / 3.0), "0.333333333333");
+        assert_eq!(readable(0.0), "0");
+        assert_eq!(readable(6e4), "6e4");
+        assert_eq!(readable(31.16), "31.16");
+        assert_eq!(significant(0.15236512, 4), "0.1524");
+        assert_eq!(significant(1085.4, 4), "1085");
+        assert_eq!(significant(0.7, 4), "0.7");
+        assert_eq!(count(1, "uplift", "uplifts"), "1 uplift");
+        assert_eq!(count(0, "uplift", "uplifts"), "0 uplifts");
+        assert_eq!(count(2, "uplift", "uplifts"), "2 uplifts");
+        assert_eq!(list(&[1e-3, 1e-11], scientific), "1e-3,1e-11");
+        assert_eq!(list(&[0.04, 0.0003125], shortest), "0.04,0.0003125");
+    }
+}

@@ -1,0 +1,78 @@
+//! flexrock-core: the physics and numerics of flexrock, reference solutions of the Ichinose
+//! (1986) model of a slender elastic body rocking on a rigid floor, without the command-line
+//! layer (no argument parsing, CSV writers or plots: the `flexrock` package builds those on top
+//! of this crate).
+//!
+//! The pieces, each in its own module:
+//! - [`body`]: the physical body; [`constants`]: everything derived from it (MODEL.md 2-5);
+//! - [`automaton`]: the hybrid automaton (modes, right-hand sides, guards, resets);
+//! - [`excitation`]: floor motions behind the [`excitation::FloorMotion`] trait; [`record`]:
+//!   recorded ground motions read from their files;
+//! - [`solver`]: solvers that drive the automaton (the adaptive diffsol driver, Newmark, the
+//!   run budget); [`solution`]: what they return; [`simulate`](mod@simulate): a model solved
+//!   with the solver it names, and [`properties`];
+//! - [`model`]: the TOML model file (its schema and checks);
+//! - [`fem`]: the plane-stress finite element check of the paper's Section 3 (mesh, elements,
+//!   banded solver, eigenvalues, dynamics, pushover);
+//! - [`rigid`]: the slender rigid block of the rigid limit (Housner's block), which the elastic
+//!   body must tend to as E grows; [`findings`]: the paper's qualitative findings in numbers;
+//! - [`flexural_shape`]: the self-weighted cantilever mode psi of the consistent variant;
+//! - [`error`]: the one error type; [`format`](mod@format): numbers and file kinds for messages.
+//!
+//! # Example
+//!
+//! The reference body of the paper under a one-sine pulse, solved by the adaptive BDF driver:
+//!
+//! ```
+//! use flexrock_core::{Model, Overrides};
+//!
+//! let text = r#"
+//!     [body]
+//!     height = 4.0
+//!     width = 0.7
+//!     density = 600.0
+//!     youngs_modulus = 5.0e6
+//!
+//!     [excitation]
+//!     kind = "sine-pulse"
+//!     amplitude = 4.0
+//!     period = 0.8
+//!
+//!     [simulation]
+//!     duration = 6.0
+//! "#;
+//! let model = Model::from_toml_str(text, &Overrides::default())?;
+//! // The pre-uplift period of the paper's body is 1.55 s.
+//! assert!((model.constants.period - 1.55).abs() < 1e-3);
+//! let solution = flexrock_core::simulate(&model)?;
+//! // A 4 m/s^2 one-sine pulse of 0.8 s throws it over (models/sine-pulse.toml).
+//! assert!(solution.overturned);
+//! assert_eq!(solution.max_q.value, model.body.width);
+//! # Ok::<(), flexrock_core::Error>(())
+//! ```
+
+pub mod automaton;
+pub mod body;
+pub mod constants;
+pub mod error;
+pub mod excitation;
+pub mod fem;
+pub mod findings;
+pub mod flexural_shape;
+pub mod format;
+pub mod model;
+pub mod record;
+pub mod rigid;
+pub mod simulate;
+pub mod solution;
+pub mod solver;
+
+pub use automaton::Automaton;
+pub use body::Body;
+pub use constants::Constants;
+pub use error::{Error, Result};
+pub use excitation::FloorMotion;
+pub use model::{Model, Overrides};
+pub use simulate::{properties, simulate, simulate_peaks, simulate_with, Properties};
+pub use solution::Solution;
+pub use solver::SolverSettings;
