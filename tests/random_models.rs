@@ -28,6 +28,7 @@ proptest! {
         qdot0 in -0.5f64..0.5,
         method in 0usize..5,
         log_rtol in -10.0f64..-3.0,
+        consistent in proptest::bool::ANY,
     ) {
         let width = height * slenderness;
         let excitation = match kind {
@@ -44,9 +45,10 @@ proptest! {
         };
         let text = format!(
             "[body]\nheight = {height}\nwidth = {width}\ndensity = 600.0\nyoungs_modulus = {}\n\
-             damping_ratio = {damping}\n[excitation]\n{excitation}\n[simulation]\nduration = 4.0\n\
+             damping_ratio = {damping}\nself_weight = \"{}\"\n[excitation]\n{excitation}\n[simulation]\nduration = 4.0\n\
              q0 = {}\nqdot0 = {qdot0}\n[solver]\nmethod = \"{method}\"\n{tolerances}\noutput_dt = 0.01\n",
             10f64.powf(log_e),
+            if consistent { "consistent" } else { "paper" },
             q0_fraction * width,
         );
         let Ok(model) = Model::from_toml_str(&text, &Overrides::default()) else {
@@ -55,7 +57,8 @@ proptest! {
         };
         let sol = flexrock::run::simulate(&model).map_err(|e| TestCaseError::fail(format!("{e}\n{text}")))?;
         let s_n = model.constants.uplift_displacement;
-        let b = model.body.width;
+        // The overturning guard: B in the paper's model, where F = 0 in the consistent one.
+        let b = model.constants.topple_displacement;
         // Events chain: each starts in the mode the previous one ended in.
         for pair in sol.events.windows(2) {
             prop_assert_eq!(pair[0].to, pair[1].from, "{}", text);

@@ -225,6 +225,28 @@ fn the_self_weight_key_is_checked() {
             m.constants.period
         );
     }
+    // A period only a body at buckling could have, and one far too short, are refused.
+    for (period, words) in [("1000", "longest period"), ("1e-5", "at least 1e-4 s")] {
+        let message = common::refused(
+            "run",
+            &format!("self-weight-period-{period}"),
+            &format!(
+                "[body]\nheight = 4.0\nwidth = 0.7\ndensity = 600.0\nperiod = {period}\nself_weight = \"consistent\"\n{tail}"
+            ),
+        );
+        assert!(message.contains(words), "{message}");
+    }
+    // Close to buckling the rocking branch still falls (or the body is refused), never a
+    // silent model whose force grows after uplift.
+    for youngs_modulus in [1.18e6, 1.1788e6] {
+        let text = base.replace("5e6", &format!("{youngs_modulus:e}"))
+            + "self_weight = \"consistent\"\n"
+            + tail;
+        if let Ok(m) = flexrock::model::Model::from_toml_str(&text, &Default::default()) {
+            assert!(m.constants.rocking_stiffness < 0.0);
+            assert!(m.constants.topple_displacement > m.constants.uplift_displacement);
+        }
+    }
     // The paper's body under the consistent variant has a period of 1.772 s (OpenSees 1.772 s):
     // asking for it gives back E = 5 MPa.
     let m = common::model(&format!(

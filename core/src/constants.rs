@@ -233,6 +233,22 @@ impl Constants {
                 + 2.0 * shape.int_u);
         let rocking = RockingBranch::new(&shape, ke, s_n, b, mg / h);
 
+        if !(rocking.stiffness < 0.0 && rocking.topple_displacement > s_n) {
+            return Err(Error::invalid(
+                "derived restoring force while rocking",
+                format!(
+                    "dF/dq = {} N/m, F = 0 at q = {} m",
+                    crate::format::shortest(rocking.stiffness),
+                    crate::format::shortest(rocking.topple_displacement)
+                ),
+                &format!(
+                    "the force must fall after uplift at s_n = {} m and vanish beyond it: this body \
+                     is too close to buckling under its own weight for the model",
+                    crate::format::shortest(s_n)
+                ),
+            ));
+        }
+
         // Eq. 13 (per unit H): integrals of the rocking velocity shape V = s' U + r' xi, with
         // s' = ds/dq and r' = 1 - s' constant while rocking (the paper: (-s_n U + B xi)/d).
         let (ds, dr) = (rocking.flexural_slope, 1.0 - rocking.flexural_slope);
@@ -302,6 +318,10 @@ impl Constants {
             SelfWeight::Paper => Ok(weightless(
                 ModeShapeIntegrals::for_body(body).unwrap_or_else(ModeShapeIntegrals::exact),
             )),
+            // Below MIN_PERIOD Constants::new refuses the body, naming the period.
+            SelfWeight::Consistent if !(period >= MIN_PERIOD) => {
+                Ok(weightless(ModeShapeIntegrals::exact()))
+            }
             SelfWeight::Consistent => {
                 let period_of = |flexural_rigidity: f64| {
                     let trial = Body {
@@ -337,6 +357,20 @@ impl Constants {
                     } else {
                         high = mid;
                     }
+                }
+                // Near buckling the period grows without bound; the bisection cannot get
+                // closer to buckling than the Ritz solve resolves, so check what it reached.
+                let reached = period_of(high);
+                if (reached - period).abs() > 1e-6 * period {
+                    return Err(Error::invalid(
+                        "body.period",
+                        period,
+                        &format!(
+                            "with the weight in the bending the longest period this body can have \
+                             short of buckling under its own weight is about {} s",
+                            crate::format::significant(reached, 4)
+                        ),
+                    ));
                 }
                 Ok(high)
             }
