@@ -159,3 +159,21 @@ def test_to_pandas():
     frame = flexrock.simulate(flexrock.Model.from_file(MODEL)).to_pandas()
     assert isinstance(frame, pandas.DataFrame)
     assert list(frame.columns)[:5] == ["t", "q", "qdot", "s", "r"]
+
+
+def test_the_consistent_variant_is_one_key_away(tmp_path):
+    # The self-weight-consistent variant from Python equals the command line's, and its
+    # constants are those of props --json for the same setting.
+    run_cli("run", MODEL, "--out", tmp_path, "--set", "body.self_weight=consistent")
+    model = flexrock.Model.from_file(MODEL)
+    model.set("body.self_weight", "consistent")
+    result = flexrock.simulate(model)
+    same_as_cli(result, tmp_path)
+    props = flexrock.props(model)
+    assert props["constants"]["self_weight"] == "consistent"
+    # An elastic beam-column with P-Delta lifts off at 0.1895 m (validation/opensees).
+    assert abs(props["constants"]["uplift_displacement"] - 0.1895) < 0.003
+    paper = flexrock.props(flexrock.Model.from_file(MODEL))
+    assert paper["constants"]["uplift_displacement"] < 0.16
+    with pytest.raises(flexrock.FlexrockError, match="body.self_weight"):
+        model.set("body.self_weight", "both")
