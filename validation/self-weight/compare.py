@@ -20,6 +20,9 @@ import matplotlib
 matplotlib.use("svg")
 import matplotlib.pyplot as plt  # noqa: E402
 
+plt.rcParams["svg.hashsalt"] = "flexrock-self-weight"  # the same SVG from run to run
+SVG_META = {"Date": None}
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.abspath(os.path.join(HERE, "..", ".."))
 OPS = os.path.join(ROOT, "validation", "opensees", "results")
@@ -40,7 +43,7 @@ TMP = tempfile.mkdtemp(prefix="flexrock-sw-")
 def sh(args):
     """Run flexrock from the repository root; log the command; return stdout."""
     cmd = [BIN] + list(args)
-    COMMANDS.append(" ".join(["flexrock"] + list(args)))
+    COMMANDS.append(" ".join(["flexrock"] + list(args)).replace(TMP, "$TMP"))
     p = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True)
     if p.returncode != 0:
         sys.exit(f"failed ({p.returncode}): {' '.join(cmd)}\n{p.stderr}")
@@ -182,7 +185,7 @@ def pushover():
         ax.set_title(f"pushover, E x {efac}")
         ax.legend(fontsize=8)
     fig.tight_layout()
-    fig.savefig(os.path.join(RES, "pushover.svg"))
+    fig.savefig(os.path.join(RES, "pushover.svg"), metadata=SVG_META)
     plt.close(fig)
     return rows
 
@@ -310,7 +313,7 @@ def dynamics(fem_T):
         ax.set_title(title)
         ax.legend(fontsize=8)
         fig.tight_layout()
-        fig.savefig(os.path.join(RES, fname + ".svg"))
+        fig.savefig(os.path.join(RES, fname + ".svg"), metadata=SVG_META)
         plt.close(fig)
     return rows
 
@@ -356,7 +359,7 @@ def spectrum():
     ax.set_title("overturning spectrum, one-sine pulse (models/pulse-map.toml)")
     ax.legend(fontsize=8)
     fig.tight_layout()
-    fig.savefig(os.path.join(RES, "spectrum.svg"))
+    fig.savefig(os.path.join(RES, "spectrum.svg"), metadata=SVG_META)
     plt.close(fig)
     return md
 
