@@ -235,9 +235,25 @@ def fem_dyn(efac, Tdamp):
     h = read_csv(os.path.join(d, "fem_history.csv"))
     t = np.array([fnum(r["t"]) for r in h])
     q = np.array([fnum(r["q"]) for r in h])
-    ups = s["uplifts"]
-    sus = [u for u in ups if u["t_end"] - u["t_start"] >= MIN_EPISODE]
-    first = lambda side: min([u["t_start"] for u in sus if u["side"] == side], default=float("nan"))
+    # a toe counts as up when it is 1e-6 m above the floor, as in OpenSees: the base rotation
+    # rocking/H times B exceeds 1e-6 m (rocking > 0: left corner up, flexrock's rock-right)
+    r = np.array([fnum(x["rocking"]) for x in h])
+    B, H = 0.7, 4.0
+    sus = []
+    for side, up in (("rock-right", r * B / H > 1e-6), ("rock-left", -r * B / H > 1e-6)):
+        i = 0
+        while i < len(t):
+            if up[i]:
+                j = i
+                while j + 1 < len(t) and up[j + 1]:
+                    j += 1
+                if t[j] - t[i] + (t[1] - t[0]) >= MIN_EPISODE:
+                    sus.append((t[i], side))
+                i = j + 1
+            else:
+                i += 1
+    first = lambda side: min([a for a, b in sus if b == side], default=float("nan"))
+    ups = s["uplifts"]  # the FEM's own episodes (a corner free, rocking above 1 % of B)
     ov = s.get("overturned_at")
     return dict(peak=float(np.max(np.abs(q))), pos=float(q.max()), neg=float(q.min()),
                 t_rr=first("rock-right"), t_rl=first("rock-left"), n=len(sus), n_raw=len(ups),
@@ -255,14 +271,15 @@ def dynamics(fem_T):
         if key not in best or fnum(r["dt"]) < fnum(best[key]["dt"]):
             best[key] = r
     cases = [("paper-sine", 1)] + [(rec, sc) for sc in (1, 5) for rec in RECORDS]
-    header = ["body", "excitation", "scale", "source", "peak abs q (m)", "peak q+ (m)", "peak q- (m)",
+    header = ["body", "excitation", "scale", "source", "peak abs q (m)", "% vs OpenSees", "peak q+ (m)", "peak q- (m)",
               "first rock-right t (s)", "first rock-left t (s)", "uplifts >= 0.02 s", "uplifts raw",
               "overturned", "t overturn (s)"]
     rows, hist = [], {}
     for efac in (1, 10):
         for rec, sc in cases:
             o = best[(f"E{efac}_pdelta", rec, sc)]
-            rows.append([f"E x {efac}", rec, sc, f"OpenSees dt={o['dt']}", fnum(o["peak_q"]), fnum(o["peak_q_pos"]),
+            ref = fnum(o["peak_q"])
+            rows.append([f"E x {efac}", rec, sc, f"OpenSees dt={o['dt']}", ref, "", fnum(o["peak_q_pos"]),
                          fnum(o["peak_q_neg"]), fnum(o["t_first_uplift_left"]), fnum(o["t_first_uplift_right"]),
                          int(o["n_uplifts"]), "", o["overturned"], fnum(o["t_overturn"])])
             for v in VARIANTS:
@@ -276,13 +293,13 @@ def dynamics(fem_T):
                 r = flexrock_dyn(rec, model, extra, v, efac, keep)
                 if keep:
                     hist[(rec, v)] = r["hist"]
-                rows.append([f"E x {efac}", rec, sc, f"flexrock {v}", r["peak"], r["pos"], r["neg"], r["t_rr"],
+                rows.append([f"E x {efac}", rec, sc, f"flexrock {v}", r["peak"], pct(r["peak"], ref), r["pos"], r["neg"], r["t_rr"],
                              r["t_rl"], r["n"], r["n_raw"], r["over"], r["t_over"]])
             if rec == "paper-sine":
                 r = fem_dyn(efac, fem_T[efac])
                 if efac == 1:
                     hist[(rec, "fem")] = r["hist"]
-                rows.append([f"E x {efac}", rec, sc, "FEM rigid plate 8x40", r["peak"], r["pos"], r["neg"],
+                rows.append([f"E x {efac}", rec, sc, "FEM rigid plate 8x40", r["peak"], pct(r["peak"], ref), r["pos"], r["neg"],
                              r["t_rr"], r["t_rl"], r["n"], r["n_raw"], r["over"], r["t_over"]])
     write_csv(os.path.join(RES, "dynamics.csv"), header, rows)
     with open(os.path.join(RES, "dynamics.md"), "w") as f:
