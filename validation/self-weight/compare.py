@@ -371,6 +371,7 @@ def spectrum():
                 color=col[efac], label=f"E x {efac}, {v}", mfc="none" if v == "paper" else None)
     ax.plot(curves[(1, "paper")][0], curves[(1, "paper")][2], color="0.4", ls=":", label="Housner rigid block")
     ax.set_xscale("log")
+    ax.set_yscale("log")
     ax.set_xlabel("one-sine pulse period Tp (s)")
     ax.set_ylabel("minimum overturning amplitude (m/s$^2$)")
     ax.set_title("overturning spectrum, one-sine pulse (models/pulse-map.toml)")
