@@ -344,7 +344,11 @@ fn sweep<'py>(
         (None, text) => {
             scratch = tempfile::tempdir()?;
             let path = scratch.path().join("model.toml");
-            std::fs::write(&path, text.as_deref().unwrap_or_default())?;
+            let text = text.as_deref().unwrap_or_default();
+            std::fs::write(
+                &path,
+                record_paths_from_here(text).unwrap_or_else(|| text.to_owned()),
+            )?;
             path
         }
     };
@@ -378,6 +382,25 @@ fn sweep<'py>(
         }
     }
     Ok(out)
+}
+
+/// A model text whose relative `excitation.path` is made absolute from the current directory,
+/// as `simulate` reads it (the sweep reads the text from a temporary directory, so a relative
+/// record path would be looked for there). `None` when there is nothing to change (or the text
+/// does not parse: the sweep then reports that itself).
+fn record_paths_from_here(text: &str) -> Option<String> {
+    let mut table: toml::Table = text.parse().ok()?;
+    let excitation = table.get_mut("excitation")?.as_table_mut()?;
+    let path = std::path::Path::new(excitation.get("path")?.as_str()?);
+    if path.is_absolute() {
+        return None;
+    }
+    let absolute = std::env::current_dir().ok()?.join(path);
+    excitation.insert(
+        "path".to_owned(),
+        toml::Value::String(absolute.to_str()?.to_owned()),
+    );
+    Some(table.to_string())
 }
 
 /// Columns of sweep.csv that hold text (so that an all-empty one stays a list of str).

@@ -177,3 +177,16 @@ def test_the_consistent_variant_is_one_key_away(tmp_path):
     assert paper["constants"]["uplift_displacement"] < 0.16
     with pytest.raises(flexrock.FlexrockError, match="body.self_weight"):
         model.set("body.self_weight", "both")
+
+
+def test_sweep_of_a_model_text_reads_its_record_from_the_current_directory(monkeypatch):
+    # A model given as text reads a relative record path from the current directory, in a
+    # sweep as in simulate; the rows equal those of the same model read from its file.
+    record_model = ROOT / "models" / "elcentro1940.toml"
+    monkeypatch.chdir(record_model.parent)
+    axes = {"excitation.scale": [0.5, 1.0]}
+    from_text = flexrock.sweep(flexrock.Model.from_toml(record_model.read_text()), axes)
+    from_file = flexrock.sweep(flexrock.Model.from_file(record_model), axes)
+    assert list(from_text["status"]) == ["ok", "ok"]
+    for name in ["max_abs_q_over_B", "n_uplift", "steps"]:
+        assert np.array_equal(from_text[name], from_file[name]), name
