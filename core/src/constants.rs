@@ -319,7 +319,7 @@ impl Constants {
                 ModeShapeIntegrals::for_body(body).unwrap_or_else(ModeShapeIntegrals::exact),
             )),
             // Below MIN_PERIOD Constants::new refuses the body, naming the period.
-            SelfWeight::Consistent if !(period >= MIN_PERIOD) => {
+            SelfWeight::Consistent if period.is_nan() || period < MIN_PERIOD => {
                 Ok(weightless(ModeShapeIntegrals::exact()))
             }
             SelfWeight::Consistent => {
