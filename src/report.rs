@@ -3,11 +3,12 @@
 //! the rigid-limit check and the linear acceleration method's stability limit; every other
 //! number is read from those files.
 //!
-//! The files are read into typed structs ([`CompareFile`], [`ConvergeFile`], [`RigidRunFile`],
-//! CSV rows by column name): a missing key or column is an [`Error::ReadResult`] naming the file
-//! and the key, not a "?" or NaN in the report. The structs hold the keys the report uses, owned
-//! (the written summaries borrow the model and the solution, and the committed files predate
-//! some of their newer keys); their field names are the keys the commands write.
+//! The files are read into typed structs ([`CompareFile`], [`ConvergeFile`] with the [`Case`]s
+//! and [`ObservedOrder`]s that `converge` writes, [`RigidRunFile`], CSV rows by column name): a
+//! missing key or column is an [`Error::ReadResult`] naming the file and the key, not a "?" or
+//! NaN in the report. Where the written summary borrows the model and the solution (compare.json,
+//! summary.json), or the committed files predate some of its newer keys, the reader is an owned
+//! struct here holding the keys the report uses, under the names the commands write.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -15,6 +16,7 @@ use std::path::{Path, PathBuf};
 use serde::de::DeserializeOwned;
 use serde::{Deserialize, Deserializer};
 
+use crate::converge::{Case, ObservedOrder};
 use crate::error::{Error, Result};
 use crate::output;
 use crate::run::VERSION;
@@ -38,12 +40,12 @@ pub struct ReportInputs {
 
 /// A number that the writer may have stored as null (serde_json writes NaN as null): null reads
 /// back as NaN. The key itself must be there.
-fn nan_if_null<'de, D: Deserializer<'de>>(d: D) -> std::result::Result<f64, D::Error> {
+pub(crate) fn nan_if_null<'de, D: Deserializer<'de>>(d: D) -> std::result::Result<f64, D::Error> {
     Ok(Option::<f64>::deserialize(d)?.unwrap_or(f64::NAN))
 }
 
 /// An optional value whose key must be there (serde would otherwise read a missing key as None).
-fn required<'de, D: Deserializer<'de>, T: Deserialize<'de>>(
+pub(crate) fn required<'de, D: Deserializer<'de>, T: Deserialize<'de>>(
     d: D,
 ) -> std::result::Result<T, D::Error> {
     T::deserialize(d)
@@ -168,40 +170,6 @@ pub struct CompareFile {
     pub comparison: ComparisonRead,
 }
 
-/// One case of convergence.json.
-#[derive(Debug, Clone, Deserialize)]
-pub struct CaseRead {
-    pub method: String,
-    #[serde(deserialize_with = "required")]
-    pub dt: Option<f64>,
-    #[serde(deserialize_with = "required")]
-    pub rtol: Option<f64>,
-    #[serde(deserialize_with = "nan_if_null")]
-    pub max_q_error: f64,
-    #[serde(deserialize_with = "nan_if_null")]
-    pub max_event_time_error: f64,
-    #[serde(deserialize_with = "nan_if_null")]
-    pub peak_error: f64,
-    pub event_count_difference: i64,
-    pub unmatched_events: usize,
-    pub steps: usize,
-    pub rhs_evaluations: usize,
-    #[serde(deserialize_with = "nan_if_null")]
-    pub wall_time_s: f64,
-    pub status: String,
-}
-
-/// One observed order of convergence.json.
-#[derive(Debug, Clone, Deserialize)]
-pub struct OrderRead {
-    pub method: String,
-    pub metric: String,
-    pub against: String,
-    #[serde(deserialize_with = "nan_if_null")]
-    pub slope: f64,
-    pub points: usize,
-}
-
 /// convergence.json, the keys the report uses.
 #[derive(Debug, Clone, Deserialize)]
 pub struct ConvergeFile {
@@ -209,8 +177,8 @@ pub struct ConvergeFile {
     pub reference_rtol: f64,
     pub reference_events: usize,
     pub output_dt: f64,
-    pub cases: Vec<CaseRead>,
-    pub orders: Vec<OrderRead>,
+    pub cases: Vec<Case>,
+    pub orders: Vec<ObservedOrder>,
 }
 
 /// inputs.body of summary.json: the model file's `[body]`.
