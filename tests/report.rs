@@ -187,3 +187,50 @@ fn the_numbers_come_from_the_files_not_from_the_text() {
     // beta = 0: omega dt < 2, dt < T/pi = 0.318 T.
     assert!(text.contains("needs dt < 0.318 T"), "{text}");
 }
+
+#[test]
+fn a_case_reads_back_what_converge_writes_nan_included() {
+    let case = flexrock::converge::Case {
+        method: "newmark-substep".to_string(),
+        dt: Some(0.02),
+        rtol: None,
+        max_q_error: 1e-3,
+        max_event_time_error: f64::NAN,
+        peak_error: 2e-3,
+        event_count_difference: -1,
+        unmatched_events: 1,
+        steps: 300,
+        rhs_evaluations: 533,
+        wall_time_s: 1e-4,
+        max_energy_residual: 0.5,
+        status: "ok".to_string(),
+    };
+    let json = serde_json::to_string(&case).unwrap();
+    assert!(json.contains("\"max_event_time_error\":null"), "{json}");
+    let back: flexrock::converge::Case = serde_json::from_str(&json).unwrap();
+    assert!(back.max_event_time_error.is_nan());
+    assert_eq!(back.rtol, None);
+    assert_eq!(serde_json::to_string(&back).unwrap(), json);
+    // A missing dt is an error, not None.
+    let without_dt = json.replace("\"dt\":0.02,", "");
+    let e = serde_json::from_str::<flexrock::converge::Case>(&without_dt).unwrap_err();
+    assert!(e.to_string().contains("`dt`"), "{e}");
+}
+
+#[test]
+fn an_empty_time_in_compare_csv_reads_as_a_dash() {
+    // An unmatched event has no Newmark time: the cell is empty and the report shows "-".
+    let dir = edited_copy("report-empty-cell", "compare-compensate/compare.csv", |t| {
+        let mut lines: Vec<String> = t.lines().map(str::to_string).collect();
+        let mut cells: Vec<&str> = lines[1].split(',').collect();
+        cells[5] = "";
+        cells[6] = "";
+        lines[1] = cells.join(",");
+        lines.join("\n") + "\n"
+    });
+    let text = report_text(&inputs(&dir)).expect("report");
+    assert!(
+        text.contains("| 0 | uplift | pre-uplift -> rock-left | 0.520590 | - | - |"),
+        "{text}"
+    );
+}
