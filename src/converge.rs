@@ -7,7 +7,7 @@
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use crate::compare::{compare, max_event_shift};
 use crate::error::Result;
@@ -61,16 +61,24 @@ impl Default for ConvergeOptions {
 }
 
 /// One solver configuration measured against the reference.
-#[derive(Debug, Clone, Serialize)]
+///
+/// Read back by `flexrock report`: NaN metrics are written as null and read back as NaN, and
+/// `dt`, `rtol` must be present (null for the other kind of method).
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct Case {
     pub method: String,
+    #[serde(deserialize_with = "crate::report::required")]
     pub dt: Option<f64>,
+    #[serde(deserialize_with = "crate::report::required")]
     pub rtol: Option<f64>,
     /// Largest |q - q_reference| on the common output grid, m.
+    #[serde(deserialize_with = "crate::report::nan_if_null")]
     pub max_q_error: f64,
     /// Largest |t - t_reference| over matched events, s.
+    #[serde(deserialize_with = "crate::report::nan_if_null")]
     pub max_event_time_error: f64,
     /// Larger of the errors of max q and min q, m.
+    #[serde(deserialize_with = "crate::report::nan_if_null")]
     pub peak_error: f64,
     /// Number of events minus the reference's.
     pub event_count_difference: i64,
@@ -78,20 +86,23 @@ pub struct Case {
     pub unmatched_events: usize,
     pub steps: usize,
     pub rhs_evaluations: usize,
+    #[serde(deserialize_with = "crate::report::nan_if_null")]
     pub wall_time_s: f64,
+    #[serde(deserialize_with = "crate::report::nan_if_null")]
     pub max_energy_residual: f64,
     /// "ok", or why the case has no result.
     pub status: String,
 }
 
 /// A least-squares slope of log(error) against log(dt) or log(work).
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct ObservedOrder {
     pub method: String,
     /// "max_q_error", "max_event_time_error" or "peak_error".
     pub metric: String,
     /// "dt" (slope = order) or "rhs_evaluations" (slope = -order per unit work).
     pub against: String,
+    #[serde(deserialize_with = "crate::report::nan_if_null")]
     pub slope: f64,
     /// Cases in the fit (those with every event matched and a positive error).
     pub points: usize,

@@ -1,15 +1,26 @@
 //! `flexrock report`: assembles validation/REPORT.md from the files that `compare`, `converge`
 //! and `run` wrote. It computes nothing new about the dynamics except Housner's closed form for
-//! the rigid-limit check; every other number is read from those files.
+//! the rigid-limit check and the linear acceleration method's stability limit; every other
+//! number is read from those files.
+//!
+//! The files are read into typed structs ([`CompareFile`], [`ConvergeFile`] with the [`Case`]s
+//! and [`ObservedOrder`]s that `converge` writes, [`RigidRunFile`], CSV rows by column name): a
+//! missing key or column is an [`Error::ReadResult`] naming the file and the key, not a "?" or
+//! NaN in the report. Where the written summary borrows the model and the solution (compare.json,
+//! summary.json), or the committed files predate some of its newer keys, the reader is an owned
+//! struct here holding the keys the report uses, under the names the commands write.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use serde_json::Value;
+use serde::de::DeserializeOwned;
+use serde::{Deserialize, Deserializer};
 
+use crate::converge::{Case, ObservedOrder};
 use crate::error::{Error, Result};
 use crate::output;
 use crate::run::VERSION;
+use crate::solver::newmark::critical_omega_dt;
 
 /// Where the inputs of the report are.
 #[derive(Debug, Clone)]
@@ -27,31 +38,242 @@ pub struct ReportInputs {
     pub command: String,
 }
 
-fn read_json(path: &Path) -> Result<Value> {
-    let text = std::fs::read_to_string(path).map_err(|e| Error::ReadResult {
-        path: path.to_path_buf(),
-        message: e.to_string(),
-    })?;
-    serde_json::from_str(&text).map_err(|e| Error::ReadResult {
-        path: path.to_path_buf(),
-        message: e.to_string(),
-    })
+/// A number that the writer may have stored as null (serde_json writes NaN as null): null reads
+/// back as NaN. The key itself must be there.
+pub(crate) fn nan_if_null<'de, D: Deserializer<'de>>(d: D) -> std::result::Result<f64, D::Error> {
+    Ok(Option::<f64>::deserialize(d)?.unwrap_or(f64::NAN))
 }
 
-fn read_csv(path: &Path) -> Result<Vec<csv::StringRecord>> {
+/// An optional value whose key must be there (serde would otherwise read a missing key as None).
+pub(crate) fn required<'de, D: Deserializer<'de>, T: Deserialize<'de>>(
+    d: D,
+) -> std::result::Result<T, D::Error> {
+    T::deserialize(d)
+}
+
+/// A peak of q, as compare.json writes it.
+#[derive(Debug, Clone, Deserialize)]
+pub struct PeakRead {
+    pub value: f64,
+    pub t: f64,
+}
+
+/// The solver settings of one solution in compare.json (`[solver]` keys).
+#[derive(Debug, Clone, Deserialize)]
+pub struct SolverRead {
+    pub method: String,
+    #[serde(default)]
+    pub rtol: Option<f64>,
+    #[serde(default)]
+    pub dt: Option<f64>,
+    #[serde(default)]
+    pub newmark_beta: Option<f64>,
+    #[serde(default)]
+    pub newmark_gamma: Option<f64>,
+}
+
+/// The cost of one solution.
+#[derive(Debug, Clone, Deserialize)]
+pub struct StatisticsRead {
+    pub method: String,
+    pub steps: usize,
+    pub rhs_evaluations: usize,
+}
+
+/// One dent of s (findings.dents).
+#[derive(Debug, Clone, Deserialize)]
+pub struct DentRead {
+    pub mode: String,
+    pub t_start: f64,
+    pub t_end: f64,
+    pub max_abs_r: f64,
+    pub min_abs_s: f64,
+    pub depth: f64,
+}
+
+/// The paper's findings measured on one solution.
+#[derive(Debug, Clone, Deserialize)]
+pub struct FindingsRead {
+    #[serde(deserialize_with = "nan_if_null")]
+    pub max_abs_s_over_s_n: f64,
+    pub s_never_exceeds_s_n: bool,
+    #[serde(deserialize_with = "nan_if_null")]
+    pub max_abs_r_where_abs_q_within_s_n: f64,
+    #[serde(deserialize_with = "nan_if_null")]
+    pub max_q_r_relation_residual: f64,
+    #[serde(deserialize_with = "nan_if_null")]
+    pub max_s_r_relation_residual: f64,
+    pub rocking_episodes: usize,
+    pub episodes_with_dent: usize,
+    pub dents: Vec<DentRead>,
+}
+
+/// One solution in compare.json.
+#[derive(Debug, Clone, Deserialize)]
+pub struct SolutionRead {
+    pub method: String,
+    pub solver: SolverRead,
+    pub n_events: usize,
+    pub max_q: PeakRead,
+    pub min_q: PeakRead,
+    pub statistics: StatisticsRead,
+    pub findings: FindingsRead,
+}
+
+/// comparison.events of compare.json.
+#[derive(Debug, Clone, Deserialize)]
+pub struct EventAgreementRead {
+    pub n_reference: usize,
+    pub n_matched: usize,
+    #[serde(deserialize_with = "nan_if_null")]
+    pub max_abs_time_difference: f64,
+    #[serde(deserialize_with = "nan_if_null")]
+    pub mean_abs_time_difference: f64,
+}
+
+/// comparison.peaks of compare.json.
+#[derive(Debug, Clone, Deserialize)]
+pub struct PeakDifferencesRead {
+    pub max_q_difference: f64,
+    pub min_q_difference: f64,
+}
+
+/// comparison.grid of compare.json.
+#[derive(Debug, Clone, Deserialize)]
+pub struct GridRead {
+    pub output_dt: f64,
+    #[serde(deserialize_with = "nan_if_null")]
+    pub rms_q_difference: f64,
+    #[serde(deserialize_with = "nan_if_null")]
+    pub max_abs_q_difference: f64,
+}
+
+/// comparison of compare.json.
+#[derive(Debug, Clone, Deserialize)]
+pub struct ComparisonRead {
+    pub events: EventAgreementRead,
+    pub peaks: PeakDifferencesRead,
+    pub grid: GridRead,
+}
+
+/// compare.json, the keys the report uses.
+#[derive(Debug, Clone, Deserialize)]
+pub struct CompareFile {
+    #[serde(deserialize_with = "required")]
+    pub model_file: Option<String>,
+    #[serde(rename = "T")]
+    pub period: f64,
+    pub s_n: f64,
+    pub duration: f64,
+    pub reference: SolutionRead,
+    pub newmark: SolutionRead,
+    pub comparison: ComparisonRead,
+}
+
+/// convergence.json, the keys the report uses.
+#[derive(Debug, Clone, Deserialize)]
+pub struct ConvergeFile {
+    pub reference_method: String,
+    pub reference_rtol: f64,
+    pub reference_events: usize,
+    pub output_dt: f64,
+    pub cases: Vec<Case>,
+    pub orders: Vec<ObservedOrder>,
+}
+
+/// inputs.body of summary.json: the model file's `[body]`.
+#[derive(Debug, Clone, Deserialize)]
+pub struct BodyInputsRead {
+    pub height: f64,
+    pub width: f64,
+    /// Absent or null: the default gravity.
+    #[serde(default)]
+    pub gravity: Option<f64>,
+}
+
+/// inputs of summary.json.
+#[derive(Debug, Clone, Deserialize)]
+pub struct InputsRead {
+    pub body: BodyInputsRead,
+}
+
+/// initial_state of summary.json.
+#[derive(Debug, Clone, Deserialize)]
+pub struct InitialStateRead {
+    pub q: f64,
+}
+
+/// The adaptive solver's settings in summary.json.
+#[derive(Debug, Clone, Deserialize)]
+pub struct AdaptiveSolverRead {
+    pub rtol: f64,
+}
+
+/// constants of summary.json, the restitution pair.
+#[derive(Debug, Clone, Deserialize)]
+pub struct ZetasRead {
+    pub zeta_uplift: f64,
+    pub zeta_landing: f64,
+}
+
+/// summary.json of `flexrock run` on the rigid-limit model, the keys the report uses.
+#[derive(Debug, Clone, Deserialize)]
+pub struct RigidRunFile {
+    pub s_n: f64,
+    #[serde(rename = "T")]
+    pub period: f64,
+    pub solver: AdaptiveSolverRead,
+    pub statistics: StatisticsRead,
+    pub constants: ZetasRead,
+    pub initial_state: InitialStateRead,
+    pub inputs: InputsRead,
+}
+
+/// A row of compare.csv (the columns the report uses; empty numbers are None).
+#[derive(Debug, Clone, Deserialize)]
+pub struct CompareRow {
+    pub index: String,
+    pub kind: String,
+    pub from: String,
+    pub to: String,
+    #[serde(deserialize_with = "required")]
+    pub t_reference: Option<f64>,
+    #[serde(deserialize_with = "required")]
+    pub t_newmark: Option<f64>,
+    #[serde(deserialize_with = "required")]
+    pub t_difference: Option<f64>,
+}
+
+/// A row of events.csv (the columns the report uses).
+#[derive(Debug, Clone, Deserialize)]
+pub struct EventRow {
+    pub t: f64,
+    pub kind: String,
+}
+
+/// Reads a JSON file into `T`; a missing key, a wrong type or an unreadable file is an
+/// [`Error::ReadResult`] naming the file (and serde's message names the key).
+pub fn read_json<T: DeserializeOwned>(path: &Path) -> Result<T> {
+    let fail = |message: String| Error::ReadResult {
+        path: path.to_path_buf(),
+        message,
+    };
+    let text = std::fs::read_to_string(path).map_err(|e| fail(e.to_string()))?;
+    serde_json::from_str(&text).map_err(|e| fail(e.to_string()))
+}
+
+/// Reads a CSV file by column name into rows of `T`; a missing column is an
+/// [`Error::ReadResult`] naming the file and the column.
+pub fn read_csv<T: DeserializeOwned>(path: &Path) -> Result<Vec<T>> {
     let fail = |message: String| Error::ReadResult {
         path: path.to_path_buf(),
         message,
     };
     let mut reader = csv::Reader::from_path(path).map_err(|e| fail(e.to_string()))?;
     reader
-        .records()
-        .collect::<std::result::Result<Vec<_>, _>>()
+        .deserialize()
+        .collect::<std::result::Result<Vec<T>, _>>()
         .map_err(|e| fail(e.to_string()))
-}
-
-fn f(v: &Value) -> f64 {
-    v.as_f64().unwrap_or(f64::NAN)
 }
 
 fn sci(x: f64) -> String {
@@ -62,188 +284,281 @@ fn sci(x: f64) -> String {
     }
 }
 
+/// A number from a CSV field, rounded for the report; empty fields read "-".
+fn short(field: Option<f64>, digits: usize) -> String {
+    field.map_or("-".to_string(), |v| format!("{v:.digits$}"))
+}
+
+/// A solver setting that the solution's kind of solver must have (`dt` for Newmark, `rtol` for
+/// the adaptive reference): an error naming the file and the key when it is absent.
+fn setting(value: Option<f64>, path: &Path, within: &str, key: &str) -> Result<f64> {
+    value.ok_or_else(|| Error::ReadResult {
+        path: path.to_path_buf(),
+        message: format!("missing field `{key}` in {within}"),
+    })
+}
+
+/// Stability limit of the compensate run's Newmark method (its beta, gamma) as a share of the
+/// period: sqrt(12)/(2 pi) = 0.551 for linear acceleration; None when unconditionally stable.
+fn stability_share(file: &CompareFile, path: &Path) -> Result<Option<f64>> {
+    let s = &file.newmark.solver;
+    let beta = setting(s.newmark_beta, path, "newmark.solver", "newmark_beta")?;
+    let gamma = setting(s.newmark_gamma, path, "newmark.solver", "newmark_gamma")?;
+    Ok(critical_omega_dt(beta, gamma).map(|omega_dt| omega_dt / (2.0 * std::f64::consts::PI)))
+}
+
+/// Every input of the report, read and checked.
+struct Read {
+    compensate: CompareFile,
+    substep: CompareFile,
+    /// The reference's relative tolerance (compensate run).
+    reference_rtol: f64,
+    /// The Newmark steps of the two compare runs, s.
+    compensate_dt: f64,
+    substep_dt: f64,
+    /// Newmark's stability limit over T (compensate run's beta and gamma).
+    stability_share: Option<f64>,
+    compensate_pairs: Vec<CompareRow>,
+    converge: ConvergeFile,
+    rigid: RigidRunFile,
+    rigid_events: Vec<EventRow>,
+}
+
+fn read_inputs(inputs: &ReportInputs) -> Result<Read> {
+    let compensate_json = inputs.compare_compensate.join("compare.json");
+    let substep_json = inputs.compare_substep.join("compare.json");
+    let compensate: CompareFile = read_json(&compensate_json)?;
+    let substep: CompareFile = read_json(&substep_json)?;
+    Ok(Read {
+        reference_rtol: setting(
+            compensate.reference.solver.rtol,
+            &compensate_json,
+            "reference.solver",
+            "rtol",
+        )?,
+        compensate_dt: setting(
+            compensate.newmark.solver.dt,
+            &compensate_json,
+            "newmark.solver",
+            "dt",
+        )?,
+        substep_dt: setting(
+            substep.newmark.solver.dt,
+            &substep_json,
+            "newmark.solver",
+            "dt",
+        )?,
+        stability_share: stability_share(&compensate, &compensate_json)?,
+        compensate,
+        substep,
+        compensate_pairs: read_csv(&inputs.compare_compensate.join("compare.csv"))?,
+        converge: read_json(&inputs.converge.join("convergence.json"))?,
+        rigid: read_json(&inputs.rigid.join("summary.json"))?,
+        rigid_events: read_csv(&inputs.rigid.join("events.csv"))?,
+    })
+}
+
+/// The report's text from the files under `inputs`.
+pub fn report_text(inputs: &ReportInputs) -> Result<String> {
+    let r = read_inputs(inputs)?;
+    let fig = |name: &str| format!("{}/{name}", inputs.figures_dir);
+    let mut t = String::new();
+    write_preamble(&mut t, &inputs.command);
+    write_paper_example(&mut t, &r, &fig);
+    write_convergence(&mut t, &r.converge, &fig);
+    write_rigid_limit(&mut t, &r);
+    write_findings(&mut t, &r, &fig);
+    Ok(t)
+}
+
 /// Writes the report to `out` (a markdown file).
 pub fn write_report(inputs: &ReportInputs, out: &Path) -> Result<PathBuf> {
-    let compensate = read_json(&inputs.compare_compensate.join("compare.json"))?;
-    let substep = read_json(&inputs.compare_substep.join("compare.json"))?;
-    let converge = read_json(&inputs.converge.join("convergence.json"))?;
-    let rigid = read_json(&inputs.rigid.join("summary.json"))?;
-    let rigid_events = read_csv(&inputs.rigid.join("events.csv"))?;
-    let compensate_pairs = read_csv(&inputs.compare_compensate.join("compare.csv"))?;
-    let fig = |name: &str| format!("{}/{name}", inputs.figures_dir);
+    let t = report_text(inputs)?;
+    let dir = out.parent().unwrap_or(Path::new("."));
+    let name = out
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "REPORT.md".to_string());
+    let mut files = output::write_atomically(dir, &[(&name, t.into_bytes())])?;
+    Ok(files.remove(0))
+}
 
-    let mut t = String::new();
+/// Title and provenance.
+fn write_preamble(t: &mut String, command: &str) {
     let _ = writeln!(
         t,
         "# Validation report: Newmark against the event-driven reference\n"
     );
     let _ = writeln!(
         t,
-        "Generated by flexrock {VERSION} with `{}`; every number below is read from the files the \
+        "Generated by flexrock {VERSION} with `{command}`; every number below is read from the files the \
          commands wrote (see validation/README.md). Do not edit by hand.\n",
-        inputs.command
     );
+}
 
-    // 1. The paper's example.
-    let rtol = f(&compensate["reference"]["solver"]["rtol"]);
+/// Section 1: the paper's example, the adaptive reference against Newmark with both event
+/// treatments, and the compensate run's matched events.
+fn write_paper_example(t: &mut String, r: &Read, fig: &dyn Fn(&str) -> String) {
+    let (c, s) = (&r.compensate, &r.substep);
+    let dt = r.compensate_dt;
     let _ = writeln!(
         t,
-        "## 1. The paper's example: adaptive reference vs Newmark dt = 0.02 s\n"
+        "## 1. The paper's example: adaptive reference vs Newmark dt = {dt} s\n"
     );
     let _ = writeln!(
         t,
         "Model: `{}` (T = {:.4} s, s_n = {:.5} m, {} s). Reference: {} at rtol = {:e}. Newmark: \
-         linear acceleration (beta = 1/6, gamma = 1/2), dt = {} s, the paper's setting; \
+         linear acceleration (beta = 1/6, gamma = 1/2), dt = {dt} s, the paper's setting; \
          *compensate* is the paper's overshoot compensation, *substep* lands a sub-step on each crossing.\n",
-        compensate["model_file"].as_str().unwrap_or("?"),
-        f(&compensate["T"]),
-        f(&compensate["s_n"]),
-        f(&compensate["duration"]),
-        compensate["reference"]["method"].as_str().unwrap_or("?"),
-        rtol,
-        f(&compensate["newmark"]["solver"]["dt"]),
+        c.model_file.as_deref().unwrap_or("?"),
+        c.period,
+        c.s_n,
+        c.duration,
+        c.reference.method,
+        r.reference_rtol,
     );
     let _ = writeln!(
         t,
         "| quantity | reference | Newmark compensate | Newmark substep |\n|---|---|---|---|"
     );
-    let ev = |v: &Value, k: &str| v["comparison"]["events"][k].clone();
     let _ = writeln!(
         t,
         "| events (uplifts + landings) | {} | {} | {} |",
-        compensate["reference"]["n_events"],
-        compensate["newmark"]["n_events"],
-        substep["newmark"]["n_events"]
+        c.reference.n_events, c.newmark.n_events, s.newmark.n_events
     );
+    let (ce, se) = (&c.comparison.events, &s.comparison.events);
     let _ = writeln!(
         t,
         "| events matched (same transition, in order) | - | {} of {} | {} of {} |",
-        ev(&compensate, "n_matched"),
-        ev(&compensate, "n_reference"),
-        ev(&substep, "n_matched"),
-        ev(&substep, "n_reference")
+        ce.n_matched, ce.n_reference, se.n_matched, se.n_reference
     );
     let _ = writeln!(
         t,
         "| max / mean abs event-time difference (s) | - | {:.4} / {:.4} | {:.5} / {:.5} |",
-        f(&ev(&compensate, "max_abs_time_difference")),
-        f(&ev(&compensate, "mean_abs_time_difference")),
-        f(&ev(&substep, "max_abs_time_difference")),
-        f(&ev(&substep, "mean_abs_time_difference"))
+        ce.max_abs_time_difference,
+        ce.mean_abs_time_difference,
+        se.max_abs_time_difference,
+        se.mean_abs_time_difference
     );
-    let peaks = |v: &Value, which: &str| {
-        format!(
-            "{:.5} m at {:.3} s",
-            f(&v["newmark"][which]["value"]),
-            f(&v["newmark"][which]["t"])
-        )
-    };
-    for (which, diff) in [("max_q", "max_q_difference"), ("min_q", "min_q_difference")] {
-        let _ = writeln!(
-            t,
-            "| {which} | {:.5} m at {:.3} s | {} ({:+.5} m) | {} ({:+.5} m) |",
-            f(&compensate["reference"][which]["value"]),
-            f(&compensate["reference"][which]["t"]),
-            peaks(&compensate, which),
-            f(&compensate["comparison"]["peaks"][diff]),
-            peaks(&substep, which),
-            f(&substep["comparison"]["peaks"][diff]),
-        );
-    }
-    let grid = |v: &Value, k: &str| f(&v["comparison"]["grid"][k]);
+    let at = |p: &PeakRead| format!("{:.5} m at {:.3} s", p.value, p.t);
+    let _ = writeln!(
+        t,
+        "| max_q | {} | {} ({:+.5} m) | {} ({:+.5} m) |",
+        at(&c.reference.max_q),
+        at(&c.newmark.max_q),
+        c.comparison.peaks.max_q_difference,
+        at(&s.newmark.max_q),
+        s.comparison.peaks.max_q_difference,
+    );
+    let _ = writeln!(
+        t,
+        "| min_q | {} | {} ({:+.5} m) | {} ({:+.5} m) |",
+        at(&c.reference.min_q),
+        at(&c.newmark.min_q),
+        c.comparison.peaks.min_q_difference,
+        at(&s.newmark.min_q),
+        s.comparison.peaks.min_q_difference,
+    );
+    let (cg, sg) = (&c.comparison.grid, &s.comparison.grid);
     let _ = writeln!(
         t,
         "| RMS / max abs q difference on the {} s grid (m) | - | {:.5} / {:.5} | {:.5} / {:.5} |",
-        grid(&compensate, "output_dt"),
-        grid(&compensate, "rms_q_difference"),
-        grid(&compensate, "max_abs_q_difference"),
-        grid(&substep, "rms_q_difference"),
-        grid(&substep, "max_abs_q_difference")
+        cg.output_dt,
+        cg.rms_q_difference,
+        cg.max_abs_q_difference,
+        sg.rms_q_difference,
+        sg.max_abs_q_difference
     );
-    let stats = |v: &Value, who: &str| {
+    let stats = |v: &SolutionRead| {
         format!(
             "{} steps, {} rhs evaluations",
-            v[who]["statistics"]["steps"], v[who]["statistics"]["rhs_evaluations"]
+            v.statistics.steps, v.statistics.rhs_evaluations
         )
     };
     let _ = writeln!(
         t,
         "| cost | {} | {} | {} |\n",
-        stats(&compensate, "reference"),
-        stats(&compensate, "newmark"),
-        stats(&substep, "newmark")
+        stats(&c.reference),
+        stats(&c.newmark),
+        stats(&s.newmark)
     );
-
-    let _ = writeln!(
-        t,
-        "Matched events, reference vs Newmark compensate (dt = 0.02 s):\n"
-    );
-    let _ = writeln!(t, "| # | kind | transition | t reference (s) | t Newmark (s) | difference (s) |\n|---|---|---|---|---|---|");
-    for r in &compensate_pairs {
-        let _ = writeln!(
-            t,
-            "| {} | {} | {} -> {} | {} | {} | {} |",
-            &r[0],
-            &r[1],
-            &r[2],
-            &r[3],
-            short(&r[4], 6),
-            short(&r[5], 6),
-            short(&r[6], 6)
-        );
-    }
-    let _ = writeln!(
-        t,
-        "\nThe compensate variant logs an event at the step end where the crossing is detected, so \
-         its event times lie on the 0.02 s grid and are late by up to one step plus the drift of \
-         the trajectory.\n"
-    );
+    write_matched_events(t, &r.compensate_pairs, dt);
     let _ = writeln!(
         t,
         "![Fig. 6 panels, compensate]({})\n\n![Fig. 6 panels, substep]({})\n",
         fig("compare-compensate.svg"),
         fig("compare-substep.svg")
     );
+}
 
-    // 2. Convergence.
+/// The matched events of the compensate run (compare.csv), with their time differences.
+fn write_matched_events(t: &mut String, pairs: &[CompareRow], dt: f64) {
+    let _ = writeln!(
+        t,
+        "Matched events, reference vs Newmark compensate (dt = {dt} s):\n"
+    );
+    let _ = writeln!(t, "| # | kind | transition | t reference (s) | t Newmark (s) | difference (s) |\n|---|---|---|---|---|---|");
+    for p in pairs {
+        let _ = writeln!(
+            t,
+            "| {} | {} | {} -> {} | {} | {} | {} |",
+            p.index,
+            p.kind,
+            p.from,
+            p.to,
+            short(p.t_reference, 6),
+            short(p.t_newmark, 6),
+            short(p.t_difference, 6)
+        );
+    }
+    let _ = writeln!(
+        t,
+        "\nThe compensate variant logs an event at the step end where the crossing is detected, so \
+         its event times lie on the {dt} s grid and are late by up to one step plus the drift of \
+         the trajectory.\n"
+    );
+}
+
+/// Section 2: the convergence study, its cases and observed orders.
+fn write_convergence(t: &mut String, converge: &ConvergeFile, fig: &dyn Fn(&str) -> String) {
     let _ = writeln!(t, "## 2. Convergence study\n");
     let _ = writeln!(
         t,
         "Reference: {} at rtol = {:e} ({} events). Errors on the common {} s grid; event-time error \
          over matched events; peak error = the larger error of max q and min q.\n",
-        converge["reference_method"].as_str().unwrap_or("?"),
-        f(&converge["reference_rtol"]),
-        converge["reference_events"],
-        f(&converge["output_dt"])
+        converge.reference_method,
+        converge.reference_rtol,
+        converge.reference_events,
+        converge.output_dt
     );
     let _ = writeln!(t, "| method | dt (s) | rtol | max q error (m) | max event-time error (s) | peak error (m) | event count diff | unmatched | steps | rhs evaluations | wall time (ms) |\n|---|---|---|---|---|---|---|---|---|---|---|");
-    for c in converge["cases"].as_array().into_iter().flatten() {
-        let opt = |k: &str| c[k].as_f64().map_or("-".to_string(), |v| format!("{v}"));
-        if c["status"] != "ok" {
+    let opt = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v}"));
+    for c in &converge.cases {
+        if c.status != "ok" {
             let _ = writeln!(
                 t,
                 "| {} | {} | {} | failed: {} | | | | | | | |",
-                c["method"].as_str().unwrap_or("?"),
-                opt("dt"),
-                opt("rtol"),
-                c["status"].as_str().unwrap_or("?")
+                c.method,
+                opt(c.dt),
+                opt(c.rtol),
+                c.status
             );
             continue;
         }
         let _ = writeln!(
             t,
             "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {:.2} |",
-            c["method"].as_str().unwrap_or("?"),
-            opt("dt"),
-            opt("rtol"),
-            sci(f(&c["max_q_error"])),
-            sci(f(&c["max_event_time_error"])),
-            sci(f(&c["peak_error"])),
-            c["event_count_difference"],
-            c["unmatched_events"],
-            c["steps"],
-            c["rhs_evaluations"],
-            f(&c["wall_time_s"]) * 1e3
+            c.method,
+            opt(c.dt),
+            opt(c.rtol),
+            sci(c.max_q_error),
+            sci(c.max_event_time_error),
+            sci(c.peak_error),
+            c.event_count_difference,
+            c.unmatched_events,
+            c.steps,
+            c.rhs_evaluations,
+            c.wall_time_s * 1e3
         );
     }
     let _ = writeln!(t, "\nObserved orders (least-squares slope of log error against log dt for Newmark, against log right-hand-side evaluations for the adaptive methods; cases with every event matched):\n");
@@ -251,15 +566,11 @@ pub fn write_report(inputs: &ReportInputs, out: &Path) -> Result<PathBuf> {
         t,
         "| method | metric | against | slope | points |\n|---|---|---|---|---|"
     );
-    for o in converge["orders"].as_array().into_iter().flatten() {
+    for o in &converge.orders {
         let _ = writeln!(
             t,
             "| {} | {} | {} | {:.2} | {} |",
-            o["method"].as_str().unwrap_or("?"),
-            o["metric"].as_str().unwrap_or("?"),
-            o["against"].as_str().unwrap_or("?"),
-            f(&o["slope"]),
-            o["points"]
+            o.method, o.metric, o.against, o.slope, o.points
         );
     }
     let _ = writeln!(
@@ -268,31 +579,34 @@ pub fn write_report(inputs: &ReportInputs, out: &Path) -> Result<PathBuf> {
         fig("convergence-dt.svg"),
         fig("convergence-work.svg")
     );
+}
 
-    // 3. Rigid limit.
+/// Section 3: the rigid-limit run against Housner's closed form (first landing, restitution),
+/// and why Newmark at the paper's dt cannot run that body.
+fn write_rigid_limit(t: &mut String, r: &Read) {
+    let rigid = &r.rigid;
     let _ = writeln!(t, "## 3. Rigid limit against Housner\n");
-    let body = &rigid["inputs"]["body"];
-    let (h, b) = (f(&body["height"]), f(&body["width"]));
-    let g = body["gravity"]
-        .as_f64()
-        .unwrap_or(crate::model::DEFAULT_GRAVITY);
-    let q0 = f(&rigid["initial_state"]["q"]);
+    let body = &rigid.inputs.body;
+    let (h, b) = (body.height, body.width);
+    let g = body.gravity.unwrap_or(crate::model::DEFAULT_GRAVITY);
+    let q0 = rigid.initial_state.q;
     let p = (3.0 * g / (2.0 * h)).sqrt();
     let housner_landing = (1.0 / (1.0 - q0 / b)).acosh() / p;
-    let landing = rigid_events
+    let landing = r
+        .rigid_events
         .iter()
-        .find(|r| &r[2] == "landing")
-        .and_then(|r| r[1].parse::<f64>().ok());
+        .find(|e| e.kind == "landing")
+        .map(|e| e.t);
     let housner_r = (2.0 * h * h - b * b) / (2.0 * (h * h + b * b));
     let _ = writeln!(
         t,
         "Free rocking of the reference body with E x 1e5 (s_n = {:.3e} m), no damping, from \
          q0 = {q0} m (theta0/alpha = {:.3}), {} at rtol = {:e}. Housner: first landing at \
          (1/p) acosh(1/(1 - theta0/alpha)), p = sqrt(3 g/(2 H)).\n",
-        f(&rigid["s_n"]),
+        rigid.s_n,
         q0 / b,
-        rigid["statistics"]["method"].as_str().unwrap_or("?"),
-        f(&rigid["solver"]["rtol"])
+        rigid.statistics.method,
+        rigid.solver.rtol
     );
     let _ = writeln!(
         t,
@@ -310,24 +624,35 @@ pub fn write_report(inputs: &ReportInputs, out: &Path) -> Result<PathBuf> {
             let _ = writeln!(t, "| first landing (s) | none | {housner_landing:.7} | - |");
         }
     }
-    let zetas = (
-        f(&rigid["constants"]["zeta_uplift"]),
-        f(&rigid["constants"]["zeta_landing"]),
-    );
+    let restitution = rigid.constants.zeta_uplift / rigid.constants.zeta_landing;
     let _ = writeln!(
         t,
-        "| zetaU / zetaL (restitution of theta') | {:.6} | {housner_r:.6} | {:.2e} |\n",
-        zetas.0 / zetas.1,
-        zetas.0 / zetas.1 - housner_r
+        "| zetaU / zetaL (restitution of theta') | {restitution:.6} | {housner_r:.6} | {:.2e} |\n",
+        restitution - housner_r
     );
-    let _ = writeln!(
-        t,
-        "Newmark at the paper's dt cannot run this body at all: with E x 1e5 the pre-uplift period is \
-         {:.4} s and linear acceleration needs dt < 0.551 T; flexrock refuses such a dt.\n",
-        f(&rigid["T"])
-    );
+    match r.stability_share {
+        Some(share) => {
+            let _ = writeln!(
+                t,
+                "Newmark at the paper's dt cannot run this body at all: with E x 1e5 the pre-uplift period is \
+                 {:.4} s and linear acceleration needs dt < {share:.3} T; flexrock refuses such a dt.\n",
+                rigid.period
+            );
+        }
+        None => {
+            let _ = writeln!(
+                t,
+                "Newmark with the compare runs' beta and gamma is unconditionally stable; the \
+                 rigid body's pre-uplift period is {:.4} s.\n",
+                rigid.period
+            );
+        }
+    }
+}
 
-    // 4. Findings.
+/// Section 4: the paper's qualitative findings measured on the three solutions, and the
+/// reference's dents of s.
+fn write_findings(t: &mut String, r: &Read, fig: &dyn Fn(&str) -> String) {
     let _ = writeln!(t, "## 4. The paper's qualitative findings, in numbers\n");
     let _ = writeln!(
         t,
@@ -335,69 +660,51 @@ pub fn write_report(inputs: &ReportInputs, out: &Path) -> Result<PathBuf> {
          Figs. 12-13: while rocking r = B (|q| - s_n)/(B - s_n) and |s| = s_n (1 - |r|/B). \
          Measured on every history sample (the grid and both sides of every event).\n"
     );
-    let _ = writeln!(t, "| check | reference | Newmark compensate dt = 0.02 | Newmark substep dt = 0.02 |\n|---|---|---|---|");
-    let fi = |v: &Value, who: &str, k: &str| v[who]["findings"][k].clone();
-    let row = |t: &mut String, name: &str, k: &str, fmt: &dyn Fn(&Value) -> String| {
+    let _ = writeln!(
+        t,
+        "| check | reference | Newmark compensate dt = {} | Newmark substep dt = {} |\n|---|---|---|---|",
+        r.compensate_dt, r.substep_dt
+    );
+    let three = [
+        &r.compensate.reference.findings,
+        &r.compensate.newmark.findings,
+        &r.substep.newmark.findings,
+    ];
+    let row = |t: &mut String, name: &str, cell: &dyn Fn(&FindingsRead) -> String| {
         let _ = writeln!(
             t,
             "| {name} | {} | {} | {} |",
-            fmt(&fi(&compensate, "reference", k)),
-            fmt(&fi(&compensate, "newmark", k)),
-            fmt(&fi(&substep, "newmark", k))
+            cell(three[0]),
+            cell(three[1]),
+            cell(three[2])
         );
     };
-    let num = |v: &Value| format!("{:.6}", f(v));
-    let e3 = |v: &Value| sci(f(v));
-    let plain = |v: &Value| v.to_string();
-    row(&mut t, "max abs s / s_n", "max_abs_s_over_s_n", &num);
-    row(
-        &mut t,
-        "abs s never exceeds s_n",
-        "s_never_exceeds_s_n",
-        &plain,
-    );
-    row(
-        &mut t,
-        "max abs r where abs q <= s_n (m)",
-        "max_abs_r_where_abs_q_within_s_n",
-        &e3,
-    );
-    row(
-        &mut t,
-        "max residual of the q-r relation (m)",
-        "max_q_r_relation_residual",
-        &e3,
-    );
-    row(
-        &mut t,
-        "max residual of the s-r relation (m)",
-        "max_s_r_relation_residual",
-        &e3,
-    );
-    row(&mut t, "rocking episodes", "rocking_episodes", &plain);
-    row(
-        &mut t,
-        "episodes with a dent in s",
-        "episodes_with_dent",
-        &plain,
-    );
+    row(t, "max abs s / s_n", &|f| {
+        format!("{:.6}", f.max_abs_s_over_s_n)
+    });
+    row(t, "abs s never exceeds s_n", &|f| {
+        f.s_never_exceeds_s_n.to_string()
+    });
+    row(t, "max abs r where abs q <= s_n (m)", &|f| {
+        sci(f.max_abs_r_where_abs_q_within_s_n)
+    });
+    row(t, "max residual of the q-r relation (m)", &|f| {
+        sci(f.max_q_r_relation_residual)
+    });
+    row(t, "max residual of the s-r relation (m)", &|f| {
+        sci(f.max_s_r_relation_residual)
+    });
+    row(t, "rocking episodes", &|f| f.rocking_episodes.to_string());
+    row(t, "episodes with a dent in s", &|f| {
+        f.episodes_with_dent.to_string()
+    });
     let _ = writeln!(t, "\nDents of s in the reference (depth = s_n - min abs s while rocking = s_n max abs r / B):\n");
     let _ = writeln!(t, "| episode | mode | from (s) | to (s) | max abs r (m) | min abs s (m) | depth (m) |\n|---|---|---|---|---|---|---|");
-    for (i, d) in fi(&compensate, "reference", "dents")
-        .as_array()
-        .into_iter()
-        .flatten()
-        .enumerate()
-    {
+    for (i, d) in three[0].dents.iter().enumerate() {
         let _ = writeln!(
             t,
             "| {i} | {} | {:.4} | {:.4} | {:.5} | {:.5} | {:.5} |",
-            d["mode"].as_str().unwrap_or("?"),
-            f(&d["t_start"]),
-            f(&d["t_end"]),
-            f(&d["max_abs_r"]),
-            f(&d["min_abs_s"]),
-            f(&d["depth"])
+            d.mode, d.t_start, d.t_end, d.max_abs_r, d.min_abs_s, d.depth
         );
     }
     let _ = writeln!(
@@ -413,19 +720,4 @@ pub fn write_report(inputs: &ReportInputs, out: &Path) -> Result<PathBuf> {
         fig("relations-compensate.svg"),
         fig("relations-substep.svg")
     );
-
-    let dir = out.parent().unwrap_or(Path::new("."));
-    let name = out
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_else(|| "REPORT.md".to_string());
-    let mut files = output::write_atomically(dir, &[(&name, t.into_bytes())])?;
-    Ok(files.remove(0))
-}
-
-/// A number from a CSV field, rounded for the report; empty fields read "-".
-fn short(field: &str, digits: usize) -> String {
-    field
-        .parse::<f64>()
-        .map_or("-".to_string(), |v| format!("{v:.digits$}"))
 }
