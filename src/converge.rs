@@ -37,16 +37,21 @@ pub const CONVERGENCE_COLUMNS: [&str; 13] = [
     "status",
 ];
 
+/// Newmark time steps of `flexrock converge` (`--dt`), s.
 pub const DEFAULT_DTS: [f64; 8] = [
     0.04, 0.02, 0.01, 0.005, 0.0025, 0.00125, 0.000625, 0.0003125,
 ];
+/// Relative tolerances of the adaptive methods of `flexrock converge` (`--rtol`).
 pub const DEFAULT_RTOLS: [f64; 9] = [1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11];
 
 /// Options of `flexrock converge`.
 #[derive(Debug, Clone)]
 pub struct ConvergeOptions {
+    /// Newmark time steps, s; each runs with both variants.
     pub dts: Vec<f64>,
+    /// Relative tolerances; each runs with every adaptive method.
     pub rtols: Vec<f64>,
+    /// Relative tolerance of the adaptive reference.
     pub reference_rtol: f64,
 }
 
@@ -63,8 +68,11 @@ impl Default for ConvergeOptions {
 /// One solver configuration measured against the reference.
 #[derive(Debug, Clone, Serialize)]
 pub struct Case {
+    /// The solver, e.g. "newmark-compensate" or "bdf".
     pub method: String,
+    /// Newmark time step, s (Newmark cases).
     pub dt: Option<f64>,
+    /// Relative tolerance (adaptive cases).
     pub rtol: Option<f64>,
     /// Largest |q - q_reference| on the common output grid, m.
     pub max_q_error: f64,
@@ -76,9 +84,13 @@ pub struct Case {
     pub event_count_difference: i64,
     /// Events of either solution without a partner in the other.
     pub unmatched_events: usize,
+    /// Accepted steps.
     pub steps: usize,
+    /// Evaluations of the right-hand side.
     pub rhs_evaluations: usize,
+    /// Wall-clock time of the solve, s.
     pub wall_time_s: f64,
+    /// Largest energy residual over the samples, J.
     pub max_energy_residual: f64,
     /// "ok", or why the case has no result.
     pub status: String,
@@ -87,11 +99,13 @@ pub struct Case {
 /// A least-squares slope of log(error) against log(dt) or log(work).
 #[derive(Debug, Clone, Serialize)]
 pub struct ObservedOrder {
+    /// The solver, e.g. "newmark-compensate" or "bdf".
     pub method: String,
     /// "max_q_error", "max_event_time_error" or "peak_error".
     pub metric: String,
     /// "dt" (slope = order) or "rhs_evaluations" (slope = -order per unit work).
     pub against: String,
+    /// The fitted slope.
     pub slope: f64,
     /// Cases in the fit (those with every event matched and a positive error).
     pub points: usize,
@@ -100,20 +114,31 @@ pub struct ObservedOrder {
 /// convergence.json.
 #[derive(Debug, Serialize)]
 pub struct ConvergeSummary {
+    /// The version of flexrock that wrote the file.
     pub flexrock_version: &'static str,
+    /// The model file read, if any.
     pub model_file: Option<String>,
+    /// The reference's method.
     pub reference_method: String,
+    /// The reference's relative tolerance.
     pub reference_rtol: f64,
+    /// What the reference solution cost.
     pub reference_statistics: SolverStats,
+    /// Number of events of the reference solution.
     pub reference_events: usize,
+    /// Spacing of the output grid the errors are measured on, s.
     pub output_dt: f64,
+    /// Every solver configuration measured.
     pub cases: Vec<Case>,
+    /// The observed orders of each method.
     pub orders: Vec<ObservedOrder>,
 }
 
 /// Result of `flexrock converge`.
 pub struct ConvergeReport {
+    /// What convergence.json holds.
     pub summary: ConvergeSummary,
+    /// The files written.
     pub files: Vec<PathBuf>,
 }
 

@@ -25,6 +25,8 @@
 //!
 //! See [`flexrock_core`] for a worked example.
 
+#![warn(missing_docs)]
+
 pub use flexrock_core;
 pub use flexrock_core::{
     automaton, body, constants, error, excitation, findings, flexural_shape, format, model, record,
@@ -37,6 +39,9 @@ pub mod fem;
 pub mod output;
 pub mod plot;
 pub mod record_tools;
+// src/report.rs is being rewritten on another branch; its one undocumented field
+// (`ReportInputs::compare_substep`) is left to that rewrite, which should remove this allow.
+#[allow(missing_docs)]
 pub mod report;
 pub mod run;
 pub mod run_dir;

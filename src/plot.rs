@@ -9,7 +9,9 @@ use crate::error::{Error, Result};
 /// One line of a panel.
 #[derive(Debug, Clone)]
 pub struct Series {
+    /// The legend text.
     pub name: String,
+    /// The (x, y) points, in drawing order.
     pub points: Vec<(f64, f64)>,
     /// Index into the palette; 0 is black (for references). An empty name keeps the series out
     /// of the legend.
@@ -25,6 +27,7 @@ pub struct Series {
 /// The shape of a series' markers.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Marker {
+    /// A filled circle.
     Circle,
     /// A filled triangle pointing up.
     TriangleUp,
@@ -35,6 +38,7 @@ pub enum Marker {
 }
 
 impl Series {
+    /// A line through `points` in palette colour `color`, without markers.
     pub fn line(name: &str, points: Vec<(f64, f64)>, color: usize) -> Self {
         Series {
             name: name.to_string(),
@@ -61,6 +65,7 @@ impl Series {
         self
     }
 
+    /// The series drawn `width` pixels wide.
     pub fn with_width(mut self, width: u32) -> Self {
         self.width = Some(width);
         self
@@ -74,12 +79,17 @@ impl Series {
 /// One chart of a figure.
 #[derive(Debug, Clone, Default)]
 pub struct Panel {
+    /// The title above the chart.
     pub title: String,
+    /// The x axis label.
     pub x_label: String,
+    /// The y axis label.
     pub y_label: String,
+    /// The series, drawn in order.
     pub series: Vec<Series>,
     /// Logarithmic axes (decades); non-positive values are left out.
     pub log_x: bool,
+    /// Logarithmic y axis (decades); non-positive values are left out.
     pub log_y: bool,
     /// Where the legend goes, so that it hides no data.
     pub legend: Legend,
@@ -93,6 +103,7 @@ pub struct Panel {
 }
 
 impl Panel {
+    /// An empty panel with a title and axis labels.
     pub fn new(title: &str, x_label: &str, y_label: &str) -> Self {
         Panel {
             title: title.to_string(),
@@ -102,6 +113,7 @@ impl Panel {
         }
     }
 
+    /// The panel with `series` added.
     pub fn with(mut self, series: Series) -> Self {
         self.series.push(series);
         self
@@ -113,9 +125,13 @@ impl Panel {
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub enum Legend {
     #[default]
+    /// Inside, upper right corner.
     UpperRight,
+    /// Inside, lower right corner.
     LowerRight,
+    /// Inside, upper left corner.
     UpperLeft,
+    /// Inside, lower left corner.
     LowerLeft,
     /// In a strip of [`LEGEND_STRIP`] pixels right of the plotting area. The strip is kept even
     /// when the panel has nothing to list, so that panels stacked in one column share their
