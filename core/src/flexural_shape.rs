@@ -177,7 +177,7 @@ fn solve(gravity_parameter: f64, n: usize) -> Option<(f64, DVector<f64>, RitzMat
         .enumerate()
         .min_by(|a, b| a.1.total_cmp(b.1))
         .map(|(i, &v)| (i, v))?;
-    if !(omega > 0.0) {
+    if omega.is_nan() || omega <= 0.0 {
         return None;
     }
     let coefficients = l_inv.transpose() * eigen.eigenvectors.column(lowest);
