@@ -325,17 +325,9 @@ pub fn decimate(
     pieces
 }
 
-fn draw_panel(
-    panel: &Panel,
-    whole: &Area<'_>,
-) -> std::result::Result<(), Box<dyn std::error::Error>> {
-    let (area, strip) = if panel.legend == Legend::Outside {
-        let width = whole.dim_in_pixel().0;
-        let (left, right) = whole.split_horizontally(width.saturating_sub(LEGEND_STRIP));
-        (left, Some(right))
-    } else {
-        (whole.clone(), None)
-    };
+/// The series of a panel in axis coordinates (log10 of the values on a log axis), each cut into
+/// the pieces between points that cannot be drawn.
+fn drawable_pieces(panel: &Panel) -> Vec<(&Series, Vec<Polyline>)> {
     // Log axes are drawn as linear axes of log10 values, labelled with powers of ten.
     let transform = |(x, y): (f64, f64)| -> Option<(f64, f64)> {
         let x = if panel.log_x {
@@ -351,7 +343,7 @@ fn draw_panel(
         (x.is_finite() && y.is_finite()).then_some((x, y))
     };
     // A point that cannot be drawn (non-finite, or not positive on a log axis) breaks the curve.
-    let series: Vec<(&Series, Vec<Polyline>)> = panel
+    panel
         .series
         .iter()
         .map(|s| {
@@ -365,7 +357,17 @@ fn draw_panel(
             pieces.retain(|piece| !piece.is_empty());
             (s, pieces)
         })
-        .collect();
+        .collect()
+}
+
+/// The axis ranges (x0, x1, y0, y1) of a panel: the extent of its pieces and horizontal lines,
+/// padded, and widened to equal lengths per unit on a plotting area of `plot` pixels when the
+/// panel asks for it.
+fn axis_ranges(
+    panel: &Panel,
+    series: &[(&Series, Vec<Polyline>)],
+    (plot_w, plot_h): (u32, u32),
+) -> (f64, f64, f64, f64) {
     let (mut x0, mut x1, mut y0, mut y1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
     for &(x, y) in series
         .iter()
@@ -393,11 +395,6 @@ fn draw_panel(
         (x0, x1)
     };
     let (mut y0, mut y1) = pad(y0, y1, 0.05);
-    let (width, height) = area.dim_in_pixel();
-    let plot_w = width.saturating_sub(Y_LABEL_AREA + 2 * MARGIN).max(1);
-    let plot_h = height
-        .saturating_sub(X_LABEL_AREA + 2 * MARGIN + CAPTION)
-        .max(1);
     if panel.equal_aspect {
         // Widen one range so that a metre is as long across as up, in the plotting area.
         let (plot_w, plot_h) = (f64::from(plot_w), f64::from(plot_h));
@@ -406,6 +403,27 @@ fn draw_panel(
         (x0, x1) = (xc - 0.5 * scale * plot_w, xc + 0.5 * scale * plot_w);
         (y0, y1) = (yc - 0.5 * scale * plot_h, yc + 0.5 * scale * plot_h);
     }
+    (x0, x1, y0, y1)
+}
+
+fn draw_panel(
+    panel: &Panel,
+    whole: &Area<'_>,
+) -> std::result::Result<(), Box<dyn std::error::Error>> {
+    let (area, strip) = if panel.legend == Legend::Outside {
+        let width = whole.dim_in_pixel().0;
+        let (left, right) = whole.split_horizontally(width.saturating_sub(LEGEND_STRIP));
+        (left, Some(right))
+    } else {
+        (whole.clone(), None)
+    };
+    let series = drawable_pieces(panel);
+    let (width, height) = area.dim_in_pixel();
+    let plot_w = width.saturating_sub(Y_LABEL_AREA + 2 * MARGIN).max(1);
+    let plot_h = height
+        .saturating_sub(X_LABEL_AREA + 2 * MARGIN + CAPTION)
+        .max(1);
+    let (x0, x1, y0, y1) = axis_ranges(panel, &series, (plot_w, plot_h));
 
     let mut chart = ChartBuilder::on(&area)
         .caption(&panel.title, ("sans-serif", TITLE_FONT))
