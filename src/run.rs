@@ -289,13 +289,9 @@ pub struct RunReport {
     pub warnings: Vec<String>,
 }
 
-/// Solves a model and writes history.csv, events.csv and summary.json into `out_dir`.
-pub fn run_to_dir(model: &Model, out_dir: &Path) -> Result<RunReport> {
-    run_to_dir_with(model, out_dir, false)
-}
-
-/// [`run_to_dir`], and with `plots` also the figures of [`crate::run_plot`], drawn from the three
-/// files as they are about to be written and written with them as one atomic set.
+/// Solves a model and writes history.csv, events.csv and summary.json into `out_dir`, and with
+/// `plots` also the figures of [`crate::run_plot`], drawn from the three files as they are about
+/// to be written and written with them as one atomic set.
 pub fn run_to_dir_with(model: &Model, out_dir: &Path, plots: bool) -> Result<RunReport> {
     let solution = simulate(model)?;
     let mut files = vec![
