@@ -50,10 +50,15 @@ pub const COMPARE_HISTORY_COLUMNS: [&str; 10] = [
 /// A reference event and the other solution's event matched with it; either may be missing.
 #[derive(Debug, Clone, Serialize)]
 pub struct EventPair {
+    /// The kind of event.
     pub kind: EventKind,
+    /// The mode before the event.
     pub from: Mode,
+    /// The mode after the event.
     pub to: Mode,
+    /// The reference solution's event, if it has one.
     pub reference: Option<Event>,
+    /// The other solution's event, if it has one.
     pub other: Option<Event>,
 }
 
@@ -134,8 +139,11 @@ pub fn match_events(reference: &[Event], other: &[Event], max_shift: f64) -> Vec
 /// How two event logs agree.
 #[derive(Debug, Clone, Serialize)]
 pub struct EventAgreement {
+    /// Events of the reference solution.
     pub n_reference: usize,
+    /// Events of the other solution.
     pub n_other: usize,
+    /// Reference events matched with an event of the other solution.
     pub n_matched: usize,
     /// Reference events without a partner.
     pub n_missed: usize,
@@ -143,6 +151,7 @@ pub struct EventAgreement {
     pub n_spurious: usize,
     /// Largest |t_other - t_reference| over matched events, s (NaN when none matched).
     pub max_abs_time_difference: f64,
+    /// Mean |t_other - t_reference| over matched events, s (NaN when none matched).
     pub mean_abs_time_difference: f64,
     /// The largest difference is at this matched event (index into the pairs).
     pub worst_pair: Option<usize>,
@@ -151,12 +160,17 @@ pub struct EventAgreement {
 /// Peaks of q of both solutions.
 #[derive(Debug, Clone, Serialize)]
 pub struct PeakComparison {
+    /// Largest q of the reference solution, m, and when.
     pub reference_max_q: Extremum,
+    /// Largest q of the other solution, m, and when.
     pub other_max_q: Extremum,
+    /// Smallest q of the reference solution, m, and when.
     pub reference_min_q: Extremum,
+    /// Smallest q of the other solution, m, and when.
     pub other_min_q: Extremum,
     /// other - reference.
     pub max_q_difference: f64,
+    /// other - reference of the smallest q, m.
     pub min_q_difference: f64,
     /// The larger of the two differences in absolute value, m.
     pub peak_error: f64,
@@ -165,21 +179,31 @@ pub struct PeakComparison {
 /// Differences on the common output grid.
 #[derive(Debug, Clone, Serialize)]
 pub struct GridDifferences {
+    /// Spacing of the grid, s.
     pub output_dt: f64,
+    /// Grid points where both solutions have a value.
     pub points: usize,
+    /// Root mean square of q_other - q_reference over those points, m (NaN when none).
     pub rms_q_difference: f64,
+    /// Largest |q_other - q_reference|, m.
     pub max_abs_q_difference: f64,
+    /// When that largest difference is, s.
     pub t_max_abs_q_difference: f64,
+    /// Largest |q'_other - q'_reference|, m/s.
     pub max_abs_qdot_difference: f64,
 }
 
 /// Two solutions of one model measured against each other.
 #[derive(Debug, Clone, Serialize)]
 pub struct NewmarkComparison {
+    /// How the event logs agree.
     pub events: EventAgreement,
+    /// How the peaks of q agree.
     pub peaks: PeakComparison,
+    /// How the histories differ on the output grid.
     pub grid: GridDifferences,
     #[serde(skip)]
+    /// Every reference event with its partner, in order.
     pub pairs: Vec<EventPair>,
 }
 
@@ -292,6 +316,7 @@ pub struct CompareOptions {
     pub variant: Option<String>,
 }
 
+/// Relative tolerance of the adaptive reference solution (`--reference-rtol`).
 pub const DEFAULT_REFERENCE_RTOL: f64 = 1e-12;
 
 impl Default for CompareOptions {
@@ -306,7 +331,7 @@ impl Default for CompareOptions {
 
 /// One solution's description in compare.json.
 #[derive(Debug, Serialize)]
-pub struct SolutionSummary<'a> {
+pub(crate) struct SolutionSummary<'a> {
     pub method: String,
     pub solver: SolverSettings,
     pub n_events: usize,
@@ -342,7 +367,7 @@ fn solution_summary<'a>(
 
 /// compare.json.
 #[derive(Debug, Serialize)]
-pub struct CompareSummary<'a> {
+pub(crate) struct CompareSummary<'a> {
     pub flexrock_version: &'static str,
     pub model_file: Option<String>,
     #[serde(rename = "T")]
@@ -358,11 +383,17 @@ pub struct CompareSummary<'a> {
 
 /// Result of `flexrock compare`.
 pub struct CompareReport {
+    /// The adaptive reference solution.
     pub reference: Solution,
+    /// The Newmark solution.
     pub newmark: Solution,
+    /// The reference's solver settings.
     pub reference_settings: SolverSettings,
+    /// The Newmark solver settings.
     pub newmark_settings: SolverSettings,
+    /// The Newmark solution measured against the reference.
     pub comparison: NewmarkComparison,
+    /// The files written.
     pub files: Vec<PathBuf>,
 }
 

@@ -37,16 +37,21 @@ pub const CONVERGENCE_COLUMNS: [&str; 13] = [
     "status",
 ];
 
+/// Newmark time steps of `flexrock converge` (`--dt`), s.
 pub const DEFAULT_DTS: [f64; 8] = [
     0.04, 0.02, 0.01, 0.005, 0.0025, 0.00125, 0.000625, 0.0003125,
 ];
+/// Relative tolerances of the adaptive methods of `flexrock converge` (`--rtol`).
 pub const DEFAULT_RTOLS: [f64; 9] = [1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11];
 
 /// Options of `flexrock converge`.
 #[derive(Debug, Clone)]
 pub struct ConvergeOptions {
+    /// Newmark time steps, s; each runs with both variants.
     pub dts: Vec<f64>,
+    /// Relative tolerances; each runs with every adaptive method.
     pub rtols: Vec<f64>,
+    /// Relative tolerance of the adaptive reference.
     pub reference_rtol: f64,
 }
 
@@ -66,9 +71,12 @@ impl Default for ConvergeOptions {
 /// `dt`, `rtol` must be present (null for the other kind of method).
 #[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct Case {
+    /// The solver, e.g. "newmark-compensate" or "bdf".
     pub method: String,
+    /// Newmark time step, s (Newmark cases).
     #[serde(deserialize_with = "crate::report::required")]
     pub dt: Option<f64>,
+    /// Relative tolerance (adaptive cases).
     #[serde(deserialize_with = "crate::report::required")]
     pub rtol: Option<f64>,
     /// Largest |q - q_reference| on the common output grid, m.
@@ -84,10 +92,14 @@ pub struct Case {
     pub event_count_difference: i64,
     /// Events of either solution without a partner in the other.
     pub unmatched_events: usize,
+    /// Accepted steps.
     pub steps: usize,
+    /// Evaluations of the right-hand side.
     pub rhs_evaluations: usize,
+    /// Wall-clock time of the solve, s.
     #[serde(deserialize_with = "crate::report::nan_if_null")]
     pub wall_time_s: f64,
+    /// Largest energy residual over the samples, J.
     #[serde(deserialize_with = "crate::report::nan_if_null")]
     pub max_energy_residual: f64,
     /// "ok", or why the case has no result.
@@ -97,11 +109,13 @@ pub struct Case {
 /// A least-squares slope of log(error) against log(dt) or log(work).
 #[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct ObservedOrder {
+    /// The solver, e.g. "newmark-compensate" or "bdf".
     pub method: String,
     /// "max_q_error", "max_event_time_error" or "peak_error".
     pub metric: String,
     /// "dt" (slope = order) or "rhs_evaluations" (slope = -order per unit work).
     pub against: String,
+    /// The fitted slope.
     #[serde(deserialize_with = "crate::report::nan_if_null")]
     pub slope: f64,
     /// Cases in the fit (those with every event matched and a positive error).
@@ -111,20 +125,31 @@ pub struct ObservedOrder {
 /// convergence.json.
 #[derive(Debug, Serialize)]
 pub struct ConvergeSummary {
+    /// The version of flexrock that wrote the file.
     pub flexrock_version: &'static str,
+    /// The model file read, if any.
     pub model_file: Option<String>,
+    /// The reference's method.
     pub reference_method: String,
+    /// The reference's relative tolerance.
     pub reference_rtol: f64,
+    /// What the reference solution cost.
     pub reference_statistics: SolverStats,
+    /// Number of events of the reference solution.
     pub reference_events: usize,
+    /// Spacing of the output grid the errors are measured on, s.
     pub output_dt: f64,
+    /// Every solver configuration measured.
     pub cases: Vec<Case>,
+    /// The observed orders of each method.
     pub orders: Vec<ObservedOrder>,
 }
 
 /// Result of `flexrock converge`.
 pub struct ConvergeReport {
+    /// What convergence.json holds.
     pub summary: ConvergeSummary,
+    /// The files written.
     pub files: Vec<PathBuf>,
 }
 

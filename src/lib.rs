@@ -25,6 +25,8 @@
 //!
 //! See [`flexrock_core`] for a worked example.
 
+#![warn(missing_docs)]
+
 pub use flexrock_core;
 pub use flexrock_core::{
     automaton, body, constants, error, excitation, findings, flexural_shape, format, model, record,

@@ -6,7 +6,7 @@ use std::process::ExitCode;
 use std::sync::LazyLock;
 
 use clap::{Parser, Subcommand};
-use flexrock::model::{FemOverrides, Model, Overrides, Setting};
+use flexrock::model::{FemOverrides, FemSetup, Model, Overrides, Setting};
 use flexrock::record_tools;
 
 #[derive(Parser)]
@@ -467,20 +467,11 @@ fn write_stderr(text: &str) {
     let _ = err.flush();
 }
 
+/// Runs one subcommand: unpacks its arguments and calls the function that does it.
 fn execute(command: Command) -> flexrock::Result<Output> {
-    Ok(match command {
-        Command::Sweep(args) => sweep(args)?,
-        Command::Props { model, json, set } => {
-            let model = Model::load(&model, &set.overrides())?;
-            if json {
-                Output {
-                    stdout: flexrock::output::json_bytes(&flexrock::run::properties(&model)),
-                    warnings: Vec::new(),
-                }
-            } else {
-                Output::text(flexrock::run::properties_table(&model))
-            }
-        }
+    match command {
+        Command::Sweep(args) => sweep(args),
+        Command::Props { model, json, set } => props(&model, json, set),
         Command::Run {
             model: path,
             out,
@@ -502,50 +493,11 @@ fn execute(command: Command) -> flexrock::Result<Output> {
                 newmark_variant: variant,
                 settings: set.settings,
             };
-            let model = Model::load(&path, &overrides)?;
-            let out = out.unwrap_or_else(|| default_out_dir(&path, ""));
-            let report = flexrock::run::run_to_dir_with(&model, &out, plot)?;
-            Output {
-                stdout: flexrock::run::run_report_text(&model, &report).into_bytes(),
-                warnings: report.warnings.clone(),
-            }
+            run(&path, out, &overrides, plot)
         }
-        Command::Plot { dir } => {
-            let written = flexrock::run_plot::plot_dir(&dir)?;
-            Output::text(
-                written
-                    .iter()
-                    .map(|f| format!("wrote {}\n", f.display()))
-                    .collect::<String>(),
-            )
-        }
-        Command::Events { dir } => {
-            let events = flexrock::run_dir::read_events(&dir)?;
-            Output::text(flexrock::run_dir::events_table(
-                &events,
-                &dir.join(flexrock::run_dir::EVENTS_FILE),
-            ))
-        }
-        Command::Record { command } => match command {
-            RecordCommand::Info { file, options } => {
-                let record = load_record(&file, &options)?;
-                Output::text(record_tools::info_text(&record))
-            }
-            RecordCommand::Csv { file, options, out } => {
-                let record = load_record(&file, &options)?;
-                let bytes = record_tools::csv_bytes(&record);
-                match out {
-                    Some(path) => {
-                        flexrock::output::write_file_atomically(&path, &bytes)?;
-                        Output::default()
-                    }
-                    None => Output {
-                        stdout: bytes,
-                        warnings: Vec::new(),
-                    },
-                }
-            }
-        },
+        Command::Plot { dir } => plot(&dir),
+        Command::Events { dir } => events(&dir),
+        Command::Record { command } => record(command),
         Command::Compare {
             model: path,
             out,
@@ -561,9 +513,11 @@ fn execute(command: Command) -> flexrock::Result<Output> {
                 dt,
                 variant,
             };
-            let out = out.unwrap_or_else(|| default_out_dir(&path, "-compare"));
-            let report = flexrock::compare::run_compare(&model, &options, &out)?;
-            Output::text(flexrock::compare::compare_text(&model, &report))
+            compare(
+                &model,
+                &options,
+                out.unwrap_or_else(|| default_out_dir(&path, "-compare")),
+            )
         }
         Command::Converge {
             model: path,
@@ -580,9 +534,11 @@ fn execute(command: Command) -> flexrock::Result<Output> {
                 rtols: rtol,
                 reference_rtol,
             };
-            let out = out.unwrap_or_else(|| default_out_dir(&path, "-converge"));
-            let report = flexrock::converge::run_converge(&model, &options, &out)?;
-            Output::text(flexrock::converge::converge_text(&report))
+            converge(
+                &model,
+                &options,
+                out.unwrap_or_else(|| default_out_dir(&path, "-converge")),
+            )
         }
         Command::Report {
             compare_compensate,
@@ -601,8 +557,7 @@ fn execute(command: Command) -> flexrock::Result<Output> {
                 figures_dir: figures,
                 command,
             };
-            let written = flexrock::report::write_report(&inputs, &out)?;
-            Output::text(format!("wrote {}\n", written.display()))
+            report(&inputs, &out)
         }
         Command::Fem {
             model: path,
@@ -616,30 +571,158 @@ fn execute(command: Command) -> flexrock::Result<Output> {
             pushover,
             set,
         } => {
-            use flexrock::fem::run as fem;
             let model = Model::load(&path, &set.overrides())?;
             let setup = model.fem_with(&FemOverrides { nx, ny, scheme, dt })?;
             if modes {
-                return Ok(Output::text(fem::modes_text(&fem::modes(&model, &setup)?)));
-            }
-            if pushover {
-                let out = out.unwrap_or_else(|| default_out_dir(&path, "-pushover"));
-                let report = flexrock::fem::pushover_run::run(&model, &setup, &out)?;
-                return Ok(Output::text(flexrock::fem::pushover_run::report_text(
-                    &report,
-                )));
-            }
-            let out = out.unwrap_or_else(|| default_out_dir(&path, "-fem"));
-            let report = if compare {
-                fem::compare(&model, &setup, &out)?
+                fem_modes(&model, &setup)
+            } else if pushover {
+                fem_pushover(
+                    &model,
+                    &setup,
+                    out.unwrap_or_else(|| default_out_dir(&path, "-pushover")),
+                )
             } else {
-                fem::fem(&model, &setup, &out)?
-            };
-            Output {
-                stdout: fem::report_text(&report).into_bytes(),
-                warnings: report.analysis.warnings.clone(),
+                fem(
+                    &model,
+                    &setup,
+                    out.unwrap_or_else(|| default_out_dir(&path, "-fem")),
+                    compare,
+                )
             }
         }
+    }
+}
+
+/// `flexrock props`: the body and its derived constants, as a table or as JSON.
+fn props(path: &std::path::Path, json: bool, set: SetArgs) -> flexrock::Result<Output> {
+    let model = Model::load(path, &set.overrides())?;
+    Ok(if json {
+        Output {
+            stdout: flexrock::output::json_bytes(&flexrock::run::properties(&model)),
+            warnings: Vec::new(),
+        }
+    } else {
+        Output::text(flexrock::run::properties_table(&model))
+    })
+}
+
+/// `flexrock run`: solves the model and writes its run directory (`out`, else out/<model stem>).
+fn run(
+    path: &std::path::Path,
+    out: Option<PathBuf>,
+    overrides: &Overrides,
+    plot: bool,
+) -> flexrock::Result<Output> {
+    let model = Model::load(path, overrides)?;
+    let out = out.unwrap_or_else(|| default_out_dir(path, ""));
+    let report = flexrock::run::run_to_dir_with(&model, &out, plot)?;
+    Ok(Output {
+        stdout: flexrock::run::run_report_text(&model, &report).into_bytes(),
+        warnings: report.warnings.clone(),
+    })
+}
+
+/// `flexrock plot`: the figures of a run directory.
+fn plot(dir: &std::path::Path) -> flexrock::Result<Output> {
+    let written = flexrock::run_plot::plot_dir(dir)?;
+    Ok(Output::text(
+        written
+            .iter()
+            .map(|f| format!("wrote {}\n", f.display()))
+            .collect::<String>(),
+    ))
+}
+
+/// `flexrock events`: the event table of a run directory.
+fn events(dir: &std::path::Path) -> flexrock::Result<Output> {
+    let events = flexrock::run_dir::read_events(dir)?;
+    Ok(Output::text(flexrock::run_dir::events_table(
+        &events,
+        &dir.join(flexrock::run_dir::EVENTS_FILE),
+    )))
+}
+
+/// `flexrock record info` and `flexrock record csv`.
+fn record(command: RecordCommand) -> flexrock::Result<Output> {
+    Ok(match command {
+        RecordCommand::Info { file, options } => {
+            let record = load_record(&file, &options)?;
+            Output::text(record_tools::info_text(&record))
+        }
+        RecordCommand::Csv { file, options, out } => {
+            let record = load_record(&file, &options)?;
+            let bytes = record_tools::csv_bytes(&record);
+            match out {
+                Some(path) => {
+                    flexrock::output::write_file_atomically(&path, &bytes)?;
+                    Output::default()
+                }
+                None => Output {
+                    stdout: bytes,
+                    warnings: Vec::new(),
+                },
+            }
+        }
+    })
+}
+
+/// `flexrock compare`: Newmark against the adaptive reference, files into `out`.
+fn compare(
+    model: &Model,
+    options: &flexrock::compare::CompareOptions,
+    out: PathBuf,
+) -> flexrock::Result<Output> {
+    let report = flexrock::compare::run_compare(model, options, &out)?;
+    Ok(Output::text(flexrock::compare::compare_text(
+        model, &report,
+    )))
+}
+
+/// `flexrock converge`: the convergence study, files into `out`.
+fn converge(
+    model: &Model,
+    options: &flexrock::converge::ConvergeOptions,
+    out: PathBuf,
+) -> flexrock::Result<Output> {
+    let report = flexrock::converge::run_converge(model, options, &out)?;
+    Ok(Output::text(flexrock::converge::converge_text(&report)))
+}
+
+/// `flexrock report`: the validation report from the output directories in `inputs`.
+fn report(
+    inputs: &flexrock::report::ReportInputs,
+    out: &std::path::Path,
+) -> flexrock::Result<Output> {
+    let written = flexrock::report::write_report(inputs, out)?;
+    Ok(Output::text(format!("wrote {}\n", written.display())))
+}
+
+/// `flexrock fem --modes`: the fixed-base periods of the mesh.
+fn fem_modes(model: &Model, setup: &FemSetup) -> flexrock::Result<Output> {
+    use flexrock::fem::run as fem;
+    Ok(Output::text(fem::modes_text(&fem::modes(model, setup)?)))
+}
+
+/// `flexrock fem --pushover`: the pushover curves, files into `out`.
+fn fem_pushover(model: &Model, setup: &FemSetup, out: PathBuf) -> flexrock::Result<Output> {
+    let report = flexrock::fem::pushover_run::run(model, setup, &out)?;
+    Ok(Output::text(flexrock::fem::pushover_run::report_text(
+        &report,
+    )))
+}
+
+/// `flexrock fem` (with `--compare`, side by side with the one-mode model): the dynamic run,
+/// files into `out`.
+fn fem(model: &Model, setup: &FemSetup, out: PathBuf, compare: bool) -> flexrock::Result<Output> {
+    use flexrock::fem::run as fem;
+    let report = if compare {
+        fem::compare(model, setup, &out)?
+    } else {
+        fem::fem(model, setup, &out)?
+    };
+    Ok(Output {
+        stdout: fem::report_text(&report).into_bytes(),
+        warnings: report.analysis.warnings.clone(),
     })
 }
 

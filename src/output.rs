@@ -41,6 +41,7 @@ pub struct Table {
 }
 
 impl Table {
+    /// A table whose header row is `columns`.
     pub fn new(columns: &[&str]) -> Self {
         let mut writer = csv::Writer::from_writer(Vec::new());
         // Writing to memory cannot fail.
@@ -64,6 +65,7 @@ impl Table {
         let _ = self.writer.write_record(fields);
     }
 
+    /// The CSV text of the table.
     pub fn into_bytes(self) -> Vec<u8> {
         self.writer.into_inner().unwrap_or_default()
     }
@@ -73,6 +75,7 @@ pub use flexrock_core::format::{
     count, file_kind, list, number, readable, scientific, shortest, significant,
 };
 
+/// history.csv: one row per sample, columns [`HISTORY_COLUMNS`].
 pub fn history_csv(samples: &[Sample]) -> Vec<u8> {
     let mut table = Table::new(&HISTORY_COLUMNS);
     for s in samples {
@@ -93,6 +96,7 @@ pub fn history_csv(samples: &[Sample]) -> Vec<u8> {
     table.into_bytes()
 }
 
+/// events.csv: one row per event, columns [`EVENT_COLUMNS`].
 pub fn events_csv(events: &[Event]) -> Vec<u8> {
     let mut table = Table::new(&EVENT_COLUMNS);
     for e in events {
@@ -110,6 +114,7 @@ pub fn events_csv(events: &[Event]) -> Vec<u8> {
     table.into_bytes()
 }
 
+/// `value` as pretty-printed JSON with a final newline.
 pub fn json_bytes<T: serde::Serialize>(value: &T) -> Vec<u8> {
     let mut bytes = serde_json::to_vec_pretty(value).unwrap_or_default();
     bytes.push(b'\n');

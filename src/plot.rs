@@ -9,7 +9,9 @@ use crate::error::{Error, Result};
 /// One line of a panel.
 #[derive(Debug, Clone)]
 pub struct Series {
+    /// The legend text.
     pub name: String,
+    /// The (x, y) points, in drawing order.
     pub points: Vec<(f64, f64)>,
     /// Index into the palette; 0 is black (for references). An empty name keeps the series out
     /// of the legend.
@@ -25,6 +27,7 @@ pub struct Series {
 /// The shape of a series' markers.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Marker {
+    /// A filled circle.
     Circle,
     /// A filled triangle pointing up.
     TriangleUp,
@@ -35,6 +38,7 @@ pub enum Marker {
 }
 
 impl Series {
+    /// A line through `points` in palette colour `color`, without markers.
     pub fn line(name: &str, points: Vec<(f64, f64)>, color: usize) -> Self {
         Series {
             name: name.to_string(),
@@ -61,6 +65,7 @@ impl Series {
         self
     }
 
+    /// The series drawn `width` pixels wide.
     pub fn with_width(mut self, width: u32) -> Self {
         self.width = Some(width);
         self
@@ -74,12 +79,17 @@ impl Series {
 /// One chart of a figure.
 #[derive(Debug, Clone, Default)]
 pub struct Panel {
+    /// The title above the chart.
     pub title: String,
+    /// The x axis label.
     pub x_label: String,
+    /// The y axis label.
     pub y_label: String,
+    /// The series, drawn in order.
     pub series: Vec<Series>,
     /// Logarithmic axes (decades); non-positive values are left out.
     pub log_x: bool,
+    /// Logarithmic y axis (decades); non-positive values are left out.
     pub log_y: bool,
     /// Where the legend goes, so that it hides no data.
     pub legend: Legend,
@@ -93,6 +103,7 @@ pub struct Panel {
 }
 
 impl Panel {
+    /// An empty panel with a title and axis labels.
     pub fn new(title: &str, x_label: &str, y_label: &str) -> Self {
         Panel {
             title: title.to_string(),
@@ -102,6 +113,7 @@ impl Panel {
         }
     }
 
+    /// The panel with `series` added.
     pub fn with(mut self, series: Series) -> Self {
         self.series.push(series);
         self
@@ -113,9 +125,13 @@ impl Panel {
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub enum Legend {
     #[default]
+    /// Inside, upper right corner.
     UpperRight,
+    /// Inside, lower right corner.
     LowerRight,
+    /// Inside, upper left corner.
     UpperLeft,
+    /// Inside, lower left corner.
     LowerLeft,
     /// In a strip of [`LEGEND_STRIP`] pixels right of the plotting area. The strip is kept even
     /// when the panel has nothing to list, so that panels stacked in one column share their
@@ -309,17 +325,9 @@ pub fn decimate(
     pieces
 }
 
-fn draw_panel(
-    panel: &Panel,
-    whole: &Area<'_>,
-) -> std::result::Result<(), Box<dyn std::error::Error>> {
-    let (area, strip) = if panel.legend == Legend::Outside {
-        let width = whole.dim_in_pixel().0;
-        let (left, right) = whole.split_horizontally(width.saturating_sub(LEGEND_STRIP));
-        (left, Some(right))
-    } else {
-        (whole.clone(), None)
-    };
+/// The series of a panel in axis coordinates (log10 of the values on a log axis), each cut into
+/// the pieces between points that cannot be drawn.
+fn drawable_pieces(panel: &Panel) -> Vec<(&Series, Vec<Polyline>)> {
     // Log axes are drawn as linear axes of log10 values, labelled with powers of ten.
     let transform = |(x, y): (f64, f64)| -> Option<(f64, f64)> {
         let x = if panel.log_x {
@@ -335,7 +343,7 @@ fn draw_panel(
         (x.is_finite() && y.is_finite()).then_some((x, y))
     };
     // A point that cannot be drawn (non-finite, or not positive on a log axis) breaks the curve.
-    let series: Vec<(&Series, Vec<Polyline>)> = panel
+    panel
         .series
         .iter()
         .map(|s| {
@@ -349,7 +357,17 @@ fn draw_panel(
             pieces.retain(|piece| !piece.is_empty());
             (s, pieces)
         })
-        .collect();
+        .collect()
+}
+
+/// The axis ranges (x0, x1, y0, y1) of a panel: the extent of its pieces and horizontal lines,
+/// padded, and widened to equal lengths per unit on a plotting area of `plot` pixels when the
+/// panel asks for it.
+fn axis_ranges(
+    panel: &Panel,
+    series: &[(&Series, Vec<Polyline>)],
+    (plot_w, plot_h): (u32, u32),
+) -> (f64, f64, f64, f64) {
     let (mut x0, mut x1, mut y0, mut y1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
     for &(x, y) in series
         .iter()
@@ -377,11 +395,6 @@ fn draw_panel(
         (x0, x1)
     };
     let (mut y0, mut y1) = pad(y0, y1, 0.05);
-    let (width, height) = area.dim_in_pixel();
-    let plot_w = width.saturating_sub(Y_LABEL_AREA + 2 * MARGIN).max(1);
-    let plot_h = height
-        .saturating_sub(X_LABEL_AREA + 2 * MARGIN + CAPTION)
-        .max(1);
     if panel.equal_aspect {
         // Widen one range so that a metre is as long across as up, in the plotting area.
         let (plot_w, plot_h) = (f64::from(plot_w), f64::from(plot_h));
@@ -390,6 +403,27 @@ fn draw_panel(
         (x0, x1) = (xc - 0.5 * scale * plot_w, xc + 0.5 * scale * plot_w);
         (y0, y1) = (yc - 0.5 * scale * plot_h, yc + 0.5 * scale * plot_h);
     }
+    (x0, x1, y0, y1)
+}
+
+fn draw_panel(
+    panel: &Panel,
+    whole: &Area<'_>,
+) -> std::result::Result<(), Box<dyn std::error::Error>> {
+    let (area, strip) = if panel.legend == Legend::Outside {
+        let width = whole.dim_in_pixel().0;
+        let (left, right) = whole.split_horizontally(width.saturating_sub(LEGEND_STRIP));
+        (left, Some(right))
+    } else {
+        (whole.clone(), None)
+    };
+    let series = drawable_pieces(panel);
+    let (width, height) = area.dim_in_pixel();
+    let plot_w = width.saturating_sub(Y_LABEL_AREA + 2 * MARGIN).max(1);
+    let plot_h = height
+        .saturating_sub(X_LABEL_AREA + 2 * MARGIN + CAPTION)
+        .max(1);
+    let (x0, x1, y0, y1) = axis_ranges(panel, &series, (plot_w, plot_h));
 
     let mut chart = ChartBuilder::on(&area)
         .caption(&panel.title, ("sans-serif", TITLE_FONT))

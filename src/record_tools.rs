@@ -21,6 +21,7 @@ const UNIT_COLUMNS: [(&str, &str); 3] = [
 
 /// A record read for the `record` commands, with the unit of its values.
 pub struct LoadedRecord {
+    /// The record as read, values in the file's units.
     pub record: Record,
     /// "g", "m/s2" or "cm/s2".
     pub units: &'static str,

@@ -25,8 +25,9 @@ use crate::solver::newmark::critical_omega_dt;
 /// Where the inputs of the report are.
 #[derive(Debug, Clone)]
 pub struct ReportInputs {
-    /// Output directories of `flexrock compare` with the compensate and the substep variant.
+    /// Output directory of `flexrock compare` with the compensate variant.
     pub compare_compensate: PathBuf,
+    /// Output directory of `flexrock compare` with the substep variant.
     pub compare_substep: PathBuf,
     /// Output directory of `flexrock converge`.
     pub converge: PathBuf,
@@ -53,15 +54,14 @@ pub(crate) fn required<'de, D: Deserializer<'de>, T: Deserialize<'de>>(
 
 /// A peak of q, as compare.json writes it.
 #[derive(Debug, Clone, Deserialize)]
-pub struct PeakRead {
+pub(crate) struct PeakRead {
     pub value: f64,
     pub t: f64,
 }
 
 /// The solver settings of one solution in compare.json (`[solver]` keys).
 #[derive(Debug, Clone, Deserialize)]
-pub struct SolverRead {
-    pub method: String,
+pub(crate) struct SolverRead {
     #[serde(default)]
     pub rtol: Option<f64>,
     #[serde(default)]
@@ -74,7 +74,7 @@ pub struct SolverRead {
 
 /// The cost of one solution.
 #[derive(Debug, Clone, Deserialize)]
-pub struct StatisticsRead {
+pub(crate) struct StatisticsRead {
     pub method: String,
     pub steps: usize,
     pub rhs_evaluations: usize,
@@ -82,7 +82,7 @@ pub struct StatisticsRead {
 
 /// One dent of s (findings.dents).
 #[derive(Debug, Clone, Deserialize)]
-pub struct DentRead {
+pub(crate) struct DentRead {
     pub mode: String,
     pub t_start: f64,
     pub t_end: f64,
@@ -93,7 +93,7 @@ pub struct DentRead {
 
 /// The paper's findings measured on one solution.
 #[derive(Debug, Clone, Deserialize)]
-pub struct FindingsRead {
+pub(crate) struct FindingsRead {
     #[serde(deserialize_with = "nan_if_null")]
     pub max_abs_s_over_s_n: f64,
     pub s_never_exceeds_s_n: bool,
@@ -110,7 +110,7 @@ pub struct FindingsRead {
 
 /// One solution in compare.json.
 #[derive(Debug, Clone, Deserialize)]
-pub struct SolutionRead {
+pub(crate) struct SolutionRead {
     pub method: String,
     pub solver: SolverRead,
     pub n_events: usize,
@@ -122,7 +122,7 @@ pub struct SolutionRead {
 
 /// comparison.events of compare.json.
 #[derive(Debug, Clone, Deserialize)]
-pub struct EventAgreementRead {
+pub(crate) struct EventAgreementRead {
     pub n_reference: usize,
     pub n_matched: usize,
     #[serde(deserialize_with = "nan_if_null")]
@@ -133,14 +133,14 @@ pub struct EventAgreementRead {
 
 /// comparison.peaks of compare.json.
 #[derive(Debug, Clone, Deserialize)]
-pub struct PeakDifferencesRead {
+pub(crate) struct PeakDifferencesRead {
     pub max_q_difference: f64,
     pub min_q_difference: f64,
 }
 
 /// comparison.grid of compare.json.
 #[derive(Debug, Clone, Deserialize)]
-pub struct GridRead {
+pub(crate) struct GridRead {
     pub output_dt: f64,
     #[serde(deserialize_with = "nan_if_null")]
     pub rms_q_difference: f64,
@@ -150,7 +150,7 @@ pub struct GridRead {
 
 /// comparison of compare.json.
 #[derive(Debug, Clone, Deserialize)]
-pub struct ComparisonRead {
+pub(crate) struct ComparisonRead {
     pub events: EventAgreementRead,
     pub peaks: PeakDifferencesRead,
     pub grid: GridRead,
@@ -158,7 +158,7 @@ pub struct ComparisonRead {
 
 /// compare.json, the keys the report uses.
 #[derive(Debug, Clone, Deserialize)]
-pub struct CompareFile {
+pub(crate) struct CompareFile {
     #[serde(deserialize_with = "required")]
     pub model_file: Option<String>,
     #[serde(rename = "T")]
@@ -172,7 +172,7 @@ pub struct CompareFile {
 
 /// convergence.json, the keys the report uses.
 #[derive(Debug, Clone, Deserialize)]
-pub struct ConvergeFile {
+pub(crate) struct ConvergeFile {
     pub reference_method: String,
     pub reference_rtol: f64,
     pub reference_events: usize,
@@ -183,7 +183,7 @@ pub struct ConvergeFile {
 
 /// inputs.body of summary.json: the model file's `[body]`.
 #[derive(Debug, Clone, Deserialize)]
-pub struct BodyInputsRead {
+pub(crate) struct BodyInputsRead {
     pub height: f64,
     pub width: f64,
     /// Absent or null: the default gravity.
@@ -193,32 +193,32 @@ pub struct BodyInputsRead {
 
 /// inputs of summary.json.
 #[derive(Debug, Clone, Deserialize)]
-pub struct InputsRead {
+pub(crate) struct InputsRead {
     pub body: BodyInputsRead,
 }
 
 /// initial_state of summary.json.
 #[derive(Debug, Clone, Deserialize)]
-pub struct InitialStateRead {
+pub(crate) struct InitialStateRead {
     pub q: f64,
 }
 
 /// The adaptive solver's settings in summary.json.
 #[derive(Debug, Clone, Deserialize)]
-pub struct AdaptiveSolverRead {
+pub(crate) struct AdaptiveSolverRead {
     pub rtol: f64,
 }
 
 /// constants of summary.json, the restitution pair.
 #[derive(Debug, Clone, Deserialize)]
-pub struct ZetasRead {
+pub(crate) struct ZetasRead {
     pub zeta_uplift: f64,
     pub zeta_landing: f64,
 }
 
 /// summary.json of `flexrock run` on the rigid-limit model, the keys the report uses.
 #[derive(Debug, Clone, Deserialize)]
-pub struct RigidRunFile {
+pub(crate) struct RigidRunFile {
     pub s_n: f64,
     #[serde(rename = "T")]
     pub period: f64,
@@ -231,7 +231,7 @@ pub struct RigidRunFile {
 
 /// A row of compare.csv (the columns the report uses; empty numbers are None).
 #[derive(Debug, Clone, Deserialize)]
-pub struct CompareRow {
+pub(crate) struct CompareRow {
     pub index: String,
     pub kind: String,
     pub from: String,
@@ -246,7 +246,7 @@ pub struct CompareRow {
 
 /// A row of events.csv (the columns the report uses).
 #[derive(Debug, Clone, Deserialize)]
-pub struct EventRow {
+pub(crate) struct EventRow {
     pub t: f64,
     pub kind: String,
 }

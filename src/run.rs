@@ -147,41 +147,66 @@ fn fmt(x: f64) -> String {
 /// summary.json of `flexrock run`.
 #[derive(Debug, Serialize)]
 pub struct RunSummary<'a> {
+    /// The version of flexrock that wrote the file.
     pub flexrock_version: &'static str,
+    /// The model file read, if any.
     pub model_file: Option<String>,
+    /// Largest q, m.
     pub max_q: f64,
+    /// When q was largest, s.
     pub t_max_q: f64,
+    /// Smallest q, m.
     pub min_q: f64,
+    /// When q was smallest, s.
     pub t_min_q: f64,
     /// Largest |s| (flexural part) and |r| (rocking part), m.
     pub max_abs_s: f64,
+    /// Largest |r|, the rocking part, m.
     pub max_abs_r: f64,
+    /// Number of uplifts.
     pub n_uplift: usize,
+    /// Number of landings.
     pub n_landing: usize,
+    /// Whether the body fell over.
     pub overturned: bool,
+    /// When it fell over, s.
     pub t_overturn: Option<f64>,
+    /// s_n, the uplift displacement, m.
     pub s_n: f64,
     #[serde(rename = "T")]
+    /// T, the pre-uplift period, s.
     pub period: f64,
+    /// Largest |energy_residual| over the samples, J.
     pub max_energy_residual: f64,
     /// The energies the residual is measured against, J (see [`Solution::energy_scale`]).
     pub energy_scale: f64,
+    /// Time the run ended, s.
     pub final_time: f64,
+    /// The mode at the end of the run.
     pub final_mode: &'static str,
     /// The run ended with the body rocking: no overturning within the duration, no more.
     pub ended_while_rocking: bool,
     /// What a reader of the result must know (also printed on stderr).
     pub warnings: Vec<String>,
+    /// The solver and its settings.
     pub solver: &'a SolverSettings,
+    /// What the solution cost.
     pub statistics: &'a SolverStats,
+    /// The derived constants.
     pub constants: &'a Constants,
+    /// The validated body.
     pub body: &'a Body,
+    /// The floor motion's parameters.
     pub excitation: serde_json::Value,
+    /// q and q' at t = 0.
     pub initial_state: InitialState,
+    /// Simulated time, s.
     pub duration: f64,
+    /// The model file as read, with command-line overrides applied.
     pub inputs: &'a ModelFile,
 }
 
+/// summary.json of a solved model.
 pub fn summary<'a>(model: &'a Model, solution: &'a Solution) -> RunSummary<'a> {
     RunSummary {
         flexrock_version: VERSION,
@@ -256,18 +281,17 @@ pub fn warnings(model: &Model, solution: &Solution) -> Vec<String> {
 
 /// Result of `flexrock run`.
 pub struct RunReport {
+    /// The solution.
     pub solution: Solution,
+    /// The files written.
     pub files: Vec<PathBuf>,
+    /// What a reader of the result must know (also in summary.json).
     pub warnings: Vec<String>,
 }
 
-/// Solves a model and writes history.csv, events.csv and summary.json into `out_dir`.
-pub fn run_to_dir(model: &Model, out_dir: &Path) -> Result<RunReport> {
-    run_to_dir_with(model, out_dir, false)
-}
-
-/// [`run_to_dir`], and with `plots` also the figures of [`crate::run_plot`], drawn from the three
-/// files as they are about to be written and written with them as one atomic set.
+/// Solves a model and writes history.csv, events.csv and summary.json into `out_dir`, and with
+/// `plots` also the figures of [`crate::run_plot`], drawn from the three files as they are about
+/// to be written and written with them as one atomic set.
 pub fn run_to_dir_with(model: &Model, out_dir: &Path, plots: bool) -> Result<RunReport> {
     let solution = simulate(model)?;
     let mut files = vec![

@@ -17,8 +17,11 @@ use crate::error::{Error, Result};
 use crate::output::{EVENT_COLUMNS, HISTORY_COLUMNS};
 use crate::solution::{Event, Sample};
 
+/// The sampled history of a run.
 pub const HISTORY_FILE: &str = "history.csv";
+/// The events of a run.
 pub const EVENTS_FILE: &str = "events.csv";
+/// The summary of a run.
 pub const SUMMARY_FILE: &str = "summary.json";
 
 /// Largest history.csv read, bytes (1 GiB). `run` writes at most 1e6 grid rows (about 170 MB)
@@ -44,16 +47,22 @@ pub struct RunSummaryFile {
     pub energy_scale: f64,
     /// Largest |energy_residual|, J.
     pub max_energy_residual: f64,
+    /// Number of uplifts.
     pub n_uplift: usize,
+    /// Number of landings.
     pub n_landing: usize,
+    /// When the body fell over, if it did, s.
     pub t_overturn: Option<f64>,
 }
 
 /// A run directory, read.
 #[derive(Debug, Clone)]
 pub struct RunData {
+    /// The rows of history.csv.
     pub history: Vec<HistoryRow>,
+    /// The rows of events.csv.
     pub events: Vec<Event>,
+    /// What the figures need from summary.json.
     pub summary: RunSummaryFile,
 }
 

@@ -23,6 +23,7 @@ pub enum Mode {
 }
 
 impl Mode {
+    /// The mode's name in events.csv and messages, e.g. "rock-right".
     pub fn name(self) -> &'static str {
         match self {
             Mode::PreUplift => "pre-uplift",
@@ -46,12 +47,16 @@ impl Mode {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum EventKind {
+    /// The body lifts off one toe: |q| reaches s_n from pre-uplift.
     Uplift,
+    /// The body lands back on both toes: |q| returns to s_n while rocking.
     Landing,
+    /// |q| reaches B: the body falls over.
     Overturn,
 }
 
 impl EventKind {
+    /// The event's name in events.csv and messages, e.g. "uplift".
     pub fn name(self) -> &'static str {
         match self {
             EventKind::Uplift => "uplift",
@@ -65,9 +70,13 @@ impl EventKind {
 /// `direction` (+1 rising, -1 falling).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Guard {
+    /// The value of q on the guard, m.
     pub level: f64,
+    /// The direction q crosses the guard in: +1 rising, -1 falling.
     pub direction: f64,
+    /// The event that crossing the guard is.
     pub kind: EventKind,
+    /// The mode the body enters past the guard.
     pub to: Mode,
 }
 
@@ -360,8 +369,12 @@ impl Automaton {
 /// Names of the guards, so that a solver can refer to "the i-th guard of this mode".
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum GuardSlot {
+    /// Uplift about the right toe: q rises through s_n.
     UpliftRight,
+    /// Uplift about the left toe: q falls through -s_n.
     UpliftLeft,
+    /// Landing: |q| returns to s_n while rocking.
     Landing,
+    /// Overturn: |q| reaches B while rocking.
     Overturn,
 }

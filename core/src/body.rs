@@ -15,6 +15,7 @@ pub enum ConstantSet {
 }
 
 impl ConstantSet {
+    /// The model-file spelling ("exact" or "paper").
     pub fn name(self) -> &'static str {
         match self {
             ConstantSet::Exact => "exact",
@@ -70,6 +71,7 @@ pub struct Body {
     pub damping_ratio: f64,
     /// g, m/s^2.
     pub gravity: f64,
+    /// Which mode-shape constants to use (`[body] constants`).
     pub constant_set: ConstantSet,
     /// Which variant of the model: the paper's, or self-weight-consistent.
     pub self_weight: SelfWeight,

@@ -8,27 +8,39 @@ pub enum Error {
     /// A parameter breaks a rule of the model (`key` is the model-file key, e.g. `body.width`).
     #[error("{key} = {value}: {rule}")]
     InvalidParameter {
+        /// The model-file key, e.g. `body.width`.
         key: String,
+        /// The value given, as quoted in the message.
         value: String,
+        /// The rule it breaks.
         rule: String,
     },
 
     /// The model file could not be read at all.
     #[error("{path}: cannot read the model file: {source}")]
     ReadModel {
+        /// The model file.
         path: PathBuf,
+        /// Why it could not be read.
         #[source]
         source: std::io::Error,
     },
 
     /// The model file is not valid TOML or does not follow the schema (unknown key, wrong type).
     #[error("{path}: {message}")]
-    ParseModel { path: PathBuf, message: String },
+    ParseModel {
+        /// The model file.
+        path: PathBuf,
+        /// The parser's message.
+        message: String,
+    },
 
     /// A parameter in a model file breaks a rule; `path` says which file.
     #[error("{path}: {source}")]
     InModel {
+        /// The model file.
         path: PathBuf,
+        /// The broken rule.
         #[source]
         source: Box<Error>,
     },
@@ -36,7 +48,9 @@ pub enum Error {
     /// A ground-motion record could not be read; `key` is the model-file key that named it.
     #[error("{key}: {source}")]
     Record {
+        /// The model-file key that named the record.
         key: String,
+        /// What is wrong with the record.
         #[source]
         source: crate::record::RecordError,
     },
@@ -44,29 +58,52 @@ pub enum Error {
     /// The integrator could not continue.
     #[error("the {method} solver failed at t = {} s: {message}", crate::format::readable(*.t))]
     Solver {
+        /// The solver's name, e.g. "bdf".
         method: String,
+        /// The time it stopped at, s.
         t: f64,
+        /// Why it stopped.
         message: String,
     },
 
     /// A figure could not be drawn.
     #[error("cannot draw the figure {name}: {message}")]
-    Plot { name: String, message: String },
+    Plot {
+        /// The figure's name.
+        name: String,
+        /// The plotting library's message.
+        message: String,
+    },
 
     /// An input file of a command (a result written earlier) could not be read or understood.
     #[error("{path}: {message}")]
-    ReadResult { path: PathBuf, message: String },
+    ReadResult {
+        /// The input file.
+        path: PathBuf,
+        /// What is wrong with it.
+        message: String,
+    },
 
     /// A file of a run's output directory (`flexrock plot`, `flexrock events`) is missing, too
     /// large, or not what `flexrock run` writes: the message names the column or key and what
     /// was expected.
     #[error("{path}: {message}")]
-    RunFile { path: PathBuf, message: String },
+    RunFile {
+        /// The file of the run directory.
+        path: PathBuf,
+        /// What is wrong with it.
+        message: String,
+    },
 
     /// A sweep's output directory given to `flexrock sweep merge` (or found when resuming) is not
     /// what a sweep writes, or does not fit with the others: another sweep, a gap, an overlap.
     #[error("{path}: {message}")]
-    SweepFile { path: PathBuf, message: String },
+    SweepFile {
+        /// The sweep's output directory or file.
+        path: PathBuf,
+        /// What is wrong with it.
+        message: String,
+    },
 
     /// The finite element analysis could not be set up or did not finish.
     #[error("finite element analysis: {0}")]
@@ -75,7 +112,9 @@ pub enum Error {
     /// An output file could not be written.
     #[error("cannot write {path}: {source}")]
     Write {
+        /// The file that could not be written.
         path: PathBuf,
+        /// Why.
         #[source]
         source: std::io::Error,
     },
@@ -84,9 +123,11 @@ pub enum Error {
     /// a socket, or a symbolic link to one), or an output directory that is not a directory.
     #[error("{path}: {found}; {rule}")]
     OutputTarget {
+        /// The output path.
         path: PathBuf,
         /// What is there, e.g. "a FIFO (named pipe)".
         found: String,
+        /// What flexrock needs there instead.
         rule: String,
     },
 
@@ -97,10 +138,14 @@ pub enum Error {
          ({restore_error}): they are kept in {kept}"
     )]
     Rollback {
+        /// The file that could not be written.
         path: PathBuf,
+        /// Why it could not be written.
         #[source]
         source: std::io::Error,
+        /// Why the previous files could not be put back.
         restore_error: std::io::Error,
+        /// The directory that keeps the previous files.
         kept: PathBuf,
     },
 }
@@ -108,6 +153,7 @@ pub enum Error {
 /// A value quoted in an error message. Numbers appear in their shortest exact form
 /// ([`crate::format::shortest`]), so that 1e300 reads `1e300`, not 301 digits.
 pub trait Quoted {
+    /// The value as an error message quotes it.
     fn quoted(&self) -> String;
 }
 

@@ -14,7 +14,9 @@ use crate::solution::Solution;
 /// One rocking episode: a run of samples in a rocking mode.
 #[derive(Debug, Clone, Serialize)]
 pub struct Dent {
+    /// Time of the first sample of the episode, s.
     pub t_start: f64,
+    /// Time of the last sample of the episode, s.
     pub t_end: f64,
     /// "rock-right" or "rock-left".
     pub mode: &'static str,
@@ -29,11 +31,15 @@ pub struct Dent {
 /// The findings in numbers.
 #[derive(Debug, Clone, Serialize)]
 pub struct Findings {
+    /// s_n, the uplift displacement, m.
     pub s_n: f64,
+    /// B, the width (the q at which the body overturns), m.
     pub width: f64,
     /// Largest |s| over the history, m, and its ratio to s_n (the paper: never above 1).
     pub max_abs_s: f64,
+    /// Largest |s| divided by s_n.
     pub max_abs_s_over_s_n: f64,
+    /// Whether |s| stays within s_n (up to rounding) over the history.
     pub s_never_exceeds_s_n: bool,
     /// Largest |r| over samples with |q| <= s_n (the paper: 0).
     pub max_abs_r_where_abs_q_within_s_n: f64,
@@ -44,7 +50,9 @@ pub struct Findings {
     pub max_s_r_relation_residual: f64,
     /// Rocking episodes with a dent (depth > 0) in s.
     pub rocking_episodes: usize,
+    /// How many of the rocking episodes have a dent.
     pub episodes_with_dent: usize,
+    /// The rocking episodes, each with its dent.
     pub dents: Vec<Dent>,
 }
 

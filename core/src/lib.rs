@@ -51,6 +51,8 @@
 //! # Ok::<(), flexrock_core::Error>(())
 //! ```
 
+#![warn(missing_docs)]
+
 pub mod automaton;
 pub mod body;
 pub mod constants;

@@ -48,9 +48,13 @@ fn solve(model: &Model, settings: &SolverSettings, history: History) -> Result<S
 /// What `flexrock props` prints: the body as understood and its derived constants.
 #[derive(Debug, Serialize)]
 pub struct Properties<'a> {
+    /// The version of flexrock that computed the properties.
     pub flexrock_version: &'static str,
+    /// The model file read, if any.
     pub model_file: Option<String>,
+    /// The validated body.
     pub body: &'a Body,
+    /// The constants derived from it.
     pub constants: &'a Constants,
 }
 

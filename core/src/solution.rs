@@ -10,14 +10,19 @@ use crate::solver::History;
 /// force is the column `F`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Sample {
+    /// Time, s.
     pub t: f64,
+    /// q, top displacement relative to the floor, m.
     pub q: f64,
+    /// q', top velocity relative to the floor, m/s.
     pub qdot: f64,
     /// Flexural part of q.
     pub s: f64,
     /// Rocking part of q.
     pub r: f64,
+    /// The mode the body is in.
     pub mode: Mode,
+    /// Floor acceleration, m/s^2.
     pub floor_acc: f64,
     /// Restoring force (base shear) F(q), N.
     #[serde(rename = "F")]
@@ -35,62 +40,88 @@ pub struct Sample {
 /// One mode change (a row of events.csv, whose columns are these fields).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Event {
+    /// Position of the event in the run, from 0.
     pub index: usize,
+    /// Time of the event, s.
     pub t: f64,
+    /// What happened.
     pub kind: EventKind,
+    /// The mode before the event.
     pub from: Mode,
+    /// The mode after the event.
     pub to: Mode,
+    /// q at the event, m.
     pub q: f64,
+    /// q' just before the event's reset, m/s.
     pub qdot_before: f64,
+    /// q' just after the event's reset, m/s.
     pub qdot_after: f64,
 }
 
 /// A peak of q and when it happened.
 #[derive(Debug, Clone, Copy, Serialize)]
 pub struct Extremum {
+    /// The peak value, m.
     pub value: f64,
+    /// When it happened, s.
     pub t: f64,
 }
 
 /// Cost of a solution.
 #[derive(Debug, Clone, Default, Serialize)]
 pub struct SolverStats {
+    /// The solver's name, e.g. "bdf" or "newmark-compensate".
     pub method: String,
     /// Accepted steps.
     pub steps: usize,
+    /// Steps rejected by the error test.
     pub error_test_failures: usize,
+    /// Newton iterations.
     pub nonlinear_iterations: usize,
+    /// Jacobian evaluations.
     pub jacobian_evaluations: usize,
     /// Steps taken again because their dense output could not resolve a grazing crossing.
     pub crossing_retries: usize,
+    /// Evaluations of the right-hand side.
     pub rhs_evaluations: usize,
+    /// Wall-clock time of the solve, s.
     pub wall_time_s: f64,
 }
 
 /// A complete solution of one run.
 #[derive(Debug, Clone, Serialize)]
 pub struct Solution {
+    /// The sampled history (empty for a peaks-only run).
     pub samples: Vec<Sample>,
+    /// Every mode change, in order.
     pub events: Vec<Event>,
+    /// Largest q and when, m.
     pub max_q: Extremum,
+    /// Smallest q and when, m.
     pub min_q: Extremum,
     /// Largest |s|, the flexural part, m.
     pub max_abs_s: f64,
     /// Largest |r|, the rocking part, m.
     pub max_abs_r: f64,
+    /// Whether the body fell over.
     pub overturned: bool,
+    /// When it fell over (|q| reached B), s.
     pub t_overturn: Option<f64>,
+    /// Time the run ended, s.
     pub final_time: f64,
+    /// The mode at the end of the run.
     pub final_mode: Mode,
     /// Largest |energy_residual| over the samples, J.
     pub max_energy_residual: f64,
     /// The size of the energies the residual is measured against, J: the largest of the SDOF
     /// energy, the input work and the damping work over the samples.
     pub energy_scale: f64,
+    /// What the solution cost.
     pub stats: SolverStats,
 }
 
 impl Solution {
+    /// How many events of `kind` happened.
     pub fn count(&self, kind: EventKind) -> usize {
         self.events.iter().filter(|e| e.kind == kind).count()
     }
@@ -138,6 +169,7 @@ pub struct Recorder<'a> {
 }
 
 impl<'a> Recorder<'a> {
+    /// A recorder for `automaton` starting at t0 in `mode` with q = q0 (m) and q' = qdot0 (m/s).
     pub fn new(
         automaton: &'a Automaton,
         t0: f64,
@@ -256,6 +288,7 @@ impl<'a> Recorder<'a> {
         self.sample(t, to, q, qdot_after, floor_acc, work_input, work_damping);
     }
 
+    /// The solution booked, ended at `final_time` (s) in `final_mode`.
     pub fn finish(self, final_time: f64, final_mode: Mode, stats: SolverStats) -> Solution {
         Solution {
             samples: self.samples,

@@ -42,6 +42,7 @@ const BASES: [BaseSupport; 2] = [BaseSupport::Flexible, BaseSupport::RigidPlate]
 /// What one curve shows.
 #[derive(Debug, Clone, Serialize)]
 pub struct CurveSummary {
+    /// The base support of the curve.
     pub base: BaseSupport,
     /// Secant stiffness at the first point, N/m.
     pub initial_stiffness: f64,
@@ -51,7 +52,9 @@ pub struct CurveSummary {
     pub heel_lift_q: Option<f64>,
     /// First swept q at which the body stands on one corner, m.
     pub uplift_q: Option<f64>,
+    /// Largest base shear of the curve, N.
     pub peak_base_shear: f64,
+    /// The q of that largest base shear, m.
     pub peak_q: f64,
     /// Where the sweep ended because the body turned freely about a corner, m.
     pub free_rotation_at: Option<f64>,
@@ -59,13 +62,19 @@ pub struct CurveSummary {
 
 /// The curves and their summaries.
 pub struct PushoverAnalysis {
+    /// The validated finite element analysis.
     pub setup: FemSetup,
+    /// The curve of each base support, in the order of the files.
     pub curves: Vec<(BaseSupport, Pushover)>,
+    /// What each curve shows, in the same order.
     pub summaries: Vec<CurveSummary>,
     /// SDOF Ke (N/m), s_n (m) and width B (m).
     pub generalised_stiffness: f64,
+    /// s_n of the SDOF model, m.
     pub uplift_displacement: f64,
+    /// B, m.
     pub width: f64,
+    /// Wall-clock time of both sweeps, s.
     pub wall_time_s: f64,
 }
 
@@ -124,7 +133,7 @@ fn sdof_force(automaton: &Automaton, q: f64) -> f64 {
     automaton.restoring_force(automaton.initial_mode(q), q)
 }
 
-pub fn curves_csv(model: &Model, a: &PushoverAnalysis) -> Vec<u8> {
+pub(crate) fn curves_csv(model: &Model, a: &PushoverAnalysis) -> Vec<u8> {
     let automaton = Automaton::new(&model.constants);
     let mut table = Table::new(&PUSHOVER_COLUMNS);
     for (base, curve) in &a.curves {
@@ -150,7 +159,7 @@ pub fn curves_csv(model: &Model, a: &PushoverAnalysis) -> Vec<u8> {
 
 /// pushover.json: how the curves were made and what they show.
 #[derive(Serialize)]
-pub struct PushoverSummary<'a> {
+pub(crate) struct PushoverSummary<'a> {
     pub flexrock_version: &'static str,
     pub model_file: Option<String>,
     pub element: &'static str,
@@ -168,7 +177,7 @@ pub struct PushoverSummary<'a> {
     pub inputs: &'a ModelFile,
 }
 
-pub fn summary<'a>(model: &'a Model, a: &'a PushoverAnalysis) -> PushoverSummary<'a> {
+pub(crate) fn summary<'a>(model: &'a Model, a: &'a PushoverAnalysis) -> PushoverSummary<'a> {
     PushoverSummary {
         flexrock_version: VERSION,
         model_file: model.path.as_ref().map(|p| p.display().to_string()),
@@ -188,7 +197,7 @@ pub fn summary<'a>(model: &'a Model, a: &'a PushoverAnalysis) -> PushoverSummary
     }
 }
 
-pub fn figure(model: &Model, a: &PushoverAnalysis) -> Panel {
+pub(crate) fn figure(model: &Model, a: &PushoverAnalysis) -> Panel {
     let automaton = Automaton::new(&model.constants);
     let mut panel = Panel::new(
         &format!(
@@ -229,7 +238,9 @@ pub fn figure(model: &Model, a: &PushoverAnalysis) -> Panel {
 
 /// Result of `flexrock fem --pushover`.
 pub struct PushoverReport {
+    /// The curves and their summaries.
     pub analysis: PushoverAnalysis,
+    /// The files written.
     pub files: Vec<PathBuf>,
 }
 
@@ -251,6 +262,7 @@ pub fn run(model: &Model, setup: &FemSetup, out_dir: &Path) -> Result<PushoverRe
     Ok(PushoverReport { analysis, files })
 }
 
+/// The text `flexrock fem --pushover` prints: each curve's summary and the files written.
 pub fn report_text(report: &PushoverReport) -> String {
     let a = &report.analysis;
     let s = &a.setup.settings;

@@ -43,13 +43,17 @@ pub const SHAPE_MAGNIFICATION: f64 = 5.0;
 
 /// A finished finite element run and what was derived from it.
 pub struct FemAnalysis {
+    /// The validated finite element analysis.
     pub setup: FemSetup,
+    /// The time history, contact events and snapshots.
     pub result: FemResult,
     /// Stability limit of the linear acceleration method on this mesh, s.
     pub linear_acceleration_limit: f64,
     /// Messages the user must see (also written to fem_summary.json).
     pub warnings: Vec<String>,
+    /// Wall-clock time of the run, s.
     pub wall_time_s: f64,
+    /// The stretches of steps with one base corner off the floor.
     pub uplifts: Vec<UpliftEpisode>,
 }
 
@@ -205,7 +209,7 @@ pub fn analyse(model: &Model, setup: &FemSetup) -> Result<FemAnalysis> {
     })
 }
 
-pub fn history_csv(model: &Model, steps: &[FemStep]) -> Vec<u8> {
+pub(crate) fn history_csv(model: &Model, steps: &[FemStep]) -> Vec<u8> {
     let mut table = Table::new(&HISTORY_COLUMNS);
     for s in steps {
         table.row([
@@ -229,7 +233,7 @@ pub fn history_csv(model: &Model, steps: &[FemStep]) -> Vec<u8> {
     table.into_bytes()
 }
 
-pub fn events_csv(result: &FemResult) -> Vec<u8> {
+pub(crate) fn events_csv(result: &FemResult) -> Vec<u8> {
     let mut table = Table::new(&EVENT_COLUMNS);
     for ContactEvent {
         t,
@@ -260,7 +264,7 @@ pub fn events_csv(result: &FemResult) -> Vec<u8> {
 
 /// Peak values of a run.
 #[derive(Debug, Clone, Serialize)]
-pub struct FemPeaks {
+pub(crate) struct FemPeaks {
     pub max_q: f64,
     pub t_max_q: f64,
     pub min_q: f64,
@@ -272,7 +276,7 @@ pub struct FemPeaks {
     pub max_abs_top_velocity: f64,
 }
 
-pub fn peaks(steps: &[FemStep]) -> FemPeaks {
+pub(crate) fn peaks(steps: &[FemStep]) -> FemPeaks {
     let max_abs = |f: fn(&FemStep) -> f64| steps.iter().map(|s| f(s).abs()).fold(0.0, f64::max);
     let max = steps.iter().max_by(|a, b| a.q.total_cmp(&b.q));
     let min = steps.iter().min_by(|a, b| a.q.total_cmp(&b.q));
@@ -291,7 +295,7 @@ pub fn peaks(steps: &[FemStep]) -> FemPeaks {
 
 /// fem_summary.json.
 #[derive(Debug, Serialize)]
-pub struct FemSummary<'a> {
+pub(crate) struct FemSummary<'a> {
     pub flexrock_version: &'static str,
     pub model_file: Option<String>,
     pub element: &'static str,
@@ -325,7 +329,7 @@ pub struct FemSummary<'a> {
 /// The element, in one line, for summaries and reports.
 pub const ELEMENT: &str = "QM6 4-node incompatible-mode quadrilateral, plane stress, lumped mass";
 
-pub fn summary<'a>(model: &'a Model, a: &'a FemAnalysis) -> FemSummary<'a> {
+pub(crate) fn summary<'a>(model: &'a Model, a: &'a FemAnalysis) -> FemSummary<'a> {
     let b = &a.setup.body;
     let c = &model.constants;
     let r = &a.result;
@@ -526,8 +530,11 @@ fn run_files(model: &Model, a: &FemAnalysis) -> Result<Vec<(&'static str, Vec<u8
 
 /// Result of `flexrock fem`.
 pub struct FemReport {
+    /// The run and what was derived from it.
     pub analysis: FemAnalysis,
+    /// The one-mode model side by side with the run, when compared.
     pub comparison: Option<FemComparison>,
+    /// The files written.
     pub files: Vec<PathBuf>,
 }
 
@@ -545,8 +552,11 @@ pub fn fem(model: &Model, setup: &FemSetup, out_dir: &Path) -> Result<FemReport>
 /// One row of the comparison table.
 #[derive(Debug, Clone, Serialize)]
 pub struct FemComparisonRow {
+    /// What the row measures.
     pub quantity: String,
+    /// Its value in the SDOF model.
     pub sdof: f64,
+    /// Its value in the finite element run.
     pub fem: f64,
     /// The row counts something (printed without decimals).
     #[serde(skip)]
@@ -556,8 +566,11 @@ pub struct FemComparisonRow {
 /// The SDOF model and the FEM side by side.
 #[derive(Debug, Clone, Serialize)]
 pub struct FemComparison {
+    /// The quantities side by side.
     pub rows: Vec<FemComparisonRow>,
+    /// Uplift times of the SDOF model, s.
     pub sdof_uplift_times: Vec<f64>,
+    /// Starts of the finite element run's uplift episodes, s.
     pub fem_uplift_times: Vec<f64>,
 }
 
@@ -588,7 +601,7 @@ fn rocking_branch(points: impl Iterator<Item = (f64, f64)>, width: f64) -> Vec<(
         .collect()
 }
 
-pub fn compare_solutions(model: &Model, sdof: &Solution, a: &FemAnalysis) -> FemComparison {
+pub(crate) fn compare_solutions(model: &Model, sdof: &Solution, a: &FemAnalysis) -> FemComparison {
     let steps = &a.result.steps;
     let p = peaks(steps);
     let width = model.body.width;
@@ -689,7 +702,7 @@ pub fn compare_solutions(model: &Model, sdof: &Solution, a: &FemAnalysis) -> Fem
     }
 }
 
-pub fn comparison_csv(c: &FemComparison) -> Vec<u8> {
+pub(crate) fn comparison_csv(c: &FemComparison) -> Vec<u8> {
     let mut table = Table::new(&["quantity", "sdof", "fem"]);
     for r in &c.rows {
         table.row([r.quantity.clone(), number(r.sdof), number(r.fem)]);
@@ -836,21 +849,27 @@ pub fn report_text(report: &FemReport) -> String {
 /// Fixed-base natural periods of the mesh against the SDOF period.
 #[derive(Debug, Clone, Serialize)]
 pub struct Modes {
+    /// Elements across the width.
     pub nx: usize,
+    /// Elements up the height.
     pub ny: usize,
     /// The lowest periods without the self-weight's P-Delta, s.
     pub periods_elastic: Vec<f64>,
     /// The lowest periods with it, s.
     pub periods_p_delta: Vec<f64>,
     #[serde(rename = "sdof_T")]
+    /// Pre-uplift period T of the SDOF model, s.
     pub sdof_period: f64,
+    /// Highest circular frequency ω_max of the mesh, rad/s.
     pub highest_frequency: f64,
+    /// Stability limit of the linear acceleration method on this mesh, s.
     pub linear_acceleration_stability_limit: f64,
 }
 
 /// Number of modes `--modes` reports.
 const MODE_COUNT: usize = 3;
 
+/// The lowest fixed-base periods of the mesh, with and without P-Delta (`flexrock fem --modes`).
 pub fn modes(model: &Model, setup: &FemSetup) -> Result<Modes> {
     let (b, s) = (&setup.body, &setup.settings);
     let omega = super::highest_frequency(b, s.nx, s.ny)?;
@@ -869,6 +888,7 @@ pub fn modes(model: &Model, setup: &FemSetup) -> Result<Modes> {
     })
 }
 
+/// The text `flexrock fem --modes` prints.
 pub fn modes_text(m: &Modes) -> String {
     let mut t = String::new();
     let _ = writeln!(

@@ -93,7 +93,9 @@ impl FloorMotion for Free {
 /// a(t) = A sin(2 pi t / Tp) from t = 0 (the floor starts with velocity -A Tp / 2 pi).
 #[derive(Debug, Clone, Serialize)]
 pub struct Harmonic {
+    /// A, peak floor acceleration, m/s^2.
     pub amplitude: f64,
+    /// Tp, period of the sine, s.
     pub period: f64,
 }
 
@@ -120,8 +122,11 @@ impl FloorMotion for Harmonic {
 /// velocity and displacement join those of the pure sine at t = ramp.
 #[derive(Debug, Clone, Serialize)]
 pub struct PaperSine {
+    /// A, amplitude of the sine, m/s^2.
     pub amplitude: f64,
+    /// Tp, period of the sine, s.
     pub period: f64,
+    /// Length of the cubic ramp at the start, s.
     pub ramp: f64,
     /// [c1, c2, c3], computed by [`PaperSine::new`].
     pub ramp_coefficients: [f64; 3],
@@ -130,6 +135,7 @@ pub struct PaperSine {
 }
 
 impl PaperSine {
+    /// The paper's sine of amplitude A (m/s^2) and period Tp (s), ramped in over `ramp` seconds.
     pub fn new(amplitude: f64, period: f64, ramp: f64) -> Self {
         PaperSine {
             amplitude,

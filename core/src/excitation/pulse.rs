@@ -24,15 +24,20 @@ pub enum PulseShape {
 /// their single pulse; more cycles give the n-cycle variants.
 #[derive(Debug, Clone, Serialize)]
 pub struct SinePulse {
+    /// A, peak floor acceleration, m/s^2.
     pub amplitude: f64,
+    /// Tp, period of one cycle, s.
     pub period: f64,
+    /// Number of cycles before the floor comes to rest.
     pub cycles: f64,
+    /// Sine or cosine cycles.
     pub shape: PulseShape,
     #[serde(skip)]
     breakpoints: [f64; 1],
 }
 
 impl SinePulse {
+    /// `cycles` cycles of period Tp (s) and amplitude A (m/s^2), of the given shape.
     pub fn new(amplitude: f64, period: f64, cycles: f64, shape: PulseShape) -> Self {
         SinePulse {
             amplitude,
@@ -105,8 +110,11 @@ impl FloorMotion for SinePulse {
 /// pulses acting on rocking blocks. Its peak, A, is at tc.
 #[derive(Debug, Clone, Serialize)]
 pub struct Ricker {
+    /// A, the peak acceleration (at tc), m/s^2.
     pub amplitude: f64,
+    /// Tp = 1/f, the inverse of the spectrum's peak frequency, s.
     pub period: f64,
+    /// tc, the time of the peak, s.
     pub center: f64,
 }
 

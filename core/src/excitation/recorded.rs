@@ -9,7 +9,9 @@ use super::FloorMotion;
 /// at rest. Every sample time is a breakpoint, so adaptive solvers never step across a kink.
 #[derive(Debug, Clone, Serialize)]
 pub struct RecordedMotion {
+    /// Where the samples came from (the record file), for tables and messages.
     pub source: String,
+    /// Sample spacing dt, s.
     pub dt: f64,
     #[serde(skip)]
     values: Vec<f64>,
@@ -34,6 +36,7 @@ impl RecordedMotion {
         self.sample_times.last().copied().unwrap_or(0.0)
     }
 
+    /// The samples a_k, m/s^2.
     pub fn values(&self) -> &[f64] {
         &self.values
     }

@@ -184,6 +184,7 @@ impl BaseSupport {
         }
     }
 
+    /// The base support spelled `name` in a model file.
     pub fn from_name(name: &str) -> Option<Self> {
         [BaseSupport::Flexible, BaseSupport::RigidPlate]
             .into_iter()
@@ -230,9 +231,17 @@ impl Default for FemBody {
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub enum TimeScheme {
     /// Newmark family: 0 < β <= 1/2, 1/2 <= γ <= 1.
-    Newmark { beta: f64, gamma: f64 },
+    Newmark {
+        /// β.
+        beta: f64,
+        /// γ.
+        gamma: f64,
+    },
     /// Wilson θ (linear acceleration over θ dt), θ >= 1.
-    WilsonTheta { theta: f64 },
+    WilsonTheta {
+        /// θ.
+        theta: f64,
+    },
 }
 
 impl TimeScheme {
@@ -267,6 +276,7 @@ pub struct FemSettings {
     pub dt: f64,
     /// Duration of the run, s.
     pub duration: f64,
+    /// The time-stepping scheme.
     pub scheme: TimeScheme,
     /// Static friction coefficient μs.
     pub mu_s: f64,
@@ -353,10 +363,13 @@ pub struct ContactEvent {
     pub t: f64,
     /// Base node index, 0 = left corner .. nx = right corner.
     pub node: usize,
+    /// The state before the change.
     pub from: ContactState,
+    /// The state after the change.
     pub to: ContactState,
-    /// Reactions at that step (0 for a Free node), N.
+    /// Reactions at that step (0 for a Free node), N: horizontal Rx.
     pub rx: f64,
+    /// Vertical reaction Ry at that step, N.
     pub ry: f64,
 }
 
@@ -377,7 +390,9 @@ pub struct Snapshot {
 pub struct FemResult {
     /// One entry per time step, t = 0 first.
     pub steps: Vec<FemStep>,
+    /// Every base-node state change, in order.
     pub events: Vec<ContactEvent>,
+    /// The displacements at the requested snapshot times.
     pub snapshots: Vec<Snapshot>,
     /// Undeformed node coordinates (x, y), m; node (i, j) is `j (nx + 1) + i`.
     pub node_coordinates: Vec<[f64; 2]>,
@@ -432,22 +447,42 @@ pub struct PushoverPoint {
 /// Errors, naming the parameter, its value and the rule broken.
 #[derive(Debug, Clone, PartialEq, Error)]
 pub enum FemError {
+    /// A parameter breaks a rule.
     #[error("invalid parameter `{name}` = {value}: {rule}")]
     InvalidParameter {
+        /// The parameter's name.
         name: &'static str,
+        /// Its value, as quoted in the message.
         value: String,
+        /// The rule it breaks.
         rule: String,
     },
+    /// An element's Jacobian determinant is not positive (the element is inverted or flat).
     #[error("degenerate element: {detail}")]
-    DegenerateElement { detail: String },
+    DegenerateElement {
+        /// Where the Jacobian fails, and its determinant.
+        detail: String,
+    },
+    /// A linear system has no unique solution.
     #[error("singular system: {context}")]
-    SingularMatrix { context: String },
+    SingularMatrix {
+        /// Which system.
+        context: String,
+    },
+    /// The displacements became non-finite or larger than 1e6 m.
     #[error(
         "solution diverged at t = {t} s (non-finite or |u| > 1e6 m); dt may exceed the stability limit"
     )]
-    Diverged { t: f64 },
+    Diverged {
+        /// Time of the step that diverged, s.
+        t: f64,
+    },
+    /// The base contact states did not settle.
     #[error("contact iteration did not converge at {context}")]
-    ContactNotConverged { context: String },
+    ContactNotConverged {
+        /// Where, e.g. the pushover displacement.
+        context: String,
+    },
 }
 
 fn invalid(name: &'static str, value: impl crate::error::Quoted, rule: &str) -> FemError {
@@ -506,11 +541,24 @@ pub enum SizeLimit {
     /// ny outside 1..=[`MAX_ELEMENTS_PER_SIDE`].
     Ny(usize),
     /// The mesh's banded matrices are larger than [`MAX_BAND_ENTRIES`].
-    Band { nx: usize, ny: usize },
+    Band {
+        /// Elements across the width.
+        nx: usize,
+        /// Elements up the height.
+        ny: usize,
+    },
     /// More time steps than [`MAX_STEPS`].
-    Steps { steps: f64 },
+    Steps {
+        /// The number of time steps asked for.
+        steps: f64,
+    },
     /// More steps x band entries than [`MAX_STEP_WORK`].
-    Work { steps: f64, entries: f64 },
+    Work {
+        /// The number of time steps asked for.
+        steps: f64,
+        /// Entries of one banded matrix of the mesh.
+        entries: f64,
+    },
 }
 
 impl SizeLimit {

@@ -9,22 +9,31 @@ use crate::error::{Error, Result};
 use crate::fem::{check_run_size, BaseSupport, FemBody, FemSettings, SizeLimit, TimeScheme};
 use crate::format::readable;
 
+/// Default Poisson's ratio of the plane-stress body (`[body] poisson_ratio`).
 pub const DEFAULT_POISSON_RATIO: f64 = 0.25;
 
 /// A validated finite element analysis: the plane-stress body and the run settings.
 #[derive(Debug, Clone, Serialize)]
 pub struct FemSetup {
+    /// The plane-stress body.
     pub body: FemBody,
+    /// Mesh, time stepping, friction and output settings.
     pub settings: FemSettings,
     /// The scheme's name as written in the model file.
     pub scheme_name: &'static str,
 }
 
+/// Default elements across the width (`[fem] nx`), the paper's mesh.
 pub const DEFAULT_FEM_NX: usize = 2;
+/// Default elements up the height (`[fem] ny`), the paper's mesh.
 pub const DEFAULT_FEM_NY: usize = 5;
+/// Default time step of the finite element run (`[fem] dt`), s.
 pub const DEFAULT_FEM_DT: f64 = 0.0071;
+/// Default Wilson θ (`[fem] theta`).
 pub const DEFAULT_FEM_THETA: f64 = 1.4;
+/// Default static friction coefficient μs (`[fem] mu_s`).
 pub const DEFAULT_FEM_MU_S: f64 = 0.8;
+/// Default kinetic friction coefficient μk (`[fem] mu_k`).
 pub const DEFAULT_FEM_MU_K: f64 = 0.4;
 /// Deformed shapes are stored at these times (the paper's Fig. 9), s.
 pub const FEM_SNAPSHOT_TIMES: [f64; 6] = [0.9, 1.0, 1.1, 1.2, 1.3, 1.4];

@@ -11,6 +11,7 @@ use crate::solver::SolverSettings;
 pub const DEFAULT_NEWMARK_DT: f64 = 0.02;
 /// Linear acceleration, the paper's choice.
 pub const DEFAULT_NEWMARK_BETA: f64 = 1.0 / 6.0;
+/// Newmark gamma = 1/2: no numerical damping.
 pub const DEFAULT_NEWMARK_GAMMA: f64 = 0.5;
 /// More Newmark steps than this is a mistake in dt, not a wish.
 const MAX_NEWMARK_STEPS: f64 = 1e8;

@@ -60,8 +60,11 @@ const MAX_CROSSING_RETRIES: usize = 60;
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum AdaptiveMethod {
+    /// Variable-order BDF.
     Bdf,
+    /// ESDIRK 3(4), a singly diagonally implicit Runge-Kutta method.
     Esdirk34,
+    /// TR-BDF2, trapezoidal rule then BDF2.
     TrBdf2,
     /// Tsitouras 5(4), explicit: the model is not stiff (its frequencies are those of the body),
     /// and a fifth-order one-step method keeps its order between the samples of a record.
@@ -69,6 +72,7 @@ pub enum AdaptiveMethod {
 }
 
 impl AdaptiveMethod {
+    /// The method's model-file spelling, e.g. "tr-bdf2".
     pub fn name(self) -> &'static str {
         match self {
             AdaptiveMethod::Bdf => "bdf",
@@ -78,6 +82,7 @@ impl AdaptiveMethod {
         }
     }
 
+    /// The method spelled `name` in a model file.
     pub fn from_name(name: &str) -> Option<Self> {
         match name {
             "bdf" => Some(AdaptiveMethod::Bdf),
@@ -92,8 +97,11 @@ impl AdaptiveMethod {
 /// Settings of an adaptive run.
 #[derive(Debug, Clone, Copy, Serialize)]
 pub struct AdaptiveSettings {
+    /// The method.
     pub method: AdaptiveMethod,
+    /// Relative tolerance.
     pub rtol: f64,
+    /// Absolute tolerance.
     pub atol: f64,
     /// Spacing of the sampled history, s.
     pub output_dt: f64,

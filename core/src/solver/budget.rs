@@ -33,6 +33,7 @@ impl Default for RunBudget {
 }
 
 impl RunBudget {
+    /// A budget with no events spent.
     pub fn new() -> Self {
         RunBudget {
             events: 0,

@@ -49,6 +49,7 @@ impl OutputGrid {
         }
     }
 
+    /// The grid 0, dt, 2 dt, ... over [0, end] (s) with dt = `output_dt` (s), ending at `end`.
     pub fn new(end: f64, output_dt: f64) -> Self {
         // Points closer to `end` than a millionth of a step merge with it.
         let count = (end / output_dt * (1.0 + 1e-12) + 1e-6).floor() as usize + 1;
@@ -81,6 +82,7 @@ impl OutputGrid {
         }
     }
 
+    /// Marks the next grid time emitted.
     pub fn advance(&mut self) {
         self.next += 1;
     }
@@ -100,7 +102,9 @@ impl OutputGrid {
 /// Which solver a model runs with, and its settings.
 #[derive(Debug, Clone, Copy)]
 pub enum SolverSettings {
+    /// An adaptive diffsol method.
     Adaptive(adaptive::AdaptiveSettings),
+    /// Newmark's method with a fixed step.
     Newmark(newmark::NewmarkSettings),
 }
 
@@ -113,6 +117,7 @@ impl SolverSettings {
         }
     }
 
+    /// Spacing of the sampled history, s.
     pub fn output_dt(&self) -> f64 {
         match self {
             SolverSettings::Adaptive(a) => a.output_dt,

@@ -55,6 +55,7 @@ pub enum NewmarkVariant {
 }
 
 impl NewmarkVariant {
+    /// The variant's model-file spelling.
     pub fn name(self) -> &'static str {
         match self {
             NewmarkVariant::Compensate => "compensate",
@@ -62,6 +63,7 @@ impl NewmarkVariant {
         }
     }
 
+    /// The variant spelled `name` in a model file.
     pub fn from_name(name: &str) -> Option<Self> {
         match name {
             "compensate" => Some(NewmarkVariant::Compensate),
@@ -76,8 +78,11 @@ impl NewmarkVariant {
 pub struct NewmarkSettings {
     /// Time step, s.
     pub dt: f64,
+    /// Newmark's beta.
     pub beta: f64,
+    /// Newmark's gamma.
     pub gamma: f64,
+    /// How a mode change inside a step is handled.
     pub variant: NewmarkVariant,
     /// Spacing of the sampled history, s.
     pub output_dt: f64,
