@@ -3,8 +3,8 @@
 //! the rigid-limit check and the linear acceleration method's stability limit; every other
 //! number is read from those files.
 //!
-//! The files are read into typed structs ([`CompareFile`], [`ConvergeFile`] with the [`Case`]s
-//! and [`ObservedOrder`]s that `converge` writes, [`RigidRunFile`], CSV rows by column name): a
+//! The files are read into typed structs (`CompareFile`, `ConvergeFile` with the [`Case`]s
+//! and [`ObservedOrder`]s that `converge` writes, `RigidRunFile`, CSV rows by column name): a
 //! missing key or column is an [`Error::ReadResult`] naming the file and the key, not a "?" or
 //! NaN in the report. Where the written summary borrows the model and the solution (compare.json,
 //! summary.json), or the committed files predate some of its newer keys, the reader is an owned
