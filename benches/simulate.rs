@@ -3,6 +3,8 @@
 use std::path::Path;
 
 use criterion::{criterion_group, criterion_main, Criterion};
+use flexrock::body::{Body, SelfWeight};
+use flexrock::constants::Constants;
 use flexrock::model::{Model, Overrides};
 
 fn load(file: &str, overrides: Overrides) -> Model {
@@ -65,5 +67,26 @@ fn reference_case_methods(c: &mut Criterion) {
     }
 }
 
-criterion_group!(benches, reference_case, reference_case_methods, el_centro);
+/// Deriving the constants of the paper's body in each variant: a sweep does it at every point,
+/// and the consistent variant solves for its shape (a 12-mode Ritz eigenproblem) each time.
+fn constants(c: &mut Criterion) {
+    let model = load("models/ichinose1986.toml", Overrides::default());
+    for variant in [SelfWeight::Paper, SelfWeight::Consistent] {
+        let body = Body {
+            self_weight: variant,
+            ..model.body.clone()
+        };
+        c.bench_function(&format!("constants {}", variant.name()), |b| {
+            b.iter(|| Constants::new(std::hint::black_box(&body)).expect("valid"))
+        });
+    }
+}
+
+criterion_group!(
+    benches,
+    reference_case,
+    reference_case_methods,
+    el_centro,
+    constants
+);
 criterion_main!(benches);

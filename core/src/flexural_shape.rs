@@ -133,6 +133,8 @@ struct RitzMatrices {
     geometric: DMatrix<f64>,
     int_phi: DVector<f64>,
     int_phi_xi: DVector<f64>,
+    /// L^-1 of the mass matrix's Cholesky factor M = L L^T.
+    mass_factor_inverse: DMatrix<f64>,
 }
 
 fn ritz_matrices(n: usize) -> RitzMatrices {
@@ -143,6 +145,7 @@ fn ritz_matrices(n: usize) -> RitzMatrices {
         geometric: DMatrix::zeros(n, n),
         int_phi: DVector::zeros(n),
         int_phi_xi: DVector::zeros(n),
+        mass_factor_inverse: DMatrix::zeros(n, n),
     };
     for (xi, w) in gauss_legendre(QUADRATURE_POINTS) {
         let v: Vec<[f64; 3]> = modes.iter().map(|mode| mode.values(xi)).collect();
@@ -156,19 +159,20 @@ fn ritz_matrices(n: usize) -> RitzMatrices {
             }
         }
     }
+    // The mass matrix is the identity over 4 up to quadrature error: positive definite.
+    if let Some(l_inv) = m.mass.clone().cholesky().and_then(|c| c.l().try_inverse()) {
+        m.mass_factor_inverse = l_inv;
+    }
     m
 }
 
 /// Solves for psi at `gravity_parameter` = M g H^2/EI with `n` modes. Returns `None` when the
 /// lowest eigenvalue is not positive (at or beyond self-weight buckling, gamma_g = 7.837).
-fn solve(gravity_parameter: f64, n: usize) -> Option<(f64, DVector<f64>, RitzMatrices)> {
-    let m = ritz_matrices(n);
+fn solve(gravity_parameter: f64, m: &RitzMatrices) -> Option<(f64, DVector<f64>)> {
     let stiffness = &m.bending - gravity_parameter * &m.geometric;
     // K c = Omega M c with M = L L^T: the symmetric problem L^-1 K L^-T y = Omega y, c = L^-T y.
-    let cholesky = m.mass.clone().cholesky()?;
-    let l = cholesky.l();
-    let l_inv = l.clone().try_inverse()?;
-    let reduced = &l_inv * stiffness * l_inv.transpose();
+    let l_inv = &m.mass_factor_inverse;
+    let reduced = l_inv * stiffness * l_inv.transpose();
     let reduced = 0.5 * (&reduced + reduced.transpose());
     let eigen = reduced.symmetric_eigen();
     let (lowest, omega) = eigen
@@ -187,13 +191,21 @@ fn solve(gravity_parameter: f64, n: usize) -> Option<(f64, DVector<f64>, RitzMat
         .enumerate()
         .map(|(k, c)| if k % 2 == 0 { *c } else { -*c })
         .sum();
-    Some((omega, coefficients / tip, m))
+    Some((omega, coefficients / tip))
+}
+
+/// The Ritz matrices of [`RITZ_MODES`] modes, computed once: they do not depend on the body, and
+/// a sweep derives the constants at every point.
+fn basis() -> &'static RitzMatrices {
+    static BASIS: std::sync::OnceLock<RitzMatrices> = std::sync::OnceLock::new();
+    BASIS.get_or_init(|| ritz_matrices(RITZ_MODES))
 }
 
 impl SelfWeightedShape {
     /// psi for `gravity_parameter` = M g H^2/EI in [0, 7.837); `None` beyond buckling.
     pub fn new(gravity_parameter: f64) -> Option<Self> {
-        let (omega, c, m) = solve(gravity_parameter, RITZ_MODES)?;
+        let m = basis();
+        let (omega, c) = solve(gravity_parameter, m)?;
         let mut coefficients = [0.0; RITZ_MODES];
         coefficients.copy_from_slice(c.as_slice());
         Some(SelfWeightedShape {
@@ -271,7 +283,7 @@ mod tests {
         assert!((psi.int_psi - 0.39056).abs() < 1e-5);
         assert!((psi.int_psi2 - 0.24938).abs() < 1e-5);
         assert!((psi.int_psi_xi - 0.28397).abs() < 1e-5);
-        let (omega16, _, _) = solve(1.845, 16).unwrap();
+        let (omega16, _) = solve(1.845, &ritz_matrices(16)).unwrap();
         assert!((psi.omega_coefficient - omega16).abs() < 1e-7 * omega16);
     }
 
