@@ -17,7 +17,7 @@ use crate::error::{Error, Result};
 use crate::plot::{Legend, Panel, Series};
 
 /// sweep.csv read back: its columns and rows of text.
-pub struct Table {
+pub struct SweepTable {
     /// Column names, from the header.
     pub columns: Vec<String>,
     /// The fields of each row, as text.
@@ -25,9 +25,9 @@ pub struct Table {
     path: std::path::PathBuf,
 }
 
-impl Table {
+impl SweepTable {
     /// Parses CSV text; `path` names it in messages.
-    pub fn parse(bytes: &[u8], path: &Path) -> Result<Table> {
+    pub fn parse(bytes: &[u8], path: &Path) -> Result<SweepTable> {
         let fail = |message: String| Error::ReadResult {
             path: path.to_path_buf(),
             message,
@@ -44,7 +44,7 @@ impl Table {
             let record = record.map_err(|e| fail(format!("a malformed row: {e}")))?;
             rows.push(record.iter().map(str::to_string).collect());
         }
-        Ok(Table {
+        Ok(SweepTable {
             columns,
             rows,
             path: path.to_path_buf(),
@@ -103,7 +103,7 @@ impl Table {
 }
 
 /// The figures of a sweep, as (file name, SVG bytes).
-pub fn figures(plan: &Plan, table: &Table) -> Result<Vec<(String, Vec<u8>)>> {
+pub fn figures(plan: &Plan, table: &SweepTable) -> Result<Vec<(String, Vec<u8>)>> {
     let numeric: Vec<usize> = (0..plan.axes.len())
         .filter(|&i| plan.axes[i].is_numeric())
         .collect();
@@ -182,7 +182,7 @@ fn plot_error(e: impl std::fmt::Display) -> Error {
 }
 
 /// The map over axes `x` and `y` (indices into the plan's axes).
-fn map(plan: &Plan, table: &Table, x: usize, y: usize) -> Result<Vec<u8>> {
+fn map(plan: &Plan, table: &SweepTable, x: usize, y: usize) -> Result<Vec<u8>> {
     let (nx, ny) = (plan.axes[x].len(), plan.axes[y].len());
     let q_column = table.column("max_abs_q_over_B")?;
     let over_column = table.column("overturned")?;
@@ -368,7 +368,7 @@ fn draw_colour_bar(area: &Area<'_>) -> std::result::Result<(), Box<dyn std::erro
 }
 
 /// The spectrum of a minimum search over axis `x`.
-fn spectrum(plan: &Plan, table: &Table, x: usize) -> Result<Vec<u8>> {
+fn spectrum(plan: &Plan, table: &SweepTable, x: usize) -> Result<Vec<u8>> {
     let Some(find) = &plan.find_min else {
         return Ok(Vec::new());
     };

@@ -386,7 +386,7 @@ fn finish(
     let mut table_bytes =
         output::Table::new(&columns.iter().map(String::as_str).collect::<Vec<_>>()).into_bytes();
     table_bytes.extend_from_slice(body);
-    let table = figure::Table::parse(&table_bytes, &dir.join(TABLE_FILE))?;
+    let table = figure::SweepTable::parse(&table_bytes, &dir.join(TABLE_FILE))?;
     if table.rows.len() != range.end - range.first {
         return Err(Error::ReadResult {
             path: dir.join(CHUNKS_DIR),
