@@ -368,8 +368,9 @@ fn solution_summary<'a>(
 /// compare.json.
 #[derive(Debug, Serialize)]
 pub(crate) struct CompareSummary<'a> {
-    pub flexrock_version: &'static str,
-    pub model_file: Option<String>,
+    /// Which flexrock wrote the file, from which model file.
+    #[serde(flatten)]
+    pub provenance: crate::run::Provenance,
     #[serde(rename = "T")]
     pub period: f64,
     pub s_n: f64,
@@ -447,8 +448,7 @@ pub fn run_compare(
     let comparison = compare(&reference, &newmark, output_dt, max_shift);
 
     let summary = CompareSummary {
-        flexrock_version: VERSION,
-        model_file: model.path.as_ref().map(|p| p.display().to_string()),
+        provenance: crate::run::Provenance::of(model),
         period: model.constants.period,
         s_n: model.constants.uplift_displacement,
         duration: model.duration,

@@ -125,10 +125,9 @@ pub struct ObservedOrder {
 /// convergence.json.
 #[derive(Debug, Serialize)]
 pub struct ConvergeSummary {
-    /// The version of flexrock that wrote the file.
-    pub flexrock_version: &'static str,
-    /// The model file read, if any.
-    pub model_file: Option<String>,
+    /// Which flexrock wrote the file, from which model file.
+    #[serde(flatten)]
+    pub provenance: crate::run::Provenance,
     /// The reference's method.
     pub reference_method: String,
     /// The reference's relative tolerance.
@@ -340,8 +339,7 @@ pub fn run_converge(
     }
     let orders = orders(&cases);
     let summary = ConvergeSummary {
-        flexrock_version: VERSION,
-        model_file: model.path.as_ref().map(|p| p.display().to_string()),
+        provenance: crate::run::Provenance::of(model),
         reference_method: reference_settings.label(),
         reference_rtol: options.reference_rtol,
         reference_statistics: reference.stats.clone(),

@@ -17,7 +17,7 @@ use crate::solution::{Solution, SolverStats};
 use crate::solver::{InitialState, SolverSettings};
 
 pub use flexrock_core::simulate::{
-    properties, simulate, simulate_peaks, simulate_with, Properties, VERSION,
+    properties, simulate, simulate_peaks, simulate_with, Properties, Provenance, VERSION,
 };
 
 /// The human-readable table of `flexrock props`.
@@ -147,10 +147,9 @@ fn fmt(x: f64) -> String {
 /// summary.json of `flexrock run`.
 #[derive(Debug, Serialize)]
 pub struct RunSummary<'a> {
-    /// The version of flexrock that wrote the file.
-    pub flexrock_version: &'static str,
-    /// The model file read, if any.
-    pub model_file: Option<String>,
+    /// Which flexrock wrote the file, from which model file.
+    #[serde(flatten)]
+    pub provenance: crate::run::Provenance,
     /// Largest q, m.
     pub max_q: f64,
     /// When q was largest, s.
@@ -209,8 +208,7 @@ pub struct RunSummary<'a> {
 /// summary.json of a solved model.
 pub fn summary<'a>(model: &'a Model, solution: &'a Solution) -> RunSummary<'a> {
     RunSummary {
-        flexrock_version: VERSION,
-        model_file: model.path.as_ref().map(|p| p.display().to_string()),
+        provenance: crate::run::Provenance::of(model),
         max_q: solution.max_q.value,
         t_max_q: solution.max_q.t,
         min_q: solution.min_q.value,

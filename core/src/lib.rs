@@ -75,6 +75,6 @@ pub use constants::Constants;
 pub use error::{Error, Result};
 pub use excitation::FloorMotion;
 pub use model::{Model, Overrides};
-pub use simulate::{properties, simulate, simulate_peaks, simulate_with, Properties};
+pub use simulate::{properties, simulate, simulate_peaks, simulate_with, Properties, Provenance};
 pub use solution::Solution;
 pub use solver::SolverSettings;

@@ -45,13 +45,32 @@ fn solve(model: &Model, settings: &SolverSettings, history: History) -> Result<S
     }
 }
 
-/// What `flexrock props` prints: the body as understood and its derived constants.
-#[derive(Debug, Serialize)]
-pub struct Properties<'a> {
-    /// The version of flexrock that computed the properties.
+/// The head of every summary flexrock writes (summary.json, compare.json, convergence.json,
+/// fem_summary.json, pushover.json, `props --json`): which flexrock made it, from which model file.
+#[derive(Debug, Clone, Serialize)]
+pub struct Provenance {
+    /// The version of flexrock that wrote the file.
     pub flexrock_version: &'static str,
     /// The model file read, if any.
     pub model_file: Option<String>,
+}
+
+impl Provenance {
+    /// The provenance of results computed from `model`.
+    pub fn of(model: &Model) -> Self {
+        Provenance {
+            flexrock_version: VERSION,
+            model_file: model.path.as_ref().map(|p| p.display().to_string()),
+        }
+    }
+}
+
+/// What `flexrock props` prints: the body as understood and its derived constants.
+#[derive(Debug, Serialize)]
+pub struct Properties<'a> {
+    /// Which flexrock computed the properties, from which model file.
+    #[serde(flatten)]
+    pub provenance: Provenance,
     /// The validated body.
     pub body: &'a Body,
     /// The constants derived from it.
@@ -61,8 +80,7 @@ pub struct Properties<'a> {
 /// The body of a model and its derived constants, with the version and the model file.
 pub fn properties(model: &Model) -> Properties<'_> {
     Properties {
-        flexrock_version: VERSION,
-        model_file: model.path.as_ref().map(|p| p.display().to_string()),
+        provenance: Provenance::of(model),
         body: &model.body,
         constants: &model.constants,
     }

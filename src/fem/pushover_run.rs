@@ -160,8 +160,9 @@ pub(crate) fn curves_csv(model: &Model, a: &PushoverAnalysis) -> Vec<u8> {
 /// pushover.json: how the curves were made and what they show.
 #[derive(Serialize)]
 pub(crate) struct PushoverSummary<'a> {
-    pub flexrock_version: &'static str,
-    pub model_file: Option<String>,
+    /// Which flexrock wrote the file, from which model file.
+    #[serde(flatten)]
+    pub provenance: crate::run::Provenance,
     pub element: &'static str,
     pub body: &'a FemBody,
     pub nx: usize,
@@ -179,8 +180,7 @@ pub(crate) struct PushoverSummary<'a> {
 
 pub(crate) fn summary<'a>(model: &'a Model, a: &'a PushoverAnalysis) -> PushoverSummary<'a> {
     PushoverSummary {
-        flexrock_version: VERSION,
-        model_file: model.path.as_ref().map(|p| p.display().to_string()),
+        provenance: crate::run::Provenance::of(model),
         element: ELEMENT,
         body: &a.setup.body,
         nx: a.setup.settings.nx,

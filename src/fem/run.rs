@@ -296,8 +296,9 @@ pub(crate) fn peaks(steps: &[FemStep]) -> FemPeaks {
 /// fem_summary.json.
 #[derive(Debug, Serialize)]
 pub(crate) struct FemSummary<'a> {
-    pub flexrock_version: &'static str,
-    pub model_file: Option<String>,
+    /// Which flexrock wrote the file, from which model file.
+    #[serde(flatten)]
+    pub provenance: crate::run::Provenance,
     pub element: &'static str,
     pub body: &'a super::FemBody,
     pub settings: &'a super::FemSettings,
@@ -334,8 +335,7 @@ pub(crate) fn summary<'a>(model: &'a Model, a: &'a FemAnalysis) -> FemSummary<'a
     let c = &model.constants;
     let r = &a.result;
     FemSummary {
-        flexrock_version: VERSION,
-        model_file: model.path.as_ref().map(|p| p.display().to_string()),
+        provenance: crate::run::Provenance::of(model),
         element: ELEMENT,
         body: b,
         settings: &a.setup.settings,
