@@ -441,24 +441,23 @@ fn write_paper_example(t: &mut String, r: &Read, fig: &dyn Fn(&str) -> String) {
         se.mean_abs_time_difference
     );
     let at = |p: &PeakRead| format!("{:.5} m at {:.3} s", p.value, p.t);
-    let _ = writeln!(
-        t,
-        "| max_q | {} | {} ({:+.5} m) | {} ({:+.5} m) |",
-        at(&c.reference.max_q),
-        at(&c.newmark.max_q),
-        c.comparison.peaks.max_q_difference,
-        at(&s.newmark.max_q),
-        s.comparison.peaks.max_q_difference,
-    );
-    let _ = writeln!(
-        t,
-        "| min_q | {} | {} ({:+.5} m) | {} ({:+.5} m) |",
-        at(&c.reference.min_q),
-        at(&c.newmark.min_q),
-        c.comparison.peaks.min_q_difference,
-        at(&s.newmark.min_q),
-        s.comparison.peaks.min_q_difference,
-    );
+    type Peak = fn(&SolutionRead) -> &PeakRead;
+    type Difference = fn(&PeakDifferencesRead) -> f64;
+    let peaks: [(&str, Peak, Difference); 2] = [
+        ("max_q", |x| &x.max_q, |d| d.max_q_difference),
+        ("min_q", |x| &x.min_q, |d| d.min_q_difference),
+    ];
+    for (name, peak, difference) in peaks {
+        let _ = writeln!(
+            t,
+            "| {name} | {} | {} ({:+.5} m) | {} ({:+.5} m) |",
+            at(peak(&c.reference)),
+            at(peak(&c.newmark)),
+            difference(&c.comparison.peaks),
+            at(peak(&s.newmark)),
+            difference(&s.comparison.peaks),
+        );
+    }
     let (cg, sg) = (&c.comparison.grid, &s.comparison.grid);
     let _ = writeln!(
         t,
