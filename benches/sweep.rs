@@ -64,7 +64,11 @@ fn map(c: &mut Criterion) {
             b.iter(|| {
                 let _ = std::fs::remove_dir_all(&out);
                 let sweep = Sweep::new(&model_file(), request()).unwrap();
-                store::run(&sweep, &out, None, &store::Silent).unwrap()
+                let target = store::Target {
+                    out: out.clone(),
+                    ..store::Target::default()
+                };
+                store::run(&sweep, &target, &store::Silent).unwrap()
             })
         },
     );

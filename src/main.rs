@@ -228,6 +228,10 @@ struct SweepArgs {
     /// Threads [default: every core].
     #[arg(long)]
     threads: Option<usize>,
+    /// Replace the results of another sweep (or a damaged result of this one) in the output
+    /// directory instead of refusing them; only the files a sweep writes are removed.
+    #[arg(long)]
+    force: bool,
     /// No progress bar.
     #[arg(long)]
     quiet: bool,
@@ -328,7 +332,12 @@ fn sweep(args: SweepArgs) -> flexrock::Result<Output> {
         .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
     );
     let started = std::time::Instant::now();
-    let report = store::run(&sweep, &out, shard, &ProgressBar(bar.clone()))?;
+    let target = store::Target {
+        out,
+        shard,
+        force: args.force,
+    };
+    let report = store::run(&sweep, &target, &ProgressBar(bar.clone()))?;
     bar.finish_and_clear();
     Ok(Output {
         stdout: flexrock::sweep::report_text(&report, Some(started.elapsed().as_secs_f64()))

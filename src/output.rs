@@ -333,7 +333,7 @@ fn process_is_running(pid: u32) -> Option<bool> {
 
 /// Removes the temporaries a killed write left in `dir` (see [`write_atomically`]). Best
 /// effort: an entry that cannot be removed is left, and the write goes on.
-fn remove_stale_temporaries(dir: &Path, names: &[&str]) {
+pub(crate) fn remove_stale_temporaries(dir: &Path, names: &[&str]) {
     let Ok(entries) = std::fs::read_dir(dir) else {
         return;
     };

@@ -52,6 +52,21 @@ pub struct Plan {
     pub find_min: Option<FindMin>,
     /// Points per chunk file.
     pub chunk_size: usize,
+    /// The record files the sweep reads, each with the SHA-256 of its bytes, so that a record
+    /// replaced between a kill and the resume (or a relative path that names another file from
+    /// another directory) makes another sweep, never a mixed one.
+    pub records: Vec<RecordInput>,
+}
+
+/// A record file a sweep reads: where it is named, and the digest of its contents.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+pub struct RecordInput {
+    /// Where the sweep names it: `model` for the model file's (and `--set`'s) `excitation.path`,
+    /// else the value of the `excitation.path` axis as typed.
+    pub named_by: String,
+    /// SHA-256 of the file's bytes, in hex; or why the file could not be read (then every point
+    /// that reads it is an invalid row).
+    pub sha256: String,
 }
 
 impl Plan {
@@ -90,6 +105,17 @@ impl Plan {
             model_file: other.model_file.clone(),
             ..self.clone()
         } == *other
+    }
+
+    /// The SHA-256 (hex) of everything that decides the sweep's rows: the plan but the model
+    /// file's name as typed. Chunks are sealed with it, so that a chunk of another sweep is
+    /// never taken for one of this sweep.
+    pub fn identity(&self) -> String {
+        let plan = Plan {
+            model_file: String::new(),
+            ..self.clone()
+        };
+        store::sha256_hex(&serde_json::to_vec(&plan).unwrap_or_default())
     }
 
     fn restored(mut self) -> Plan {
@@ -300,15 +326,55 @@ impl Sweep {
             axes: request.axes,
             find_min,
             chunk_size: chunk_size.min(points.max(1)),
+            records: Vec::new(),
         };
-        Ok(Sweep {
+        let mut sweep = Sweep {
             plan,
             table,
             model_path: model_path.to_path_buf(),
             settings: request.settings,
             paths_base: std::env::current_dir().unwrap_or_default(),
             records: RecordCache::default(),
-        })
+        };
+        sweep.plan.records = sweep.record_inputs();
+        Ok(sweep)
+    }
+
+    /// The record files the sweep reads and their digests: the model's own `excitation.path`
+    /// (with the `--set` keys), and every value of an `excitation.path` axis. Each file is then
+    /// read into the record cache at once, so that the rows are computed from the contents just
+    /// digested (not from a file replaced later in the run).
+    fn record_inputs(&self) -> Vec<RecordInput> {
+        let mut cases: Vec<(String, Vec<Setting>)> =
+            vec![("model".to_string(), self.settings.clone())];
+        for axis in self.plan.axes.iter().filter(|a| a.key == "excitation.path") {
+            for i in 0..axis.len() {
+                let mut settings = self.settings.clone();
+                settings.push(self.absolute_path_setting(axis.setting(i)));
+                cases.push((axis.values[i].clone(), settings));
+            }
+        }
+        let mut inputs = Vec::new();
+        for (named_by, settings) in cases {
+            let Ok(file) = read_schema(&self.table, &settings, &self.model_path) else {
+                continue;
+            };
+            let Some(path) = file.excitation.path.as_deref() else {
+                continue;
+            };
+            if file.excitation.kind != "record" {
+                continue;
+            }
+            let base_dir = self.model_path.parent().unwrap_or(Path::new("."));
+            let sha256 = match read_record_bytes(&base_dir.join(path)) {
+                Ok(bytes) => store::sha256_hex(&bytes),
+                Err(e) => format!("unreadable: {e}"),
+            };
+            // Into the cache now; a point whose record is bad reports it in its own row.
+            let _ = self.model(&settings);
+            inputs.push(RecordInput { named_by, sha256 });
+        }
+        inputs
     }
 
     /// Number of points.
@@ -320,16 +386,21 @@ impl Sweep {
     fn settings_at(&self, index: usize) -> Vec<Setting> {
         let mut settings = self.settings.clone();
         for (axis, &i) in self.plan.axes.iter().zip(&self.plan.coordinates(index)) {
-            let mut setting = axis.setting(i);
-            if axis.key == "excitation.path" {
-                if let toml::Value::String(path) = &setting.value {
-                    let absolute = self.paths_base.join(path);
-                    setting.value = toml::Value::String(absolute.to_string_lossy().into_owned());
-                }
-            }
-            settings.push(setting);
+            settings.push(self.absolute_path_setting(axis.setting(i)));
         }
         settings
+    }
+
+    /// A value of an `excitation.path` axis made absolute: record files of an axis are relative
+    /// to the directory the sweep was started from. Other settings are returned unchanged.
+    fn absolute_path_setting(&self, mut setting: Setting) -> Setting {
+        if setting.key == "excitation.path" {
+            if let toml::Value::String(path) = &setting.value {
+                let absolute = self.paths_base.join(path);
+                setting.value = toml::Value::String(absolute.to_string_lossy().into_owned());
+            }
+        }
+        setting
     }
 
     fn model(&self, settings: &[Setting]) -> Result<Model> {
@@ -445,25 +516,42 @@ impl Sweep {
     }
 }
 
+/// The bytes of a record file, read as the record reader reads it (a regular file of bounded
+/// size), for its digest.
+fn read_record_bytes(path: &Path) -> std::io::Result<Vec<u8>> {
+    use std::io::Read as _;
+    let file = std::fs::File::open(path)?;
+    if !file.metadata()?.is_file() {
+        return Err(std::io::Error::other("not a regular file"));
+    }
+    let limit = crate::record::MAX_RECORD_BYTES + 1;
+    let mut bytes = Vec::new();
+    file.take(limit).read_to_end(&mut bytes)?;
+    Ok(bytes)
+}
+
 /// An error as one line of a CSV field.
 fn reason(e: &Error) -> String {
     e.to_string().replace(['\n', '\r'], " ")
 }
 
-/// What a reader of a sweep must know (printed on standard error): points whose runs are no
-/// more accurate than their energy residual says.
+/// What a reader of a sweep must know (printed on standard error): what the store met (chunks
+/// computed again, a directory it could not lock), and points whose runs are no more accurate
+/// than their energy residual says.
 pub fn warnings(report: &store::SweepReport) -> Vec<String> {
+    let mut warnings = report.warnings.clone();
     let inaccurate = report.summary.counts.inaccurate;
     if inaccurate == 0 {
-        return Vec::new();
+        return warnings;
     }
-    vec![format!(
+    warnings.push(format!(
         "{inaccurate} of {} points have an energy residual above {} % of their energy scale \
          (column energy_residual_share): their results are no more accurate than that; tighten \
          solver.rtol (--set solver.rtol=...)",
         report.summary.points.end - report.summary.points.first,
         100.0 * crate::run::ENERGY_RESIDUAL_WARNING_SHARE
-    )]
+    ));
+    warnings
 }
 
 /// The few lines `flexrock sweep` prints; `seconds` is the wall time of this process, if it

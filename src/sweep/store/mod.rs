@@ -1,0 +1,508 @@
+//! A sweep on disk: chunks written as they finish, resumed after a kill, split into shards for a
+//! scheduler and merged back.
+//!
+//! Layout of an output directory (a shard K of N writes into `DIR/shard-K-of-N/` instead):
+//! - while running: `chunks/plan.json` (what is being computed) and `chunks/<c>.csv`, the rows
+//!   of chunk c (points c x chunk_size onwards) under a seal line, each file written whole
+//!   (temporary file, then rename), in the order the chunks finish;
+//! - when done: `sweep.csv`, the figure, and last `sweep.json` (the plan, the counts and the
+//!   digest of sweep.csv), written as one set; then what flexrock wrote in `chunks/` is removed.
+//!
+//! The rules that keep a sweep from losing, mixing or hanging:
+//! - one process at a time: the directory is locked for the whole run (`dir.rs`), and a second
+//!   process is refused;
+//! - flexrock's own files only: `chunks/` is made by flexrock and is refused when it is a link,
+//!   a file, or holds anything flexrock did not write; only the names flexrock writes are ever
+//!   removed;
+//! - a sweep is its plan: the model text, `--set` keys, axes, search, chunk size, version and
+//!   the SHA-256 of every record file read ([`Plan::identity`]); a directory of another sweep
+//!   is refused (or replaced with `--force`);
+//! - nothing read back is trusted (`verify.rs`): every chunk is checked against its seal (the
+//!   plan's identity, its points and its rows) and every row against the plan (point index,
+//!   coordinates, columns, status, bytes); a chunk that fails is computed again, a sweep.csv
+//!   that fails is refused, naming the file.
+//!
+//! Running the same command again skips the chunks on disk; a kill at any moment loses at most
+//! the chunks being computed.
+
+mod dir;
+mod merge;
+mod shard;
+mod verify;
+
+use std::path::{Path, PathBuf};
+
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+
+use super::{figure, Plan, Sweep};
+use crate::error::{Error, Result};
+use crate::output;
+
+pub use merge::merge;
+use shard::chunk_points;
+pub use shard::{point_range, PointRange, Shard};
+pub use verify::sha256_hex;
+
+/// Counts of the rows, by status, and of the points that overturned (for a minimum search:
+/// that overturned somewhere in the interval).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Counts {
+    /// Rows with status ok.
+    pub ok: usize,
+    /// Rows with status invalid.
+    pub invalid: usize,
+    /// Rows with status failed.
+    pub failed: usize,
+    /// Points that overturned.
+    pub overturned: usize,
+    /// Runs whose energy residual exceeds [`crate::run::ENERGY_RESIDUAL_WARNING_SHARE`] of their
+    /// energy scale: no more accurate than that (a sweep with a minimum search has none).
+    pub inaccurate: usize,
+}
+
+/// sweep.json.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct SweepSummary {
+    /// Version of flexrock that wrote it.
+    pub flexrock_version: String,
+    /// What was computed.
+    pub plan: Plan,
+    /// Set for a shard's directory; absent for a whole sweep (also a merged one).
+    pub shard: Option<Shard>,
+    /// The points of this directory's rows.
+    pub points: PointRange,
+    /// Counts of its rows.
+    pub counts: Counts,
+    /// sweep.csv's columns, in order.
+    pub columns: Vec<String>,
+    /// The files written with it.
+    pub files: Vec<String>,
+    /// SHA-256 of sweep.csv's bytes, so that a sweep.csv edited, replaced or swapped with
+    /// another shard's is recognised.
+    pub table_sha256: String,
+}
+
+/// What `flexrock sweep` reports.
+#[derive(Debug)]
+pub struct SweepReport {
+    /// The directory written.
+    pub dir: PathBuf,
+    /// Its sweep.json.
+    pub summary: SweepSummary,
+    /// Points computed by this process (0 when the directory already held the whole result).
+    pub computed: usize,
+    /// Points found on disk from an earlier, interrupted run.
+    pub resumed: usize,
+    /// The files written.
+    pub files: Vec<PathBuf>,
+    /// What the user must know: chunks that did not verify and were computed again, a
+    /// directory that could not be locked or cleaned.
+    pub warnings: Vec<String>,
+}
+
+const SUMMARY_FILE: &str = "sweep.json";
+const TABLE_FILE: &str = "sweep.csv";
+/// Every file of a finished sweep, the only names a sweep ever removes from its directory.
+const RESULT_FILES: [&str; 4] = [TABLE_FILE, "map.svg", "spectrum.svg", SUMMARY_FILE];
+
+/// Progress of a sweep, for a progress bar: points done (including resumed ones) of the points
+/// this process is to do.
+pub trait Progress: Sync {
+    /// The sweep (or shard) has `total` points, of which `done` were found on disk.
+    fn start(&self, total: usize, done: usize);
+    /// `points` more are done.
+    fn advance(&self, points: usize);
+}
+
+/// No progress shown.
+pub struct Silent;
+
+impl Progress for Silent {
+    fn start(&self, _total: usize, _done: usize) {}
+    fn advance(&self, _points: usize) {}
+}
+
+/// The plan as stored while running (with the shard, so that shards never share chunks).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+struct RunningPlan {
+    plan: Plan,
+    shard: Option<Shard>,
+}
+
+impl RunningPlan {
+    /// What the chunks are sealed with: the plan's identity and the shard.
+    fn identity(&self) -> String {
+        let shard = self
+            .shard
+            .map_or_else(String::new, |s| format!(" {}", s.dir_name()));
+        format!("{}{shard}", self.plan.identity())
+    }
+}
+
+/// Where and how [`run`] writes.
+#[derive(Debug, Clone, Default)]
+pub struct Target {
+    /// The output directory (a shard writes into `out/shard-K-of-N`).
+    pub out: PathBuf,
+    /// The shard to compute, if any.
+    pub shard: Option<Shard>,
+    /// Replace what the directory holds of another sweep (or a damaged result of this one)
+    /// instead of refusing it; only files flexrock writes are removed.
+    pub force: bool,
+}
+
+/// Runs (or resumes) a sweep into `target.out` (into the shard's directory for a shard).
+///
+/// The directory is locked for the whole run. A finished result of this sweep is checked
+/// (sweep.csv against the digest in sweep.json and every row against the plan) and reported
+/// done; a finished result of another sweep is refused. Chunks on disk are used only when their
+/// seal and rows verify; one that does not is computed again, with a warning naming it.
+pub fn run(sweep: &Sweep, target: &Target, progress: &dyn Progress) -> Result<SweepReport> {
+    let shard = target.shard;
+    let dir = match shard {
+        Some(s) => s.dir(&target.out),
+        None => target.out.clone(),
+    };
+    let plan = &sweep.plan;
+    let range = point_range(plan, shard);
+    let mut warnings = Vec::new();
+    let _lock = dir::lock(&dir, &mut warnings)?;
+
+    if let Some(report) = finished(&dir, plan, shard, range, target.force, &mut warnings)? {
+        return Ok(report);
+    }
+
+    let identity = RunningPlan {
+        plan: plan.clone(),
+        shard,
+    }
+    .identity();
+    let chunks = open_chunks(&dir, plan, shard, target.force)?;
+
+    let first_chunk = range.first / plan.chunk_size;
+    let end_chunk = range.end.div_ceil(plan.chunk_size);
+    // The chunks on disk that verify; every other chunk is computed.
+    let mut done: Vec<Option<Vec<u8>>> = Vec::new();
+    for c in first_chunk..end_chunk {
+        let path = chunk_path(&chunks, c);
+        let points = chunk_points(plan, c, range.end);
+        let rows = match std::fs::read(&path) {
+            Ok(bytes) => match verify::chunk_rows(plan, &identity, &points, &bytes) {
+                Ok(rows) => Some(rows.to_vec()),
+                Err(problem) => {
+                    warnings.push(format!("{} {problem}: computed again", path.display()));
+                    None
+                }
+            },
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => None,
+            Err(e) => {
+                warnings.push(format!(
+                    "{} cannot be read ({e}): computed again",
+                    path.display()
+                ));
+                None
+            }
+        };
+        done.push(rows);
+    }
+    let resumed: usize = (first_chunk..end_chunk)
+        .zip(&done)
+        .filter(|(_, rows)| rows.is_some())
+        .map(|(c, _)| chunk_points(plan, c, range.end).len())
+        .sum();
+    progress.start(range.len(), resumed);
+    let mut computed = 0;
+    for (c, slot) in (first_chunk..end_chunk).zip(done.iter_mut()) {
+        if slot.is_some() {
+            continue;
+        }
+        let points = chunk_points(plan, c, range.end);
+        let mut table = output::Table::without_header();
+        for fields in rows_of(sweep, points.clone(), progress) {
+            table.row(fields);
+        }
+        let rows = table.into_bytes();
+        output::write_file_atomically(
+            &chunk_path(&chunks, c),
+            &verify::chunk_bytes(&identity, &points, &rows),
+        )?;
+        computed += points.len();
+        *slot = Some(rows);
+    }
+
+    let body: Vec<u8> = done.into_iter().flatten().flatten().collect();
+    let (summary, files) = finish(&dir, plan, shard, range, &body)?;
+    warnings.extend(dir::remove_chunks(&chunks));
+    Ok(SweepReport {
+        dir,
+        summary,
+        computed,
+        resumed,
+        files,
+        warnings,
+    })
+}
+
+/// A finished result in `dir`: reported done if it is this sweep's and verifies (its missing
+/// figures drawn again from sweep.csv), refused if not (or, with `force`, its files removed so
+/// that the sweep is computed anew). None when `dir` holds no sweep.json.
+fn finished(
+    dir: &Path,
+    plan: &Plan,
+    shard: Option<Shard>,
+    range: PointRange,
+    force: bool,
+    warnings: &mut Vec<String>,
+) -> Result<Option<SweepReport>> {
+    let summary_path = dir.join(SUMMARY_FILE);
+    let summary = match read_summary(dir) {
+        Ok(Some(summary)) => summary,
+        Ok(None) => return Ok(None),
+        Err(_) if force => {
+            remove_results(dir, None);
+            return Ok(None);
+        }
+        Err(e) => return Err(e),
+    };
+    if !summary.plan.same_sweep(plan) || summary.shard != shard {
+        if force {
+            remove_results(dir, Some(&summary));
+            return Ok(None);
+        }
+        return Err(other_sweep(&summary_path));
+    }
+    let table_path = dir.join(TABLE_FILE);
+    let body = match read_table(&table_path, &summary) {
+        Ok(body) => body,
+        Err(problem) if force => {
+            warnings.push(format!("{} {problem}: computed again", table_path.display()));
+            remove_results(dir, Some(&summary));
+            return Ok(None);
+        }
+        Err(problem) => {
+            return Err(Error::OutputTarget {
+                path: table_path,
+                found: problem,
+                rule: format!(
+                    "{} records this sweep as finished, and flexrock reports only results that                      verify: run the same command with --force to compute it anew",
+                    summary_path.display()
+                ),
+            })
+        }
+    };
+    // Done before: an interrupted clean-up may have left the chunks, or a kill during the
+    // last write its temporary directory.
+    if let Ok(Some(chunks)) = dir::chunks(dir, false) {
+        warnings.extend(dir::remove_chunks(&chunks.path));
+    }
+    output::remove_stale_temporaries(dir, &RESULT_FILES);
+    let missing = summary.files.iter().any(|f| !dir.join(f).is_file());
+    let (summary, files) = if missing {
+        finish(dir, plan, shard, range, &body)?
+    } else {
+        let files = summary.files.iter().map(|f| dir.join(f)).collect();
+        (summary, files)
+    };
+    Ok(Some(SweepReport {
+        dir: dir.to_path_buf(),
+        summary,
+        computed: 0,
+        resumed: range.len(),
+        files,
+        warnings: std::mem::take(warnings),
+    }))
+}
+
+/// sweep.csv's rows without the header, once the file matches the digest in its sweep.json and
+/// its rows verify against the plan; else what is wrong with it.
+fn read_table(path: &Path, summary: &SweepSummary) -> std::result::Result<Vec<u8>, String> {
+    let bytes = std::fs::read(path).map_err(|e| format!("cannot be read: {e}"))?;
+    if verify::sha256_hex(&bytes) != summary.table_sha256 {
+        return Err(format!(
+            "does not match the digest of sweep.csv in its sweep.json ({})",
+            summary.table_sha256
+        ));
+    }
+    let points = summary.points.first..summary.points.end;
+    verify::table_rows(&summary.plan, &points, &bytes).map(<[u8]>::to_vec)
+}
+
+/// Removes the files of a finished result (sweep.json first, so that a kill meanwhile leaves
+/// no result that looks finished): the names flexrock writes, and no other.
+fn remove_results(dir: &Path, summary: Option<&SweepSummary>) {
+    let _ = std::fs::remove_file(dir.join(SUMMARY_FILE));
+    for name in RESULT_FILES {
+        let listed = summary.is_none_or(|s| s.files.iter().any(|f| f == name));
+        let path = dir.join(name);
+        if listed && std::fs::symlink_metadata(&path).is_ok_and(|m| m.is_file()) {
+            let _ = std::fs::remove_file(path);
+        }
+    }
+}
+
+/// The chunks directory of a running sweep, made or resumed: refused when it holds another
+/// sweep's plan (or, with `force`, emptied of flexrock's files and begun anew).
+fn open_chunks(dir: &Path, plan: &Plan, shard: Option<Shard>, force: bool) -> Result<PathBuf> {
+    let running = RunningPlan {
+        plan: plan.clone(),
+        shard,
+    };
+    let chunks = dir::chunks(dir, true)?.ok_or_else(|| Error::Write {
+        path: dir.join(dir::CHUNKS_DIR),
+        source: std::io::Error::other("the chunks directory could not be made"),
+    })?;
+    let plan_path = chunks.path.join(dir::PLAN_FILE);
+    let same = chunks.plan.as_deref().map(|bytes| {
+        serde_json::from_slice::<RunningPlan>(bytes)
+            .is_ok_and(|s| s.shard == shard && s.plan.restored().same_sweep(plan))
+    });
+    match same {
+        Some(true) => {}
+        Some(false) if !force => return Err(other_sweep(&plan_path)),
+        Some(false) | None => {
+            if same == Some(false) {
+                // --force: the chunks of the other sweep go, and nothing else.
+                let _ = dir::remove_chunks(&chunks.path);
+                std::fs::create_dir_all(&chunks.path).map_err(|e| Error::Write {
+                    path: chunks.path.clone(),
+                    source: e,
+                })?;
+            }
+            output::write_file_atomically(&plan_path, &output::json_bytes(&running))?;
+        }
+    }
+    Ok(chunks.path)
+}
+
+/// The rows of sweep.csv for every point, in point order, computed in parallel in memory (no
+/// file is read or written): the fields of each row as the file has them, under the header
+/// [`Plan::columns`]. What the Python bindings return; [`run`] writes the same rows.
+pub fn rows(sweep: &Sweep, progress: &dyn Progress) -> Vec<Vec<String>> {
+    progress.start(sweep.points(), 0);
+    rows_of(sweep, 0..sweep.points(), progress)
+}
+
+/// The rows of the points `points`, in point order.
+fn rows_of(
+    sweep: &Sweep,
+    points: std::ops::Range<usize>,
+    progress: &dyn Progress,
+) -> Vec<Vec<String>> {
+    points
+        .into_par_iter()
+        .map(|i| {
+            let row = sweep.evaluate(i);
+            progress.advance(1);
+            row_fields(&sweep.plan, i, &row)
+        })
+        .collect()
+}
+
+fn chunk_path(dir: &Path, chunk: usize) -> PathBuf {
+    dir.join(format!("{chunk:09}.csv"))
+}
+
+fn row_fields(plan: &Plan, index: usize, row: &super::Row) -> Vec<String> {
+    let mut fields = vec![index.to_string()];
+    for (axis, &i) in plan.axes.iter().zip(&plan.coordinates(index)) {
+        fields.push(axis.values[i].clone());
+    }
+    fields.extend(row.fields(plan.find_min.is_some()));
+    fields
+}
+
+fn other_sweep(path: &Path) -> Error {
+    Error::OutputTarget {
+        path: path.to_path_buf(),
+        found: "holds the results of another sweep (another model text, axes, --set keys, \
+                search, chunk size, shard, record file or flexrock version)"
+            .to_string(),
+        rule: "a sweep resumes only its own results: use another --out directory, or run the \
+               same command with --force to replace them"
+            .to_string(),
+    }
+}
+
+fn read_summary(dir: &Path) -> Result<Option<SweepSummary>> {
+    let path = dir.join(SUMMARY_FILE);
+    let bytes = match std::fs::read(&path) {
+        Ok(bytes) => bytes,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(None),
+        Err(e) => {
+            return Err(Error::SweepFile {
+                path,
+                message: format!("cannot read: {e}"),
+            })
+        }
+    };
+    let summary: SweepSummary = serde_json::from_slice(&bytes).map_err(|e| Error::SweepFile {
+        path: path.clone(),
+        message: format!("not a flexrock sweep.json: {e}"),
+    })?;
+    Ok(Some(SweepSummary {
+        plan: summary.plan.clone().restored(),
+        ..summary
+    }))
+}
+
+/// Writes sweep.csv, the figure and sweep.json (last) from the rows' CSV text, once the rows
+/// verify against the plan; then removes the files an earlier result in `dir` listed that this
+/// one does not write (a map of an earlier sweep beside the spectrum of this one).
+fn finish(
+    dir: &Path,
+    plan: &Plan,
+    shard: Option<Shard>,
+    range: PointRange,
+    body: &[u8],
+) -> Result<(SweepSummary, Vec<PathBuf>)> {
+    let table_path = dir.join(TABLE_FILE);
+    verify::check_rows(plan, &(range.first..range.end), body).map_err(|problem| {
+        Error::SweepFile {
+            path: table_path.clone(),
+            message: format!("the rows to be written: {problem}"),
+        }
+    })?;
+    let columns = plan.columns();
+    let mut table_bytes =
+        output::Table::new(&columns.iter().map(String::as_str).collect::<Vec<_>>()).into_bytes();
+    table_bytes.extend_from_slice(body);
+    let table = figure::SweepTable::parse(&table_bytes, &table_path)?;
+    let counts = table.counts(plan.find_min.is_some())?;
+    let figures = if shard.is_none() {
+        figure::figures(plan, &table)?
+    } else {
+        Vec::new()
+    };
+    let table_sha256 = verify::sha256_hex(&table_bytes);
+    let mut files: Vec<(String, Vec<u8>)> = vec![(TABLE_FILE.to_string(), table_bytes)];
+    files.extend(figures);
+    let mut names: Vec<String> = files.iter().map(|(n, _)| n.clone()).collect();
+    names.push(SUMMARY_FILE.to_string());
+    let summary = SweepSummary {
+        flexrock_version: crate::run::VERSION.to_string(),
+        plan: plan.clone(),
+        shard,
+        points: range,
+        counts,
+        columns,
+        files: names,
+        table_sha256,
+    };
+    let earlier: Vec<String> = read_summary(dir)
+        .ok()
+        .flatten()
+        .map(|s| s.files)
+        .unwrap_or_default();
+    files.push((SUMMARY_FILE.to_string(), output::json_bytes(&summary)));
+    let set: Vec<(&str, Vec<u8>)> = files.iter().map(|(n, b)| (n.as_str(), b.clone())).collect();
+    let written = output::write_atomically(dir, &set)?;
+    for name in RESULT_FILES {
+        let stale = earlier.iter().any(|f| f == name) && !summary.files.iter().any(|f| f == name);
+        let path = dir.join(name);
+        if stale && std::fs::symlink_metadata(&path).is_ok_and(|m| m.is_file()) {
+            let _ = std::fs::remove_file(path);
+        }
+    }
+    Ok((summary, written))
+}

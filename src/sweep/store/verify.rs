@@ -1,0 +1,166 @@
+//! What is read back is checked before it is used: every stored row against the plan (its point
+//! index, its coordinates, its number of fields, its status, the bytes flexrock writes), every
+//! chunk against the seal it was written with, every sweep.csv against the digest in its
+//! sweep.json. A chunk of another sweep, a chunk copied over another, swapped or edited lines,
+//! CRLF line ends: each fails one of these checks, and is never taken for rows of this sweep.
+
+use sha2::{Digest, Sha256};
+
+use crate::output;
+use crate::sweep::Plan;
+
+/// SHA-256 of `bytes`, as 64 lower-case hex digits.
+pub fn sha256_hex(bytes: &[u8]) -> String {
+    let digest = Sha256::digest(bytes);
+    let mut text = String::with_capacity(64);
+    for byte in digest {
+        text.push_str(&format!("{byte:02x}"));
+    }
+    text
+}
+
+/// The first line of a chunk file: the seal of its rows.
+const CHUNK_SEAL_PREFIX: &str = "# flexrock sweep chunk, sha256 ";
+
+/// The seal of the rows of points `points` of the sweep `identity`: a chunk cannot be moved to
+/// another place in the sweep, or into another sweep, and still verify.
+fn seal(identity: &str, points: &std::ops::Range<usize>, rows: &[u8]) -> String {
+    let mut bytes = format!("{identity}\n{}..{}\n", points.start, points.end).into_bytes();
+    bytes.extend_from_slice(rows);
+    sha256_hex(&bytes)
+}
+
+/// A chunk file's bytes: the seal line, then the rows as sweep.csv holds them.
+pub(super) fn chunk_bytes(identity: &str, points: &std::ops::Range<usize>, rows: &[u8]) -> Vec<u8> {
+    let mut bytes = format!("{CHUNK_SEAL_PREFIX}{}\n", seal(identity, points, rows)).into_bytes();
+    bytes.extend_from_slice(rows);
+    bytes
+}
+
+/// The rows of a chunk file of points `points`, once its seal and its rows verify; else what
+/// is wrong with it.
+pub(super) fn chunk_rows<'a>(
+    plan: &Plan,
+    identity: &str,
+    points: &std::ops::Range<usize>,
+    bytes: &'a [u8],
+) -> Result<&'a [u8], String> {
+    let line_end = bytes
+        .iter()
+        .position(|&b| b == b'\n')
+        .ok_or("has no seal line (it was not written by this version of flexrock)")?;
+    let rows = &bytes[line_end + 1..];
+    let stored = std::str::from_utf8(&bytes[..line_end])
+        .ok()
+        .and_then(|line| line.strip_prefix(CHUNK_SEAL_PREFIX))
+        .ok_or("has no seal line (it was not written by this version of flexrock)")?;
+    if stored != seal(identity, points, rows) {
+        return Err(format!(
+            "does not match its seal for points {}..{} of this sweep (it was edited, or belongs \
+             to another place or another sweep)",
+            points.start, points.end
+        ));
+    }
+    check_rows(plan, points, rows)?;
+    Ok(rows)
+}
+
+/// Checks rows (CSV without header) as those of points `points` of `plan`: one row per point,
+/// in order, each with the point's index and coordinates, the plan's number of columns, a
+/// known status, and written byte for byte as flexrock writes them.
+pub(super) fn check_rows(
+    plan: &Plan,
+    points: &std::ops::Range<usize>,
+    rows: &[u8],
+) -> Result<(), String> {
+    let columns = plan.columns();
+    let mut reader = csv::ReaderBuilder::new()
+        .has_headers(false)
+        .flexible(true)
+        .from_reader(rows);
+    let mut rewritten = output::Table::without_header();
+    let mut count = 0usize;
+    let status = columns.iter().position(|c| c == "status");
+    for (line, record) in reader.records().enumerate() {
+        let record = record.map_err(|e| format!("row {}: not CSV: {e}", line + 1))?;
+        let point = points.start + line;
+        if point >= points.end {
+            count = line + 1;
+            continue;
+        }
+        if record.len() != columns.len() {
+            return Err(format!(
+                "row {} has {} fields where the sweep has {} columns",
+                line + 1,
+                record.len(),
+                columns.len()
+            ));
+        }
+        if record[0] != point.to_string() {
+            return Err(format!(
+                "row {} is point {:?} where point {point} belongs (rows lost, repeated or out of \
+                 order)",
+                line + 1,
+                &record[0]
+            ));
+        }
+        for ((axis, &i), field) in plan
+            .axes
+            .iter()
+            .zip(&plan.coordinates(point))
+            .zip(record.iter().skip(1))
+        {
+            if axis.values.get(i).map(String::as_str) != Some(field) {
+                return Err(format!(
+                    "row {} (point {point}) has {} = {field:?} where the plan has {:?}",
+                    line + 1,
+                    axis.key,
+                    axis.values.get(i).map_or("", String::as_str)
+                ));
+            }
+        }
+        if let Some(s) = status {
+            if !matches!(&record[s], "ok" | "invalid" | "failed") {
+                return Err(format!(
+                    "row {} (point {point}) has status {:?} (not ok, invalid or failed)",
+                    line + 1,
+                    &record[s]
+                ));
+            }
+        }
+        rewritten.row(record.iter());
+        count = line + 1;
+    }
+    if count != points.len() {
+        return Err(format!(
+            "holds {count} rows for the {} points {}..{}",
+            points.len(),
+            points.start,
+            points.end
+        ));
+    }
+    if rewritten.into_bytes() != rows {
+        return Err(
+            "is not written as flexrock writes it (line ends, quoting or spacing changed)"
+                .to_string(),
+        );
+    }
+    Ok(())
+}
+
+/// Checks sweep.csv's bytes against the plan: the header is the plan's columns, the rows those
+/// of `points`. Returns the rows without the header.
+pub(super) fn table_rows<'a>(
+    plan: &Plan,
+    points: &std::ops::Range<usize>,
+    table: &'a [u8],
+) -> Result<&'a [u8], String> {
+    let columns = plan.columns();
+    let header =
+        output::Table::new(&columns.iter().map(String::as_str).collect::<Vec<_>>()).into_bytes();
+    let rows = table
+        .strip_prefix(header.as_slice())
+        .ok_or("does not start with the header of this sweep's columns")?;
+    check_rows(plan, points, rows)?;
+    Ok(rows)
+}

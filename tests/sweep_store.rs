@@ -1,0 +1,623 @@
+//! The sweep store under attack: directories it does not own, chunks and shards tampered with
+//! between a kill and the resume or merge, records replaced, two processes in one directory,
+//! finished results damaged. Every case ends either in the bytes of an uninterrupted run or in a
+//! refusal with exit code 2 that names the file; nothing of the user's is removed.
+
+mod common;
+
+use std::path::{Path, PathBuf};
+use std::process::{Child, Command, Output, Stdio};
+use std::time::{Duration, Instant};
+
+use common::{flexrock, repo, scratch_dir};
+
+fn files_of(dir: &Path) -> Vec<(String, Vec<u8>)> {
+    let mut files: Vec<(String, Vec<u8>)> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap())
+        .filter(|e| e.file_type().unwrap().is_file())
+        .map(|e| {
+            (
+                e.file_name().to_string_lossy().into_owned(),
+                std::fs::read(e.path()).unwrap(),
+            )
+        })
+        .collect();
+    files.sort();
+    files
+}
+
+/// The 480-point map of the pulse model, one thread, chunks of 16 points: slow enough (a
+/// second or more) to be caught half-way.
+fn grid(out: &Path, extra: &[&str]) -> Command {
+    let mut command = Command::new(env!("CARGO_BIN_EXE_flexrock"));
+    command.args([
+        "sweep",
+        repo("models/pulse-map.toml").to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--vary",
+        "excitation.period=lin:0.3:1.5:24",
+        "--vary",
+        "excitation.amplitude=lin:1:8:20",
+        "--chunk-size",
+        "16",
+        "--threads",
+        "1",
+        "--quiet",
+    ]);
+    command.args(extra);
+    command
+}
+
+fn ok(command: &mut Command) -> Output {
+    let o = command.output().unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    o
+}
+
+/// Exit code 2, a message naming `needle`, no panic. Returns standard error.
+fn refused(o: &Output, needle: &str) -> String {
+    let stderr = String::from_utf8_lossy(&o.stderr).into_owned();
+    assert_eq!(o.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains(needle), "expected {needle:?} in: {stderr}");
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    stderr
+}
+
+fn chunk_files(dir: &Path) -> Vec<PathBuf> {
+    let mut files: Vec<PathBuf> = std::fs::read_dir(dir.join("chunks"))
+        .map(|entries| {
+            entries
+                .filter_map(|e| e.ok())
+                .map(|e| e.path())
+                .filter(|p| {
+                    p.file_name()
+                        .and_then(|n| n.to_str())
+                        .is_some_and(|n| n.len() == 13 && n.ends_with(".csv"))
+                })
+                .collect()
+        })
+        .unwrap_or_default();
+    files.sort();
+    files
+}
+
+/// Starts `command` and kills it (SIGKILL) once `dir/chunks` holds at least `chunks` chunk
+/// files. Fails the test if the command ends first.
+fn kill_after_chunks(command: &mut Command, dir: &Path, chunks: usize) {
+    let mut child: Child = command
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    let started = Instant::now();
+    while chunk_files(dir).len() < chunks {
+        if let Some(status) = child.try_wait().unwrap() {
+            panic!("the sweep ended ({status}) before {chunks} chunks were written");
+        }
+        assert!(started.elapsed() < Duration::from_secs(120), "no chunks");
+        std::thread::sleep(Duration::from_millis(2));
+    }
+    child.kill().unwrap();
+    child.wait().unwrap();
+}
+
+/// The uninterrupted run, made once per test that needs it.
+fn reference(dir: &Path) -> Vec<(String, Vec<u8>)> {
+    let out = dir.join("reference");
+    ok(&mut grid(&out, &[]));
+    files_of(&out)
+}
+
+#[test]
+fn a_chunks_directory_flexrock_did_not_make_is_refused_and_kept() {
+    let dir = scratch_dir("store-foreign-chunks");
+    let out = dir.join("P");
+    std::fs::create_dir_all(out.join("chunks")).unwrap();
+    std::fs::write(out.join("chunks/mydata.txt"), "precious").unwrap();
+    let o = grid(&out, &[]).output().unwrap();
+    let stderr = refused(&o, "mydata.txt");
+    assert!(stderr.contains(&out.join("chunks").display().to_string()));
+    assert_eq!(
+        std::fs::read_to_string(out.join("chunks/mydata.txt")).unwrap(),
+        "precious"
+    );
+    assert!(!out.join("sweep.csv").exists());
+    // --force replaces only what flexrock wrote: still refused.
+    let o = grid(&out, &["--force"]).output().unwrap();
+    refused(&o, "mydata.txt");
+    assert!(out.join("chunks/mydata.txt").exists());
+
+    // A chunks link to a directory is neither followed nor removed.
+    let target = dir.join("target");
+    std::fs::create_dir_all(&target).unwrap();
+    std::fs::write(target.join("keep.txt"), "mine").unwrap();
+    let linked = dir.join("L");
+    std::fs::create_dir_all(&linked).unwrap();
+    std::os::unix::fs::symlink(&target, linked.join("chunks")).unwrap();
+    let o = grid(&linked, &[]).output().unwrap();
+    refused(&o, "symbolic link");
+    assert!(linked
+        .join("chunks")
+        .symlink_metadata()
+        .unwrap()
+        .is_symlink());
+    assert_eq!(common::file_names(&target), ["keep.txt"]);
+}
+
+#[test]
+fn an_output_path_inside_a_file_is_refused_before_computing() {
+    let dir = scratch_dir("store-out-in-file");
+    let file = dir.join("afile");
+    std::fs::write(&file, "x").unwrap();
+    let started = Instant::now();
+    let o = grid(&file.join("sub"), &[]).output().unwrap();
+    refused(&o, &file.display().to_string());
+    // Refused before the 480 points (a second or more) were computed.
+    assert!(started.elapsed() < Duration::from_secs(1), "computed first");
+    assert_eq!(std::fs::read_to_string(&file).unwrap(), "x");
+}
+
+#[test]
+fn tampered_chunks_are_computed_again_and_named() {
+    let dir = scratch_dir("store-tampered");
+    let expected = reference(&dir);
+    type Edit = fn(&[PathBuf]);
+    let edits: [(&str, Edit); 6] = [
+        ("copied over another", |c| {
+            std::fs::copy(&c[0], &c[1]).unwrap();
+        }),
+        ("lines swapped", |c| {
+            let text = std::fs::read_to_string(&c[1]).unwrap();
+            let mut lines: Vec<&str> = text.lines().collect();
+            lines.swap(1, 2);
+            std::fs::write(&c[1], lines.join("\n") + "\n").unwrap();
+        }),
+        ("overturned flag edited", |c| {
+            let text = std::fs::read_to_string(&c[2]).unwrap();
+            let edited = if text.contains(",false,") {
+                text.replacen(",false,", ",true,", 1)
+            } else {
+                text.replacen(",true,", ",false,", 1)
+            };
+            assert_ne!(edited, text);
+            std::fs::write(&c[2], edited).unwrap();
+        }),
+        ("CRLF line ends", |c| {
+            let text = std::fs::read_to_string(&c[0]).unwrap();
+            std::fs::write(&c[0], text.replace('\n', "\r\n")).unwrap();
+        }),
+        ("seal line removed", |c| {
+            let text = std::fs::read_to_string(&c[1]).unwrap();
+            let rows = text.split_once('\n').unwrap().1;
+            std::fs::write(&c[1], rows).unwrap();
+        }),
+        ("truncated", |c| {
+            let bytes = std::fs::read(&c[2]).unwrap();
+            std::fs::write(&c[2], &bytes[..bytes.len() / 2]).unwrap();
+        }),
+    ];
+    for (name, edit) in edits {
+        let out = dir.join(name.replace(' ', "-"));
+        kill_after_chunks(&mut grid(&out, &[]), &out, 3);
+        let chunks = chunk_files(&out);
+        edit(&chunks);
+        let o = ok(&mut grid(&out, &[]));
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        assert!(
+            stderr.contains("computed again") && stderr.contains("chunks/0000000"),
+            "{name}: {stderr}"
+        );
+        assert_eq!(files_of(&out), expected, "{name}");
+        assert_eq!(
+            common::file_names(&out),
+            ["map.svg", "sweep.csv", "sweep.json"]
+        );
+    }
+}
+
+#[test]
+fn chunks_of_another_sweep_are_never_mixed_in() {
+    let dir = scratch_dir("store-other-chunks");
+    let expected = reference(&dir);
+    // Chunks of the same grid at another amplitude range, with this sweep's plan.json beside
+    // them: the seals tell them apart.
+    let other = dir.join("other");
+    let mut other_grid = grid(&other, &[]);
+    other_grid.args(["--set", "body.damping_ratio=0.02"]);
+    kill_after_chunks(&mut other_grid, &other, 4);
+    let out = dir.join("out");
+    kill_after_chunks(&mut grid(&out, &[]), &out, 1);
+    for chunk in chunk_files(&other) {
+        std::fs::copy(&chunk, out.join("chunks").join(chunk.file_name().unwrap())).unwrap();
+    }
+    let o = ok(&mut grid(&out, &[]));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("does not match its seal"));
+    assert_eq!(files_of(&out), expected);
+    // Its plan.json too: refused, then replaced with --force.
+    let o = grid(&other, &[]).output().unwrap();
+    refused(&o, "another sweep");
+    ok(&mut grid(&other, &["--force"]));
+    assert_eq!(files_of(&other), expected);
+}
+
+/// A record model whose record file lives in the scratch directory.
+fn record_model(dir: &Path, record: &str) -> PathBuf {
+    std::fs::copy(repo(record), dir.join("record.AT2")).unwrap();
+    let model = dir.join("model.toml");
+    std::fs::write(
+        &model,
+        "[body]\nheight = 4.0\nwidth = 0.7\ndepth = 1.0\ndensity = 600.0\n\
+         youngs_modulus = 5.0e6\ndamping_ratio = 0.05\ngravity = 9.81\n\n\
+         [excitation]\nkind = \"record\"\npath = \"record.AT2\"\nend = 6.0\n",
+    )
+    .unwrap();
+    model
+}
+
+fn scale_sweep(model: &Path, out: &Path, extra: &[&str]) -> Command {
+    let mut command = Command::new(env!("CARGO_BIN_EXE_flexrock"));
+    command.args([
+        "sweep",
+        model.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--vary",
+        "excitation.scale=lin:0.5:3:60",
+        "--chunk-size",
+        "4",
+        "--threads",
+        "1",
+        "--quiet",
+    ]);
+    command.args(extra);
+    command
+}
+
+#[test]
+fn a_record_replaced_between_kill_and_resume_makes_another_sweep() {
+    let dir = scratch_dir("store-record");
+    let model = record_model(&dir, "validation/records/elCentro.AT2");
+    let out = dir.join("out");
+    kill_after_chunks(&mut scale_sweep(&model, &out, &[]), &out, 2);
+    std::fs::copy(
+        repo("validation/records/A-ELC180.AT2"),
+        dir.join("record.AT2"),
+    )
+    .unwrap();
+    let o = scale_sweep(&model, &out, &[]).output().unwrap();
+    refused(&o, "record file");
+    // With --force, every row is of the new record: the same bytes as a fresh run of it.
+    ok(&mut scale_sweep(&model, &out, &["--force"]));
+    let fresh = dir.join("fresh");
+    ok(&mut scale_sweep(&model, &fresh, &[]));
+    assert_eq!(files_of(&out), files_of(&fresh));
+}
+
+#[test]
+fn a_record_axis_resumed_from_another_directory_is_another_sweep() {
+    let dir = scratch_dir("store-record-axis");
+    let model = record_model(&dir, "validation/records/elCentro.AT2");
+    let (one, two) = (dir.join("one"), dir.join("two"));
+    for (place, record) in [
+        (&one, "validation/records/elCentro.AT2"),
+        (&two, "validation/records/A-ELC180.AT2"),
+    ] {
+        std::fs::create_dir_all(place.join("records")).unwrap();
+        for name in ["a.AT2", "b.AT2"] {
+            std::fs::copy(repo(record), place.join("records").join(name)).unwrap();
+        }
+    }
+    let out = dir.join("out");
+    let sweep = |cwd: &Path| {
+        let mut command = scale_sweep(&model, &out, &[]);
+        command
+            .current_dir(cwd)
+            .args(["--vary", "excitation.path=records/*.AT2"]);
+        command
+    };
+    kill_after_chunks(&mut sweep(&one), &out, 2);
+    let o = sweep(&two).output().unwrap();
+    refused(&o, "another sweep");
+    // From the first directory it resumes.
+    ok(&mut sweep(&one));
+}
+
+#[test]
+fn the_spectrum_command_runs_twice_and_resumes_after_a_kill() {
+    // The default --tol, (15 - 0.5)/1e4 = 0.0014500000000000001, did not read back bit for bit.
+    let dir = scratch_dir("store-find-min");
+    let spectrum = |out: &Path| {
+        let mut command = Command::new(env!("CARGO_BIN_EXE_flexrock"));
+        command.args([
+            "sweep",
+            repo("models/pulse-map.toml").to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+            "--vary",
+            "excitation.period=log:0.2:3:6",
+            "--find-min",
+            "excitation.amplitude=0.5:15",
+            "--scan",
+            "20",
+            "--chunk-size",
+            "1",
+            "--threads",
+            "1",
+            "--quiet",
+        ]);
+        command
+    };
+    let reference = dir.join("reference");
+    ok(&mut spectrum(&reference));
+    let o = ok(&mut spectrum(&reference));
+    assert!(String::from_utf8_lossy(&o.stdout).contains("0 computed now"));
+    let out = dir.join("killed");
+    kill_after_chunks(&mut spectrum(&out), &out, 1);
+    ok(&mut spectrum(&out));
+    assert_eq!(files_of(&out), files_of(&reference));
+}
+
+#[test]
+fn two_processes_cannot_write_one_sweep() {
+    let dir = scratch_dir("store-lock");
+    let expected = reference(&dir);
+    let out = dir.join("out");
+    let mut first = grid(&out, &[])
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let started = Instant::now();
+    while chunk_files(&out).is_empty() {
+        assert!(started.elapsed() < Duration::from_secs(120));
+        std::thread::sleep(Duration::from_millis(2));
+    }
+    let o = grid(&out, &[]).output().unwrap();
+    refused(&o, "another flexrock process");
+    assert!(first.wait().unwrap().success());
+    assert_eq!(files_of(&out), expected);
+}
+
+#[test]
+fn a_damaged_finished_sweep_is_refused_or_recomputed_with_force() {
+    let dir = scratch_dir("store-damaged");
+    let expected = reference(&dir);
+    let out = dir.join("out");
+    ok(&mut grid(&out, &[]));
+    // A missing figure is drawn again from sweep.csv.
+    std::fs::remove_file(out.join("map.svg")).unwrap();
+    let o = ok(&mut grid(&out, &[]));
+    assert!(String::from_utf8_lossy(&o.stdout).contains("0 computed now"));
+    assert_eq!(files_of(&out), expected);
+    // sweep.csv deleted: the old code printed "wrote .../sweep.csv" and wrote nothing.
+    std::fs::remove_file(out.join("sweep.csv")).unwrap();
+    let o = grid(&out, &[]).output().unwrap();
+    let stderr = refused(&o, "sweep.csv");
+    assert!(stderr.contains("--force"), "{stderr}");
+    // An edited row.
+    std::fs::write(out.join("sweep.csv"), "point\n").unwrap();
+    refused(&grid(&out, &[]).output().unwrap(), "sweep.csv");
+    std::fs::write(out.join("notes.txt"), "mine").unwrap();
+    ok(&mut grid(&out, &["--force"]));
+    assert_eq!(
+        std::fs::read_to_string(out.join("notes.txt")).unwrap(),
+        "mine"
+    );
+    std::fs::remove_file(out.join("notes.txt")).unwrap();
+    assert_eq!(files_of(&out), expected);
+}
+
+fn merge(dirs: &[&Path], out: &Path) -> Output {
+    let mut args = vec!["sweep".to_string(), "merge".to_string()];
+    args.extend(dirs.iter().map(|d| d.to_string_lossy().into_owned()));
+    args.extend(["--out".to_string(), out.to_string_lossy().into_owned()]);
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    flexrock(&args)
+}
+
+fn shards(out: &Path, n: usize, extra: &[&str]) {
+    for k in 1..=n {
+        let shard = format!("{k}/{n}");
+        let mut args = vec!["--shard", shard.as_str()];
+        args.extend(extra);
+        ok(&mut grid(out, &args));
+    }
+}
+
+#[test]
+fn tampered_shards_are_refused_by_merge() {
+    let dir = scratch_dir("store-merge");
+    let expected = reference(&dir);
+    let sharded = dir.join("sharded");
+    shards(&sharded, 3, &[]);
+    let shard = |k: usize| sharded.join(format!("shard-{k}-of-3"));
+    let merged = dir.join("merged");
+    let o = merge(&[&sharded], &merged);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(files_of(&merged), expected);
+
+    let attempt = |name: &str, edit: &dyn Fn(&Path), needle: &str| {
+        let copy = dir.join(name);
+        for k in 1..=3 {
+            let to = copy.join(format!("shard-{k}-of-3"));
+            std::fs::create_dir_all(&to).unwrap();
+            for (file, bytes) in files_of(&shard(k)) {
+                std::fs::write(to.join(file), bytes).unwrap();
+            }
+        }
+        edit(&copy);
+        let out = dir.join(format!("{name}-out"));
+        let o = merge(&[&copy], &out);
+        refused(&o, needle);
+        assert!(!out.join("sweep.json").exists(), "{name}");
+    };
+    // One shard's sweep.csv replaced by another's.
+    attempt(
+        "replaced",
+        &|d| {
+            std::fs::copy(
+                d.join("shard-1-of-3/sweep.csv"),
+                d.join("shard-2-of-3/sweep.csv"),
+            )
+            .unwrap();
+        },
+        "shard-2-of-3/sweep.csv",
+    );
+    // A row moved from one shard to the next.
+    attempt(
+        "moved",
+        &|d| {
+            let first = std::fs::read_to_string(d.join("shard-1-of-3/sweep.csv")).unwrap();
+            let (kept, last) = first.trim_end().rsplit_once('\n').unwrap();
+            std::fs::write(d.join("shard-1-of-3/sweep.csv"), format!("{kept}\n")).unwrap();
+            let second = std::fs::read_to_string(d.join("shard-2-of-3/sweep.csv")).unwrap();
+            let (header, rows) = second.split_once('\n').unwrap();
+            std::fs::write(
+                d.join("shard-2-of-3/sweep.csv"),
+                format!("{header}\n{last}\n{rows}"),
+            )
+            .unwrap();
+        },
+        "shard-1-of-3/sweep.csv",
+    );
+    // An overturned flag edited.
+    attempt(
+        "edited",
+        &|d| {
+            let path = d.join("shard-3-of-3/sweep.csv");
+            let text = std::fs::read_to_string(&path).unwrap();
+            std::fs::write(&path, text.replacen(",true,", ",false,", 1)).unwrap();
+        },
+        "shard-3-of-3/sweep.csv",
+    );
+    // Both files of shard 2 in shard 3's directory.
+    attempt(
+        "swapped",
+        &|d| {
+            for f in ["sweep.csv", "sweep.json"] {
+                std::fs::copy(
+                    d.join("shard-2-of-3").join(f),
+                    d.join("shard-3-of-3").join(f),
+                )
+                .unwrap();
+            }
+        },
+        "shard-3-of-3",
+    );
+    // A crafted sweep.json whose axes have no values panicked the figure.
+    attempt(
+        "empty-axes",
+        &|d| {
+            let path = d.join("shard-1-of-3/sweep.json");
+            let mut json: serde_json::Value =
+                serde_json::from_slice(&std::fs::read(&path).unwrap()).unwrap();
+            for axis in json["plan"]["axes"].as_array_mut().unwrap() {
+                axis["values"] = serde_json::json!([]);
+            }
+            std::fs::write(&path, serde_json::to_vec(&json).unwrap()).unwrap();
+        },
+        "has no values",
+    );
+}
+
+#[test]
+fn a_merge_into_its_own_directory_uses_the_shards_not_an_old_result() {
+    let dir = scratch_dir("store-stale-merge");
+    let out = dir.join("out");
+    // An old merged result of another sweep (another damping) in OUT.
+    shards(&out, 2, &["--set", "body.damping_ratio=0.02"]);
+    let o = merge(&[&out], &out);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    for k in 1..=2 {
+        std::fs::remove_dir_all(out.join(format!("shard-{k}-of-2"))).unwrap();
+    }
+    // New shards of this sweep, merged as the Slurm merge job does.
+    shards(&out, 2, &[]);
+    let o = merge(&[&out], &out);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let expected = reference(&dir);
+    let merged: Vec<_> = files_of(&out);
+    assert_eq!(merged, expected);
+}
+
+#[test]
+fn a_merge_killed_at_random_moments_leaves_the_old_result_or_the_new() {
+    let dir = scratch_dir("store-merge-kill");
+    let expected = reference(&dir);
+    let sharded = dir.join("sharded");
+    shards(&sharded, 4, &[]);
+    let out = dir.join("out");
+    let mut state: u64 = 0x2545_F491_4F6C_DD1D;
+    for _ in 0..25 {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        let mut child = Command::new(env!("CARGO_BIN_EXE_flexrock"))
+            .args([
+                "sweep",
+                "merge",
+                sharded.to_str().unwrap(),
+                "--out",
+                out.to_str().unwrap(),
+            ])
+            .stdout(Stdio::null())
+            .stderr(Stdio::null())
+            .spawn()
+            .unwrap();
+        std::thread::sleep(Duration::from_micros(state % 30_000));
+        let _ = child.kill();
+        child.wait().unwrap();
+        // Whatever is there is nothing or the whole result.
+        if out.join("sweep.json").exists() {
+            assert_eq!(files_of(&out), expected);
+        }
+    }
+    let o = merge(&[&sharded], &out);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(files_of(&out), expected);
+}
+
+/// serde_json without float_roundtrip read 0.0014500000000000001 back one unit in the last
+/// place off, so that a sweep's stored plan was taken for another sweep's.
+#[test]
+fn a_plan_reads_back_bit_for_bit() {
+    use flexrock::sweep::{FindMin, Plan};
+    let mut state: u64 = 0x9E37_79B9_7F4A_7C15;
+    let mut values = vec![(15.0 - 0.5) / 1e4, 0.1 + 0.2, f64::MIN_POSITIVE, 1e308];
+    for _ in 0..2000 {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        let x = f64::from_bits(state >> 2);
+        if x.is_finite() && x > 0.0 {
+            values.push(x);
+        }
+    }
+    for tol in values {
+        let plan = Plan {
+            flexrock_version: "x".to_string(),
+            model_file: String::new(),
+            model_text: String::new(),
+            settings: Vec::new(),
+            axes: Vec::new(),
+            find_min: Some(FindMin {
+                key: "excitation.amplitude".to_string(),
+                lo: 0.5,
+                hi: 15.0,
+                scan: 100,
+                tol,
+            }),
+            chunk_size: 1,
+            records: Vec::new(),
+        };
+        let back: Plan =
+            serde_json::from_slice(&serde_json::to_vec_pretty(&plan).unwrap()).unwrap();
+        assert_eq!(
+            back.find_min.unwrap().tol.to_bits(),
+            tol.to_bits(),
+            "{tol:e}"
+        );
+    }
+}
