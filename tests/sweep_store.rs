@@ -352,7 +352,13 @@ fn the_spectrum_command_runs_twice_and_resumes_after_a_kill() {
     let reference = dir.join("reference");
     ok(&mut spectrum(&reference));
     let o = ok(&mut spectrum(&reference));
-    assert!(String::from_utf8_lossy(&o.stdout).contains("0 computed now"));
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(stdout.contains("0 computed now"), "{stdout}");
+    // It wrote nothing, and says so.
+    assert!(
+        stdout.contains("found") && !stdout.contains("wrote"),
+        "{stdout}"
+    );
     let out = dir.join("killed");
     kill_after_chunks(&mut spectrum(&out), &out, 1);
     ok(&mut spectrum(&out));

@@ -605,7 +605,8 @@ pub fn report_text(report: &store::SweepReport, seconds: Option<f64>) -> String 
         _ => t.push('\n'),
     }
     for f in &report.files {
-        let _ = writeln!(t, "  wrote {}", f.display());
+        let verb = if report.written { "wrote" } else { "found" };
+        let _ = writeln!(t, "  {verb} {}", f.display());
     }
     t
 }

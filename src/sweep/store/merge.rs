@@ -106,6 +106,7 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<SweepReport> {
         computed: 0,
         resumed: total,
         files,
+        written: true,
         warnings,
     })
 }

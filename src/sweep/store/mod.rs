@@ -94,8 +94,10 @@ pub struct SweepReport {
     pub computed: usize,
     /// Points found on disk from an earlier, interrupted run.
     pub resumed: usize,
-    /// The files written.
+    /// The files of the result.
     pub files: Vec<PathBuf>,
+    /// True when this process wrote them (false when it found them done).
+    pub written: bool,
     /// What the user must know: chunks that did not verify and were computed again, a
     /// directory that could not be locked or cleaned.
     pub warnings: Vec<String>,
@@ -240,6 +242,7 @@ pub fn run(sweep: &Sweep, target: &Target, progress: &dyn Progress) -> Result<Sw
         computed,
         resumed,
         files,
+        written: true,
         warnings,
     })
 }
@@ -304,12 +307,14 @@ fn finished(
         let files = summary.files.iter().map(|f| dir.join(f)).collect();
         (summary, files)
     };
+    let written = missing;
     Ok(Some(SweepReport {
         dir: dir.to_path_buf(),
         summary,
         computed: 0,
         resumed: range.len(),
         files,
+        written,
         warnings: std::mem::take(warnings),
     }))
 }
