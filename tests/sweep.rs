@@ -905,3 +905,60 @@ fn a_device_as_the_model_is_refused_not_read_forever() {
     assert!(String::from_utf8_lossy(&o.stderr).contains("character device"));
     assert!(!out.exists());
 }
+
+/// A minimum search that finds no overturning value leaves empty every column derived from the
+/// searched key (the amplitude ratios here), instead of showing the search's upper bound there:
+/// plotted against omega_p / p, those bounds drew a plateau that does not exist. The columns the
+/// key does not change (alpha, p, T, omega_p / p) keep their closed forms.
+#[test]
+fn no_derived_column_holds_a_value_where_its_source_is_empty() {
+    let dir = scratch_dir("sweep-empty-derived");
+    let out = dir.join("out");
+    // 0.5-3 m/s^2 overturns the body under the shortest pulse of a log axis from 0.2 s to 3 s
+    // only at the long periods (MODEL.md 7c: the body needs about 15.8 m/s^2 at 0.7 s).
+    run(&[
+        "sweep",
+        pulse_model().to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--vary",
+        "excitation.period=0.3,2.5",
+        "--find-min",
+        "excitation.amplitude=0.5:3",
+        "--scan",
+        "10",
+        "--quiet",
+    ]);
+    let rows = rows(&out);
+    let model = model_with(&[]);
+    let b = &model.body;
+    let (g, alpha) = (b.gravity, (b.width / b.height).atan());
+    let p = (3.0 * g / (4.0 * (b.height.hypot(b.width) / 2.0))).sqrt();
+    let mut empty = 0;
+    for row in &rows {
+        assert_eq!(row["status"], "ok", "{row:?}");
+        let tp: f64 = row["excitation.period"].parse().unwrap();
+        let omega = number(row, "omega_p_over_p");
+        assert!((omega - 2.0 * std::f64::consts::PI / tp / p).abs() < 1e-13 * omega);
+        assert!((number(row, "alpha") - alpha).abs() < 1e-15);
+        if row["min_overturning"].is_empty() {
+            empty += 1;
+            for derived in [
+                "amplitude_over_g_tan_alpha",
+                "amplitude_over_uplift_acceleration",
+                "t_overturn",
+            ] {
+                assert_eq!(row[derived], "", "{derived} in {row:?}");
+            }
+        } else {
+            let a = number(row, "min_overturning");
+            let got = number(row, "amplitude_over_g_tan_alpha");
+            let expected = a / (g * alpha.tan());
+            assert!(
+                (got - expected).abs() <= 1e-13 * expected,
+                "{got} {expected}"
+            );
+        }
+    }
+    assert!(empty >= 1, "every point overturned: {rows:?}");
+}

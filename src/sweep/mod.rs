@@ -458,10 +458,16 @@ impl Sweep {
         let scales_at = |value: f64| self.model(&at(value)).ok().map(|m| Scales::of(&m));
         match find_min::search(find, trial) {
             Ok(outcome) => {
-                // The dimensionless numbers of the smallest overturning value (of HI when
-                // nothing overturned).
-                let value = outcome.min_overturning.unwrap_or(find.hi);
-                let scales = scales_at(value);
+                // The dimensionless numbers of the smallest overturning value; when nothing
+                // overturned, only those the searched key does not change (equal at LO and HI),
+                // so that no column shows a number derived from the search's bound.
+                let scales = match outcome.min_overturning {
+                    Some(value) => scales_at(value),
+                    None => match (scales_at(find.lo), scales_at(find.hi)) {
+                        (Some(lo), Some(hi)) => Some(lo.common(&hi)),
+                        _ => None,
+                    },
+                };
                 let rigid_minimum = |block: fn(f64, f64, f64) -> Result<RigidBlock>| {
                     let trial = |value: f64| -> Result<find_min::Trial> {
                         let model = self.model(&at(value))?;
@@ -484,7 +490,7 @@ impl Sweep {
                         .and_then(|o| o.min_overturning);
                     let scaled = min
                         .and_then(scales_at)
-                        .map(|s| s.amplitude_over_g_tan_alpha);
+                        .and_then(|s| s.amplitude_over_g_tan_alpha);
                     (min, scaled)
                 };
                 let (housner, housner_over_g_tan_alpha) = rigid_minimum(RigidBlock::housner);

@@ -31,20 +31,22 @@ impl Status {
 }
 
 /// The body and excitation numbers of a point, dimensionless where the literature plots them.
-#[derive(Debug, Clone, Copy)]
+/// A number is None (an empty field) where it is not known: the excitation has no period, or
+/// a minimum search found no overturning value and the number depends on the searched key.
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Scales {
     /// alpha = atan(B/H), rad.
-    pub alpha: f64,
+    pub alpha: Option<f64>,
     /// p = sqrt(3 g/(4 R)), rad/s.
-    pub p: f64,
+    pub p: Option<f64>,
     /// Pre-uplift period T, s.
-    pub period: f64,
+    pub period: Option<f64>,
     /// s_n, m.
-    pub uplift_displacement: f64,
+    pub uplift_displacement: Option<f64>,
     /// Peak floor acceleration over g tan(alpha).
-    pub amplitude_over_g_tan_alpha: f64,
+    pub amplitude_over_g_tan_alpha: Option<f64>,
     /// Peak floor acceleration over the quasi-static uplift acceleration omega^2 s_n / beta1.
-    pub amplitude_over_uplift_acceleration: f64,
+    pub amplitude_over_uplift_acceleration: Option<f64>,
     /// (2 pi / Tp) / p, for analytic motions with a period Tp.
     pub omega_p_over_p: Option<f64>,
     /// T / Tp.
@@ -61,14 +63,40 @@ impl Scales {
         let peak = model.floor.peak_acceleration();
         let excitation_period = model.floor.period();
         Scales {
-            alpha,
-            p,
-            period: c.period,
-            uplift_displacement: c.uplift_displacement,
-            amplitude_over_g_tan_alpha: peak / (body.gravity * alpha.tan()),
-            amplitude_over_uplift_acceleration: peak / c.quasi_static_uplift_acceleration,
+            alpha: Some(alpha),
+            p: Some(p),
+            period: Some(c.period),
+            uplift_displacement: Some(c.uplift_displacement),
+            amplitude_over_g_tan_alpha: Some(peak / (body.gravity * alpha.tan())),
+            amplitude_over_uplift_acceleration: Some(peak / c.quasi_static_uplift_acceleration),
             omega_p_over_p: excitation_period.map(|tp| 2.0 * std::f64::consts::PI / tp / p),
             period_over_excitation_period: excitation_period.map(|tp| c.period / tp),
+        }
+    }
+
+    /// The numbers that `self` and `other` share; the others None. For a minimum search that
+    /// found no overturning value, the numbers at the two ends of the interval: what depends on
+    /// the searched key differs between them and is left empty, never shown at the bound.
+    pub fn common(&self, other: &Scales) -> Scales {
+        let keep = |a: Option<f64>, b: Option<f64>| a.filter(|_| a == b);
+        Scales {
+            alpha: keep(self.alpha, other.alpha),
+            p: keep(self.p, other.p),
+            period: keep(self.period, other.period),
+            uplift_displacement: keep(self.uplift_displacement, other.uplift_displacement),
+            amplitude_over_g_tan_alpha: keep(
+                self.amplitude_over_g_tan_alpha,
+                other.amplitude_over_g_tan_alpha,
+            ),
+            amplitude_over_uplift_acceleration: keep(
+                self.amplitude_over_uplift_acceleration,
+                other.amplitude_over_uplift_acceleration,
+            ),
+            omega_p_over_p: keep(self.omega_p_over_p, other.omega_p_over_p),
+            period_over_excitation_period: keep(
+                self.period_over_excitation_period,
+                other.period_over_excitation_period,
+            ),
         }
     }
 
@@ -87,12 +115,12 @@ impl Scales {
     /// The fields, in the order of [`Scales::COLUMNS`].
     pub fn fields(&self) -> [String; 8] {
         [
-            shortest(self.alpha),
-            shortest(self.p),
-            shortest(self.period),
-            shortest(self.uplift_displacement),
-            shortest(self.amplitude_over_g_tan_alpha),
-            shortest(self.amplitude_over_uplift_acceleration),
+            optional(self.alpha),
+            optional(self.p),
+            optional(self.period),
+            optional(self.uplift_displacement),
+            optional(self.amplitude_over_g_tan_alpha),
+            optional(self.amplitude_over_uplift_acceleration),
             optional(self.omega_p_over_p),
             optional(self.period_over_excitation_period),
         ]
