@@ -268,7 +268,7 @@ impl flexrock::sweep::store::Progress for ProgressBar {
 }
 
 fn sweep(args: SweepArgs) -> flexrock::Result<Output> {
-    use flexrock::sweep::{axis, store, Axis, Request, Sweep};
+    use flexrock::sweep::{axis, store, Request, Sweep};
     if let Some(SweepCommand::Merge { dirs, out }) = args.command {
         let report = store::merge(&dirs, &out)?;
         return Ok(Output {
@@ -294,9 +294,7 @@ fn sweep(args: SweepArgs) -> flexrock::Result<Output> {
         request.add_file(file)?;
     }
     for text in &args.vary {
-        request
-            .axes
-            .push(Axis::parse(text, std::path::Path::new("."))?);
+        request.vary(text, std::path::Path::new("."))?;
     }
     if let Some(text) = &args.find_min {
         request.find_min = Some(axis::parse_interval(text)?);

@@ -627,3 +627,160 @@ fn a_plan_reads_back_bit_for_bit() {
         );
     }
 }
+
+/// Runs a command and waits at most `limit` for it; a run still going then is killed and
+/// reported (a hang fails the test instead of hanging it).
+fn within(command: &mut Command, limit: Duration) -> Output {
+    let mut child: Child = command
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let start = Instant::now();
+    while child.try_wait().unwrap().is_none() {
+        if start.elapsed() > limit {
+            child.kill().unwrap();
+            panic!("{command:?} still ran after {limit:?}");
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    child.wait_with_output().unwrap()
+}
+
+#[test]
+fn infinite_and_overflowing_axis_values_are_refused_at_once() {
+    let dir = scratch_dir("store-overflow");
+    for (i, axis) in [
+        "excitation.amplitude=inf,1",
+        "excitation.amplitude=-1e308,1e308",
+        "body.youngs_modulus=5e6,1.5e308",
+        "excitation.amplitude=lin:1e308:1.7e308:3",
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        let out = dir.join(format!("out{i}"));
+        let o = within(
+            Command::new(env!("CARGO_BIN_EXE_flexrock")).args([
+                "sweep",
+                repo("models/pulse-map.toml").to_str().unwrap(),
+                "--out",
+                out.to_str().unwrap(),
+                "--vary",
+                "excitation.period=1,2",
+                "--vary",
+                axis,
+            ]),
+            Duration::from_secs(60),
+        );
+        let key = axis.split('=').next().unwrap();
+        refused(&o, &format!("--vary {key}"));
+        assert!(!out.exists(), "{axis}: nothing is written");
+    }
+}
+
+#[test]
+fn seven_huge_axes_are_refused_before_they_are_made() {
+    let dir = scratch_dir("store-huge-axes");
+    let mut command = Command::new(env!("CARGO_BIN_EXE_flexrock"));
+    command.args([
+        "sweep",
+        repo("models/pulse-map.toml").to_str().unwrap(),
+        "--out",
+        dir.join("out").to_str().unwrap(),
+    ]);
+    for key in [
+        "excitation.amplitude",
+        "excitation.period",
+        "body.height",
+        "body.width",
+        "body.density",
+        "body.youngs_modulus",
+        "body.damping_ratio",
+    ] {
+        command.args(["--vary", &format!("{key}=lin:1:2:1000000")]);
+    }
+    let o = within(&mut command, Duration::from_secs(120));
+    let message = refused(&o, "--vary excitation.period");
+    assert!(message.contains("100000000 points"), "{message}");
+}
+
+/// The filled rectangles of an SVG, as (x, y, width, height, fill).
+fn rectangles(svg: &str) -> Vec<(f64, f64, f64, f64, String)> {
+    svg.split("<rect ")
+        .skip(1)
+        .map(|r| {
+            let r = format!(" {}", r.split('>').next().unwrap());
+            let attr = |name: &str| -> String {
+                let start = r
+                    .find(&format!(" {name}=\""))
+                    .unwrap_or_else(|| panic!("no {name} in {r}"));
+                r[start + name.len() + 3..]
+                    .split('"')
+                    .next()
+                    .unwrap()
+                    .to_string()
+            };
+            let n = |name: &str| attr(name).parse::<f64>().unwrap();
+            (n("x"), n("y"), n("width"), n("height"), attr("fill"))
+        })
+        .collect()
+}
+
+#[test]
+fn a_map_over_unsorted_lists_draws_each_cell_once_in_order() {
+    let dir = scratch_dir("store-unsorted-map");
+    let out = dir.join("out");
+    ok(Command::new(env!("CARGO_BIN_EXE_flexrock")).args([
+        "sweep",
+        repo("models/pulse-map.toml").to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--vary",
+        "excitation.period=1,0.5,2",
+        "--vary",
+        "excitation.amplitude=2,6,4",
+    ]));
+    let csv = std::fs::read_to_string(out.join("sweep.csv")).unwrap();
+    let overturned = csv.lines().filter(|l| l.contains(",ok,,true,")).count();
+    assert!(overturned > 0 && overturned < 9, "{csv}");
+    let svg = std::fs::read_to_string(out.join("map.svg")).unwrap();
+    // The cells of the first (physical) panel: every rectangle left of the second panel but the
+    // white background.
+    let cells: Vec<_> = rectangles(&svg)
+        .into_iter()
+        .filter(|r| r.0 > 0.0 && r.0 < 720.0 && r.2 > 5.0 && r.3 > 5.0)
+        .collect();
+    assert_eq!(cells.len(), 9, "{cells:?}");
+    for (i, a) in cells.iter().enumerate() {
+        for b in &cells[..i] {
+            let overlap_x = (a.0 + a.2).min(b.0 + b.2) - a.0.max(b.0);
+            let overlap_y = (a.1 + a.3).min(b.1 + b.3) - a.1.max(b.1);
+            assert!(
+                overlap_x <= 0.5 || overlap_y <= 0.5,
+                "cells {a:?} and {b:?} overlap"
+            );
+        }
+    }
+    let black = cells.iter().filter(|r| r.4 == "#000000").count();
+    assert_eq!(black, overturned, "every overturned cell is drawn black");
+    // Period 0.5 s (the second value) is the leftmost column.
+    let leftmost = cells.iter().map(|r| r.0).fold(f64::INFINITY, f64::min);
+    let rows = rows_of(&csv);
+    let left: Vec<_> = cells.iter().filter(|r| r.0 == leftmost).collect();
+    let half_period_overturned = rows
+        .iter()
+        .filter(|r| r[1] == "0.5" && r[5] == "true")
+        .count();
+    assert_eq!(
+        left.iter().filter(|r| r.4 == "#000000").count(),
+        half_period_overturned
+    );
+}
+
+fn rows_of(csv: &str) -> Vec<Vec<String>> {
+    csv.lines()
+        .skip(1)
+        .map(|l| l.split(',').map(str::to_string).collect())
+        .collect()
+}

@@ -11,6 +11,10 @@
 //!
 //! Every value is computed from its index (LO + i STEP), never by accumulation, so that a sweep
 //! has the same values on every machine.
+//!
+//! Numbers must be finite and at most [`MAX_MAGNITUDE`] in size, so that every value, cell edge
+//! and figure coordinate made from them is finite. The number of values a range gives is
+//! checked against the room the other axes leave under [`MAX_POINTS`] before any value is made.
 
 use std::path::Path;
 
@@ -23,6 +27,9 @@ use crate::model::{check_key, value_text, Setting};
 pub const MAX_POINTS: usize = 100_000_000;
 /// Most values one axis (or a minimum search's scan) may take: their text is held in memory.
 pub const MAX_AXIS_VALUES: usize = 1_000_000;
+/// Largest magnitude of a number in an axis or a search interval: far beyond any quantity of
+/// the model, and small enough that the cells of a map drawn around such values stay finite.
+pub const MAX_MAGNITUDE: f64 = 1e300;
 
 /// One axis: a model-file key and its values, in order.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -39,8 +46,18 @@ pub struct Axis {
 impl Axis {
     /// Parses `KEY=SPEC`; file patterns of `excitation.path` are relative to `base_dir`.
     pub fn parse(text: &str, base_dir: &Path) -> Result<Axis> {
+        Axis::parse_beside(text, base_dir, 1)
+    }
+
+    /// Parses `KEY=SPEC` as an axis beside others that have `others` points between them: the
+    /// axis may have at most [`MAX_POINTS`] / `others` values, checked before they are made.
+    pub fn parse_beside(text: &str, base_dir: &Path, others: usize) -> Result<Axis> {
         let (key, spec) = split(text, "--vary")?;
-        let values = expand(key, spec, base_dir)
+        let room = Room {
+            values: MAX_AXIS_VALUES.min(MAX_POINTS / others.max(1)),
+            others,
+        };
+        let values = expand(key, spec, base_dir, room)
             .map_err(|rule| Error::invalid(&format!("--vary {key}"), spec, &rule))?;
         Ok(Axis::new(key, values))
     }
@@ -154,8 +171,18 @@ fn number(text: &str) -> std::result::Result<f64, String> {
         .trim()
         .parse()
         .map_err(|_| format!("\"{}\" is not a number", text.trim()))?;
+    finite(x, text.trim())
+}
+
+/// `x` (written `text`) if it is finite and at most [`MAX_MAGNITUDE`] in size.
+fn finite(x: f64, text: &str) -> std::result::Result<f64, String> {
     if !x.is_finite() {
-        return Err(format!("{} is not a finite number", text.trim()));
+        return Err(format!("{text} is not a finite number"));
+    }
+    if x.abs() > MAX_MAGNITUDE {
+        return Err(format!(
+            "{text} is beyond the largest magnitude an axis takes, {MAX_MAGNITUDE:e}"
+        ));
     }
     Ok(x)
 }
@@ -170,15 +197,41 @@ fn tidy(x: f64) -> f64 {
     format!("{x:.14e}").parse().unwrap_or(x)
 }
 
-fn count(text: &str) -> std::result::Result<usize, String> {
+/// How many values an axis may have: at most [`MAX_AXIS_VALUES`], and no more than leave the
+/// sweep within [`MAX_POINTS`] beside the other axes' `others` points.
+#[derive(Clone, Copy)]
+struct Room {
+    values: usize,
+    others: usize,
+}
+
+impl Room {
+    /// `n` values, if there is room for them.
+    fn fits(self, n: usize) -> std::result::Result<usize, String> {
+        if n > MAX_AXIS_VALUES {
+            return Err(format!(
+                "gives {n} values; an axis may have at most {MAX_AXIS_VALUES}"
+            ));
+        }
+        if n > self.values {
+            return Err(format!(
+                "gives {n} values beside the other axes' {} points; a sweep may have at most {MAX_POINTS} points",
+                self.others
+            ));
+        }
+        Ok(n)
+    }
+}
+
+fn count(text: &str, room: Room) -> std::result::Result<usize, String> {
     let n: usize = text
         .trim()
         .parse()
         .map_err(|_| format!("the count \"{}\" is not a whole number", text.trim()))?;
-    if n == 0 || n > MAX_AXIS_VALUES {
-        return Err(format!("the count {n} must lie in 1..={MAX_AXIS_VALUES}"));
+    if n == 0 {
+        return Err("the count must be at least 1".to_string());
     }
-    Ok(n)
+    room.fits(n)
 }
 
 fn shortest(values: impl Iterator<Item = f64>) -> Vec<String> {
@@ -186,14 +239,19 @@ fn shortest(values: impl Iterator<Item = f64>) -> Vec<String> {
 }
 
 /// The values of a SPEC, as text.
-fn expand(key: &str, spec: &str, base_dir: &Path) -> std::result::Result<Vec<String>, String> {
+fn expand(
+    key: &str,
+    spec: &str,
+    base_dir: &Path,
+    room: Room,
+) -> std::result::Result<Vec<String>, String> {
     if spec.is_empty() {
         return Err("no values given".to_string());
     }
     let parts: Vec<&str> = spec.split(':').collect();
     let values = match parts.as_slice() {
         [kind @ ("lin" | "log"), lo, hi, n] => {
-            let (lo, hi, n) = (number(lo)?, number(hi)?, count(n)?);
+            let (lo, hi, n) = (number(lo)?, number(hi)?, count(n, room)?);
             if *kind == "log" && !(lo > 0.0 && hi > 0.0) {
                 return Err("a log axis needs LO > 0 and HI > 0".to_string());
             }
@@ -213,7 +271,7 @@ fn expand(key: &str, spec: &str, base_dir: &Path) -> std::result::Result<Vec<Str
             };
             shortest((0..n).map(at))
         }
-        [lo, hi, step] if number(lo).is_ok() => {
+        [lo, hi, step] if lo.trim().parse::<f64>().is_ok() => {
             let (lo, hi, step) = (number(lo)?, number(hi)?, number(step)?);
             if step <= 0.0 {
                 return Err("STEP must be positive".to_string());
@@ -223,8 +281,11 @@ fn expand(key: &str, spec: &str, base_dir: &Path) -> std::result::Result<Vec<Str
             }
             let steps = ((hi - lo) / step + 1e-9).floor();
             if steps + 1.0 > MAX_AXIS_VALUES as f64 {
-                return Err(format!("more than {MAX_AXIS_VALUES} values"));
+                return Err(format!(
+                    "gives more than the {MAX_AXIS_VALUES} values an axis may have"
+                ));
             }
+            room.fits(steps as usize + 1)?;
             shortest((0..=steps as usize).map(|i| {
                 let x = tidy(lo + i as f64 * step);
                 // HI itself, not HI plus rounding, when it is a whole number of steps away.
@@ -235,7 +296,16 @@ fn expand(key: &str, spec: &str, base_dir: &Path) -> std::result::Result<Vec<Str
                 }
             }))
         }
-        _ if key == "excitation.path" => paths(spec, base_dir)?,
+        _ if key == "excitation.path" => {
+            let files = paths(spec, base_dir)?;
+            room.fits(files.len())?;
+            files
+        }
+        [lo, hi] if lo.trim().parse::<f64>().is_ok() && hi.trim().parse::<f64>().is_ok() => {
+            return Err(format!(
+                "LO:HI needs a STEP: write LO:HI:STEP (e.g. {lo}:{hi}:0.1) or lin:LO:HI:N"
+            ))
+        }
         _ if parts.len() > 1 => {
             return Err("must be LO:HI:STEP, lin:LO:HI:N, log:LO:HI:N or a comma list".to_string())
         }
@@ -244,14 +314,17 @@ fn expand(key: &str, spec: &str, base_dir: &Path) -> std::result::Result<Vec<Str
             if items.iter().any(|v| v.is_empty()) {
                 return Err("an empty value in the list".to_string());
             }
+            room.fits(items.len())?;
             // Numbers are written in their shortest form, so that `1.50` and `1.5` agree.
             items
                 .into_iter()
-                .map(|v| match toml_value(&v) {
-                    toml::Value::Float(x) => crate::output::shortest(x),
-                    other => value_text(&other),
+                .map(|v| match (toml_value(&v), v.parse::<f64>()) {
+                    (toml::Value::Float(x), _) => Ok(crate::output::shortest(finite(x, &v)?)),
+                    // Beyond TOML's range (1e309) but a number still.
+                    (_, Ok(x)) => finite(x, &v).map(crate::output::shortest),
+                    (other, Err(_)) => Ok(value_text(&other)),
                 })
-                .collect()
+                .collect::<std::result::Result<_, String>>()?
         }
     };
     let mut seen = std::collections::HashSet::new();
@@ -353,6 +426,76 @@ mod tests {
         }
         assert!(Axis::parse("amplitude=1", Path::new(".")).is_err());
         assert!(Axis::parse("excitation.amplitude", Path::new(".")).is_err());
+    }
+
+    #[test]
+    fn infinite_and_overflowing_numbers_are_refused_at_parse() {
+        for bad in [
+            "inf,1",
+            "1,-inf",
+            "nan,1",
+            "1e309,1",
+            "-1e308,1e308",
+            "1.5e308",
+            "lin:1e308:1.7e308:3",
+            "0:1e301:1e300",
+            "log:1e-1:1e301:3",
+        ] {
+            let e = Axis::parse(&format!("excitation.amplitude={bad}"), Path::new("."))
+                .expect_err(bad)
+                .to_string();
+            assert!(
+                e.contains("not a finite number") || e.contains("largest magnitude"),
+                "{bad}: {e}"
+            );
+        }
+        // The largest magnitude itself is a value.
+        assert_eq!(values("1e300,-1e300"), ["1e300", "-1e300"]);
+        for bad in [
+            "x=0:inf",
+            "excitation.amplitude=-inf:1",
+            "excitation.amplitude=0:1e301",
+        ] {
+            assert!(parse_interval(bad).is_err(), "{bad}");
+        }
+    }
+
+    #[test]
+    fn a_range_without_a_step_says_so() {
+        let e = Axis::parse("excitation.period=0.2:3", Path::new("."))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("needs a STEP"), "{e}");
+    }
+
+    #[test]
+    fn the_point_cap_is_checked_before_an_axis_is_made() {
+        // Beside an axis of 1000 values, one of 200000 would make 2e8 points.
+        for spec in ["lin:0:1:200000", "0:1:0.000005", "log:1:2:1000000"] {
+            let e = Axis::parse_beside(
+                &format!("excitation.amplitude={spec}"),
+                Path::new("."),
+                1000,
+            )
+            .unwrap_err()
+            .to_string();
+            assert!(e.contains(&MAX_POINTS.to_string()), "{spec}: {e}");
+        }
+        let list = "1,2,3";
+        let e = Axis::parse_beside(
+            &format!("excitation.amplitude={list}"),
+            Path::new("."),
+            MAX_POINTS / 2,
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(e.contains("a sweep may have at most"), "{e}");
+        assert_eq!(
+            Axis::parse_beside("excitation.amplitude=lin:0:1:100000", Path::new("."), 1000)
+                .unwrap()
+                .len(),
+            100_000
+        );
     }
 
     #[test]

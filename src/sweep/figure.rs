@@ -108,7 +108,10 @@ pub fn figures(plan: &Plan, table: &SweepTable) -> Result<Vec<(String, Vec<u8>)>
         .filter(|&i| plan.axes[i].is_numeric())
         .collect();
     match (&plan.find_min, plan.axes.len(), numeric.as_slice()) {
-        (None, 2, [x, y]) => Ok(vec![("map.svg".to_string(), map(plan, table, *x, *y)?)]),
+        (None, 2, [x, y]) => Ok(map(plan, table, *x, *y)?
+            .map(|svg| ("map.svg".to_string(), svg))
+            .into_iter()
+            .collect()),
         (Some(_), 1, [x]) => Ok(vec![(
             "spectrum.svg".to_string(),
             spectrum(plan, table, *x)?,
@@ -157,21 +160,40 @@ struct Cell {
     overturned: bool,
 }
 
-/// Edges of cells centred on `centres` (sorted or reversed): midpoints, the ends extended by
-/// half a cell.
+/// Edges of cells centred on ascending `centres`: midpoints, the ends extended by half a cell.
+/// Written so that no intermediate sum overflows; empty for no centres.
 fn edges(centres: &[f64]) -> Vec<f64> {
     let n = centres.len();
-    if n == 1 {
-        let half = 0.5 * centres[0].abs().max(1e-12) * 0.1;
-        return vec![centres[0] - half, centres[0] + half];
+    match n {
+        0 => return Vec::new(),
+        1 => {
+            let half = 0.5 * centres[0].abs().max(1e-12) * 0.1;
+            return vec![centres[0] - half, centres[0] + half];
+        }
+        _ => {}
     }
+    let half_step = |a: f64, b: f64| 0.5 * b - 0.5 * a;
     let mut e = Vec::with_capacity(n + 1);
-    e.push(centres[0] - 0.5 * (centres[1] - centres[0]));
+    e.push(centres[0] - half_step(centres[0], centres[1]));
     for w in centres.windows(2) {
-        e.push(0.5 * (w[0] + w[1]));
+        e.push(0.5 * w[0] + 0.5 * w[1]);
     }
-    e.push(centres[n - 1] + 0.5 * (centres[n - 1] - centres[n - 2]));
+    e.push(centres[n - 1] + half_step(centres[n - 2], centres[n - 1]));
     e
+}
+
+/// The indices of `values` in ascending order of value (NaN last).
+fn ascending(values: &[f64]) -> Vec<usize> {
+    let mut order: Vec<usize> = (0..values.len()).collect();
+    order.sort_by(|&a, &b| values[a].total_cmp(&values[b]));
+    order
+}
+
+/// True when cells around `values` can be drawn: finite, distinct, and edges that grow.
+fn drawable(values: &[f64]) -> bool {
+    let sorted: Vec<f64> = ascending(values).iter().map(|&i| values[i]).collect();
+    let e = edges(&sorted);
+    !e.is_empty() && e.iter().all(|x| x.is_finite()) && e.windows(2).all(|w| w[0] < w[1])
 }
 
 fn plot_error(e: impl std::fmt::Display) -> Error {
@@ -182,7 +204,9 @@ fn plot_error(e: impl std::fmt::Display) -> Error {
 }
 
 /// The map over axes `x` and `y` (indices into the plan's axes).
-fn map(plan: &Plan, table: &SweepTable, x: usize, y: usize) -> Result<Vec<u8>> {
+/// None when the axes cannot be drawn as cells (values too close to tell apart in the figure's
+/// arithmetic).
+fn map(plan: &Plan, table: &SweepTable, x: usize, y: usize) -> Result<Option<Vec<u8>>> {
     let (nx, ny) = (plan.axes[x].len(), plan.axes[y].len());
     let q_column = table.column("max_abs_q_over_B")?;
     let over_column = table.column("overturned")?;
@@ -244,12 +268,21 @@ fn map(plan: &Plan, table: &SweepTable, x: usize, y: usize) -> Result<Vec<u8>> {
         };
         let (xs, xl) = axis_view(x, dx)?;
         let (ys, yl) = axis_view(y, dy)?;
-        // Drawn only when the body is the same at every point (the scaled values are monotone).
-        let monotone =
-            |v: &[f64]| v.windows(2).all(|w| w[0] < w[1]) || v.windows(2).all(|w| w[0] > w[1]);
-        if (monotone(&xs) || xs.len() == 1) && (monotone(&ys) || ys.len() == 1) {
+        // Drawn only when the body is the same at every point: the scaled values are in the
+        // order of the physical ones (or its reverse).
+        let same_order = |scaled: &[f64], axis: usize| {
+            let (a, b) = (ascending(scaled), ascending(&physical(axis)));
+            a == b || a.iter().rev().eq(b.iter())
+        };
+        if drawable(&xs) && drawable(&ys) && same_order(&xs, x) && same_order(&ys, y) {
             views.push((xs, xl, ys, yl));
         }
+    }
+    if !views
+        .iter()
+        .all(|(xs, _, ys, _)| drawable(xs) && drawable(ys))
+    {
+        return Ok(None);
     }
 
     let panel = (720u32, 600u32);
@@ -267,7 +300,7 @@ fn map(plan: &Plan, table: &SweepTable, x: usize, y: usize) -> Result<Vec<u8>> {
         draw_colour_bar(&bar).map_err(plot_error)?;
         root.present().map_err(plot_error)?;
     }
-    Ok(svg.into_bytes())
+    Ok(Some(svg.into_bytes()))
 }
 
 type Area<'a> = DrawingArea<SVGBackend<'a>, plotters::coord::Shift>;
@@ -280,12 +313,15 @@ fn draw_map(
     x_label: &str,
     y_label: &str,
 ) -> std::result::Result<(), Box<dyn std::error::Error>> {
-    let (ex, ey) = (edges(xs), edges(ys));
-    let range = |e: &[f64]| {
-        let lo = e.iter().copied().fold(f64::INFINITY, f64::min);
-        let hi = e.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-        lo..hi
-    };
+    // Cells in ascending order of both coordinates, whatever the order the axes were given in.
+    let (ox, oy) = (ascending(xs), ascending(ys));
+    let sorted = |v: &[f64], order: &[usize]| order.iter().map(|&i| v[i]).collect::<Vec<f64>>();
+    let (ex, ey) = (edges(&sorted(xs, &ox)), edges(&sorted(ys, &oy)));
+    let cells: Vec<Vec<Cell>> = ox
+        .iter()
+        .map(|&i| oy.iter().map(|&j| cells[i][j]).collect())
+        .collect();
+    let range = |e: &[f64]| e[0]..e[e.len() - 1];
     let mut chart = ChartBuilder::on(area)
         .caption("max |q| / B (black: overturned)", ("sans-serif", 22))
         .margin(14)
@@ -456,4 +492,34 @@ fn spectrum(plan: &Plan, table: &SweepTable, x: usize) -> Result<Vec<u8>> {
         panels.push(right);
     }
     crate::plot::figure("spectrum.svg", &panels, 1, (1000, 480)).map(String::into_bytes)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn edges_are_finite_and_growing_for_extreme_but_allowed_values() {
+        let m = crate::sweep::axis::MAX_MAGNITUDE;
+        for centres in [
+            vec![-m, m],
+            vec![m / 2.0, m],
+            vec![-m, 0.0, m],
+            vec![0.5, 1.0, 2.0],
+        ] {
+            let e = edges(&centres);
+            assert_eq!(e.len(), centres.len() + 1);
+            assert!(e.iter().all(|x| x.is_finite()), "{centres:?}: {e:?}");
+            assert!(e.windows(2).all(|w| w[0] < w[1]), "{centres:?}: {e:?}");
+        }
+        assert!(edges(&[]).is_empty());
+        assert!(!drawable(&[]));
+        assert!(!drawable(&[1.0, f64::INFINITY]));
+    }
+
+    #[test]
+    fn values_are_drawn_in_ascending_order() {
+        assert_eq!(ascending(&[1.0, 0.5, 2.0]), [1, 0, 2]);
+        assert_eq!(ascending(&[3.0, f64::NAN, -1.0]), [2, 0, 1]);
+    }
 }

@@ -170,6 +170,14 @@ pub struct SweepFile {
 }
 
 impl Request {
+    /// Adds the axis `KEY=SPEC` (file patterns relative to `base_dir`), checking that the sweep
+    /// stays within [`axis::MAX_POINTS`] before the axis's values are made.
+    pub fn vary(&mut self, text: &str, base_dir: &Path) -> Result<()> {
+        let others = (self.axes.iter()).fold(1usize, |n, a| n.saturating_mul(a.len()));
+        self.axes.push(Axis::parse_beside(text, base_dir, others)?);
+        Ok(())
+    }
+
     /// Adds a sweep file to the request; file patterns in it are relative to the file.
     pub fn add_file(&mut self, path: &Path) -> Result<()> {
         // Read as a model file is (a regular file of limited size), so that /dev/zero is refused.
@@ -193,7 +201,7 @@ impl Request {
             self.settings.push(Setting::parse(text).map_err(in_file)?);
         }
         for text in &file.vary {
-            self.axes.push(Axis::parse(text, base).map_err(in_file)?);
+            self.vary(text, base).map_err(in_file)?;
         }
         if let Some(text) = &file.find_min {
             self.find_min = Some(axis::parse_interval(text).map_err(in_file)?);
