@@ -533,3 +533,32 @@ fn a_record_model_needs_no_simulation_table() {
     );
     assert_mentions(&stderr, &["simulation.duration", "required"]);
 }
+
+/// A misspelt key or named value gets the closest right one; a number with a unit suffix gets
+/// the unit its key takes.
+#[test]
+fn misspellings_and_unit_suffixes_get_a_hint() {
+    let model = common::reference_model();
+    let out = common::scratch_dir("cli-hints").join("out");
+    for (setting, hint) in [
+        ("excitation.amplitud=3", "did you mean `amplitude`?"),
+        ("solver.method=tsit54", "did you mean \"tsit45\"?"),
+        ("excitation.kind=sine_pulse", "did you mean \"sine-pulse\"?"),
+        ("body.self_weight=consistant", "did you mean \"consistent\"?"),
+        ("excitation.amplitude=0.3g", "(m/s^2)"),
+        ("body.youngs_modulus=5MPa", "(Pa)"),
+    ] {
+        let o = common::flexrock(&[
+            "run",
+            model.to_str().unwrap(),
+            "--set",
+            setting,
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{setting}: {stderr}");
+        assert!(stderr.contains(hint), "{setting}: {stderr}");
+        assert!(!out.exists(), "{setting}: nothing is written");
+    }
+}

@@ -189,10 +189,11 @@ impl<T: Quoted + ?Sized> Quoted for &T {
 impl Error {
     /// Shorthand for [`Error::InvalidParameter`]; numbers are quoted in their shortest form.
     pub fn invalid(key: &str, value: impl Quoted, rule: &str) -> Self {
+        let value = value.quoted();
         Error::InvalidParameter {
             key: key.to_string(),
-            value: value.quoted(),
-            rule: rule.to_string(),
+            rule: crate::suggest::rule_with_hint(&value, rule),
+            value,
         }
     }
 

@@ -68,6 +68,7 @@ pub mod rigid;
 pub mod simulate;
 pub mod solution;
 pub mod solver;
+mod suggest;
 
 pub use automaton::Automaton;
 pub use body::Body;

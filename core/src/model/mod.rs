@@ -261,7 +261,7 @@ fn parse_model_text(text: &str, settings: &[Setting], source: &Path) -> Result<M
     if settings.is_empty() {
         return toml::from_str(text).map_err(|e| Error::ParseModel {
             path: source.to_path_buf(),
-            message: e.to_string().trim_end().to_string(),
+            message: crate::suggest::schema_hint(e.to_string().trim_end()),
         });
     }
     read_schema(&parse_table(text, source)?, settings, source)
@@ -310,7 +310,7 @@ pub fn read_schema(table: &toml::Table, settings: &[Setting], source: &Path) -> 
     let read = |table: toml::Table| -> std::result::Result<ModelFile, String> {
         table
             .try_into::<ModelFile>()
-            .map_err(|e| e.to_string().trim_end().replace('\n', " "))
+            .map_err(|e| crate::suggest::schema_hint(&e.to_string().trim_end().replace('\n', " ")))
     };
     if settings.is_empty() {
         return read(table.clone()).map_err(|message| Error::ParseModel {
