@@ -141,7 +141,7 @@ def solve(matrix, rhs):
     return x
 
 
-def self_weighted_shape(gamma_g, modes=8):
+def self_weighted_shape(gamma_g, modes=16):
     pts = composite_points()
     table = [[mode_values(k, xi) for k in range(1, modes + 1)] for xi, _ in pts]
     kmat = [[0.0] * modes for _ in range(modes)]
