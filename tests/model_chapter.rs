@@ -242,7 +242,12 @@ fn the_constants_table_of_the_paper_example_is_the_programs_rounded() {
     let (ratio_of, share) = cells[0].split_once(", ").expect("gamma_g, gamma_g/7.837");
     for (_, constants, _) in &columns {
         printed_as(ratio_of, constants.gravity_parameter, 0.0, "gamma_g");
-        printed_as(share, constants.gravity_parameter_ratio, 0.0, "gamma_g/7.837");
+        printed_as(
+            share,
+            constants.gravity_parameter_ratio,
+            0.0,
+            "gamma_g/7.837",
+        );
     }
     assert_eq!(checked, 42);
 }
