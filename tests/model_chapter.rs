@@ -189,6 +189,9 @@ fn printed_as(printed: &str, value: f64, relative: f64, what: &str) {
     );
 }
 
+/// One constant of [`Constants`], read off.
+type Field = fn(&Constants) -> f64;
+
 #[test]
 fn the_constants_table_of_the_paper_example_is_the_programs_rounded() {
     let body = |extra: &str| {
@@ -204,7 +207,7 @@ fn the_constants_table_of_the_paper_example_is_the_programs_rounded() {
         ("paper", body("constants = \"paper\""), 0.0),
         ("consistent", body("self_weight = \"consistent\""), 1e-6),
     ];
-    let fields: [(&str, fn(&Constants) -> f64); 14] = [
+    let fields: [(&str, Field); 14] = [
         ("M_e", |c| c.generalised_mass),
         ("K_e", |c| c.generalised_stiffness),
         ("\\omega", |c| c.omega),
