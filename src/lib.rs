@@ -3,7 +3,8 @@
 //! [`flexrock_core`], the physics and numerics.
 //!
 //! From [`flexrock_core`], re-exported here under the same names:
-//! - [`body`]: the physical body; [`constants`]: everything derived from it (MODEL.md 2-5);
+//! - [`body`]: the physical body; [`constants`]: everything derived from it
+//!   (book/src/model.md §2-§5);
 //! - [`automaton`]: the hybrid automaton (modes, right-hand sides, guards, resets);
 //! - [`excitation`]: floor motions behind the [`excitation::FloorMotion`] trait; [`record`]:
 //!   recorded ground motions;

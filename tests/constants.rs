@@ -1,4 +1,5 @@
-//! Derived constants against MODEL.md section 2's table and the closed forms of section 7.
+//! Derived constants against the tables of book/src/model.md §2 (constants) and the closed forms of
+//! §7 (limits).
 
 mod common;
 
@@ -8,7 +9,7 @@ use flexrock::constants::{Constants, ModeShapeIntegrals, MODE_ROOT};
 #[test]
 fn mode_shape_integrals_match_the_table() {
     let exact = ModeShapeIntegrals::exact();
-    // MODEL.md section 2: int U = sig/L = 0.391495878, int U^2 = 1/4, beta1 = 1.565983512,
+    // book/src/model.md §2: int U = sig/L = 0.391495878, int U^2 = 1/4, beta1 = 1.565983512,
     // Ke = 4.8398 EI/H^3, sig = 0.7340955137589.
     let sigma = exact.int_u * MODE_ROOT;
     assert_relative_eq!(sigma, 0.734_095_513_758_9, max_relative = 1e-12);
@@ -47,7 +48,8 @@ fn reference_body_constants() {
         4.8398 * ei / 64.0,
         max_relative = 1e-4
     );
-    // MODEL.md section 8: T = 1.5500 s, s_n = 0.15237 m; section 7a: gamma_g = 1.845, 0.235 of 7.837.
+    // book/src/model.md §8 (the paper's example): T = 1.5500 s, s_n = 0.15237 m; §7a (self-weight):
+    // gamma_g = 1.845, 0.235 of 7.837.
     assert!((c.period - 1.5500).abs() < 5e-5, "T = {}", c.period);
     assert!((c.uplift_displacement - 0.15237).abs() < 5e-6);
     assert!((c.gravity_parameter - 1.845).abs() < 5e-4);
@@ -99,8 +101,8 @@ fn paper_constant_set_uses_the_printed_values() {
 
 #[test]
 fn rocking_factors_tend_to_the_rigid_values() {
-    // MODEL.md section 4: s_n -> 0 gives nu2 = 3/L^2, beta2 = 3/2;
-    // section 7: zetaU/zetaL -> Housner's (2H^2 - B^2)/(2(H^2 + B^2)).
+    // book/src/model.md §7 (rigid limit, eq. A4): s_n -> 0 gives nu2 = 3/L^2, beta2 = 3/2;
+    // eq. A7 there: zetaU/zetaL -> Housner's (2H^2 - B^2)/(2(H^2 + B^2)).
     let m = common::model(
         &common::reference_body("[excitation]\nkind = \"free\"\n[simulation]\nduration = 1.0\n")
             .replace("5.0e6", "5.0e11"),
@@ -164,7 +166,8 @@ fn period_input_gives_that_period() {
 
 #[test]
 fn paper_ramp_coefficients() {
-    // MODEL.md section 8: for A = 5, Tp = 1, ramp = 0.412: c1 = -133.694, c2 = 1043.29, c3 = -1707.09.
+    // book/src/model.md §8: for A = 5, Tp = 1, ramp = 0.412:
+    // c1 = -133.694, c2 = 1043.29, c3 = -1707.09.
     let ramp = flexrock::excitation::PaperSine::new(5.0, 1.0, 0.412);
     let [c1, c2, c3] = ramp.ramp_coefficients;
     assert!((c1 + 133.694).abs() < 5e-4, "c1 = {c1}");

@@ -46,7 +46,8 @@ fn rigid_limit_free_rocking_lands_when_housner_says() {
         .iter()
         .find(|e| e.kind == EventKind::Landing)
         .expect("the block lands");
-    // MODEL.md section 7: t = (1/p) acosh(1 / (1 - theta0/alpha)), p = sqrt(3 g / (2 H)).
+    // book/src/model.md §7 (rigid limit):
+    // t = (1/p) acosh(1 / (1 - theta0/alpha)), p = sqrt(3 g / (2 H)).
     let p = (3.0 * 9.81 / (2.0 * 4.0_f64)).sqrt();
     let housner = (1.0_f64 / (1.0 - 0.5)).acosh() / p;
     assert!(

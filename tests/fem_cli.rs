@@ -210,9 +210,10 @@ fn modes_lists_periods_against_the_sdof_period() {
     }
 }
 
-/// The pushover of the reference body: on a rigid base plate it lifts off where MODEL.md 7a's
-/// beam-column model does (q = 0.1895 m, base shear 8260 N/m x 0.1895 m = 1565 N), and its
-/// pre-uplift stiffness is that model's 0.764 Ke; the flexible base opens well before.
+/// The pushover of the reference body: on a rigid base plate it lifts off where the beam-column
+/// model of book/src/model.md §7a (self-weight) does (q = 0.1895 m, base shear 8260 N/m x 0.1895 m
+/// = 1565 N), and its pre-uplift stiffness is that model's 0.764 Ke; the flexible base opens well
+/// before.
 #[test]
 fn pushover_writes_both_curves_against_the_sdof_force() {
     let out = common::scratch_dir("fem-pushover").join("result");
@@ -247,7 +248,7 @@ fn pushover_writes_both_curves_against_the_sdof_force() {
             .count(),
         400
     );
-    // the SDOF column is F(q) of MODEL.md section 3: Ke q up to s_n = 0.15237 m, then falling
+    // the SDOF column is F(q) of book/src/model.md §3: Ke q up to s_n = 0.15237 m, then falling
     let ke = 10807.7;
     for line in csv.lines().skip(1).take(400) {
         let f: Vec<f64> = line

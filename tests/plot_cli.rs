@@ -145,7 +145,7 @@ fn the_path_over_f_of_q_goes_beyond_uplift_and_the_curve_is_the_model_s() {
         assert!(f.abs() <= ke * s_n * (1.0 + 1e-9), "F({q}) = {f}");
     }
 
-    // The model's curve: zero at -B and B, Ke s_n at s_n (MODEL.md section 3).
+    // The model's curve: zero at -B and B, Ke s_n at s_n (book/src/model.md §3, restoring force).
     let curve = force
         .series
         .iter()

@@ -32,7 +32,7 @@ fn block_quantities() {
     let b = housner();
     assert!((b.frequency() - k()).abs() < 1e-15);
     let alpha = (B / H).atan();
-    // e = 1 - 1.5 sin^2(alpha) (MODEL.md eq. A7).
+    // e = 1 - 1.5 sin^2(alpha) (book/src/model.md §7, eq. A7).
     assert!((b.restitution() - (1.0 - 1.5 * alpha.sin().powi(2))).abs() < 1e-15);
     assert!((b.restitution() - 0.955_427_531_837_477).abs() < 1e-14);
     assert!((b.uplift_acceleration() - G * B / H).abs() < 1e-15);
@@ -84,7 +84,8 @@ fn first(outcome: &RigidOutcome, kind: RigidEventKind) -> &flexrock::rigid::Rigi
         .unwrap_or_else(|| panic!("no {kind:?} in {:?}", outcome.events))
 }
 
-/// (1) Free rocking from q0 at rest reaches q = 0 at (1/k) acosh(1/(1 - q0/B)) (MODEL.md 7),
+/// (1) Free rocking from q0 at rest reaches q = 0 at (1/k) acosh(1/(1 - q0/B))
+/// (book/src/model.md §7, rigid limit),
 /// (3) with |q'| = k sqrt(B^2 - (B - q0)^2) (energy: q'^2 = k^2 ((B - q)^2 - (B - q0)^2)), which
 /// the impact multiplies by e. Tolerance: a run of N steps adds round-off of order N ulps, and
 /// near the unstable position |q| = B (q0 = 0.69) it grows like cosh(k t) = 70: measured 1.1e-12 s
@@ -387,10 +388,11 @@ impl FloorMotion for Nan {
     }
 }
 
-/// The continuity the paper claims (MODEL.md section 7): the elastic model of the reference body
-/// (H = 4 m, B = 0.7 m, 600 kg/m^3, h = 0.05) with E = 5e6 Pa times 1e2, 1e3, 1e4 (and 1e6, to show
-/// the trend) tends, under one-sine pulses, to the rigid block with the elastic limit's uplift
-/// acceleration 1.1226 g B/H = 1.9273 m/s^2, not to Housner's block (g B/H = 1.7168 m/s^2).
+/// The continuity the paper claims (book/src/model.md §7, rigid limit): the elastic model of the
+/// reference body (H = 4 m, B = 0.7 m, 600 kg/m^3, h = 0.05) with E = 5e6 Pa times 1e2, 1e3, 1e4
+/// (and 1e6, to show the trend) tends, under one-sine pulses, to the rigid block with the elastic
+/// limit's uplift acceleration 1.1226 g B/H = 1.9273 m/s^2, not to Housner's block
+/// (g B/H = 1.7168 m/s^2).
 ///
 /// Measured (elastic minus elastic-limit block; times in s, max |q| in m; "ov" = overturned):
 ///

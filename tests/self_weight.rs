@@ -86,8 +86,8 @@ fn the_consistent_variant_meets_the_beam_column_pushover_within_3_percent() {
             matched += 1;
         }
         assert!(matched >= 5);
-        // The paper's variant is far from the beam-column at the paper's E (MODEL.md 7a: it
-        // lifts off 24 % early and is 24 % too stiff).
+        // The paper's variant is far from the beam-column at the paper's E (book/src/model.md
+        // §7a: it lifts off 24 % early and is 24 % too stiff).
         if e == 5.0e6 {
             assert!(relative(paper[0], target[0]) > 0.2);
             assert!(relative(paper[1], target[1]) > 0.15);

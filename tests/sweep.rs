@@ -130,8 +130,8 @@ fn every_row_is_the_run_of_its_point_and_the_dimensionless_numbers_are_the_close
             assert_eq!(number(row, "t_overturn"), solution.t_overturn.unwrap());
             assert_eq!(number(row, "max_abs_q_over_B"), 1.0);
         }
-        // Closed forms of MODEL.md section 3: after an uplift |s| peaks at s_n (at the uplift),
-        // and r = q - s_n (B - q)/(B - s_n) grows with |q|.
+        // Closed forms of book/src/model.md §3 (restoring force): after an uplift |s| peaks at s_n
+        // (at the uplift), and r = q - s_n (B - q)/(B - s_n) grows with |q|.
         let s_n = model.constants.uplift_displacement;
         if row["n_uplift"] != "0" {
             assert!(
@@ -535,9 +535,9 @@ fn shards_run_as_separate_processes_merge_to_the_single_process_result() {
 
 #[test]
 fn the_minimum_search_brackets_a_transition_and_reports_the_safe_band_above_it() {
-    // MODEL.md 7c: a one-cosine pulse of 0.7 s overturns the reference body from about
-    // 15.8 m/s^2, leaves it standing in a band above about 21 m/s^2 and overturns it again
-    // above about 23 m/s^2.
+    // book/src/model.md §7c (non-monotonic overturning): a one-cosine pulse of 0.7 s overturns the
+    // reference body from about 15.8 m/s^2, leaves it standing in a band above about 21 m/s^2 and
+    // overturns it again above about 23 m/s^2.
     let dir = scratch_dir("sweep-find-min");
     run(&[
         "sweep",
@@ -915,7 +915,8 @@ fn no_derived_column_holds_a_value_where_its_source_is_empty() {
     let dir = scratch_dir("sweep-empty-derived");
     let out = dir.join("out");
     // 0.5-3 m/s^2 overturns the body under the shortest pulse of a log axis from 0.2 s to 3 s
-    // only at the long periods (MODEL.md 7c: the body needs about 15.8 m/s^2 at 0.7 s).
+    // only at the long periods (book/src/model.md §7c: the body needs
+    // about 15.8 m/s^2 at 0.7 s).
     run(&[
         "sweep",
         pulse_model().to_str().unwrap(),

@@ -1,4 +1,4 @@
-//! The hybrid automaton of the rocking body (MODEL.md section 6): its modes, the right-hand side
+//! The hybrid automaton of the rocking body (book/src/model.md §6): its modes, the right-hand side
 //! of eq. 16 in each mode, the guards between modes and the angular-momentum resets at them.
 //!
 //! This is the only place where the model's dynamics are written down. It knows nothing about

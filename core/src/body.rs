@@ -4,7 +4,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
 
-/// Which set of mode-shape constants to use (MODEL.md section 2).
+/// Which set of mode-shape constants to use (book/src/model.md §2, constants).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum ConstantSet {
@@ -29,7 +29,7 @@ impl ConstantSet {
 #[serde(rename_all = "kebab-case")]
 pub enum SelfWeight {
     /// As the paper: the weight's moment about the toe, but no weight in the bending
-    /// (MODEL.md sections 2-5).
+    /// (book/src/model.md §2-§5, §7a).
     Paper,
     /// The self-weight-consistent variant (validation/SELF-WEIGHT.md): the flexural shape is the
     /// first mode of a cantilever carrying its own weight, the weight's P-Delta enters the
@@ -127,7 +127,7 @@ impl Body {
         Ok(self)
     }
 
-    /// gamma_g = M g H^2/EI: the weight's share in the bending (MODEL.md 7a); a uniform
+    /// gamma_g = M g H^2/EI: the weight's share in the bending (book/src/model.md §7a); a uniform
     /// cantilever buckles under its own weight at 7.837.
     pub fn gravity_parameter(&self) -> f64 {
         self.mass * self.gravity * self.height * self.height / self.flexural_rigidity

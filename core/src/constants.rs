@@ -1,4 +1,4 @@
-//! Derived constants of the SDOF model (MODEL.md sections 2-5 and 7a).
+//! Derived constants of the SDOF model (book/src/model.md §2-§5 and §7a-§7b).
 
 use serde::{Deserialize, Serialize};
 
@@ -9,13 +9,13 @@ use crate::flexural_shape::SelfWeightedShape;
 /// First root of cos L cosh L = -1 (first cantilever mode).
 pub const MODE_ROOT: f64 = 1.875_104_068_711_961;
 
-/// sigma = (cosh L + cos L)/(sinh L + sin L) of the first cantilever mode (MODEL.md section 2).
+/// sigma = (cosh L + cos L)/(sinh L + sin L) of the first cantilever mode (book/src/model.md §2).
 pub fn mode_sigma() -> f64 {
     let l = MODE_ROOT;
     (l.cosh() + l.cos()) / (l.sinh() + l.sin())
 }
 
-/// The first cantilever mode U(xi), scaled to U(1) = 1 (MODEL.md section 2).
+/// The first cantilever mode U(xi), scaled to U(1) = 1 (book/src/model.md §2).
 pub fn cantilever_mode(xi: f64) -> f64 {
     let (l, sigma) = (MODE_ROOT, mode_sigma());
     let z = l * xi;
@@ -27,7 +27,7 @@ pub const SELF_WEIGHT_BUCKLING_PARAMETER: f64 = 7.837;
 
 /// Share of [`SELF_WEIGHT_BUCKLING_PARAMETER`] above which a run warns that the self-weight the
 /// model leaves out of bending matters: at the paper's own 0.235 a beam-column with it lifts off
-/// 24 % later than s_n (MODEL.md 7a); at 0.1 the errors are of order 10 %.
+/// 24 % later than s_n (book/src/model.md §7a); at 0.1 the errors are of order 10 %.
 pub const SELF_WEIGHT_WARNING_SHARE: f64 = 0.1;
 
 /// Shortest pre-uplift period a model may have, s.
@@ -58,7 +58,7 @@ pub struct ModeShapeIntegrals {
 }
 
 impl ModeShapeIntegrals {
-    /// The exact numbers of the paper's U (MODEL.md section 2).
+    /// The exact numbers of the paper's U (book/src/model.md §2, constants).
     pub fn exact() -> Self {
         let l = MODE_ROOT;
         let sigma = mode_sigma();
@@ -116,13 +116,12 @@ impl ModeShapeIntegrals {
     /// EI -> infinity, so its factor is the same.
     ///
     /// It exceeds 1 because the one-mode model takes the base bending moment from the curvature of
-    /// the first mode, EI (L/H)^2 s. Under the quasi-static uniform inertia load M a that a
-    /// stiff body carries before uplift, the first mode alone gives a base moment of
-    /// 4 sigma M a H / L^3 = (8 sigma/L^3) M a H/2 = 0.891 of the exact M a H/2, so the
-    /// floor must push 1.1226 times harder before the moment reaches the weight's M g B/2. A rigid
-    /// block (and the exact statics of a stiff continuum) tips at g B/H. Once rocking, the
-    /// elastic model's rigid limit is Housner's equation (MODEL.md section 7): only the uplift
-    /// from rest differs.
+    /// the first mode, EI (L/H)^2 s. Under the quasi-static uniform inertia load M a that a stiff
+    /// body carries before uplift, the first mode alone gives a base moment of 4 sigma M a H / L^3
+    /// = (8 sigma/L^3) M a H/2 = 0.891 of the exact M a H/2, so the floor must push 1.1226 times
+    /// harder before the moment reaches the weight's M g B/2. A rigid block (and the exact statics
+    /// of a stiff continuum) tips at g B/H. Once rocking, the elastic model's rigid limit is
+    /// Housner's equation (book/src/model.md §7, rigid limit): only the uplift from rest differs.
     pub fn rigid_limit_uplift_factor(&self) -> f64 {
         self.stiffness_coefficient / (2.0 * self.int_u * self.base_moment_coefficient * self.beta1)
     }

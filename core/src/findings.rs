@@ -1,6 +1,6 @@
 //! The paper's qualitative findings about the SDOF response, measured on a solution's history:
 //! Fig. 6 (|s| does not exceed s_n; s dents while the body rocks; r = 0 whenever |q| <= s_n) and
-//! Figs. 12-13 (the q-r and s-r relations of MODEL.md section 3).
+//! Figs. 12-13 (the q-r and s-r relations of book/src/model.md §3).
 //!
 //! For the exact solution these follow from the model; a solver that changes mode late (Newmark
 //! with overshoot compensation) breaks them at the samples taken between crossing and detection,

@@ -275,9 +275,9 @@ mod tests {
     }
 
     #[test]
-    fn the_paper_body_matches_model_md_7b_and_converges_in_the_basis() {
-        // MODEL.md 7b (an independent Ritz solve): gamma_g = 1.845 gives Omega/L^4 = 0.7653,
-        // int psi = 0.39056, int psi^2 = 0.24938, int psi xi = 0.28397.
+    fn the_paper_body_matches_an_independent_ritz_solve_and_converges_in_the_basis() {
+        // book/src/model.md §7b (an independent Ritz solve, book/constants.py): gamma_g = 1.845
+        // gives Omega/L^4 = 0.7653, int psi = 0.39056, int psi^2 = 0.24938, int psi xi = 0.28397.
         let psi = SelfWeightedShape::new(1.845).unwrap();
         assert!((psi.omega_coefficient / MODE_ROOT.powi(4) - 0.7653).abs() < 1e-4);
         assert!((psi.int_psi - 0.39056).abs() < 1e-5);

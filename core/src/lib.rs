@@ -4,7 +4,8 @@
 //! of this crate).
 //!
 //! The pieces, each in its own module:
-//! - [`body`]: the physical body; [`constants`]: everything derived from it (MODEL.md 2-5);
+//! - [`body`]: the physical body; [`constants`]: everything derived from it
+//!   (book/src/model.md §2-§5);
 //! - [`automaton`]: the hybrid automaton (modes, right-hand sides, guards, resets);
 //! - [`excitation`]: floor motions behind the [`excitation::FloorMotion`] trait; [`record`]:
 //!   recorded ground motions read from their files;

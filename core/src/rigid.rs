@@ -1,9 +1,10 @@
-//! The slender rigid block of the rigid limit (MODEL.md section 7; Housner 1963): the reference
+//! The slender rigid block of the rigid limit (book/src/model.md §7; Housner 1963): the reference
 //! that overturning spectra of the elastic body are plotted against, and what the elastic model
 //! must tend to as E grows.
 //!
 //! Everything is in top-displacement units, q = theta H (theta the tilt), so that results compare
-//! directly with the elastic model's q. With k^2 = 3 g/(2 H) (MODEL.md eq. A5, p = k):
+//! directly with the elastic model's q. With k^2 = 3 g/(2 H) (book/src/model.md §7, eq. A5;
+//! p = k):
 //!
 //! - rocking right (q > 0): q'' = k^2 (q - B) - (3/2) a(t); rocking left (q < 0):
 //!   q'' = k^2 (q + B) - (3/2) a(t);

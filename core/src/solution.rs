@@ -238,7 +238,7 @@ impl<'a> Recorder<'a> {
     }
 
     /// Offers a state at which q may be extremal (a root of q', an event, an end point). Within
-    /// a mode |s| and |r| are monotone in |q| (MODEL.md section 3), so their peaks are among
+    /// a mode |s| and |r| are monotone in |q| (book/src/model.md §3), so their peaks are among
     /// these states too.
     pub fn peak_candidate(&mut self, t: f64, q: f64) {
         if q > self.max_q.value {

@@ -1,6 +1,6 @@
 //! The `flexrock fem --pushover` command: static pushover curves of the model's body on its
 //! mesh, for both ways the base can meet the floor (flexible and rigid plate), against the
-//! SDOF model's restoring force F(q) (MODEL.md section 3).
+//! SDOF model's restoring force F(q) (book/src/model.md §3, restoring force).
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};

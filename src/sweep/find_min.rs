@@ -1,11 +1,11 @@
 //! The smallest value of a key (an amplitude, a record's scale) that overturns the body.
 //!
-//! Overturning is not monotonic in the amplitude (MODEL.md 7c; Zhang and Makris 2001): above the
-//! smallest overturning amplitude of a short pulse lies a band that leaves the body standing. A
-//! bisection alone could land on any transition, so the search first scans the interval on an
-//! even grid of `scan` values, which shows every band at least one grid step wide, then bisects
-//! the first transition from standing to overturned to the tolerance `tol`. Bands narrower than
-//! a grid step can be missed; the scan step is (HI - LO)/(scan - 1).
+//! Overturning is not monotonic in the amplitude (book/src/model.md §7c; Zhang and Makris 2001):
+//! above the smallest overturning amplitude of a short pulse lies a band that leaves the body
+//! standing. A bisection alone could land on any transition, so the search first scans the interval
+//! on an even grid of `scan` values, which shows every band at least one grid step wide, then
+//! bisects the first transition from standing to overturned to the tolerance `tol`. Bands narrower
+//! than a grid step can be missed; the scan step is (HI - LO)/(scan - 1).
 
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};

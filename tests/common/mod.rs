@@ -5,8 +5,8 @@ use flexrock::automaton::{EventKind, Mode};
 use flexrock::model::{Model, Overrides};
 use flexrock::solution::Solution;
 
-/// The reference body of MODEL.md section 8 with the given excitation, simulation and solver
-/// sections (TOML text) appended.
+/// The reference body of book/src/model.md §8 (the paper's example) with the given excitation,
+/// simulation and solver sections (TOML text) appended.
 pub fn reference_body(extra: &str) -> String {
     format!(
         "[body]\nheight = 4.0\nwidth = 0.7\ndepth = 1.0\ndensity = 600.0\nyoungs_modulus = 5.0e6\n\

@@ -2,8 +2,8 @@
 """Independent reference implementation of the Ichinose (1986) SDOF rocking model.
 
 T. Ichinose (1986), "Rocking motion of slender elastic body on rigid floor",
-Bull. NZ Soc. Earthq. Eng. 19(1), 18-27, as restated in the project's model description (MODEL.md)
-(sections 2-6).  Written from MODEL.md only (Python + numpy + scipy); it shares no
+Bull. NZ Soc. Earthq. Eng. 19(1), 18-27, as restated in the project's model chapter
+(book/src/model.md, sections 2-6).  Written from that restatement only (Python + numpy + scipy); it shares no
 code with the Rust crate and is used to produce expected values for its tests.
 
 Model (one state variable q = top displacement relative to the floor):
@@ -18,7 +18,7 @@ Model (one state variable q = top displacement relative to the floor):
   (F' < 0 while rocking, so the damping term feeds energy into q while rocking.
    That is the paper's model and it is implemented exactly as written.)
 
-Hybrid automaton (MODEL.md section 6):
+Hybrid automaton (book/src/model.md section 6):
 
     pre-uplift --q = +s_n rising--> rock-right   q' <- zetaU q'
     pre-uplift --q = -s_n falling-> rock-left    q' <- zetaU q'
@@ -95,7 +95,7 @@ SAMPLE_DT = 0.25
 
 
 def derived_constants(body: dict) -> dict:
-    """All constants of MODEL.md sections 2-5 and 7a for a body dict."""
+    """All constants of book/src/model.md sections 2-5 and 7a for a body dict."""
     H = body["height"]
     B = body["width"]
     D = body.get("depth", 1.0)
@@ -663,8 +663,8 @@ def check_ramp():
 
 
 def check_rigid_limit():
-    """MODEL.md section 7: E x 1e5; zetaU/zetaL -> Housner; free rocking from B/2
-    reaches q = s_n at ~ acosh(2)/p, p = sqrt(3g/(2H))."""
+    """book/src/model.md section 7 (rigid limit): E x 1e5; zetaU/zetaL -> Housner; free
+    rocking from B/2 reaches q = s_n at ~ acosh(2)/p, p = sqrt(3g/(2H))."""
     out = []
     H, B, g = REF_BODY["height"], REF_BODY["width"], REF_BODY["gravity"]
     housner = (2 * H**2 - B**2) / (2 * (H**2 + B**2))
@@ -688,7 +688,8 @@ def check_rigid_limit():
 
 
 def closed_form_pre_uplift(case, res):
-    """MODEL.md section 7: before uplift eq. 16 is q'' + 2 h w q' + w^2 q = -beta1 A sin(W t).
+    """book/src/model.md section 7: before uplift eq. 16 is
+    q'' + 2 h w q' + w^2 q = -beta1 A sin(W t).
     Closed-form solution from rest (h < 1) compared with the samples and peaks."""
     k = derived_constants(case["body"])
     w, h, b1 = k["omega"], k["h"], k["beta1"]
@@ -787,7 +788,7 @@ def main(argv=None):
     outdir = os.path.join(root, "tests", "data", "cases")
     os.makedirs(outdir, exist_ok=True)
 
-    print("== reference constants (MODEL.md section 2)")
+    print("== reference constants (book/src/model.md, section 2)")
     for kk, vv in check_reference_constants().items():
         print(f"  {kk:24s} {vv:.10g}")
     c, errs = check_ramp()
@@ -852,7 +853,7 @@ def main(argv=None):
                 for c in ("cross", "cross_radau_nopolish", "cross_nopolish", "cross_inf")]
         print(f"  {key:12s} " + " | ".join(f"{v:.2e}" for v in vals))
 
-    print("== rigid limit (MODEL.md section 7)")
+    print("== rigid limit (book/src/model.md, section 7)")
     H_ref, B_ref = REF_BODY["height"], REF_BODY["width"]
     for row in check_rigid_limit():
         print(f"  h={row['h']:.2f} E x {row['E_factor']:.0e}: s_n={row['s_n']:.3e} nu2={row['nu2']:.6f} "

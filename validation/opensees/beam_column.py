@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """OpenSees beam-column cross-check of the Ichinose (1986) rocking body, with self-weight.
 
-A 2-D model of the body per metre of depth (MODEL.md sections 1, 7a, 7b):
+A 2-D model of the body per metre of depth (book/src/model.md sections 1, 7a, 7b):
 
 * 80 elasticBeamColumn elements along the height H (E, A = B D, I = D B^3/12), geomTransf
   PDelta (default) or Linear (--no-pdelta, the self-weight left out of the bending);
@@ -66,7 +66,7 @@ UPLIFT_TOL = 1e-6       # m: a toe is "up" when its vertical displacement exceed
 
 
 def U(xi):
-    """First mode of a uniform cantilever, U(1) = 1 (MODEL.md section 2)."""
+    """First mode of a uniform cantilever, U(1) = 1 (book/src/model.md section 2)."""
     return 0.5 * (np.cosh(LAM * xi) - np.cos(LAM * xi) - SIG * (np.sinh(LAM * xi) - np.sin(LAM * xi)))
 
 

@@ -117,7 +117,7 @@ impl FloorMotion for Harmonic {
     }
 }
 
-/// The paper's excitation (MODEL.md section 8): a sine whose first `ramp` seconds are replaced by
+/// The paper's excitation (book/src/model.md §8): a sine whose first `ramp` seconds are replaced by
 /// a cubic c1 t + c2 t^2 + c3 t^3 chosen so that the floor starts at rest and its acceleration,
 /// velocity and displacement join those of the pure sine at t = ramp.
 #[derive(Debug, Clone, Serialize)]

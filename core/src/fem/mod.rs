@@ -25,7 +25,7 @@
 //!   constant load vector is F_g + K_σ u_g, so the static state is unchanged. For a rigid
 //!   rotation θ about a toe it supplies the second-order moment -M g (H/2) θ, so the weight's
 //!   moment about the toe is M g (B - q)/2 for small rotations and the body can overturn
-//!   (the restoring force vanishes at q = B as in the SDOF model, MODEL.md section 3).
+//!   (the restoring force vanishes at q = B as in the SDOF model, book/src/model.md §3).
 //!   Without it the restoring moment of a linear model stays at M g B/2 after uplift.
 //!   The formulation remains geometrically linear (small rotations).
 //! * **Damping**: \[C\] = (h T_d/π)\[K\] with the *elastic* K only. K_σ is left out of C: the
@@ -101,11 +101,11 @@
 //! 32 x 80).
 //!
 //! On a rigid base plate ([`BaseSupport::RigidPlate`]) the base stays flat until the base moment
-//! reaches N B/2 and then pivots about the toe, as the beam-column model of MODEL.md 7a (a rigid
-//! base section on toe springs) and the SDOF model assume: the reference body lifts off at
-//! q = 0.194 m with 1549 N (beam-column: 0.1895 m, 1565 N). The plate is a set of penalty
-//! springs on the base nodes (stretching and the second difference of uy) 1e4 times stiffer
-//! than the body's base section; the results do not change from 1e3 to 1e5.
+//! reaches N B/2 and then pivots about the toe, as the beam-column model of book/src/model.md §7a
+//! (a rigid base section on toe springs) and the SDOF model assume: the reference body lifts off at
+//! q = 0.194 m with 1549 N (beam-column: 0.1895 m, 1565 N). The plate is a set of penalty springs
+//! on the base nodes (stretching and the second difference of uy) 1e4 times stiffer than the body's
+//! base section; the results do not change from 1e3 to 1e5.
 //!
 //! # Stability of the paper's run
 //!
@@ -170,8 +170,8 @@ pub enum BaseSupport {
     #[default]
     Flexible,
     /// The base nodes are tied to a weightless rigid plate (ux equal, uy linear in x), the base
-    /// section of the beam-column model of MODEL.md 7a: the plate stays flat until the base
-    /// moment reaches N B/2, then pivots about a corner.
+    /// section of the beam-column model of book/src/model.md §7a: the plate stays flat until the
+    /// base moment reaches N B/2, then pivots about a corner.
     RigidPlate,
 }
 

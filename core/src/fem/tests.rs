@@ -25,7 +25,7 @@ fn euler_bernoulli_period(body: &FemBody) -> f64 {
     2.0 * PI / (L * L * (body.flexural_rigidity() / (rho_l * body.height.powi(4))).sqrt())
 }
 
-/// SDOF constants of MODEL.md section 3: (s_n, Ke).
+/// SDOF constants of book/src/model.md §2-§3: (s_n, Ke).
 fn sdof_uplift(body: &FemBody) -> (f64, f64) {
     let ei = body.flexural_rigidity();
     let h = body.height;
@@ -188,7 +188,7 @@ fn fixed_base_period_converges_to_cantilever() {
     // converging, and the continuum (shear deformation included) a few % above Euler-Bernoulli
     assert!((periods[2] - periods[1]).abs() < (periods[1] - periods[0]).abs());
     assert!(periods[2] > t_eb && periods[2] < 1.04 * t_eb, "{periods:?}");
-    // with the self-weight's P-Delta: the beam-column value 1.772 s (MODEL.md 7a)
+    // with the self-weight's P-Delta: the beam-column value 1.772 s (book/src/model.md §7a)
     let with_weight = fixed_base_periods(&body, 8, 40, true, 1).unwrap()[0];
     assert!((with_weight / 1.772 - 1.0).abs() < 0.04, "{with_weight}");
     // and the lengthening ratio of the beam-column model, 1.772/1.550, within 1 %
@@ -319,9 +319,9 @@ fn first_heel_lift(body: &FemBody, p_delta: bool, qs: &[f64]) -> PushoverPoint {
         .expect("the heel lifts within the sweep")
 }
 
-/// MODEL.md 7a's beam-column model stands on a rigid base section carried by two toe springs
-/// and lifts off at q = 0.1895 m with a base shear of 8260 N/m x 0.1895 m = 1565 N. The same
-/// base, a rigid plate under the plane-stress body, must lift off there too: the plate stays
+/// The beam-column model of book/src/model.md §7a stands on a rigid base section carried by two toe
+/// springs and lifts off at q = 0.1895 m with a base shear of 8260 N/m x 0.1895 m = 1565 N. The
+/// same base, a rigid plate under the plane-stress body, must lift off there too: the plate stays
 /// flat until the base moment reaches N B/2 and then pivots about the toe.
 #[test]
 fn pushover_reference_body_uplift_point() {
@@ -386,9 +386,9 @@ fn rigid_plate_without_p_delta_lifts_at_small_displacement_s_n_then_turns_at_con
     }
 }
 
-/// The stiff body on a rigid plate lifts off where the SDOF model does (s_n; gravity
-/// parameter 0.185 leaves a P-Delta shift of 2-3 %, MODEL.md 7a), while the flexible base of
-/// the same body opens at its heel well before: a continuum's base pressure is not uniform.
+/// The stiff body on a rigid plate lifts off where the SDOF model does (s_n; gravity parameter
+/// 0.185 leaves a P-Delta shift of 2-3 %, book/src/model.md §7a), while the flexible base of the
+/// same body opens at its heel well before: a continuum's base pressure is not uniform.
 #[test]
 fn rigid_plate_lifts_at_sdof_uplift_flexible_base_opens_earlier() {
     let stiff = body_with_modulus(5.0e8);
