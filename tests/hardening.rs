@@ -376,8 +376,7 @@ fn a_trivially_short_run_runs_with_every_method() {
             };
             let model = Model::load(&common::reference_model(), &overrides).unwrap();
             let context = format!("{method}, duration {duration} s");
-            let sol = flexrock::run::simulate(&model)
-                .unwrap_or_else(|e| panic!("{context}: {e}"));
+            let sol = flexrock::run::simulate(&model).unwrap_or_else(|e| panic!("{context}: {e}"));
             assert!(sol.events.is_empty(), "{context}");
             let last = sol.samples.last().expect("a final sample");
             assert_eq!(last.t, duration, "{context}");
@@ -387,7 +386,11 @@ fn a_trivially_short_run_runs_with_every_method() {
                 "{context}: q(T) = {}, expected {expected}",
                 last.q
             );
-            assert!((last.qdot - qdot0).abs() <= 1e-9, "{context}: q'(T) = {}", last.qdot);
+            assert!(
+                (last.qdot - qdot0).abs() <= 1e-9,
+                "{context}: q'(T) = {}",
+                last.qdot
+            );
         }
     }
 }

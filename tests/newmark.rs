@@ -369,5 +369,8 @@ fn substep_runs_every_amplitude_around_grazing_uplift() {
         }
     }
     assert!(failed.is_empty(), "{} failed: {failed:#?}", failed.len());
-    assert!(lifted > 0 && lifted < 200, "the range must straddle grazing ({lifted} lifted)");
+    assert!(
+        lifted > 0 && lifted < 200,
+        "the range must straddle grazing ({lifted} lifted)"
+    );
 }
