@@ -360,3 +360,37 @@ fn a_jump_of_the_floor_at_a_pulse_end_restarts_the_method() {
         }
     }
 }
+
+#[test]
+fn a_trivially_short_run_runs_with_every_method() {
+    // A positive duration far below any step a method would choose (1e-20 s, 1e-300 s) is valid
+    // input: the body moves on at q'0, q(T) = q'0 T to rounding, and no event happens.
+    let qdot0 = 0.5;
+    for method in ["bdf", "esdirk34", "tr-bdf2", "tsit45", "newmark"] {
+        for duration in [1e-20, 1e-300] {
+            let overrides = Overrides {
+                method: Some(method.into()),
+                duration: Some(duration),
+                settings: vec![flexrock::model::Setting::number("simulation.qdot0", qdot0)],
+                ..Overrides::default()
+            };
+            let model = Model::load(&common::reference_model(), &overrides).unwrap();
+            let context = format!("{method}, duration {duration} s");
+            let sol = flexrock::run::simulate(&model).unwrap_or_else(|e| panic!("{context}: {e}"));
+            assert!(sol.events.is_empty(), "{context}");
+            let last = sol.samples.last().expect("a final sample");
+            assert_eq!(last.t, duration, "{context}");
+            let expected = qdot0 * duration;
+            assert!(
+                (last.q - expected).abs() <= 1e-9 * expected,
+                "{context}: q(T) = {}, expected {expected}",
+                last.q
+            );
+            assert!(
+                (last.qdot - qdot0).abs() <= 1e-9,
+                "{context}: q'(T) = {}",
+                last.qdot
+            );
+        }
+    }
+}

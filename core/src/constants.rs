@@ -214,7 +214,10 @@ impl Constants {
         let me = body.mass * shape.int_u;
         let ke = shape.stiffness_coefficient * body.flexural_rigidity / h.powi(3);
         let omega = (ke / me).sqrt();
-        if !(omega.is_finite() && omega > 0.0 && 2.0 * std::f64::consts::PI / omega >= MIN_PERIOD) {
+        if !(omega.is_finite()
+            && omega > 0.0
+            && crate::limits::at_least(2.0 * std::f64::consts::PI / omega, MIN_PERIOD))
+        {
             return Err(Error::invalid(
                 "derived pre-uplift period T (s)",
                 2.0 * std::f64::consts::PI / omega,
@@ -327,9 +330,14 @@ impl Constants {
                         flexural_rigidity,
                         ..body.clone()
                     };
+                    // A body refused for a period below MIN_PERIOD is stiffer than asked for;
+                    // one refused for buckling is softer.
                     Constants::new(&trial)
                         .map(|c| c.period)
-                        .unwrap_or(f64::INFINITY)
+                        .unwrap_or_else(|e| match e {
+                            Error::InvalidParameter { key, .. } if key.contains("period") => 0.0,
+                            _ => f64::INFINITY,
+                        })
                 };
                 // The weight only lengthens the period: the weightless EI is a lower bound.
                 let mut low = weightless(ModeShapeIntegrals::exact());
@@ -359,7 +367,12 @@ impl Constants {
                 }
                 // Near buckling the period grows without bound; the bisection cannot get
                 // closer to buckling than the Ritz solve resolves, so check what it reached.
-                let reached = period_of(high);
+                // At a period of exactly MIN_PERIOD the stiff end may be refused (0): then the
+                // soft end, within rounding of it, is the answer.
+                let (high, reached) = match period_of(high) {
+                    reached if reached > 0.0 => (high, reached),
+                    _ => (low, period_of(low)),
+                };
                 if (reached - period).abs() > 1e-6 * period {
                     return Err(Error::invalid(
                         "body.period",

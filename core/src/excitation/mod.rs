@@ -14,14 +14,15 @@ pub const MAX_FLOOR_ACCELERATION: f64 = 20.0 * crate::model::STANDARD_GRAVITY;
 /// True when a peak floor acceleration `peak` (m/s^2) is within [`MAX_FLOOR_ACCELERATION`]
 /// (NaN is not).
 pub fn within_floor_limit(peak: f64) -> bool {
-    peak <= MAX_FLOOR_ACCELERATION
+    crate::limits::at_most(peak, MAX_FLOOR_ACCELERATION)
 }
 
 /// The rule a peak floor acceleration beyond the limit breaks, for error messages.
 pub fn floor_limit_rule(peak: f64) -> String {
     format!(
         "the peak floor acceleration {peak:.6e} m/s^2 is beyond the limit of \
-         {MAX_FLOOR_ACCELERATION:.1} m/s^2 (20 g)"
+         {} m/s^2 (20 g)",
+        crate::format::readable(MAX_FLOOR_ACCELERATION)
     )
 }
 

@@ -615,11 +615,11 @@ pub fn check_mesh_size(nx: usize, ny: usize) -> Result<(), SizeLimit> {
 pub fn check_run_size(nx: usize, ny: usize, dt: f64, duration: f64) -> Result<(), SizeLimit> {
     check_mesh_size(nx, ny)?;
     let steps = duration / dt;
-    if steps > MAX_STEPS {
+    if !crate::limits::at_most(steps, MAX_STEPS) {
         return Err(SizeLimit::Steps { steps });
     }
     let entries = band_entries(nx, ny);
-    if steps * entries > MAX_STEP_WORK {
+    if !crate::limits::at_most(steps * entries, MAX_STEP_WORK) {
         return Err(SizeLimit::Work { steps, entries });
     }
     Ok(())

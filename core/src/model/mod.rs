@@ -468,6 +468,7 @@ impl Model {
 
         let body = body_from_section(&file.body)?;
         let constants = Constants::new(&body)?;
+        check_stands_up(&file.body, &body, &constants)?;
         let (floor, natural_duration) = floor_from_section(&file.excitation, base_dir, records)?;
         let duration = match (file.simulation.duration, natural_duration) {
             (Some(d), _) | (None, Some(d)) => d,
@@ -643,7 +644,17 @@ fn body_from_section(s: &BodySection) -> Result<Body> {
     let mass = match exactly_one("body", &[("density", s.density), ("mass", s.mass)])? {
         (0, density) => {
             positive("body.density", density)?;
-            crate::body::prism_mass(density, s.height, s.width, depth)
+            derived_product(
+                "mass M = density H B D",
+                "kg",
+                crate::body::prism_mass(density, s.height, s.width, depth),
+                &[
+                    ("body.density", density),
+                    ("body.height", s.height),
+                    ("body.width", s.width),
+                    ("body.depth", depth),
+                ],
+            )?
         }
         (_, mass) => {
             positive("body.mass", mass)?;
@@ -679,7 +690,16 @@ fn body_from_section(s: &BodySection) -> Result<Body> {
     )? {
         (0, e) => {
             positive("body.youngs_modulus", e)?;
-            crate::body::solid_section_flexural_rigidity(e, s.width, depth)
+            derived_product(
+                "flexural rigidity EI = E D B^3/12",
+                "N m^2",
+                crate::body::solid_section_flexural_rigidity(e, s.width, depth),
+                &[
+                    ("body.youngs_modulus", e),
+                    ("body.width", s.width),
+                    ("body.depth", depth),
+                ],
+            )?
         }
         (1, ei) => {
             positive("body.flexural_rigidity", ei)?;
@@ -692,6 +712,69 @@ fn body_from_section(s: &BodySection) -> Result<Body> {
         }
     };
     body.validated()
+}
+
+/// `value`, a product of the keys `factors` (each finite and positive), when it is finite and
+/// positive; otherwise the product overflowed or underflowed, and the factor farthest from 1 (the
+/// key the user most likely mistyped) is blamed with its own value.
+fn derived_product(what: &str, unit: &str, value: f64, factors: &[(&str, f64)]) -> Result<f64> {
+    if value.is_finite() && value > 0.0 {
+        return Ok(value);
+    }
+    let (key, factor) = factors
+        .iter()
+        .copied()
+        .max_by(|a, b| a.1.ln().abs().total_cmp(&b.1.ln().abs()))
+        .unwrap_or(("body", value));
+    Err(Error::invalid(
+        key,
+        factor,
+        &format!(
+            "with it the {what} is {value} {unit}, beyond the range of numbers (give sizes in m, \
+             densities in kg/m^3, moduli in Pa)"
+        ),
+    ))
+}
+
+/// Refuses a body whose uplift displacement s_n is not below its width B: it would lift off under
+/// its own weight, and eq. 16 has no meaning. (In the paper's model self-weight buckling comes
+/// first; with the weight in the bending s_n can reach B well short of buckling.) The message
+/// names the stiffness key the file set, with its value, and the keys that move s_n.
+fn check_stands_up(s: &BodySection, body: &Body, constants: &Constants) -> Result<()> {
+    let s_n = constants.uplift_displacement;
+    if s_n < body.width {
+        return Ok(());
+    }
+    let (key, value) = [
+        ("body.youngs_modulus", s.youngs_modulus),
+        ("body.flexural_rigidity", s.flexural_rigidity),
+        ("body.period", s.period),
+    ]
+    .into_iter()
+    .find_map(|(key, value)| value.map(|v| (key, v)))
+    .unwrap_or(("body.flexural_rigidity", body.flexural_rigidity));
+    let mass_key = if s.mass.is_some() {
+        "body.mass"
+    } else {
+        "body.density"
+    };
+    let remedy = if key == "body.period" {
+        "shorten body.period"
+    } else {
+        "raise it"
+    };
+    Err(Error::invalid(
+        key,
+        value,
+        &format!(
+            "the body is unstable under its own weight: its derived uplift displacement s_n = {} m \
+             (body.self_weight = \"{}\") must be less than the width B = {} m (body.width); \
+             {remedy}, or lower {mass_key} or body.height",
+            crate::format::significant(s_n, 6),
+            body.self_weight.name(),
+            crate::format::shortest(body.width),
+        ),
+    ))
 }
 
 fn initial_from_section(s: &SimulationSection, body: &Body) -> Result<InitialState> {

@@ -42,14 +42,15 @@ pub(crate) fn check_rtol(key: &str, rtol: f64) -> Result<()> {
 /// The rule for an absolute tolerance (m for q, m/s for q') of a body of width `width`.
 pub(crate) fn check_atol(key: &str, atol: f64, width: f64) -> Result<()> {
     let max = MAX_ATOL_OVER_WIDTH * width;
-    if atol > 0.0 && atol <= max {
+    if atol > 0.0 && crate::limits::at_most(atol, max) {
         Ok(())
     } else {
         Err(Error::invalid(
             key,
             atol,
             &format!(
-                "the absolute tolerance must lie in (0, {max:e}] (1e-2 of the width B = {width} m: a looser one resolves neither uplift nor overturning)"
+                "the absolute tolerance must lie in (0, {}] (0.01 of the width B = {width} m: a looser one resolves neither uplift nor overturning)",
+                crate::format::readable(max)
             ),
         ))
     }
@@ -113,7 +114,7 @@ pub(super) fn solver_from_section(
     }
     let output_dt = s.output_dt.unwrap_or(DEFAULT_OUTPUT_DT);
     positive("solver.output_dt", output_dt)?;
-    if duration / output_dt > MAX_SAMPLES {
+    if !crate::limits::at_most(duration / output_dt, MAX_SAMPLES) {
         return Err(Error::invalid(
             "solver.output_dt",
             output_dt,
@@ -145,7 +146,7 @@ pub(super) fn newmark_from_section(
 ) -> Result<NewmarkSettings> {
     let dt = s.dt.unwrap_or(DEFAULT_NEWMARK_DT);
     positive("solver.dt", dt)?;
-    if duration / dt > MAX_NEWMARK_STEPS {
+    if !crate::limits::at_most(duration / dt, MAX_NEWMARK_STEPS) {
         return Err(Error::invalid(
             "solver.dt",
             dt,

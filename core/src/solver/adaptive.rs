@@ -184,6 +184,9 @@ pub fn solve(
     // more than 50 events. A Newton solve that truly cannot converge still ends the run: the
     // step is cut by 0.3 per failure until it falls below the minimum step.
     problem.ode_options.max_nonlinear_solver_failures = usize::MAX;
+    // diffsol's smallest step (1e-13 s) is longer than a trivially short run (1e-20 s is valid
+    // input: the state barely moves); such a run may take steps down to 1e-3 of its length.
+    problem.ode_options.min_timestep = problem.ode_options.min_timestep.min(1e-3 * duration);
 
     let driver = Driver {
         automaton,
@@ -304,6 +307,12 @@ impl<'d> Driver<'d> {
             .collect();
         stops.push(end);
         let mut stop_index = 0;
+        // diffsol takes a stop time within 100 ulps of its first step for the current time (and
+        // refuses it): a run far shorter than that first step (1e-20 s) starts with a step of its
+        // whole length instead. Longer runs are unchanged: their first step is cut to the stop.
+        if solver.state().h > stops[0] {
+            *solver.state_mut().h = stops[0];
+        }
         solver
             .set_stop_time(stops[0])
             .map_err(|e| self.error(0.0, e))?;

@@ -309,8 +309,19 @@ impl<'a> Stepper<'a> {
             return Ok(best);
         }
         if f_lo >= 0.0 {
-            // Started on the guard and came back across it within the step: event at once.
-            return Ok(*start);
+            // The step starts on the guard, moving into the mode (an event has just placed it
+            // there; crossed_guard would have fired otherwise), and ends back across it: a
+            // grazing uplift or landing. The crossing lies inside the step, not at its start
+            // (taking it at the start would undo the event at once and redo it, without end).
+            // Bracket it by a sub-step that ends inside the mode.
+            match self.inside_point(mode, start, end, guard)? {
+                Some((inside, past)) => {
+                    (lo, f_lo) = inside;
+                    (hi, f_hi, best) = past;
+                }
+                // No sub-step ends inside the mode: the state leaves the mode at once.
+                None => return Ok(*start),
+            }
         }
         let tolerance = 1e-14 * guard.level.abs().max(1e-3);
         let mut side = 0;
@@ -338,6 +349,36 @@ impl<'a> Stepper<'a> {
             }
         }
         Ok(best)
+    }
+
+    /// For a step from `start` on `guard` to `end` past it: the end of a sub-step that lies
+    /// inside the mode (its time and overshoot), and the shortest sub-step tried beyond it that
+    /// ends past the guard (time, overshoot, state), found by halving the step. None when no
+    /// sub-step down to rounding ends inside the mode.
+    #[allow(clippy::type_complexity)]
+    fn inside_point(
+        &mut self,
+        mode: Mode,
+        start: &State,
+        end: &State,
+        guard: Guard,
+    ) -> Result<Option<((f64, f64), (f64, f64, State))>> {
+        let mut past = (end.t, guard.overshoot(end.q), *end);
+        let mut h = 0.5 * (end.t - start.t);
+        while start.t + h > start.t {
+            let t = start.t + h;
+            let trial = self.step(mode, start, t)?;
+            self.stats.nonlinear_iterations += 1;
+            let f = guard.overshoot(trial.q);
+            if f < 0.0 {
+                return Ok(Some(((t, f), past)));
+            }
+            if f > 0.0 {
+                past = (t, f, trial);
+            }
+            h *= 0.5;
+        }
+        Ok(None)
     }
 
     /// Books the event `guard` at the current state, applies the reset and re-evaluates q'' on
