@@ -126,6 +126,11 @@ fn without_the_flag_the_times_stay_where_they_were() {
     ]);
     assert!(o.status.success());
     assert!(!out.join("timings.json").exists());
-    assert!(json(&out.join("summary.json"))["statistics"]["wall_time_s"].as_f64().unwrap() > 0.0);
+    assert!(
+        json(&out.join("summary.json"))["statistics"]["wall_time_s"]
+            .as_f64()
+            .unwrap()
+            > 0.0
+    );
     assert!(String::from_utf8_lossy(&o.stdout).contains(" ms;"));
 }

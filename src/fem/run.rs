@@ -548,10 +548,7 @@ pub fn fem(
 ) -> Result<FemReport> {
     let mut analysis = analyse(model, setup)?;
     let mut timings = output::Timings::new(wall_times);
-    timings.take(
-        "fem_summary.json/wall_time_s",
-        &mut analysis.wall_time_s,
-    );
+    timings.take("fem_summary.json/wall_time_s", &mut analysis.wall_time_s);
     let mut files = run_files(model, &analysis)?;
     files.extend(timings.file());
     let files = output::write_atomically(out_dir, &files)?;
@@ -803,10 +800,7 @@ pub fn compare(
 ) -> Result<FemReport> {
     let mut analysis = analyse(model, setup)?;
     let mut timings = output::Timings::new(wall_times);
-    timings.take(
-        "fem_summary.json/wall_time_s",
-        &mut analysis.wall_time_s,
-    );
+    timings.take("fem_summary.json/wall_time_s", &mut analysis.wall_time_s);
     let sdof = crate::run::simulate(model)?;
     let comparison = compare_solutions(model, &sdof, &analysis);
     let mut files = run_files(model, &analysis)?;
