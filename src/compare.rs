@@ -314,6 +314,8 @@ pub struct CompareOptions {
     pub dt: Option<f64>,
     /// Newmark variant (default: the file's, else "compensate").
     pub variant: Option<String>,
+    /// Where the two solves' wall times go (compare.json, or timings.json).
+    pub wall_times: output::WallTimes,
 }
 
 /// Relative tolerance of the adaptive reference solution (`--reference-rtol`).
@@ -325,6 +327,7 @@ impl Default for CompareOptions {
             reference_rtol: DEFAULT_REFERENCE_RTOL,
             dt: None,
             variant: None,
+            wall_times: output::WallTimes::Inline,
         }
     }
 }
@@ -441,8 +444,17 @@ pub fn run_compare(
     out_dir: &Path,
 ) -> Result<CompareReport> {
     let (reference_settings, newmark_settings) = compare_settings(model, options)?;
-    let reference = simulate_with(model, &reference_settings)?;
-    let newmark = simulate_with(model, &newmark_settings)?;
+    let mut reference = simulate_with(model, &reference_settings)?;
+    let mut newmark = simulate_with(model, &newmark_settings)?;
+    let mut timings = output::Timings::new(options.wall_times);
+    timings.take(
+        "compare.json/reference/statistics/wall_time_s",
+        &mut reference.stats.wall_time_s,
+    );
+    timings.take(
+        "compare.json/newmark/statistics/wall_time_s",
+        &mut newmark.stats.wall_time_s,
+    );
     let output_dt = model.solver.output_dt();
     let max_shift = max_event_shift(model);
     let comparison = compare(&reference, &newmark, output_dt, max_shift);
@@ -459,19 +471,18 @@ pub fn run_compare(
     };
     let figure = compare_figure(model, &reference, &newmark, &newmark_settings.label())?;
     let relations = relations_figure(&reference, &newmark, &newmark_settings.label())?;
-    let files = output::write_atomically(
-        out_dir,
-        &[
-            ("compare.csv", events_table(&comparison.pairs)),
-            (
-                "compare_history.csv",
-                history_table(&reference, &newmark, output_dt),
-            ),
-            ("compare.json", output::json_bytes(&summary)),
-            ("compare.svg", figure.into_bytes()),
-            ("compare_relations.svg", relations.into_bytes()),
-        ],
-    )?;
+    let mut files = vec![
+        ("compare.csv", events_table(&comparison.pairs)),
+        (
+            "compare_history.csv",
+            history_table(&reference, &newmark, output_dt),
+        ),
+        ("compare.json", output::json_bytes(&summary)),
+        ("compare.svg", figure.into_bytes()),
+        ("compare_relations.svg", relations.into_bytes()),
+    ];
+    files.extend(timings.file());
+    let files = output::write_atomically(out_dir, &files)?;
     Ok(CompareReport {
         reference,
         newmark,
@@ -692,21 +703,23 @@ pub fn compare_text(model: &Model, report: &CompareReport) -> String {
     );
     let _ = writeln!(
         t,
-        "cost: reference {}, {}, {:.1} ms; newmark {}, {}, {:.1} ms",
+        "cost: reference {}, {}{}; newmark {}, {}{}",
         count(report.reference.stats.steps, "step", "steps"),
         count(
             report.reference.stats.rhs_evaluations,
             "rhs evaluation",
             "rhs evaluations"
         ),
-        report.reference.stats.wall_time_s * 1e3,
+        output::milliseconds(report.reference.stats.wall_time_s, 1)
+            .map_or_else(String::new, |t| format!(", {t}")),
         count(report.newmark.stats.steps, "step", "steps"),
         count(
             report.newmark.stats.rhs_evaluations,
             "rhs evaluation",
             "rhs evaluations"
         ),
-        report.newmark.stats.wall_time_s * 1e3
+        output::milliseconds(report.newmark.stats.wall_time_s, 1)
+            .map_or_else(String::new, |t| format!(", {t}"))
     );
     for f in &report.files {
         let _ = writeln!(t, "wrote {}", f.display());

@@ -53,6 +53,8 @@ pub struct ConvergeOptions {
     pub rtols: Vec<f64>,
     /// Relative tolerance of the adaptive reference.
     pub reference_rtol: f64,
+    /// Where the solves' wall times go (convergence.json and .csv, or timings.json).
+    pub wall_times: output::WallTimes,
 }
 
 impl Default for ConvergeOptions {
@@ -61,6 +63,7 @@ impl Default for ConvergeOptions {
             dts: DEFAULT_DTS.to_vec(),
             rtols: DEFAULT_RTOLS.to_vec(),
             reference_rtol: crate::compare::DEFAULT_REFERENCE_RTOL,
+            wall_times: output::WallTimes::Inline,
         }
     }
 }
@@ -292,7 +295,12 @@ pub fn run_converge(
     out_dir: &Path,
 ) -> Result<ConvergeReport> {
     let (reference_settings, configurations) = configurations(model, options)?;
-    let reference = simulate_with(model, &reference_settings)?;
+    let mut reference = simulate_with(model, &reference_settings)?;
+    let mut timings = output::Timings::new(options.wall_times);
+    timings.take(
+        "convergence.json/reference_statistics/wall_time_s",
+        &mut reference.stats.wall_time_s,
+    );
     let output_dt = model.solver.output_dt();
     let max_shift = max_event_shift(model);
 
@@ -313,13 +321,17 @@ pub fn run_converge(
             max_energy_residual: f64::NAN,
             status,
         };
-        let solution = match simulate_with(model, &settings) {
+        let mut solution = match simulate_with(model, &settings) {
             Ok(s) => s,
             Err(e) => {
                 cases.push(failed(e.to_string()));
                 continue;
             }
         };
+        timings.take(
+            &format!("convergence.json/cases/{}/wall_time_s", cases.len()),
+            &mut solution.stats.wall_time_s,
+        );
         let c = compare(&reference, &solution, output_dt, max_shift);
         cases.push(Case {
             method: method.clone(),
@@ -349,15 +361,14 @@ pub fn run_converge(
         orders,
     };
     let (by_dt, by_work) = figures(&summary)?;
-    let files = output::write_atomically(
-        out_dir,
-        &[
-            ("convergence.csv", cases_table(&summary.cases)),
-            ("convergence.json", output::json_bytes(&summary)),
-            ("convergence_dt.svg", by_dt.into_bytes()),
-            ("convergence_work.svg", by_work.into_bytes()),
-        ],
-    )?;
+    let mut files = vec![
+        ("convergence.csv", cases_table(&summary.cases)),
+        ("convergence.json", output::json_bytes(&summary)),
+        ("convergence_dt.svg", by_dt.into_bytes()),
+        ("convergence_work.svg", by_work.into_bytes()),
+    ];
+    files.extend(timings.file());
+    let files = output::write_atomically(out_dir, &files)?;
     Ok(ConvergeReport { summary, files })
 }
 
@@ -376,7 +387,8 @@ fn cases_table(cases: &[Case]) -> Vec<u8> {
             c.unmatched_events.to_string(),
             c.steps.to_string(),
             c.rhs_evaluations.to_string(),
-            number(c.wall_time_s),
+            // Empty where the time was taken out to timings.json.
+            optional(Some(c.wall_time_s).filter(|t| t.is_finite())),
             number(c.max_energy_residual),
             c.status.clone(),
         ]);
@@ -511,7 +523,7 @@ pub fn converge_text(report: &ConvergeReport) -> String {
         }
         let _ = writeln!(
             t,
-            "  {:<19} {:>10} {:>7} {:>11.3e} {:>11.3e} {:>11.3e} {:>+6} {:>8} {:>9} {:>9.2}",
+            "  {:<19} {:>10} {:>7} {:>11.3e} {:>11.3e} {:>11.3e} {:>+6} {:>8} {:>9} {:>9}",
             c.method,
             optional(c.dt, &readable),
             optional(c.rtol, &scientific),
@@ -521,7 +533,12 @@ pub fn converge_text(report: &ConvergeReport) -> String {
             c.event_count_difference,
             c.steps,
             c.rhs_evaluations,
-            c.wall_time_s * 1e3
+            // "-" where the time was taken out to timings.json.
+            if c.wall_time_s.is_finite() {
+                format!("{:.2}", c.wall_time_s * 1e3)
+            } else {
+                "-".to_string()
+            }
         );
     }
     let _ = writeln!(

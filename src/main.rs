@@ -65,6 +65,8 @@ enum Command {
         /// plot_energy.svg), written with the run's files as one set.
         #[arg(long)]
         plot: bool,
+        #[command(flatten)]
+        timings: TimingsArg,
     },
     /// Draw the figures of a run directory (history.csv, events.csv, summary.json of
     /// `flexrock run`) into it: plot_motion.svg, plot_force.svg and plot_energy.svg.
@@ -108,6 +110,8 @@ enum Command {
         duration: Option<f64>,
         #[command(flatten)]
         set: SetArgs,
+        #[command(flatten)]
+        timings: TimingsArg,
     },
     /// Convergence study: Newmark at each dt and each adaptive method at each tolerance against
     /// a reference; write convergence.csv, convergence.json and two SVG figures.
@@ -131,6 +135,8 @@ enum Command {
         duration: Option<f64>,
         #[command(flatten)]
         set: SetArgs,
+        #[command(flatten)]
+        timings: TimingsArg,
     },
     /// Assemble the validation report (markdown) from the output directories of compare (both
     /// variants), converge and a run of the rigid-limit model.
@@ -187,7 +193,29 @@ enum Command {
         pushover: bool,
         #[command(flatten)]
         set: SetArgs,
+        #[command(flatten)]
+        timings: TimingsArg,
     },
+}
+
+/// `--timings-apart` of the commands that time their solves.
+#[derive(clap::Args)]
+struct TimingsArg {
+    /// Write the wall-clock times to timings.json in the output directory instead of into the
+    /// summaries (which then hold null, or an empty cell) and the printed text, so that every
+    /// other file is the same from run to run.
+    #[arg(long)]
+    timings_apart: bool,
+}
+
+impl TimingsArg {
+    fn wall_times(&self) -> flexrock::output::WallTimes {
+        if self.timings_apart {
+            flexrock::output::WallTimes::Apart
+        } else {
+            flexrock::output::WallTimes::Inline
+        }
+    }
 }
 
 #[derive(clap::Args)]
@@ -490,6 +518,7 @@ fn execute(command: Command) -> flexrock::Result<Output> {
             duration,
             set,
             plot,
+            timings,
         } => {
             let overrides = Overrides {
                 method,
@@ -500,7 +529,7 @@ fn execute(command: Command) -> flexrock::Result<Output> {
                 newmark_variant: variant,
                 settings: set.settings,
             };
-            run(&path, out, &overrides, plot)
+            run(&path, out, &overrides, plot, timings.wall_times())
         }
         Command::Plot { dir } => plot(&dir),
         Command::Events { dir } => events(&dir),
@@ -513,12 +542,14 @@ fn execute(command: Command) -> flexrock::Result<Output> {
             reference_rtol,
             duration,
             set,
+            timings,
         } => {
             let model = load_with_duration(&path, duration, set)?;
             let options = flexrock::compare::CompareOptions {
                 reference_rtol,
                 dt,
                 variant,
+                wall_times: timings.wall_times(),
             };
             compare(
                 &model,
@@ -534,12 +565,14 @@ fn execute(command: Command) -> flexrock::Result<Output> {
             reference_rtol,
             duration,
             set,
+            timings,
         } => {
             let model = load_with_duration(&path, duration, set)?;
             let options = flexrock::converge::ConvergeOptions {
                 dts: dt,
                 rtols: rtol,
                 reference_rtol,
+                wall_times: timings.wall_times(),
             };
             converge(
                 &model,
@@ -577,6 +610,7 @@ fn execute(command: Command) -> flexrock::Result<Output> {
             modes,
             pushover,
             set,
+            timings,
         } => {
             let model = Model::load(&path, &set.overrides())?;
             let setup = model.fem_with(&FemOverrides { nx, ny, scheme, dt })?;
@@ -587,6 +621,7 @@ fn execute(command: Command) -> flexrock::Result<Output> {
                     &model,
                     &setup,
                     out.unwrap_or_else(|| default_out_dir(&path, "-pushover")),
+                    timings.wall_times(),
                 )
             } else {
                 fem(
@@ -594,6 +629,7 @@ fn execute(command: Command) -> flexrock::Result<Output> {
                     &setup,
                     out.unwrap_or_else(|| default_out_dir(&path, "-fem")),
                     compare,
+                    timings.wall_times(),
                 )
             }
         }
@@ -619,10 +655,11 @@ fn run(
     out: Option<PathBuf>,
     overrides: &Overrides,
     plot: bool,
+    wall_times: flexrock::output::WallTimes,
 ) -> flexrock::Result<Output> {
     let model = Model::load(path, overrides)?;
     let out = out.unwrap_or_else(|| default_out_dir(path, ""));
-    let report = flexrock::run::run_to_dir_with(&model, &out, plot)?;
+    let report = flexrock::run::run_to_dir_with(&model, &out, plot, wall_times)?;
     Ok(Output {
         stdout: flexrock::run::run_report_text(&model, &report).into_bytes(),
         warnings: report.warnings.clone(),
@@ -711,8 +748,13 @@ fn fem_modes(model: &Model, setup: &FemSetup) -> flexrock::Result<Output> {
 }
 
 /// `flexrock fem --pushover`: the pushover curves, files into `out`.
-fn fem_pushover(model: &Model, setup: &FemSetup, out: PathBuf) -> flexrock::Result<Output> {
-    let report = flexrock::fem::pushover_run::run(model, setup, &out)?;
+fn fem_pushover(
+    model: &Model,
+    setup: &FemSetup,
+    out: PathBuf,
+    wall_times: flexrock::output::WallTimes,
+) -> flexrock::Result<Output> {
+    let report = flexrock::fem::pushover_run::run(model, setup, &out, wall_times)?;
     Ok(Output::text(flexrock::fem::pushover_run::report_text(
         &report,
     )))
@@ -720,12 +762,18 @@ fn fem_pushover(model: &Model, setup: &FemSetup, out: PathBuf) -> flexrock::Resu
 
 /// `flexrock fem` (with `--compare`, side by side with the one-mode model): the dynamic run,
 /// files into `out`.
-fn fem(model: &Model, setup: &FemSetup, out: PathBuf, compare: bool) -> flexrock::Result<Output> {
+fn fem(
+    model: &Model,
+    setup: &FemSetup,
+    out: PathBuf,
+    compare: bool,
+    wall_times: flexrock::output::WallTimes,
+) -> flexrock::Result<Output> {
     use flexrock::fem::run as fem;
     let report = if compare {
-        fem::compare(model, setup, &out)?
+        fem::compare(model, setup, &out, wall_times)?
     } else {
-        fem::fem(model, setup, &out)?
+        fem::fem(model, setup, &out, wall_times)?
     };
     Ok(Output {
         stdout: fem::report_text(&report).into_bytes(),

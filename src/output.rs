@@ -121,6 +121,62 @@ pub fn json_bytes<T: serde::Serialize>(value: &T) -> Vec<u8> {
     bytes
 }
 
+/// Where a command puts the wall-clock times of its solves.
+///
+/// Wall times change from run to run; everything else a command writes does not. With
+/// [`WallTimes::Apart`] (the `--timings-apart` flag) they go to `timings.json` beside the other
+/// files, and those carry none, so that a committed result can be compared byte for byte with a
+/// fresh run of the same command.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum WallTimes {
+    /// In the summaries (`wall_time_s` keys, the `wall_time_s` column, the printed text).
+    #[default]
+    Inline,
+    /// In `timings.json`; the summaries hold `null` (JSON) or an empty cell (CSV) in their place
+    /// and the printed text leaves them out.
+    Apart,
+}
+
+/// The wall times a command takes out of its outputs ([`WallTimes::Apart`]).
+#[derive(Debug, Default)]
+pub struct Timings {
+    mode: WallTimes,
+    /// Where each time was (file name and JSON path, such as
+    /// `compare.json/reference/statistics/wall_time_s`), in the order taken.
+    times: serde_json::Map<String, serde_json::Value>,
+}
+
+impl Timings {
+    /// Collects nothing with [`WallTimes::Inline`].
+    pub fn new(mode: WallTimes) -> Self {
+        Timings {
+            mode,
+            times: serde_json::Map::new(),
+        }
+    }
+
+    /// With [`WallTimes::Apart`], records `*wall_time_s` under `key` and replaces it by NaN (which
+    /// JSON writes as `null` and the printed text leaves out); otherwise leaves it alone.
+    pub fn take(&mut self, key: &str, wall_time_s: &mut f64) {
+        if self.mode == WallTimes::Apart {
+            self.times.insert(key.to_string(), (*wall_time_s).into());
+            *wall_time_s = f64::NAN;
+        }
+    }
+
+    /// `timings.json` for the set of files a command writes, with [`WallTimes::Apart`].
+    pub fn file(&self) -> Option<(&'static str, Vec<u8>)> {
+        (self.mode == WallTimes::Apart).then(|| ("timings.json", json_bytes(&self.times)))
+    }
+}
+
+/// A wall time as printed (`"2.948 ms"` with `decimals` = 3), or `None` where it was taken out.
+pub fn milliseconds(wall_time_s: f64, decimals: usize) -> Option<String> {
+    wall_time_s
+        .is_finite()
+        .then(|| format!("{:.*} ms", decimals, wall_time_s * 1e3))
+}
+
 /// Start of the name of the temporary directory a write uses inside the output directory:
 /// `.flexrock-tmp-<pid>-<nonce>`.
 pub const TEMPORARY_PREFIX: &str = ".flexrock-tmp-";

@@ -289,9 +289,20 @@ pub struct RunReport {
 
 /// Solves a model and writes history.csv, events.csv and summary.json into `out_dir`, and with
 /// `plots` also the figures of [`crate::run_plot`], drawn from the three files as they are about
-/// to be written and written with them as one atomic set.
-pub fn run_to_dir_with(model: &Model, out_dir: &Path, plots: bool) -> Result<RunReport> {
-    let solution = simulate(model)?;
+/// to be written and written with them as one atomic set. With [`output::WallTimes::Apart`] the
+/// solve's wall time goes to timings.json, written with them.
+pub fn run_to_dir_with(
+    model: &Model,
+    out_dir: &Path,
+    plots: bool,
+    wall_times: output::WallTimes,
+) -> Result<RunReport> {
+    let mut solution = simulate(model)?;
+    let mut timings = output::Timings::new(wall_times);
+    timings.take(
+        "summary.json/statistics/wall_time_s",
+        &mut solution.stats.wall_time_s,
+    );
     let mut files = vec![
         ("history.csv", output::history_csv(&solution.samples)),
         ("events.csv", output::events_csv(&solution.events)),
@@ -305,6 +316,7 @@ pub fn run_to_dir_with(model: &Model, out_dir: &Path, plots: bool) -> Result<Run
             crate::run_dir::RunData::from_bytes(out_dir, &files[0].1, &files[1].1, &files[2].1)?;
         files.extend(crate::run_plot::figures(&data)?);
     }
+    files.extend(timings.file());
     let files = output::write_atomically(out_dir, &files)?;
     let warnings = warnings(model, &solution);
     Ok(RunReport {
@@ -371,10 +383,10 @@ pub fn run_report_text(model: &Model, report: &RunReport) -> String {
     );
     let _ = writeln!(
         t,
-        "  {} steps, {} right-hand-side evaluations, {:.3} ms; max energy residual {:.3e} J",
+        "  {} steps, {} right-hand-side evaluations{}; max energy residual {:.3e} J",
         s.stats.steps,
         s.stats.rhs_evaluations,
-        s.stats.wall_time_s * 1e3,
+        output::milliseconds(s.stats.wall_time_s, 3).map_or_else(String::new, |t| format!(", {t}")),
         s.max_energy_residual
     );
     for f in &report.files {

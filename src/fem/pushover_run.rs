@@ -244,21 +244,28 @@ pub struct PushoverReport {
     pub files: Vec<PathBuf>,
 }
 
-/// Runs both sweeps and writes pushover.csv, pushover.json and pushover.svg (all or none).
-pub fn run(model: &Model, setup: &FemSetup, out_dir: &Path) -> Result<PushoverReport> {
-    let analysis = analyse(model, setup)?;
+/// Runs both sweeps and writes pushover.csv, pushover.json and pushover.svg (all or none); with
+/// [`output::WallTimes::Apart`] the wall time goes to timings.json.
+pub fn run(
+    model: &Model,
+    setup: &FemSetup,
+    out_dir: &Path,
+    wall_times: output::WallTimes,
+) -> Result<PushoverReport> {
+    let mut analysis = analyse(model, setup)?;
+    let mut timings = output::Timings::new(wall_times);
+    timings.take("pushover.json/wall_time_s", &mut analysis.wall_time_s);
     let svg = plot::figure("pushover.svg", &[figure(model, &analysis)], 1, (900, 550))?;
-    let files = output::write_atomically(
-        out_dir,
-        &[
-            ("pushover.csv", curves_csv(model, &analysis)),
-            (
-                "pushover.json",
-                output::json_bytes(&summary(model, &analysis)),
-            ),
-            ("pushover.svg", svg.into_bytes()),
-        ],
-    )?;
+    let mut files = vec![
+        ("pushover.csv", curves_csv(model, &analysis)),
+        (
+            "pushover.json",
+            output::json_bytes(&summary(model, &analysis)),
+        ),
+        ("pushover.svg", svg.into_bytes()),
+    ];
+    files.extend(timings.file());
+    let files = output::write_atomically(out_dir, &files)?;
     Ok(PushoverReport { analysis, files })
 }
 

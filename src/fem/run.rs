@@ -538,10 +538,20 @@ pub struct FemReport {
     pub files: Vec<PathBuf>,
 }
 
-/// Runs the finite element analysis and writes its files into `out_dir` (all or none).
-pub fn fem(model: &Model, setup: &FemSetup, out_dir: &Path) -> Result<FemReport> {
-    let analysis = analyse(model, setup)?;
-    let files = output::write_atomically(out_dir, &run_files(model, &analysis)?)?;
+/// Runs the finite element analysis and writes its files into `out_dir` (all or none); with
+/// [`output::WallTimes::Apart`] its wall time goes to timings.json.
+pub fn fem(
+    model: &Model,
+    setup: &FemSetup,
+    out_dir: &Path,
+    wall_times: output::WallTimes,
+) -> Result<FemReport> {
+    let mut analysis = analyse(model, setup)?;
+    let mut timings = output::Timings::new(wall_times);
+    timings.take("fem_summary.json/wall_time_s", &mut analysis.wall_time_s);
+    let mut files = run_files(model, &analysis)?;
+    files.extend(timings.file());
+    let files = output::write_atomically(out_dir, &files)?;
     Ok(FemReport {
         analysis,
         comparison: None,
@@ -780,9 +790,17 @@ fn comparison_figures(
 }
 
 /// `flexrock fem --compare`: the FEM run, the SDOF solution of the same model
-/// ([`crate::run::simulate`]) and both side by side, all written into `out_dir` (all or none).
-pub fn compare(model: &Model, setup: &FemSetup, out_dir: &Path) -> Result<FemReport> {
-    let analysis = analyse(model, setup)?;
+/// ([`crate::run::simulate`]) and both side by side, all written into `out_dir` (all or none);
+/// with [`output::WallTimes::Apart`] the FEM's wall time goes to timings.json.
+pub fn compare(
+    model: &Model,
+    setup: &FemSetup,
+    out_dir: &Path,
+    wall_times: output::WallTimes,
+) -> Result<FemReport> {
+    let mut analysis = analyse(model, setup)?;
+    let mut timings = output::Timings::new(wall_times);
+    timings.take("fem_summary.json/wall_time_s", &mut analysis.wall_time_s);
     let sdof = crate::run::simulate(model)?;
     let comparison = compare_solutions(model, &sdof, &analysis);
     let mut files = run_files(model, &analysis)?;
@@ -790,6 +808,7 @@ pub fn compare(model: &Model, setup: &FemSetup, out_dir: &Path) -> Result<FemRep
     files.push(("compare.json", output::json_bytes(&comparison)));
     files.push(("sdof_history.csv", output::history_csv(&sdof.samples)));
     files.extend(render(comparison_figures(model, &sdof, &analysis))?);
+    files.extend(timings.file());
     let files = output::write_atomically(out_dir, &files)?;
     Ok(FemReport {
         analysis,
@@ -827,7 +846,7 @@ pub fn report_text(report: &FemReport) -> String {
     );
     let _ = writeln!(
         t,
-        "  {}, {}; {} in {:.1} ms",
+        "  {}, {}; {}{}",
         count(
             a.result.events.len(),
             "base-node state change",
@@ -835,7 +854,7 @@ pub fn report_text(report: &FemReport) -> String {
         ),
         count(a.uplifts.len(), "uplift episode", "uplift episodes"),
         count(a.result.steps.len(), "step", "steps"),
-        a.wall_time_s * 1e3
+        output::milliseconds(a.wall_time_s, 1).map_or_else(String::new, |t| format!(" in {t}"))
     );
     if let Some(c) = &report.comparison {
         t.push_str(&comparison_text(c));

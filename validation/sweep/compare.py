@@ -28,6 +28,7 @@ import csv
 import math
 import os
 import platform
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -59,9 +60,20 @@ def flexrock_bin():
     return os.environ.get("FLEXROCK", os.path.join("target", "release", "flexrock"))
 
 
+# flexrock's side of the comparison, kept as it was read: validation/sweep/flexrock/<name>.csv is
+# the sweep.csv of each command, and commands.txt the commands (OUT stands for their output
+# directory), so that validation/check.sh can rerun them without the reference and compare.
+FLEXROCK_SIDE = os.path.join(HERE, "flexrock")
+SIDE_COMMANDS = []
+
+
 def run_sweep(args, out):
     cmd = [flexrock_bin(), "sweep", MODEL, "--out", out] + args
     subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
+    name = os.path.basename(out)
+    os.makedirs(FLEXROCK_SIDE, exist_ok=True)
+    shutil.copyfile(os.path.join(out, "sweep.csv"), os.path.join(FLEXROCK_SIDE, name + ".csv"))
+    SIDE_COMMANDS.append(" ".join(["flexrock", "sweep", MODEL, "--out", "OUT/" + name] + args))
     with open(os.path.join(out, "sweep.csv"), newline="") as fh:
         return cmd, list(csv.DictReader(fh))
 
@@ -280,6 +292,8 @@ def main():
         t_map = time.time() - t0
         scmd, srows = compare_spectrum(pool, tmp)
     t_all = time.time() - t0
+    with open(os.path.join(FLEXROCK_SIDE, "commands.txt"), "w") as fh:
+        fh.write("".join(c + "\n" for c in SIDE_COMMANDS))
     write_csv(os.path.join(HERE, "map_comparison.csv"), rows)
     write_csv(os.path.join(HERE, "spectrum_comparison.csv"), srows)
 

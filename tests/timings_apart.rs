@@ -1,0 +1,136 @@
+//! `--timings-apart`: the wall times go to timings.json and every other file a command writes is
+//! the same bytes from run to run (what validation/check.sh compares with the committed evidence).
+
+mod common;
+
+use std::path::{Path, PathBuf};
+
+use common::{flexrock, reference_model};
+
+/// Runs `flexrock <args> --out <dir>` twice into two directories; returns both.
+fn twice(name: &str, args: &[&str]) -> (PathBuf, PathBuf, String) {
+    let base = common::scratch_dir(name);
+    let dirs: Vec<PathBuf> = ["first", "second"].iter().map(|d| base.join(d)).collect();
+    let mut stdout = String::new();
+    for dir in &dirs {
+        let mut full: Vec<&str> = args.to_vec();
+        full.extend(["--timings-apart", "--out", dir.to_str().unwrap()]);
+        let o = flexrock(&full);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        stdout = String::from_utf8_lossy(&o.stdout).into_owned();
+    }
+    (dirs[0].clone(), dirs[1].clone(), stdout)
+}
+
+fn names(dir: &Path) -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    names
+}
+
+/// Every file but timings.json has the same bytes in both directories; returns timings.json of
+/// the first, parsed.
+fn same_but_timings(a: &Path, b: &Path) -> serde_json::Map<String, serde_json::Value> {
+    assert_eq!(names(a), names(b));
+    for name in names(a) {
+        if name != "timings.json" {
+            let (x, y) = (
+                std::fs::read(a.join(&name)).unwrap(),
+                std::fs::read(b.join(&name)).unwrap(),
+            );
+            assert!(x == y, "{name} differs between two runs");
+        }
+    }
+    let text = std::fs::read_to_string(a.join("timings.json")).expect("timings.json written");
+    let timings: serde_json::Map<String, serde_json::Value> = serde_json::from_str(&text).unwrap();
+    for (key, value) in &timings {
+        assert!(key.ends_with("wall_time_s"), "{key}");
+        assert!(value.as_f64().unwrap() > 0.0, "{key} = {value}");
+    }
+    timings
+}
+
+fn json(path: &Path) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
+}
+
+#[test]
+fn run_puts_its_wall_time_in_timings_json_and_nothing_else_changes() {
+    let model = reference_model();
+    let (a, b, stdout) = twice("timings-run", &["run", model.to_str().unwrap()]);
+    let timings = same_but_timings(&a, &b);
+    assert_eq!(
+        timings.keys().collect::<Vec<_>>(),
+        ["summary.json/statistics/wall_time_s"]
+    );
+    let summary = json(&a.join("summary.json"));
+    assert!(summary["statistics"]["wall_time_s"].is_null());
+    assert!(summary["statistics"]["steps"].as_u64().unwrap() > 0);
+    assert!(!stdout.contains(" ms"), "{stdout}");
+}
+
+#[test]
+fn compare_and_converge_keep_every_time_apart() {
+    let model = reference_model();
+    let (a, b, stdout) = twice(
+        "timings-compare",
+        &["compare", model.to_str().unwrap(), "--duration", "2"],
+    );
+    let timings = same_but_timings(&a, &b);
+    assert_eq!(timings.len(), 2, "{timings:?}");
+    let compare = json(&a.join("compare.json"));
+    for side in ["reference", "newmark"] {
+        assert!(compare[side]["statistics"]["wall_time_s"].is_null());
+        assert!(timings.contains_key(&format!("compare.json/{side}/statistics/wall_time_s")));
+    }
+    assert!(!stdout.contains(" ms"), "{stdout}");
+
+    let (a, b, _) = twice(
+        "timings-converge",
+        &[
+            "converge",
+            model.to_str().unwrap(),
+            "--duration",
+            "2",
+            "--dt",
+            "0.02,0.01",
+            "--rtol",
+            "1e-4",
+        ],
+    );
+    let timings = same_but_timings(&a, &b);
+    let converge = json(&a.join("convergence.json"));
+    let cases = converge["cases"].as_array().unwrap();
+    // The reference and every case.
+    assert_eq!(timings.len(), 1 + cases.len());
+    assert!(cases.iter().all(|c| c["wall_time_s"].is_null()));
+    let csv = std::fs::read_to_string(a.join("convergence.csv")).unwrap();
+    let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+    let column = header.iter().position(|c| *c == "wall_time_s").unwrap();
+    for row in csv.lines().skip(1) {
+        assert_eq!(row.split(',').nth(column), Some(""), "{row}");
+    }
+}
+
+#[test]
+fn without_the_flag_the_times_stay_where_they_were() {
+    let out = common::scratch_dir("timings-inline").join("result");
+    let o = flexrock(&[
+        "run",
+        reference_model().to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success());
+    assert!(!out.join("timings.json").exists());
+    assert!(
+        json(&out.join("summary.json"))["statistics"]["wall_time_s"]
+            .as_f64()
+            .unwrap()
+            > 0.0
+    );
+    assert!(String::from_utf8_lossy(&o.stdout).contains(" ms;"));
+}
