@@ -74,10 +74,19 @@ enum Command {
         /// Output directory of `flexrock run`.
         dir: PathBuf,
     },
-    /// Print the event log of a run directory (its events.csv) as a table.
+    /// Print the event log of a run directory (its events.csv) as a table, or with --csv or
+    /// --json its rocking episodes (episodes.csv): one row per episode with its side, start,
+    /// end, duration, peak |q| and rotation, floor acceleration at uplift and q' before and
+    /// after each impact.
     Events {
         /// Output directory of `flexrock run`.
         dir: PathBuf,
+        /// Print the rocking episodes as CSV (the run's episodes.csv).
+        #[arg(long, conflicts_with = "json")]
+        csv: bool,
+        /// Print the rocking episodes as JSON: an array of objects by column name.
+        #[arg(long)]
+        json: bool,
     },
     /// Parametric study: run the model at every point of a grid of model-file keys (or search
     /// the smallest overturning value at each), one row per point in sweep.csv, with sweep.json
@@ -532,7 +541,7 @@ fn execute(command: Command) -> flexrock::Result<Output> {
             run(&path, out, &overrides, plot, timings.wall_times())
         }
         Command::Plot { dir } => plot(&dir),
-        Command::Events { dir } => events(&dir),
+        Command::Events { dir, csv, json } => events(&dir, csv, json),
         Command::Record { command } => record(command),
         Command::Compare {
             model: path,
@@ -677,8 +686,23 @@ fn plot(dir: &std::path::Path) -> flexrock::Result<Output> {
     ))
 }
 
-/// `flexrock events`: the event table of a run directory.
-fn events(dir: &std::path::Path) -> flexrock::Result<Output> {
+/// `flexrock events`: the event table of a run directory, or its episodes as CSV or JSON.
+fn events(dir: &std::path::Path, csv: bool, json: bool) -> flexrock::Result<Output> {
+    use flexrock::run_dir::{episodes_json, read_episodes_csv, EPISODES_FILE};
+    if csv || json {
+        let bytes = read_episodes_csv(dir)?;
+        if csv {
+            return Ok(Output {
+                stdout: bytes,
+                warnings: Vec::new(),
+            });
+        }
+        let value = episodes_json(&bytes, &dir.join(EPISODES_FILE))?;
+        return Ok(Output {
+            stdout: flexrock::output::json_bytes(&value),
+            warnings: Vec::new(),
+        });
+    }
     let events = flexrock::run_dir::read_events(dir)?;
     Ok(Output::text(flexrock::run_dir::events_table(
         &events,

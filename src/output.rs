@@ -5,7 +5,7 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use crate::error::{Error, Result};
-use crate::solution::{Event, Sample};
+use crate::solution::{Episode, Event, Sample};
 
 /// Column names of history.csv (a contract).
 /// Columns are only ever appended: existing ones keep their names and places.
@@ -109,6 +109,57 @@ pub fn events_csv(events: &[Event]) -> Vec<u8> {
             number(e.q),
             number(e.qdot_before),
             number(e.qdot_after),
+        ]);
+    }
+    table.into_bytes()
+}
+
+/// Columns of episodes.csv, one row per rocking episode (units in the README's table).
+pub const EPISODE_COLUMNS: [&str; 15] = [
+    "index",
+    "side",
+    "t_start",
+    "t_end",
+    "duration",
+    "ended_by",
+    "floor_acc_at_uplift",
+    "peak_abs_q",
+    "t_peak",
+    "peak_abs_r",
+    "peak_rotation",
+    "qdot_before_uplift",
+    "qdot_after_uplift",
+    "qdot_before_landing",
+    "qdot_after_landing",
+];
+
+/// episodes.csv: one row per rocking episode, columns [`EPISODE_COLUMNS`]. `height` (H, m)
+/// turns the peak rocking part into the body's rotation, r/H rad. A value that does not exist
+/// (no end within the run, no landing) is an empty field, as is every value derived from it.
+pub fn episodes_csv(episodes: &[Episode], height: f64) -> Vec<u8> {
+    let optional = |x: Option<f64>| x.map(number).unwrap_or_default();
+    let mut table = Table::new(&EPISODE_COLUMNS);
+    for e in episodes {
+        let side = match e.mode {
+            crate::automaton::Mode::RockLeft => "left",
+            _ => "right",
+        };
+        table.row([
+            e.index.to_string(),
+            side.to_string(),
+            number(e.t_start),
+            optional(e.t_end),
+            optional(e.duration()),
+            e.ended_by.map_or("run-end", |k| k.name()).to_string(),
+            optional(e.floor_acc_at_uplift),
+            number(e.peak_abs_q),
+            number(e.t_peak),
+            number(e.peak_abs_r),
+            number(e.peak_abs_r / height),
+            optional(e.qdot_uplift.map(|(before, _)| before)),
+            optional(e.qdot_uplift.map(|(_, after)| after)),
+            optional(e.qdot_landing.map(|(before, _)| before)),
+            optional(e.qdot_landing.map(|(_, after)| after)),
         ]);
     }
     table.into_bytes()

@@ -287,7 +287,8 @@ pub struct RunReport {
     pub warnings: Vec<String>,
 }
 
-/// Solves a model and writes history.csv, events.csv and summary.json into `out_dir`, and with
+/// Solves a model and writes history.csv, events.csv, episodes.csv and summary.json into
+/// `out_dir`, and with
 /// `plots` also the figures of [`crate::run_plot`], drawn from the three files as they are about
 /// to be written and written with them as one atomic set. With [`output::WallTimes::Apart`] the
 /// solve's wall time goes to timings.json, written with them.
@@ -307,13 +308,17 @@ pub fn run_to_dir_with(
         ("history.csv", output::history_csv(&solution.samples)),
         ("events.csv", output::events_csv(&solution.events)),
         (
+            "episodes.csv",
+            output::episodes_csv(&solution.episodes, model.body.height),
+        ),
+        (
             "summary.json",
             output::json_bytes(&summary(model, &solution)),
         ),
     ];
     if plots {
         let data =
-            crate::run_dir::RunData::from_bytes(out_dir, &files[0].1, &files[1].1, &files[2].1)?;
+            crate::run_dir::RunData::from_bytes(out_dir, &files[0].1, &files[1].1, &files[3].1)?;
         files.extend(crate::run_plot::figures(&data)?);
     }
     files.extend(timings.file());

@@ -14,13 +14,15 @@ use serde::de::DeserializeOwned;
 
 use crate::constants::Constants;
 use crate::error::{Error, Result};
-use crate::output::{EVENT_COLUMNS, HISTORY_COLUMNS};
+use crate::output::{EPISODE_COLUMNS, EVENT_COLUMNS, HISTORY_COLUMNS};
 use crate::solution::{Event, Sample};
 
 /// The sampled history of a run.
 pub const HISTORY_FILE: &str = "history.csv";
 /// The events of a run.
 pub const EVENTS_FILE: &str = "events.csv";
+/// The rocking episodes of a run.
+pub const EPISODES_FILE: &str = "episodes.csv";
 /// The summary of a run.
 pub const SUMMARY_FILE: &str = "summary.json";
 
@@ -111,6 +113,85 @@ pub fn read_events(dir: &Path) -> Result<Vec<Event>> {
     )
 }
 
+/// episodes.csv of a run directory: its bytes, after checking that its header is
+/// [`EPISODE_COLUMNS`] and every row has as many fields.
+pub fn read_episodes_csv(dir: &Path) -> Result<Vec<u8>> {
+    let path = dir.join(EPISODES_FILE);
+    let mut bytes = Vec::new();
+    let mut source = bounded(&path, MAX_EVENTS_BYTES)?;
+    source
+        .reader
+        .read_to_end(&mut bytes)
+        .map_err(|e| fail(&path, format!("cannot read: {e}")))?;
+    if bytes.len() as u64 > source.limit {
+        return Err(too_large(&path, source.limit));
+    }
+    episode_rows(&bytes, &path)?;
+    Ok(bytes)
+}
+
+/// The rows of episodes.csv as JSON objects by column name: numbers as numbers, empty fields
+/// as null, words as strings.
+pub fn episodes_json(bytes: &[u8], path: &Path) -> Result<serde_json::Value> {
+    let rows = episode_rows(bytes, path)?;
+    Ok(serde_json::Value::Array(
+        rows.into_iter()
+            .map(|row| {
+                let object = EPISODE_COLUMNS
+                    .iter()
+                    .zip(row)
+                    .map(|(column, field)| {
+                        let value = if field.is_empty() {
+                            serde_json::Value::Null
+                        } else if let Ok(i) = field.parse::<u64>() {
+                            serde_json::Value::from(i)
+                        } else if let Some(x) = field
+                            .parse::<f64>()
+                            .ok()
+                            .and_then(serde_json::Number::from_f64)
+                        {
+                            serde_json::Value::Number(x)
+                        } else {
+                            serde_json::Value::String(field)
+                        };
+                        (column.to_string(), value)
+                    })
+                    .collect();
+                serde_json::Value::Object(object)
+            })
+            .collect(),
+    ))
+}
+
+fn episode_rows(bytes: &[u8], path: &Path) -> Result<Vec<Vec<String>>> {
+    let mut reader = csv::ReaderBuilder::new().from_reader(bytes);
+    let header: Vec<String> = reader
+        .headers()
+        .map_err(|e| fail(path, format!("not a CSV table: {e}")))?
+        .iter()
+        .map(str::to_string)
+        .collect();
+    if header != EPISODE_COLUMNS {
+        return Err(fail(
+            path,
+            format!(
+                "has the columns {}; expected {}",
+                header.join(","),
+                EPISODE_COLUMNS.join(",")
+            ),
+        ));
+    }
+    reader
+        .records()
+        .enumerate()
+        .map(|(i, record)| {
+            record
+                .map(|r| r.iter().map(str::to_string).collect())
+                .map_err(|e| fail(path, format!("row {}: {e}", i + 1)))
+        })
+        .collect()
+}
+
 /// Reads the keys of summary.json that the figures need.
 pub fn read_summary(dir: &Path) -> Result<RunSummaryFile> {
     let path = dir.join(SUMMARY_FILE);
@@ -155,6 +236,7 @@ fn bounded(path: &Path, limit: u64) -> Result<Bounded<std::io::Take<std::fs::Fil
     let what = match path.file_name().and_then(|n| n.to_str()) {
         Some(HISTORY_FILE) => "the history that `flexrock run` writes",
         Some(EVENTS_FILE) => "the event log that `flexrock run` writes",
+        Some(EPISODES_FILE) => "the rocking episodes that `flexrock run` writes",
         _ => "the summary that `flexrock run` writes",
     };
     let metadata = std::fs::metadata(path)

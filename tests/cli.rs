@@ -544,7 +544,10 @@ fn misspellings_and_unit_suffixes_get_a_hint() {
         ("excitation.amplitud=3", "did you mean `amplitude`?"),
         ("solver.method=tsit54", "did you mean \"tsit45\"?"),
         ("excitation.kind=sine_pulse", "did you mean \"sine-pulse\"?"),
-        ("body.self_weight=consistant", "did you mean \"consistent\"?"),
+        (
+            "body.self_weight=consistant",
+            "did you mean \"consistent\"?",
+        ),
         ("excitation.amplitude=0.3g", "(m/s^2)"),
         ("body.youngs_modulus=5MPa", "(Pa)"),
     ] {
@@ -561,4 +564,172 @@ fn misspellings_and_unit_suffixes_get_a_hint() {
         assert!(stderr.contains(hint), "{setting}: {stderr}");
         assert!(!out.exists(), "{setting}: nothing is written");
     }
+}
+
+/// episodes.csv read as rows of column -> text.
+fn episode_rows(dir: &std::path::Path) -> Vec<std::collections::HashMap<String, String>> {
+    let mut reader = csv::Reader::from_path(dir.join("episodes.csv")).expect("episodes.csv");
+    let headers = reader.headers().unwrap().clone();
+    reader
+        .records()
+        .map(|r| {
+            headers
+                .iter()
+                .zip(r.unwrap().iter())
+                .map(|(h, v)| (h.to_string(), v.to_string()))
+                .collect()
+        })
+        .collect()
+}
+
+fn field(row: &std::collections::HashMap<String, String>, column: &str) -> f64 {
+    row[column]
+        .parse()
+        .unwrap_or_else(|_| panic!("{column} = {:?}", row[column]))
+}
+
+/// Free rocking of a near-rigid body released at rest from q0 = B/2: the first episode is the
+/// release itself, its peak is the release (|q| = q0 at t = 0, rotation q0/H), and it lands at
+/// the slender rigid block's time (1/p) acosh(1/(1 - q0/B)), p = sqrt(3 g/(2 H)); the
+/// next episode, about the other toe, is still under way when the run ends.
+#[test]
+fn episodes_of_free_rocking_follow_housners_closed_form() {
+    let out = common::scratch_dir("cli-episodes-rigid").join("out");
+    let model = common::repo("validation/models/rigid-free-rocking.toml");
+    let o = flexrock(&[
+        "run",
+        model.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let rows = episode_rows(&out);
+    assert_eq!(rows.len(), 2, "{rows:?}");
+    let (h, b, g, q0) = (4.0_f64, 0.7_f64, 9.81_f64, 0.35_f64);
+    let p = (3.0 * g / (2.0 * h)).sqrt();
+    let landing = (1.0 / (1.0 - q0 / b)).acosh() / p;
+    let first = &rows[0];
+    assert_eq!(first["side"], "right");
+    assert_eq!(first["ended_by"], "landing");
+    assert_eq!(field(first, "t_start"), 0.0);
+    assert!(((field(first, "t_end") - landing) / landing).abs() < 1e-3);
+    assert!((field(first, "duration") - field(first, "t_end")).abs() < 1e-15);
+    assert_eq!(field(first, "peak_abs_q"), q0);
+    assert_eq!(field(first, "t_peak"), 0.0);
+    assert!((field(first, "peak_rotation") - q0 / h).abs() < 1e-5);
+    // Started rocking: no uplift, so nothing derived from one.
+    for column in [
+        "floor_acc_at_uplift",
+        "qdot_before_uplift",
+        "qdot_after_uplift",
+    ] {
+        assert_eq!(first[column], "", "{column}");
+    }
+    let second = &rows[1];
+    assert_eq!(second["side"], "left");
+    assert_eq!(second["ended_by"], "run-end");
+    assert!((field(second, "t_start") - landing).abs() < 1e-3);
+    for column in [
+        "t_end",
+        "duration",
+        "qdot_before_landing",
+        "qdot_after_landing",
+    ] {
+        assert_eq!(second[column], "", "{column}: nothing ended the episode");
+    }
+}
+
+/// On the paper's example every episode is one uplift and the landing or overturning after it,
+/// as events.csv has them; its peak is at least every sampled |q| in it; `--json` says the same
+/// as `--csv`.
+#[test]
+fn episodes_agree_with_the_event_log_and_the_history() {
+    let out = common::scratch_dir("cli-episodes-paper").join("out");
+    let model = reference_model();
+    let o = flexrock(&[
+        "run",
+        model.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success());
+    let rows = episode_rows(&out);
+    let mut events = csv::Reader::from_path(out.join("events.csv")).unwrap();
+    let events: Vec<Vec<String>> = events
+        .records()
+        .map(|r| r.unwrap().iter().map(str::to_string).collect())
+        .collect();
+    let uplifts: Vec<&Vec<String>> = events.iter().filter(|e| e[2] == "uplift").collect();
+    assert!(uplifts.len() >= 3);
+    assert_eq!(rows.len(), uplifts.len());
+    let mut history = csv::Reader::from_path(out.join("history.csv")).unwrap();
+    let headers = history.headers().unwrap().clone();
+    let (t_col, q_col) = (
+        headers.iter().position(|h| h == "t").unwrap(),
+        headers.iter().position(|h| h == "q").unwrap(),
+    );
+    let samples: Vec<(f64, f64)> = history
+        .records()
+        .map(|r| {
+            let r = r.unwrap();
+            (r[t_col].parse().unwrap(), r[q_col].parse().unwrap())
+        })
+        .collect();
+    for (row, uplift) in rows.iter().zip(&uplifts) {
+        assert_eq!(row["t_start"], uplift[1]);
+        let side = if uplift[4] == "rock-left" {
+            "left"
+        } else {
+            "right"
+        };
+        assert_eq!(row["side"], side);
+        let next = events
+            .iter()
+            .find(|e| e[1].parse::<f64>().unwrap() > field(row, "t_start") && e[2] != "uplift");
+        match next {
+            Some(end) => {
+                assert_eq!(row["t_end"], end[1]);
+                assert_eq!(row["ended_by"], end[2]);
+                let duration = field(row, "t_end") - field(row, "t_start");
+                assert!((field(row, "duration") - duration).abs() <= 1e-12);
+            }
+            None => assert_eq!(row["ended_by"], "run-end"),
+        }
+        let end = row["t_end"].parse().unwrap_or(f64::INFINITY);
+        let sampled = samples
+            .iter()
+            .filter(|(t, _)| *t >= field(row, "t_start") && *t <= end)
+            .map(|(_, q)| q.abs())
+            .fold(0.0, f64::max);
+        assert!(field(row, "peak_abs_q") >= sampled, "{row:?}: {sampled}");
+        assert!(
+            field(row, "peak_abs_q") <= sampled + 0.01,
+            "{row:?}: {sampled}"
+        );
+    }
+    let csv_out = flexrock(&["events", out.to_str().unwrap(), "--csv"]);
+    assert_eq!(
+        csv_out.stdout,
+        std::fs::read(out.join("episodes.csv")).unwrap()
+    );
+    let json_out = flexrock(&["events", out.to_str().unwrap(), "--json"]);
+    let json: serde_json::Value = serde_json::from_slice(&json_out.stdout).unwrap();
+    let json = json.as_array().unwrap();
+    assert_eq!(json.len(), rows.len());
+    for (object, row) in json.iter().zip(&rows) {
+        for (column, text) in row {
+            match &object[column] {
+                serde_json::Value::Null => assert_eq!(text, "", "{column}"),
+                serde_json::Value::String(s) => assert_eq!(s, text, "{column}"),
+                value => assert_eq!(value.as_f64().unwrap(), text.parse::<f64>().unwrap()),
+            }
+        }
+    }
+    // Both at once, or a directory without episodes.csv, is refused.
+    let both = flexrock(&["events", out.to_str().unwrap(), "--csv", "--json"]);
+    assert_eq!(both.status.code(), Some(2));
+    std::fs::remove_file(out.join("episodes.csv")).unwrap();
+    let missing = flexrock(&["events", out.to_str().unwrap(), "--csv"]);
+    assert_eq!(missing.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&missing.stderr).contains("episodes.csv"));
 }

@@ -268,7 +268,7 @@ fn a_run_that_cannot_replace_one_file_leaves_the_others_as_they_were() {
         ])
     };
     assert!(run("2.0").status.success());
-    let before: Vec<(String, Vec<u8>)> = ["history.csv", "events.csv"]
+    let before: Vec<(String, Vec<u8>)> = ["history.csv", "events.csv", "episodes.csv"]
         .iter()
         .map(|n| (n.to_string(), std::fs::read(out.join(n)).unwrap()))
         .collect();
@@ -291,7 +291,7 @@ fn a_run_that_cannot_replace_one_file_leaves_the_others_as_they_were() {
     // No temporary left behind.
     assert_eq!(
         common::file_names(&out),
-        ["events.csv", "history.csv", "summary.json"]
+        ["episodes.csv", "events.csv", "history.csv", "summary.json"]
     );
 }
 
@@ -341,10 +341,10 @@ fn temporaries_of_a_killed_run_are_removed_by_the_next_one() {
     assert!(live.exists(), "a running process's temporary was removed");
     assert!(unrelated.exists());
     let names = common::file_names(&out);
-    for name in ["history.csv", "events.csv", "summary.json"] {
+    for name in ["history.csv", "events.csv", "episodes.csv", "summary.json"] {
         assert!(names.contains(&name.to_string()), "{names:?}");
     }
-    assert_eq!(names.len(), 5, "{names:?}");
+    assert_eq!(names.len(), 6, "{names:?}");
 }
 
 // --- 5. exit codes: bad values are refused before anything is computed -----------------------

@@ -58,6 +58,42 @@ pub struct Event {
     pub qdot_after: f64,
 }
 
+/// One rocking episode: from an uplift to the landing or overturning that ends it, or to the end
+/// of the run (a row of episodes.csv).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Episode {
+    /// Position of the episode in the run, from 0.
+    pub index: usize,
+    /// The rocking mode: which toe the body turns on.
+    pub mode: Mode,
+    /// Time of the uplift (or the start of a run that starts rocking), s.
+    pub t_start: f64,
+    /// Time of the landing or overturning that ended it; None when the run ended first, s.
+    pub t_end: Option<f64>,
+    /// What ended it: a landing or an overturning; None when the run ended first.
+    pub ended_by: Option<EventKind>,
+    /// Floor acceleration at the uplift, m/s^2; None for a run that starts rocking.
+    pub floor_acc_at_uplift: Option<f64>,
+    /// Largest |q| during the episode, m, located as the run's peaks are.
+    pub peak_abs_q: f64,
+    /// When |q| was largest, s.
+    pub t_peak: f64,
+    /// Largest |r| (the rocking part of q) during the episode, m.
+    pub peak_abs_r: f64,
+    /// q' just before and just after the uplift's reset, m/s; None for a run that starts
+    /// rocking.
+    pub qdot_uplift: Option<(f64, f64)>,
+    /// q' just before and just after the landing's reset, m/s; None without a landing.
+    pub qdot_landing: Option<(f64, f64)>,
+}
+
+impl Episode {
+    /// How long it lasted, s; None when the run ended first.
+    pub fn duration(&self) -> Option<f64> {
+        self.t_end.map(|end| end - self.t_start)
+    }
+}
+
 /// A peak of q and when it happened.
 #[derive(Debug, Clone, Copy, Serialize)]
 pub struct Extremum {
@@ -95,6 +131,8 @@ pub struct Solution {
     pub samples: Vec<Sample>,
     /// Every mode change, in order.
     pub events: Vec<Event>,
+    /// Every rocking episode, in order.
+    pub episodes: Vec<Episode>,
     /// Largest q and when, m.
     pub max_q: Extremum,
     /// Smallest q and when, m.
@@ -154,6 +192,7 @@ pub struct Recorder<'a> {
     automaton: &'a Automaton,
     samples: Vec<Sample>,
     events: Vec<Event>,
+    episodes: Vec<Episode>,
     max_q: Extremum,
     min_q: Extremum,
     max_abs_s: f64,
@@ -178,10 +217,28 @@ impl<'a> Recorder<'a> {
         mode: Mode,
         history: History,
     ) -> Self {
+        // A run that starts rocking starts in an episode.
+        let episodes = match mode {
+            Mode::RockLeft | Mode::RockRight => vec![Episode {
+                index: 0,
+                mode,
+                t_start: t0,
+                t_end: None,
+                ended_by: None,
+                floor_acc_at_uplift: None,
+                peak_abs_q: q0.abs(),
+                t_peak: t0,
+                peak_abs_r: automaton.rocking_part(mode, q0).abs(),
+                qdot_uplift: None,
+                qdot_landing: None,
+            }],
+            _ => Vec::new(),
+        };
         Recorder {
             automaton,
             samples: Vec::new(),
             events: Vec::new(),
+            episodes,
             max_q: Extremum { value: q0, t: t0 },
             min_q: Extremum { value: q0, t: t0 },
             max_abs_s: automaton.flexural_part(mode, q0).abs(),
@@ -250,6 +307,22 @@ impl<'a> Recorder<'a> {
         let a = self.automaton;
         self.max_abs_s = self.max_abs_s.max(a.flexural_part(self.mode, q).abs());
         self.max_abs_r = self.max_abs_r.max(a.rocking_part(self.mode, q).abs());
+        let abs_r = a.rocking_part(self.mode, q).abs();
+        if let Some(episode) = self.open_episode() {
+            if q.abs() > episode.peak_abs_q {
+                episode.peak_abs_q = q.abs();
+                episode.t_peak = t;
+            }
+            episode.peak_abs_r = episode.peak_abs_r.max(abs_r);
+        }
+    }
+
+    /// The episode under way: the last one, while the body rocks.
+    fn open_episode(&mut self) -> Option<&mut Episode> {
+        let rocking = matches!(self.mode, Mode::RockLeft | Mode::RockRight);
+        self.episodes
+            .last_mut()
+            .filter(|e| rocking && e.t_end.is_none())
     }
 
     /// Records a mode change and the states on both sides of it.
@@ -269,8 +342,31 @@ impl<'a> Recorder<'a> {
     ) {
         self.mode = from;
         self.sample(t, from, q, qdot_before, floor_acc, work_input, work_damping);
-        self.mode = to;
         let a = self.automaton;
+        if let Some(episode) = self.open_episode() {
+            // A landing or an overturning ends the episode.
+            episode.t_end = Some(t);
+            episode.ended_by = Some(kind);
+            if kind == EventKind::Landing {
+                episode.qdot_landing = Some((qdot_before, qdot_after));
+            }
+        }
+        self.mode = to;
+        if kind == EventKind::Uplift {
+            self.episodes.push(Episode {
+                index: self.episodes.len(),
+                mode: to,
+                t_start: t,
+                t_end: None,
+                ended_by: None,
+                floor_acc_at_uplift: Some(floor_acc),
+                peak_abs_q: q.abs(),
+                t_peak: t,
+                peak_abs_r: a.rocking_part(to, q).abs(),
+                qdot_uplift: Some((qdot_before, qdot_after)),
+                qdot_landing: None,
+            });
+        }
         self.event_jumps += a.event_energy_jump(from, to, q, qdot_before, qdot_after);
         self.events.push(Event {
             index: self.events.len(),
@@ -293,6 +389,7 @@ impl<'a> Recorder<'a> {
         Solution {
             samples: self.samples,
             events: self.events,
+            episodes: self.episodes,
             max_q: self.max_q,
             min_q: self.min_q,
             max_abs_s: self.max_abs_s,
