@@ -6,7 +6,7 @@
 #
 # What it reruns (validation/README.md, "What CI checks"):
 #   1. validation/regenerate.sh: results/, figures/*.svg, REPORT.md;
-#   2. validation/fem.sh: FEM.md and figures/fem/ (all of it: about a minute on 2 cores);
+#   2. validation/fem.sh: FEM.md and figures/fem/ (every case: a few seconds);
 #   3. validation/self-weight/compare.py: self-weight/results/ except timings.json (needs numpy
 #      and matplotlib, the versions of validation/requirements.txt: its SVGs are byte-compared);
 #   4. flexrock's side of validation/sweep/: the sweeps of sweep/flexrock/commands.txt, against
