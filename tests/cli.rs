@@ -5,7 +5,7 @@ mod common;
 use common::{flexrock, reference_model};
 
 #[test]
-fn run_writes_the_three_files_with_their_schemas() {
+fn run_writes_its_four_files_with_their_schemas() {
     let out = common::scratch_dir("cli-run").join("result");
     let o = flexrock(&[
         "run",
@@ -76,7 +76,8 @@ fn run_writes_the_three_files_with_their_schemas() {
         .unwrap()
         .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
         .collect();
-    assert_eq!(names.len(), 3, "{names:?}");
+    assert_eq!(names.len(), 4, "{names:?}");
+    assert!(names.contains(&"episodes.csv".to_string()), "{names:?}");
 }
 
 #[test]
