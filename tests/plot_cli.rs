@@ -115,7 +115,7 @@ fn plot_draws_the_three_figures_of_a_run() {
         assert!(stdout.contains(name), "{stdout}");
     }
     assert_figures(&run);
-    let mut expected = vec!["events.csv", "history.csv", "summary.json"];
+    let mut expected = vec!["episodes.csv", "events.csv", "history.csv", "summary.json"];
     expected.extend(FIGURES);
     expected.sort();
     assert_eq!(file_names(&run), expected, "no temporaries are left");
@@ -235,7 +235,7 @@ fn the_velocity_panel_marks_every_event_and_the_energy_books_close() {
 fn run_with_plot_writes_the_figures_that_plot_draws() {
     let dir = scratch_dir("plot-cli-run-plot");
     let run = run_reference(&dir, "run", &["--plot"]);
-    let mut expected = vec!["events.csv", "history.csv", "summary.json"];
+    let mut expected = vec!["episodes.csv", "events.csv", "history.csv", "summary.json"];
     expected.extend(FIGURES);
     expected.sort();
     assert_eq!(file_names(&run), expected);
