@@ -133,34 +133,63 @@ pub const EPISODE_COLUMNS: [&str; 15] = [
     "qdot_after_landing",
 ];
 
-/// episodes.csv: one row per rocking episode, columns [`EPISODE_COLUMNS`]. `height` (H, m)
-/// turns the peak rocking part into the body's rotation, r/H rad. A value that does not exist
-/// (no end within the run, no landing) is an empty field, as is every value derived from it.
+/// One field of a row of episodes.csv.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum EpisodeField {
+    /// A count (the index).
+    Count(usize),
+    /// A word (side, how it ended).
+    Word(&'static str),
+    /// A number; None where the value does not exist (an empty CSV field).
+    Number(Option<f64>),
+}
+
+impl EpisodeField {
+    /// The field as episodes.csv writes it.
+    pub fn text(self) -> String {
+        match self {
+            EpisodeField::Count(n) => n.to_string(),
+            EpisodeField::Word(w) => w.to_string(),
+            EpisodeField::Number(x) => x.map(number).unwrap_or_default(),
+        }
+    }
+}
+
+/// The fields of an episode, in the order of [`EPISODE_COLUMNS`]. `height` (H, m) turns the
+/// peak rocking part into the body's rotation, r/H rad. A value that does not exist (no end
+/// within the run, no landing, no uplift for a run that starts rocking) is None, as is every
+/// value derived from it.
+pub fn episode_fields(e: &Episode, height: f64) -> [EpisodeField; 15] {
+    use EpisodeField::{Count, Number, Word};
+    let side = match e.mode {
+        crate::automaton::Mode::RockLeft => "left",
+        _ => "right",
+    };
+    [
+        Count(e.index),
+        Word(side),
+        Number(Some(e.t_start)),
+        Number(e.t_end),
+        Number(e.duration()),
+        Word(e.ended_by.map_or("run-end", |k| k.name())),
+        Number(e.floor_acc_at_uplift),
+        Number(Some(e.peak_abs_q)),
+        Number(Some(e.t_peak)),
+        Number(Some(e.peak_abs_r)),
+        Number(Some(e.peak_abs_r / height)),
+        Number(e.qdot_uplift.map(|(before, _)| before)),
+        Number(e.qdot_uplift.map(|(_, after)| after)),
+        Number(e.qdot_landing.map(|(before, _)| before)),
+        Number(e.qdot_landing.map(|(_, after)| after)),
+    ]
+}
+
+/// episodes.csv: one row per rocking episode, columns [`EPISODE_COLUMNS`], fields
+/// [`episode_fields`].
 pub fn episodes_csv(episodes: &[Episode], height: f64) -> Vec<u8> {
-    let optional = |x: Option<f64>| x.map(number).unwrap_or_default();
     let mut table = Table::new(&EPISODE_COLUMNS);
     for e in episodes {
-        let side = match e.mode {
-            crate::automaton::Mode::RockLeft => "left",
-            _ => "right",
-        };
-        table.row([
-            e.index.to_string(),
-            side.to_string(),
-            number(e.t_start),
-            optional(e.t_end),
-            optional(e.duration()),
-            e.ended_by.map_or("run-end", |k| k.name()).to_string(),
-            optional(e.floor_acc_at_uplift),
-            number(e.peak_abs_q),
-            number(e.t_peak),
-            number(e.peak_abs_r),
-            number(e.peak_abs_r / height),
-            optional(e.qdot_uplift.map(|(before, _)| before)),
-            optional(e.qdot_uplift.map(|(_, after)| after)),
-            optional(e.qdot_landing.map(|(before, _)| before)),
-            optional(e.qdot_landing.map(|(_, after)| after)),
-        ]);
+        table.row(episode_fields(e, height).map(EpisodeField::text));
     }
     table.into_bytes()
 }

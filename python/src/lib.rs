@@ -178,6 +178,9 @@ struct SimResult {
     work_damping: Py<PyAny>,
     #[pyo3(get)]
     events: Py<PyAny>,
+    /// The rocking episodes: dicts with episodes.csv's columns (None where the CSV is empty).
+    #[pyo3(get)]
+    episodes: Py<PyAny>,
     #[pyo3(get)]
     summary: Py<PyAny>,
 }
@@ -280,6 +283,19 @@ fn simulate(
         d.set_item("qdot_after", e.qdot_after)?;
         events.append(d)?;
     }
+    let episodes = PyList::empty(py);
+    for e in &solution.episodes {
+        use flexrock::output::{episode_fields, EpisodeField, EPISODE_COLUMNS};
+        let d = PyDict::new(py);
+        for (column, field) in EPISODE_COLUMNS.iter().zip(episode_fields(e, m.body.height)) {
+            match field {
+                EpisodeField::Count(n) => d.set_item(column, n)?,
+                EpisodeField::Word(w) => d.set_item(column, w)?,
+                EpisodeField::Number(x) => d.set_item(column, x)?,
+            }
+        }
+        episodes.append(d)?;
+    }
     let summary = json(py, &flexrock::run::summary(m, &solution))?.unbind();
     Ok(SimResult {
         t: column(|s| s.t),
@@ -294,6 +310,7 @@ fn simulate(
         work_input: column(|s| s.work_input),
         work_damping: column(|s| s.work_damping),
         events: events.into_any().unbind(),
+        episodes: episodes.into_any().unbind(),
         summary,
     })
 }

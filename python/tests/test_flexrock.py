@@ -58,6 +58,17 @@ def same_as_cli(result, out):
             assert (str(value) if isinstance(value, (str, int)) else value) == (
                 text if isinstance(value, (str, int)) else float(text)
             ), key
+    episodes = read_csv(out / "episodes.csv")
+    assert len(episodes) == len(result.episodes)
+    for mine, theirs in zip(result.episodes, episodes):
+        for key, text in theirs.items():
+            value = mine[key]
+            if value is None:
+                assert text == "", key
+            elif isinstance(value, (str, int)):
+                assert str(value) == text, key
+            else:
+                assert value == float(text), key
     summary = json.loads((out / "summary.json").read_text())
     for key in ["max_q", "t_max_q", "min_q", "t_min_q", "n_uplift", "n_landing", "overturned",
                 "t_overturn", "max_energy_residual", "final_time", "final_mode", "T", "s_n",
