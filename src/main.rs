@@ -522,11 +522,9 @@ fn execute(command: Command) -> flexrock::Result<Output> {
                 dt,
                 variant,
             };
-            compare(
-                &model,
-                &options,
-                out.unwrap_or_else(|| default_out_dir(&path, "-compare")),
-            )
+            let out = out.unwrap_or_else(|| default_out_dir(&path, "-compare"));
+            flexrock::output::check_creatable(&out)?;
+            compare(&model, &options, out)
         }
         Command::Converge {
             model: path,
@@ -543,11 +541,9 @@ fn execute(command: Command) -> flexrock::Result<Output> {
                 rtols: rtol,
                 reference_rtol,
             };
-            converge(
-                &model,
-                &options,
-                out.unwrap_or_else(|| default_out_dir(&path, "-converge")),
-            )
+            let out = out.unwrap_or_else(|| default_out_dir(&path, "-converge"));
+            flexrock::output::check_creatable(&out)?;
+            converge(&model, &options, out)
         }
         Command::Report {
             compare_compensate,
@@ -585,18 +581,13 @@ fn execute(command: Command) -> flexrock::Result<Output> {
             if modes {
                 fem_modes(&model, &setup)
             } else if pushover {
-                fem_pushover(
-                    &model,
-                    &setup,
-                    out.unwrap_or_else(|| default_out_dir(&path, "-pushover")),
-                )
+                let out = out.unwrap_or_else(|| default_out_dir(&path, "-pushover"));
+                flexrock::output::check_creatable(&out)?;
+                fem_pushover(&model, &setup, out)
             } else {
-                fem(
-                    &model,
-                    &setup,
-                    out.unwrap_or_else(|| default_out_dir(&path, "-fem")),
-                    compare,
-                )
+                let out = out.unwrap_or_else(|| default_out_dir(&path, "-fem"));
+                flexrock::output::check_creatable(&out)?;
+                fem(&model, &setup, out, compare)
             }
         }
     }
@@ -624,6 +615,7 @@ fn run(
 ) -> flexrock::Result<Output> {
     let model = Model::load(path, overrides)?;
     let out = out.unwrap_or_else(|| default_out_dir(path, ""));
+    flexrock::output::check_creatable(&out)?;
     let report = flexrock::run::run_to_dir_with(&model, &out, plot)?;
     Ok(Output {
         stdout: flexrock::run::run_report_text(&model, &report).into_bytes(),
