@@ -247,7 +247,7 @@ pub fn configurations(
     // Errors are measured against the reference: one no tighter than a case measures the
     // reference's own error, and the orders printed would mean nothing.
     let tightest = options.rtols.iter().copied().fold(f64::INFINITY, f64::min);
-    if !(options.reference_rtol < tightest) {
+    if options.reference_rtol.partial_cmp(&tightest) != Some(std::cmp::Ordering::Less) {
         return Err(crate::Error::invalid(
             "--reference-rtol",
             options.reference_rtol,
