@@ -421,5 +421,8 @@ fn the_energy_warning_ignores_rounding_of_tiny_energies() {
     let model = Model::load(&common::reference_model(), &overrides).unwrap();
     let sol = flexrock::run::simulate(&model).unwrap();
     let warnings = flexrock::run::warnings(&model, &sol);
-    assert!(warnings.iter().any(|w| w.contains("energy residual")), "{warnings:?}");
+    assert!(
+        warnings.iter().any(|w| w.contains("energy residual")),
+        "{warnings:?}"
+    );
 }

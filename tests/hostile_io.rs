@@ -742,7 +742,16 @@ fn an_output_inside_a_regular_file_is_refused_before_computing() {
     for args in [
         vec!["run", model, "--duration", "0.5"],
         vec!["compare", model, "--duration", "0.5"],
-        vec!["converge", model, "--duration", "0.5", "--dt", "0.02", "--rtol", "1e-4"],
+        vec![
+            "converge",
+            model,
+            "--duration",
+            "0.5",
+            "--dt",
+            "0.02",
+            "--rtol",
+            "1e-4",
+        ],
         vec!["fem", model, "--dt", "0.05"],
     ] {
         let mut args = args.clone();

@@ -1368,7 +1368,12 @@ mod tests {
         let record = parse_at2(only, "only.AT2").expect("touching F15 fields parse");
         assert_eq!(
             record.values,
-            [-0.000123456789, 0.000987654321, -0.000123456789, 0.000987654321]
+            [
+                -0.000123456789,
+                0.000987654321,
+                -0.000123456789,
+                0.000987654321
+            ]
         );
     }
 
@@ -1380,9 +1385,8 @@ mod tests {
             "one.AT2: the record has 1 sample; a record needs at least 2 samples (one interval \
              of dt) to define the floor acceleration between them"
         );
-        assert!(error_message(parse_csv("0.1\n", "one.csv", Some(0.01))).starts_with(
-            "one.csv: the record has 1 sample; a record needs at least 2 samples"
-        ));
+        assert!(error_message(parse_csv("0.1\n", "one.csv", Some(0.01)))
+            .starts_with("one.csv: the record has 1 sample; a record needs at least 2 samples"));
     }
 
     // --- CSV ----------------------------------------------------------------------------------

@@ -317,12 +317,10 @@ impl<'a> Recorder<'a> {
             energy_scale: self.energy_scale,
             energy_rounding: ENERGY_ROUNDING_ULPS
                 * f64::EPSILON
-                * self
-                    .energy_scale
-                    .max(self.automaton.potential_energy(
-                        Mode::RockRight,
-                        self.automaton.topple_displacement(),
-                    )),
+                * self.energy_scale.max(
+                    self.automaton
+                        .potential_energy(Mode::RockRight, self.automaton.topple_displacement()),
+                ),
             stats,
         }
     }
