@@ -283,6 +283,20 @@ pub fn configurations(
             ));
         }
     }
+    // Every value is valid on its own; errors are measured against the reference: one no tighter than a case measures the
+    // reference's own error, and the orders printed would mean nothing.
+    let tightest = options.rtols.iter().copied().fold(f64::INFINITY, f64::min);
+    if options.reference_rtol.partial_cmp(&tightest) != Some(std::cmp::Ordering::Less) {
+        return Err(crate::Error::invalid(
+            "--reference-rtol",
+            options.reference_rtol,
+            &format!(
+                "the reference must be tighter than every case: give a --reference-rtol below \
+                 the smallest --rtol ({}), e.g. 1e-12",
+                crate::output::shortest(tightest)
+            ),
+        ));
+    }
     Ok((reference_settings, configurations))
 }
 

@@ -560,11 +560,9 @@ fn execute(command: Command) -> flexrock::Result<Output> {
                 variant,
                 wall_times: timings.wall_times(),
             };
-            compare(
-                &model,
-                &options,
-                out.unwrap_or_else(|| default_out_dir(&path, "-compare")),
-            )
+            let out = out.unwrap_or_else(|| default_out_dir(&path, "-compare"));
+            flexrock::output::check_creatable(&out)?;
+            compare(&model, &options, out)
         }
         Command::Converge {
             model: path,
@@ -583,11 +581,9 @@ fn execute(command: Command) -> flexrock::Result<Output> {
                 reference_rtol,
                 wall_times: timings.wall_times(),
             };
-            converge(
-                &model,
-                &options,
-                out.unwrap_or_else(|| default_out_dir(&path, "-converge")),
-            )
+            let out = out.unwrap_or_else(|| default_out_dir(&path, "-converge"));
+            flexrock::output::check_creatable(&out)?;
+            converge(&model, &options, out)
         }
         Command::Report {
             compare_compensate,
@@ -626,20 +622,13 @@ fn execute(command: Command) -> flexrock::Result<Output> {
             if modes {
                 fem_modes(&model, &setup)
             } else if pushover {
-                fem_pushover(
-                    &model,
-                    &setup,
-                    out.unwrap_or_else(|| default_out_dir(&path, "-pushover")),
-                    timings.wall_times(),
-                )
+                let out = out.unwrap_or_else(|| default_out_dir(&path, "-pushover"));
+                flexrock::output::check_creatable(&out)?;
+                fem_pushover(&model, &setup, out, timings.wall_times())
             } else {
-                fem(
-                    &model,
-                    &setup,
-                    out.unwrap_or_else(|| default_out_dir(&path, "-fem")),
-                    compare,
-                    timings.wall_times(),
-                )
+                let out = out.unwrap_or_else(|| default_out_dir(&path, "-fem"));
+                flexrock::output::check_creatable(&out)?;
+                fem(&model, &setup, out, compare, timings.wall_times())
             }
         }
     }
@@ -668,6 +657,7 @@ fn run(
 ) -> flexrock::Result<Output> {
     let model = Model::load(path, overrides)?;
     let out = out.unwrap_or_else(|| default_out_dir(path, ""));
+    flexrock::output::check_creatable(&out)?;
     let report = flexrock::run::run_to_dir_with(&model, &out, plot, wall_times)?;
     Ok(Output {
         stdout: flexrock::run::run_report_text(&model, &report).into_bytes(),

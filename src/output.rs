@@ -580,6 +580,35 @@ pub fn write_file_atomically(path: &Path, bytes: &[u8]) -> Result<()> {
     write_atomically(dir, &[(name, bytes.to_vec())]).map(|_| ())
 }
 
+/// Refuses an output directory that cannot be made because a part of its path is a file (or
+/// anything but a directory): `--out afile/sub`. Every command checks its --out with it before it computes anything.
+pub fn check_creatable(dir: &Path) -> Result<()> {
+    for ancestor in dir.ancestors() {
+        if ancestor.as_os_str().is_empty() {
+            break;
+        }
+        match std::fs::metadata(ancestor) {
+            Ok(m) if m.is_dir() => return Ok(()),
+            Ok(m) => {
+                return Err(Error::OutputTarget {
+                    path: ancestor.to_path_buf(),
+                    found: format!("is {}", file_kind(m.file_type())),
+                    rule: if ancestor == dir {
+                        "the output directory must be a directory (or not exist yet)".to_string()
+                    } else {
+                        format!(
+                            "the output directory {} lies inside it, so it cannot be made",
+                            dir.display()
+                        )
+                    },
+                })
+            }
+            Err(_) => continue,
+        }
+    }
+    Ok(())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

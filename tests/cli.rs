@@ -363,7 +363,7 @@ fn floor_motions_beyond_physics_are_refused() {
         &stderr,
         &[
             "excitation.amplitude",
-            "beyond the limit of 196.1 m/s^2 (20 g)",
+            "beyond the limit of 196.133 m/s^2 (20 g)",
         ],
     );
     refused("just-beyond", &harmonic("-196.2", "1.0"));

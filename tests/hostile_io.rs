@@ -727,3 +727,39 @@ fn numbers_and_counts_read_as_people_write_them() {
     assert!(!uplifts.contains('.'), "{uplifts}");
     assert!(stdout.contains("uplift episodes;"), "{stdout}");
 }
+
+#[test]
+fn an_output_inside_a_regular_file_is_refused_before_computing() {
+    // `--out afile/sub` cannot be made: every command that writes a directory refuses it with
+    // exit 2, naming the file, before it computes anything (not with exit 1 after the run).
+    let dir = scratch_dir("out-inside-a-file");
+    let afile = dir.join("afile");
+    std::fs::write(&afile, "not a directory").unwrap();
+    let out = afile.join("sub");
+    let out = out.to_str().unwrap();
+    let model = reference_model();
+    let model = model.to_str().unwrap();
+    for args in [
+        vec!["run", model, "--duration", "0.5"],
+        vec!["compare", model, "--duration", "0.5"],
+        vec![
+            "converge",
+            model,
+            "--duration",
+            "0.5",
+            "--dt",
+            "0.02",
+            "--rtol",
+            "1e-4",
+        ],
+        vec!["fem", model, "--dt", "0.05"],
+    ] {
+        let mut args = args.clone();
+        args.extend(["--out", out]);
+        let o = flexrock(&args);
+        let err = stderr_of(&o);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
+        assert_mentions(&err, &[afile.to_str().unwrap(), "is a regular file"]);
+        assert!(!err.contains("wrote"), "{args:?}: {err}");
+    }
+}

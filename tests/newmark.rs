@@ -374,3 +374,30 @@ fn substep_runs_every_amplitude_around_grazing_uplift() {
         "the range must straddle grazing ({lifted} lifted)"
     );
 }
+
+#[test]
+fn converge_refuses_a_reference_no_tighter_than_its_cases() {
+    // Against a reference at 1e-3, cases at 1e-4 and 1e-8 would show the reference's error.
+    let dir = common::scratch_dir("converge-loose-reference");
+    let model = reference_model();
+    let out = dir.join("out");
+    let o = flexrock(&[
+        "converge",
+        model.to_str().unwrap(),
+        "--reference-rtol",
+        "1e-3",
+        "--rtol",
+        "1e-4,1e-8",
+        "--dt",
+        "0.02",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("--reference-rtol = 0.001") && err.contains("smallest --rtol (1e-8)"),
+        "{err}"
+    );
+    assert!(!out.exists());
+}

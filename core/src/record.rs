@@ -12,8 +12,10 @@
 //!   or the older layout `<count> <seconds> NPTS, DT`, e.g. `3930 0.00500 NPTS, DT`;
 //! - lines 5 onwards: the values, any number per line, separated by whitespace (typically the
 //!   Fortran layouts 8F10.5 or 5E15.7). A line whose whitespace-separated tokens are not all
-//!   numbers is read again as fixed-width fields of 10, then 15 characters, so that fields that
-//!   touch (`-100.12345-100.12345`) are still read.
+//!   numbers is read again as fixed-width fields of 10 or 15 characters, so that fields that
+//!   touch (`-100.12345-100.12345`) are still read. Where both widths read such a line, the
+//!   file's layout decides: the width the other lines are laid out in (their length per value),
+//!   else the one that gives NPTS values.
 //!
 //! The number of values must equal NPTS; NaN and infinite values are errors; dt must be at
 //! least [`MIN_DT`].
@@ -273,6 +275,19 @@ pub enum RecordError {
         expected: &'static str,
         /// The line as found.
         found: String,
+    },
+
+    /// The record has fewer than [`MIN_SAMPLES`] values.
+    #[error(
+        "{file}: the record has {}; a record needs at least 2 samples (one interval of dt) to \
+         define the floor acceleration between them",
+        crate::format::count(*.found, "sample", "samples")
+    )]
+    TooFewSamples {
+        /// The record file.
+        file: String,
+        /// The number of values found.
+        found: usize,
     },
 
     /// The NPTS of an AT2 header is 0.
@@ -572,16 +587,32 @@ fn parse_fixed_width(line: &str, width: usize) -> Option<Vec<f64>> {
         .collect()
 }
 
-/// Appends the values on one AT2 data line to `values`.
-fn parse_at2_values_line(
-    line: &str,
-    at: impl Fn() -> Location,
-    values: &mut Vec<f64>,
-) -> Result<(), RecordError> {
-    let mut line_values = Vec::new();
+/// Fortran field widths of AT2 layouts: 8F10.5 and 5E15.7.
+const AT2_FIELD_WIDTHS: [usize; 2] = [10, 15];
+
+/// One AT2 data line, read.
+enum At2Line {
+    /// Whitespace-separated numbers; the field width the line is laid out in, if its length is
+    /// a whole number of fields of 10 or 15 characters (`   .1181069E-02  -.1366453E-02`: 15).
+    Tokens {
+        values: Vec<f64>,
+        width: Option<usize>,
+    },
+    /// Fields that touch (`-100.12345-100.12345`), read as fixed-width fields of 10 and of 15
+    /// characters (None where that width does not read).
+    Touching {
+        ten: Option<Vec<f64>>,
+        fifteen: Option<Vec<f64>>,
+    },
+}
+
+/// Reads one AT2 data line; an error names the first token that is not a finite number when the
+/// line reads neither as whitespace-separated numbers nor as fixed-width fields.
+fn parse_at2_values_line(line: &str, at: impl Fn() -> Location) -> Result<At2Line, RecordError> {
+    let mut values = Vec::new();
     for token in line.split_whitespace() {
         match parse_number(token) {
-            Ok(value) => line_values.push(value),
+            Ok(value) => values.push(value),
             Err(NumberError::NotFinite) => {
                 return Err(RecordError::NotFinite {
                     at: at(),
@@ -591,22 +622,70 @@ fn parse_at2_values_line(
             Err(NumberError::NotANumber) => {
                 // Fortran fields may touch each other ("-100.12345-100.12345"): read the line
                 // again as fixed-width fields before giving up.
-                let fixed = parse_fixed_width(line, 10).or_else(|| parse_fixed_width(line, 15));
-                return match fixed {
-                    Some(fixed_values) => {
-                        values.extend(fixed_values);
-                        Ok(())
-                    }
-                    None => Err(RecordError::NotANumber {
+                let ten = parse_fixed_width(line, AT2_FIELD_WIDTHS[0]);
+                let fifteen = parse_fixed_width(line, AT2_FIELD_WIDTHS[1]);
+                if ten.is_none() && fifteen.is_none() {
+                    return Err(RecordError::NotANumber {
                         at: at(),
                         token: quote(token),
-                    }),
-                };
+                    });
+                }
+                return Ok(At2Line::Touching { ten, fifteen });
             }
         }
     }
-    values.extend(line_values);
-    Ok(())
+    let length = line.trim_end().chars().count();
+    let width = AT2_FIELD_WIDTHS
+        .into_iter()
+        .find(|&w| !values.is_empty() && length == w * values.len());
+    Ok(At2Line::Tokens { values, width })
+}
+
+/// The values of an AT2 file's data lines. A line of touching fields may read both as 10- and
+/// as 15-character fields (`-0.0001234567890.0009876543210` is two F15 fields, or three
+/// nonsense F10 ones); its width is the file's: the one that the other lines are laid out in
+/// (by their length per value, or by reading at one width only), else the one that gives the
+/// header's NPTS values, else 10.
+fn at2_values(lines: Vec<At2Line>, declared_count: usize) -> Vec<f64> {
+    let mut votes = [0usize; 2];
+    for line in &lines {
+        let width = match line {
+            At2Line::Tokens { width, .. } => *width,
+            At2Line::Touching { ten, fifteen } => match (ten, fifteen) {
+                (Some(_), None) => Some(AT2_FIELD_WIDTHS[0]),
+                (None, Some(_)) => Some(AT2_FIELD_WIDTHS[1]),
+                _ => None,
+            },
+        };
+        if let Some(w) = width {
+            votes[usize::from(w == AT2_FIELD_WIDTHS[1])] += 1;
+        }
+    }
+    let values_at = |fifteen_wide: bool| -> Vec<f64> {
+        lines
+            .iter()
+            .flat_map(|line| match line {
+                At2Line::Tokens { values, .. } => values.clone(),
+                At2Line::Touching { ten, fifteen } => {
+                    let (preferred, other) = if fifteen_wide {
+                        (fifteen, ten)
+                    } else {
+                        (ten, fifteen)
+                    };
+                    preferred
+                        .clone()
+                        .or_else(|| other.clone())
+                        .unwrap_or_default()
+                }
+            })
+            .collect()
+    };
+    let fifteen_wide = match votes {
+        [ten, fifteen] if fifteen > ten => true,
+        [ten, fifteen] if ten > fifteen => false,
+        _ => values_at(true).len() == declared_count && values_at(false).len() != declared_count,
+    };
+    values_at(fifteen_wide)
 }
 
 /// Reads a PEER AT2 record from its text. `source` names the file in messages.
@@ -647,10 +726,12 @@ pub fn parse_at2(text: &str, source: &str) -> Result<Record, RecordError> {
     }
     let dt = check_dt(dt, header_at())?;
 
-    let mut values = Vec::new();
-    for (line_number, line) in lines {
-        parse_at2_values_line(line, || Location::line(source, line_number), &mut values)?;
-    }
+    let data_lines = lines
+        .map(|(line_number, line)| {
+            parse_at2_values_line(line, || Location::line(source, line_number))
+        })
+        .collect::<Result<Vec<At2Line>, RecordError>>()?;
+    let values = at2_values(data_lines, declared_count);
 
     let file = source.to_string();
     if values.is_empty() {
@@ -674,12 +755,28 @@ pub fn parse_at2(text: &str, source: &str) -> Result<Record, RecordError> {
         });
     }
 
+    check_samples(&values, &file)?;
     Ok(Record {
         source: file,
         title,
         dt,
         values,
     })
+}
+
+/// Fewest values a record may have: a(t) is linear between samples, so one sample defines no
+/// motion (its duration would be 0).
+pub const MIN_SAMPLES: usize = 2;
+
+/// Refuses a record of fewer than [`MIN_SAMPLES`] values.
+fn check_samples(values: &[f64], file: &str) -> Result<(), RecordError> {
+    if values.len() < MIN_SAMPLES {
+        return Err(RecordError::TooFewSamples {
+            file: file.to_string(),
+            found: values.len(),
+        });
+    }
+    Ok(())
 }
 
 /// One CSV data row: its line number and its numbers.
@@ -783,10 +880,11 @@ pub fn parse_csv(text: &str, source: &str, dt: Option<f64>) -> Result<Record, Re
         check_dt(given, Location::file(source))?
     };
 
-    let values = rows
+    let values: Vec<f64> = rows
         .iter()
         .filter_map(|row| row.fields.last().copied())
         .collect();
+    check_samples(&values, source)?;
     Ok(Record {
         source: source.to_string(),
         title,
@@ -1242,6 +1340,55 @@ mod tests {
         );
     }
 
+    #[test]
+    fn touching_fifteen_character_fields_on_a_line_of_a_multiple_of_ten_are_read_at_15() {
+        // Two F15.12 fields that touch, 30 characters: read at 10 they would be three numbers
+        // ("-0.0001234", "5678900.00", "0987654321"); the file is laid out in 15-character
+        // fields (its other line has 45 characters for 3 values), and NPTS = 5 says so too.
+        let text = "PEER\nEVENT\nUNITS OF G\nNPTS=   5, DT= .01000 SEC\n\
+            \x20 0.000111111111 -0.000222222222 -0.000333333333\n\
+            -0.0001234567890.000987654321\n";
+        // (the second field is 15 characters: "0.000987654321" with a trailing "0")
+        let text = text.replace("0.000987654321\n", "0.0009876543210\n");
+        let record = parse_at2(&text, "f15.AT2").expect("touching F15 fields parse");
+        assert_eq!(
+            record.values,
+            [
+                0.000111111111,
+                -0.000222222222,
+                -0.000333333333,
+                -0.000123456789,
+                0.000987654321
+            ]
+        );
+        // A file of touching lines only: NPTS decides between 2 values a line and 3.
+        let only = "PEER\nEVENT\nUNITS OF G\nNPTS=   4, DT= .01000 SEC\n\
+            -0.0001234567890.0009876543210\n\
+            -0.0001234567890.0009876543210\n";
+        let record = parse_at2(only, "only.AT2").expect("touching F15 fields parse");
+        assert_eq!(
+            record.values,
+            [
+                -0.000123456789,
+                0.000987654321,
+                -0.000123456789,
+                0.000987654321
+            ]
+        );
+    }
+
+    #[test]
+    fn a_record_of_one_sample_is_refused_naming_the_file() {
+        let one = "PEER\nEVENT\nUNITS OF G\nNPTS=   1, DT= .01000 SEC\n   0.00128\n";
+        assert_eq!(
+            error_message(parse_at2(one, "one.AT2")),
+            "one.AT2: the record has 1 sample; a record needs at least 2 samples (one interval \
+             of dt) to define the floor acceleration between them"
+        );
+        assert!(error_message(parse_csv("0.1\n", "one.csv", Some(0.01)))
+            .starts_with("one.csv: the record has 1 sample; a record needs at least 2 samples"));
+    }
+
     // --- CSV ----------------------------------------------------------------------------------
 
     #[test]
@@ -1474,7 +1621,7 @@ mod tests {
         }
 
         #[test]
-        fn numeric_fields_round_trip(values in prop::collection::vec(-1e3f64..1e3, 1..40)) {
+        fn numeric_fields_round_trip(values in prop::collection::vec(-1e3f64..1e3, 2..40)) {
             let mut text = format!("a\nb\nc\nNPTS= {}, DT= .005 SEC\n", values.len());
             for (index, value) in values.iter().enumerate() {
                 text.push_str(&format!("{value:15.7E}"));

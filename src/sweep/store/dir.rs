@@ -23,7 +23,7 @@ pub(super) struct Lock {
 /// anything is computed) and takes its lock. A directory whose file system cannot lock is
 /// written without one, with a warning pushed on `warnings`.
 pub(super) fn lock(dir: &Path, warnings: &mut Vec<String>) -> Result<Lock> {
-    check_creatable(dir)?;
+    output::check_creatable(dir)?;
     std::fs::create_dir_all(dir).map_err(|e| Error::Write {
         path: dir.to_path_buf(),
         source: e,
@@ -50,35 +50,6 @@ pub(super) fn lock(dir: &Path, warnings: &mut Vec<String>) -> Result<Lock> {
             Ok(Lock { _file: None })
         }
     }
-}
-
-/// Refuses an output directory that cannot be made because a part of its path is a file (or
-/// anything but a directory): `--out afile/sub`. Checked before any point is computed.
-fn check_creatable(dir: &Path) -> Result<()> {
-    for ancestor in dir.ancestors() {
-        if ancestor.as_os_str().is_empty() {
-            break;
-        }
-        match std::fs::metadata(ancestor) {
-            Ok(m) if m.is_dir() => return Ok(()),
-            Ok(m) => {
-                return Err(Error::OutputTarget {
-                    path: ancestor.to_path_buf(),
-                    found: format!("is {}", output::file_kind(m.file_type())),
-                    rule: if ancestor == dir {
-                        "the output directory must be a directory (or not exist yet)".to_string()
-                    } else {
-                        format!(
-                            "the output directory {} lies inside it, so it cannot be made",
-                            dir.display()
-                        )
-                    },
-                })
-            }
-            Err(_) => continue,
-        }
-    }
-    Ok(())
 }
 
 /// What a chunks directory holds, once it is known to be flexrock's.
