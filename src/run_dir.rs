@@ -117,15 +117,7 @@ pub fn read_events(dir: &Path) -> Result<Vec<Event>> {
 /// [`EPISODE_COLUMNS`] and every row has as many fields.
 pub fn read_episodes_csv(dir: &Path) -> Result<Vec<u8>> {
     let path = dir.join(EPISODES_FILE);
-    let mut bytes = Vec::new();
-    let mut source = bounded(&path, MAX_EVENTS_BYTES)?;
-    source
-        .reader
-        .read_to_end(&mut bytes)
-        .map_err(|e| fail(&path, format!("cannot read: {e}")))?;
-    if bytes.len() as u64 > source.limit {
-        return Err(too_large(&path, source.limit));
-    }
+    let bytes = read_whole(&path, MAX_EVENTS_BYTES)?;
     episode_rows(&bytes, &path)?;
     Ok(bytes)
 }
@@ -195,16 +187,21 @@ fn episode_rows(bytes: &[u8], path: &Path) -> Result<Vec<Vec<String>>> {
 /// Reads the keys of summary.json that the figures need.
 pub fn read_summary(dir: &Path) -> Result<RunSummaryFile> {
     let path = dir.join(SUMMARY_FILE);
+    parse_summary(&read_whole(&path, MAX_SUMMARY_BYTES)?, &path)
+}
+
+/// The bytes of an input file of at most `limit` bytes (see [`bounded`]).
+fn read_whole(path: &Path, limit: u64) -> Result<Vec<u8>> {
     let mut bytes = Vec::new();
-    let mut source = bounded(&path, MAX_SUMMARY_BYTES)?;
+    let mut source = bounded(path, limit)?;
     source
         .reader
         .read_to_end(&mut bytes)
-        .map_err(|e| fail(&path, format!("cannot read: {e}")))?;
+        .map_err(|e| fail(path, format!("cannot read: {e}")))?;
     if bytes.len() as u64 > source.limit {
-        return Err(too_large(&path, source.limit));
+        return Err(too_large(path, source.limit));
     }
-    parse_summary(&bytes, &path)
+    Ok(bytes)
 }
 
 fn fail(path: &Path, message: String) -> Error {

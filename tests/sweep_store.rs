@@ -27,15 +27,23 @@ fn files_of(dir: &Path) -> Vec<(String, Vec<u8>)> {
     files
 }
 
-/// The 480-point map of the pulse model, one thread, chunks of 16 points: slow enough (a
-/// second or more) to be caught half-way.
-fn grid(out: &Path, extra: &[&str]) -> Command {
+/// `flexrock sweep models/pulse-map.toml --out OUT`, to be given its axes.
+fn pulse_sweep(out: &Path) -> Command {
     let mut command = Command::new(env!("CARGO_BIN_EXE_flexrock"));
     command.args([
         "sweep",
         repo("models/pulse-map.toml").to_str().unwrap(),
         "--out",
         out.to_str().unwrap(),
+    ]);
+    command
+}
+
+/// The 480-point map of the pulse model, one thread, chunks of 16 points: slow enough (a
+/// second or more) to be caught half-way.
+fn grid(out: &Path, extra: &[&str]) -> Command {
+    let mut command = pulse_sweep(out);
+    command.args([
         "--vary",
         "excitation.period=lin:0.3:1.5:24",
         "--vary",
@@ -329,12 +337,8 @@ fn the_spectrum_command_runs_twice_and_resumes_after_a_kill() {
     // The default --tol, (15 - 0.5)/1e4 = 0.0014500000000000001, did not read back bit for bit.
     let dir = scratch_dir("store-find-min");
     let spectrum = |out: &Path| {
-        let mut command = Command::new(env!("CARGO_BIN_EXE_flexrock"));
+        let mut command = pulse_sweep(out);
         command.args([
-            "sweep",
-            repo("models/pulse-map.toml").to_str().unwrap(),
-            "--out",
-            out.to_str().unwrap(),
             "--vary",
             "excitation.period=log:0.2:3:6",
             "--find-min",
@@ -661,16 +665,7 @@ fn infinite_and_overflowing_axis_values_are_refused_at_once() {
     {
         let out = dir.join(format!("out{i}"));
         let o = within(
-            Command::new(env!("CARGO_BIN_EXE_flexrock")).args([
-                "sweep",
-                repo("models/pulse-map.toml").to_str().unwrap(),
-                "--out",
-                out.to_str().unwrap(),
-                "--vary",
-                "excitation.period=1,2",
-                "--vary",
-                axis,
-            ]),
+            pulse_sweep(&out).args(["--vary", "excitation.period=1,2", "--vary", axis]),
             Duration::from_secs(60),
         );
         let key = axis.split('=').next().unwrap();
@@ -682,13 +677,7 @@ fn infinite_and_overflowing_axis_values_are_refused_at_once() {
 #[test]
 fn seven_huge_axes_are_refused_before_they_are_made() {
     let dir = scratch_dir("store-huge-axes");
-    let mut command = Command::new(env!("CARGO_BIN_EXE_flexrock"));
-    command.args([
-        "sweep",
-        repo("models/pulse-map.toml").to_str().unwrap(),
-        "--out",
-        dir.join("out").to_str().unwrap(),
-    ]);
+    let mut command = pulse_sweep(&dir.join("out"));
     for key in [
         "excitation.amplitude",
         "excitation.period",
@@ -731,11 +720,7 @@ fn rectangles(svg: &str) -> Vec<(f64, f64, f64, f64, String)> {
 fn a_map_over_unsorted_lists_draws_each_cell_once_in_order() {
     let dir = scratch_dir("store-unsorted-map");
     let out = dir.join("out");
-    ok(Command::new(env!("CARGO_BIN_EXE_flexrock")).args([
-        "sweep",
-        repo("models/pulse-map.toml").to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
+    ok(pulse_sweep(&out).args([
         "--vary",
         "excitation.period=1,0.5,2",
         "--vary",

@@ -538,6 +538,18 @@ pub struct FemReport {
     pub files: Vec<PathBuf>,
 }
 
+/// [`analyse`], with its wall time taken into timings.json when `wall_times` says so.
+fn analyse_timed(
+    model: &Model,
+    setup: &FemSetup,
+    wall_times: output::WallTimes,
+) -> Result<(FemAnalysis, output::Timings)> {
+    let mut analysis = analyse(model, setup)?;
+    let mut timings = output::Timings::new(wall_times);
+    timings.take("fem_summary.json/wall_time_s", &mut analysis.wall_time_s);
+    Ok((analysis, timings))
+}
+
 /// Runs the finite element analysis and writes its files into `out_dir` (all or none); with
 /// [`output::WallTimes::Apart`] its wall time goes to timings.json.
 pub fn fem(
@@ -546,9 +558,7 @@ pub fn fem(
     out_dir: &Path,
     wall_times: output::WallTimes,
 ) -> Result<FemReport> {
-    let mut analysis = analyse(model, setup)?;
-    let mut timings = output::Timings::new(wall_times);
-    timings.take("fem_summary.json/wall_time_s", &mut analysis.wall_time_s);
+    let (analysis, timings) = analyse_timed(model, setup, wall_times)?;
     let mut files = run_files(model, &analysis)?;
     files.extend(timings.file());
     let files = output::write_atomically(out_dir, &files)?;
@@ -798,9 +808,7 @@ pub fn compare(
     out_dir: &Path,
     wall_times: output::WallTimes,
 ) -> Result<FemReport> {
-    let mut analysis = analyse(model, setup)?;
-    let mut timings = output::Timings::new(wall_times);
-    timings.take("fem_summary.json/wall_time_s", &mut analysis.wall_time_s);
+    let (analysis, timings) = analyse_timed(model, setup, wall_times)?;
     let sdof = crate::run::simulate(model)?;
     let comparison = compare_solutions(model, &sdof, &analysis);
     let mut files = run_files(model, &analysis)?;
