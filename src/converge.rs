@@ -109,14 +109,40 @@ pub struct Case {
     pub status: String,
 }
 
+/// What a fitted slope is: an order where the error is fitted against the step, an efficiency
+/// slope where it is fitted against the work. The two are different quantities (an adaptive
+/// method's step is not set, so it has no order in this sense), and are named apart.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SlopeKind {
+    /// The slope of log(error) against log(dt): the observed order of a fixed-step method.
+    Order,
+    /// The slope of log(error) against log(right-hand-side evaluations): how fast the error
+    /// falls with the work of an adaptive method (-p for a method of order p on a smooth
+    /// problem, steeper where the step sequence adapts).
+    EfficiencySlope,
+}
+
+impl SlopeKind {
+    /// The name in printed tables.
+    pub fn name(self) -> &'static str {
+        match self {
+            SlopeKind::Order => "order",
+            SlopeKind::EfficiencySlope => "efficiency slope",
+        }
+    }
+}
+
 /// A least-squares slope of log(error) against log(dt) or log(work).
 #[derive(Debug, Clone, Serialize, Deserialize)]
-pub struct ObservedOrder {
+pub struct Slope {
     /// The solver, e.g. "newmark-compensate" or "bdf".
     pub method: String,
     /// "max_q_error", "max_event_time_error" or "peak_error".
     pub metric: String,
-    /// "dt" (slope = order) or "rhs_evaluations" (slope = -order per unit work).
+    /// An order (against dt) or an efficiency slope (against work).
+    pub kind: SlopeKind,
+    /// "dt" or "rhs_evaluations".
     pub against: String,
     /// The fitted slope.
     #[serde(deserialize_with = "crate::report::nan_if_null")]
@@ -143,8 +169,9 @@ pub struct ConvergeSummary {
     pub output_dt: f64,
     /// Every solver configuration measured.
     pub cases: Vec<Case>,
-    /// The observed orders of each method.
-    pub orders: Vec<ObservedOrder>,
+    /// The orders (Newmark, against dt) and efficiency slopes (adaptive methods, against work)
+    /// of each method.
+    pub slopes: Vec<Slope>,
 }
 
 /// Result of `flexrock converge`.
@@ -178,14 +205,14 @@ fn log_log_slope(points: &[(f64, f64)]) -> f64 {
     sxy / sxx
 }
 
-fn orders(cases: &[Case]) -> Vec<ObservedOrder> {
+fn slopes(cases: &[Case]) -> Vec<Slope> {
     let mut methods: Vec<&str> = Vec::new();
     for c in cases {
         if !methods.contains(&c.method.as_str()) {
             methods.push(&c.method);
         }
     }
-    let mut orders = Vec::new();
+    let mut fitted = Vec::new();
     for method in methods {
         for name in METRICS {
             let good: Vec<&Case> = cases
@@ -196,30 +223,33 @@ fn orders(cases: &[Case]) -> Vec<ObservedOrder> {
             if good.len() < 2 {
                 continue;
             }
-            let (against, points): (&str, Vec<(f64, f64)>) = match good[0].dt {
+            let (kind, against, points): (SlopeKind, &str, Vec<(f64, f64)>) = match good[0].dt {
                 Some(_) => (
+                    SlopeKind::Order,
                     "dt",
                     good.iter()
                         .map(|c| (c.dt.unwrap_or(f64::NAN), metric(c, name)))
                         .collect(),
                 ),
                 None => (
+                    SlopeKind::EfficiencySlope,
                     "rhs_evaluations",
                     good.iter()
                         .map(|c| (c.rhs_evaluations as f64, metric(c, name)))
                         .collect(),
                 ),
             };
-            orders.push(ObservedOrder {
+            fitted.push(Slope {
                 method: method.to_string(),
                 metric: name.to_string(),
+                kind,
                 against: against.to_string(),
                 slope: log_log_slope(&points),
                 points: points.len(),
             });
         }
     }
-    orders
+    fitted
 }
 
 /// One case to run: method label, dt, rtol, and its settings.
@@ -363,7 +393,7 @@ pub fn run_converge(
             status: "ok".to_string(),
         });
     }
-    let orders = orders(&cases);
+    let slopes = slopes(&cases);
     let summary = ConvergeSummary {
         provenance: crate::run::Provenance::of(model),
         reference_method: reference_settings.label(),
@@ -372,7 +402,7 @@ pub fn run_converge(
         reference_events: reference.events.len(),
         output_dt,
         cases,
-        orders,
+        slopes,
     };
     let (by_dt, by_work) = figures(&summary)?;
     let mut files = vec![
@@ -496,7 +526,7 @@ fn figures(summary: &ConvergeSummary) -> Result<(String, String)> {
     ))
 }
 
-/// The printed table and observed orders of `flexrock converge`.
+/// The printed table, orders and efficiency slopes of `flexrock converge`.
 pub fn converge_text(report: &ConvergeReport) -> String {
     let s = &report.summary;
     let mut t = String::new();
@@ -557,19 +587,19 @@ pub fn converge_text(report: &ConvergeReport) -> String {
     }
     let _ = writeln!(
         t,
-        "observed orders (least-squares slopes over cases with every event matched):"
+        "orders against dt (Newmark) and efficiency slopes against work (adaptive methods), least squares over the cases with every event matched:"
     );
-    for o in &s.orders {
-        let meaning = if o.against == "dt" {
-            format!("error ~ dt^{:.2}", o.slope)
-        } else {
-            format!("error ~ work^{:.2}", o.slope)
+    for o in &s.slopes {
+        let meaning = match o.kind {
+            SlopeKind::Order => format!("error ~ dt^{:.2}", o.slope),
+            SlopeKind::EfficiencySlope => format!("error ~ work^{:.2}", o.slope),
         };
         let _ = writeln!(
             t,
-            "  {:<19} {:<21} {meaning:<20} ({})",
+            "  {:<19} {:<21} {:<17} {meaning:<20} ({})",
             o.method,
             o.metric,
+            o.kind.name(),
             count(o.points, "point", "points")
         );
     }

@@ -4,7 +4,7 @@
 //! number is read from those files.
 //!
 //! The files are read into typed structs (`CompareFile`, `ConvergeFile` with the [`Case`]s
-//! and [`ObservedOrder`]s that `converge` writes, `RigidRunFile`, CSV rows by column name): a
+//! and [`Slope`]s that `converge` writes, `RigidRunFile`, CSV rows by column name): a
 //! missing key or column is an [`Error::ReadResult`] naming the file and the key, not a "?" or
 //! NaN in the report. Where the written summary borrows the model and the solution (compare.json,
 //! summary.json), or the committed files predate some of its newer keys, the reader is an owned
@@ -16,7 +16,7 @@ use std::path::{Path, PathBuf};
 use serde::de::DeserializeOwned;
 use serde::{Deserialize, Deserializer};
 
-use crate::converge::{Case, ObservedOrder};
+use crate::converge::{Case, Slope};
 use crate::error::{Error, Result};
 use crate::output;
 use crate::run::VERSION;
@@ -178,7 +178,7 @@ pub(crate) struct ConvergeFile {
     pub reference_events: usize,
     pub output_dt: f64,
     pub cases: Vec<Case>,
-    pub orders: Vec<ObservedOrder>,
+    pub slopes: Vec<Slope>,
 }
 
 /// inputs.body of summary.json: the model file's `[body]`.
@@ -518,7 +518,7 @@ fn write_matched_events(t: &mut String, pairs: &[CompareRow], dt: f64) {
     );
 }
 
-/// Section 2: the convergence study, its cases and observed orders.
+/// Section 2: the convergence study, its cases, orders and efficiency slopes.
 fn write_convergence(t: &mut String, converge: &ConvergeFile, fig: &dyn Fn(&str) -> String) {
     let _ = writeln!(t, "## 2. Convergence study\n");
     let _ = writeln!(
@@ -560,16 +560,21 @@ fn write_convergence(t: &mut String, converge: &ConvergeFile, fig: &dyn Fn(&str)
             c.rhs_evaluations
         );
     }
-    let _ = writeln!(t, "\nObserved orders (least-squares slope of log error against log dt for Newmark, against log right-hand-side evaluations for the adaptive methods; cases with every event matched):\n");
+    let _ = writeln!(t, "\nOrders and efficiency slopes (least-squares slope of log error against log dt for Newmark, an order; against log right-hand-side evaluations for the adaptive methods, an efficiency slope, not an order; cases with every event matched):\n");
     let _ = writeln!(
         t,
-        "| method | metric | against | slope | points |\n|---|---|---|---|---|"
+        "| method | metric | kind | against | slope | points |\n|---|---|---|---|---|---|"
     );
-    for o in &converge.orders {
+    for o in &converge.slopes {
         let _ = writeln!(
             t,
-            "| {} | {} | {} | {:.2} | {} |",
-            o.method, o.metric, o.against, o.slope, o.points
+            "| {} | {} | {} | {} | {:.2} | {} |",
+            o.method,
+            o.metric,
+            o.kind.name(),
+            o.against,
+            o.slope,
+            o.points
         );
     }
     let _ = writeln!(

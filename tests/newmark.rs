@@ -297,7 +297,8 @@ fn converge_writes_its_files_with_stable_columns() {
     ]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let stdout = String::from_utf8_lossy(&o.stdout);
-    assert!(stdout.contains("observed orders"), "{stdout}");
+    assert!(stdout.contains("orders against dt"), "{stdout}");
+    assert!(stdout.contains("efficiency slope"), "{stdout}");
     let table = std::fs::read_to_string(out.join("convergence.csv")).unwrap();
     let mut lines = table.lines();
     assert_eq!(

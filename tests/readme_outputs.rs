@@ -1,6 +1,6 @@
 //! The outputs the README quotes are what the program prints today: every fenced block of the
-//! README that starts with `$ flexrock ...` is run from the repository's root (its `--out` sent to
-//! a scratch directory) and compared line by line with the block. Only wall-clock times, which
+//! README that starts with `$ flexrock ...` is run (in a scratch directory, the repository's
+//! files named by full path) and compared line by line with the block. Only wall-clock times, which
 //! no two runs share, are set aside.
 
 mod common;
@@ -71,24 +71,24 @@ fn the_readme_quotes_what_the_program_prints() {
     let runs = quoted_runs(&readme);
     assert!(runs.len() >= 3, "the README quotes three runs: {runs:?}");
     for (index, (line, command, quoted)) in runs.iter().enumerate() {
+        // Run in a scratch directory, so that outputs (named by --out or by default under
+        // out/) land there and print as quoted; the repository's files are named by full path.
         let scratch = common::scratch_dir(&format!("readme-output-{index}"));
-        let mut args: Vec<String> = command.split_whitespace().map(str::to_string).collect();
-        let mut out_as_quoted = None;
-        if let Some(k) = args.iter().position(|a| a == "--out") {
-            out_as_quoted = Some(args[k + 1].clone());
-            args[k + 1] = scratch.join("out").to_string_lossy().into_owned();
-        }
+        let args: Vec<String> = command
+            .split_whitespace()
+            .map(|a| match root.join(a) {
+                file if file.is_file() => file.to_string_lossy().into_owned(),
+                _ => a.to_string(),
+            })
+            .collect();
         let o = Command::new(env!("CARGO_BIN_EXE_flexrock"))
             .args(&args)
-            .current_dir(root)
+            .current_dir(&scratch)
             .output()
             .unwrap();
         assert!(o.status.success(), "README line {line}: {command}");
         let mut printed = String::from_utf8_lossy(&o.stderr).into_owned();
         printed.push_str(&String::from_utf8_lossy(&o.stdout));
-        if let Some(out) = &out_as_quoted {
-            printed = printed.replace(&scratch.join("out").to_string_lossy().into_owned(), out);
-        }
         let printed: Vec<String> = printed.lines().map(str::to_string).collect();
         let (printed, quoted) = (without_times(&printed), without_times(quoted));
         for (k, (mine, theirs)) in printed.iter().zip(&quoted).enumerate() {
@@ -115,7 +115,7 @@ fn wall_times_are_set_aside_and_nothing_else() {
         "cost: reference 6075 steps, 7371 rhs evaluations, 2.9 ms; newmark 300 steps".to_string(),
         "  method  dt  rtol  q  t  p  n  steps rhs evals        ms".to_string(),
         "  bdf  -  1e-4  9.674e-4  6.741e-4  6.469e-4  +0  467  837  0.43".to_string(),
-        "observed orders".to_string(),
+        "orders against dt".to_string(),
         "  bdf  max_q_error  error ~ work^-8.02   (3 points)".to_string(),
     ];
     let out = without_times(&lines);
