@@ -32,7 +32,7 @@ enum Command {
         #[command(flatten)]
         set: SetArgs,
     },
-    /// Simulate a model and write history.csv, events.csv and summary.json.
+    /// Simulate a model and write history.csv, events.csv, episodes.csv and summary.json.
     Run {
         /// Model file (TOML).
         model: PathBuf,
@@ -92,6 +92,14 @@ enum Command {
     /// the smallest overturning value at each), one row per point in sweep.csv, with sweep.json
     /// and a map or spectrum (SVG). Re-running the same command resumes an interrupted sweep.
     Sweep(SweepArgs),
+    /// Print a shell completion script for flexrock (bash, zsh, fish, elvish or powershell),
+    /// e.g. `flexrock completions bash > ~/.local/share/bash-completion/completions/flexrock`.
+    Completions {
+        /// The shell.
+        shell: clap_complete::Shell,
+    },
+    /// Print flexrock's manual page (roff), e.g. `flexrock man > flexrock.1; man ./flexrock.1`.
+    Man,
     /// Look at a ground-motion record before using it.
     Record {
         #[command(subcommand)]
@@ -542,6 +550,32 @@ fn execute(command: Command) -> flexrock::Result<Output> {
         }
         Command::Plot { dir } => plot(&dir),
         Command::Events { dir, csv, json } => events(&dir, csv, json),
+        Command::Completions { shell } => {
+            let mut script = Vec::new();
+            clap_complete::generate(
+                shell,
+                &mut <Cli as clap::CommandFactory>::command(),
+                "flexrock",
+                &mut script,
+            );
+            Ok(Output {
+                stdout: script,
+                warnings: Vec::new(),
+            })
+        }
+        Command::Man => {
+            let mut page = Vec::new();
+            clap_mangen::Man::new(<Cli as clap::CommandFactory>::command())
+                .render(&mut page)
+                .map_err(|e| flexrock::Error::Write {
+                    path: PathBuf::from("flexrock.1"),
+                    source: e,
+                })?;
+            Ok(Output {
+                stdout: page,
+                warnings: Vec::new(),
+            })
+        }
         Command::Record { command } => record(command),
         Command::Compare {
             model: path,

@@ -734,3 +734,60 @@ fn episodes_agree_with_the_event_log_and_the_history() {
     assert_eq!(missing.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&missing.stderr).contains("episodes.csv"));
 }
+
+/// Every subcommand, as the README documents them.
+const SUBCOMMANDS: [&str; 12] = [
+    "props",
+    "run",
+    "plot",
+    "events",
+    "sweep",
+    "record",
+    "compare",
+    "converge",
+    "report",
+    "fem",
+    "completions",
+    "man",
+];
+
+/// The completion scripts and the manual page come from the command's own definitions: each
+/// names every subcommand, and the bash script is valid bash.
+#[test]
+fn completions_and_the_manual_page_name_every_subcommand() {
+    for shell in ["bash", "zsh", "fish", "elvish", "powershell"] {
+        let o = flexrock(&["completions", shell]);
+        assert!(o.status.success(), "{shell}");
+        let script = String::from_utf8_lossy(&o.stdout);
+        for sub in SUBCOMMANDS {
+            assert!(script.contains(sub), "{shell} completion lacks {sub}");
+        }
+        if shell == "bash" {
+            let dir = common::scratch_dir("cli-completions");
+            let file = dir.join("flexrock.bash");
+            std::fs::write(&file, &o.stdout).unwrap();
+            let check = std::process::Command::new("bash")
+                .arg("-n")
+                .arg(&file)
+                .output()
+                .expect("bash runs");
+            assert!(
+                check.status.success(),
+                "{}",
+                String::from_utf8_lossy(&check.stderr)
+            );
+        }
+    }
+    let o = flexrock(&["completions", "tcsh"]);
+    assert_eq!(o.status.code(), Some(2));
+    let o = flexrock(&["man"]);
+    assert!(o.status.success());
+    let page = String::from_utf8_lossy(&o.stdout);
+    assert!(page.contains(".TH flexrock 1"), "{page}");
+    for sub in SUBCOMMANDS {
+        assert!(
+            page.contains(&format!("flexrock\\-{sub}")) || page.contains(sub),
+            "{sub}"
+        );
+    }
+}
