@@ -791,3 +791,48 @@ fn completions_and_the_manual_page_name_every_subcommand() {
         );
     }
 }
+
+/// One rule for relative record paths: relative to the file that names them, and on the command
+/// line relative to the current directory. `--set excitation.path=elCentro.AT2` run from a
+/// directory that holds the record reads it there; run from one that does not, it is refused
+/// naming the path it resolved, although the model file's directory would have one of that name.
+#[test]
+fn a_record_path_on_the_command_line_is_relative_to_the_current_directory() {
+    let dir = common::scratch_dir("cli-relative-paths");
+    let model = common::repo("models/elcentro1940.toml");
+    let record = common::repo("validation/records/elCentro.AT2");
+    let here = dir.join("here");
+    std::fs::create_dir_all(&here).unwrap();
+    std::fs::copy(&record, here.join("elCentro.AT2")).unwrap();
+    let run_in = |cwd: &std::path::Path, path: &str| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_flexrock"))
+            .args([
+                "run",
+                model.to_str().unwrap(),
+                "--set",
+                &format!("excitation.path={path}"),
+                "--set",
+                "excitation.end=1",
+                "--out",
+                dir.join("out").to_str().unwrap(),
+            ])
+            .current_dir(cwd)
+            .output()
+            .unwrap()
+    };
+    let o = run_in(&here, "elCentro.AT2");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let summary = std::fs::read_to_string(dir.join("out/summary.json")).unwrap();
+    assert!(
+        summary.contains(&*here.join("elCentro.AT2").to_string_lossy()),
+        "{summary}"
+    );
+    // The models directory has ../validation/records/elCentro.AT2, not elCentro.AT2; from a
+    // directory without the record, the path is refused naming where it was looked for.
+    let elsewhere = dir.join("elsewhere");
+    std::fs::create_dir_all(&elsewhere).unwrap();
+    let o = run_in(&elsewhere, "../validation/records/elCentro.AT2");
+    assert_eq!(o.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(stderr.contains(&*dir.to_string_lossy()), "{stderr}");
+}

@@ -198,7 +198,9 @@ impl Request {
             source: Box::new(e),
         };
         for text in &file.set {
-            self.settings.push(Setting::parse(text).map_err(in_file)?);
+            // A record path in the file's `set` is relative to the file, as its patterns are.
+            let setting = Setting::parse(text).map_err(in_file)?;
+            self.settings.push(setting.relative_to(base));
         }
         for text in &file.vary {
             self.vary(text, base).map_err(in_file)?;
