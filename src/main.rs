@@ -394,15 +394,8 @@ fn sweep(args: SweepArgs) -> flexrock::Result<Output> {
 struct SetArgs {
     /// Set a model-file key, e.g. --set excitation.amplitude=4.5 (repeatable; checked by the
     /// rules of the file; applied before the other flags).
-    #[arg(long = "set", value_name = "KEY=VALUE", value_parser = setting_from_here)]
+    #[arg(long = "set", value_name = "KEY=VALUE", value_parser = Setting::parse)]
     settings: Vec<Setting>,
-}
-
-/// `--set KEY=VALUE`, a record path in it relative to the current directory (where the user
-/// typed it), not to the model file.
-fn setting_from_here(text: &str) -> flexrock::Result<Setting> {
-    let here = std::env::current_dir().unwrap_or_default();
-    Ok(Setting::parse(text)?.relative_to(&here))
 }
 
 impl SetArgs {

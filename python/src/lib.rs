@@ -109,12 +109,10 @@ impl Model {
     /// key or value raises FlexrockError and leaves the model as it was.
     fn set(&mut self, key: &str, value: &Bound<'_, PyAny>) -> PyResult<()> {
         check_key(key).map_err(|rule| err(flexrock::Error::invalid("key", key, &rule)))?;
-        // A record path is relative to the current directory, as on the command line.
         let setting = Setting {
             key: key.to_string(),
             value: toml_value(value)?,
-        }
-        .relative_to(&std::env::current_dir()?);
+        };
         let mut settings = self.settings.clone();
         settings.retain(|s| s.key != key);
         settings.push(setting);

@@ -198,9 +198,7 @@ impl Request {
             source: Box::new(e),
         };
         for text in &file.set {
-            // A record path in the file's `set` is relative to the file, as its patterns are.
-            let setting = Setting::parse(text).map_err(in_file)?;
-            self.settings.push(setting.relative_to(base));
+            self.settings.push(Setting::parse(text).map_err(in_file)?);
         }
         for text in &file.vary {
             self.vary(text, base).map_err(in_file)?;

@@ -31,21 +31,6 @@ impl Setting {
         }
     }
 
-    /// The setting with a relative file path made relative to `base` instead (the keys that
-    /// name files: `excitation.path`). A path in a model file is relative to that file; one given
-    /// anywhere else is relative to where it was given (the current directory for the command
-    /// line and Python, a sweep file's directory for its `set`), and the caller says which.
-    pub fn relative_to(self, base: &std::path::Path) -> Setting {
-        match (&*self.key, &self.value) {
-            ("excitation.path", toml::Value::String(path))
-                if std::path::Path::new(path).is_relative() =>
-            {
-                Setting::text(&self.key, &base.join(path).to_string_lossy())
-            }
-            _ => self,
-        }
-    }
-
     /// Parses `KEY=VALUE` as a user types it: the value is read as a TOML value (`4.5`, `1e-8`,
     /// `true`, `"bdf"`), and taken as a plain string when it is not one (`bdf`, `records/a.AT2`).
     pub fn parse(text: &str) -> Result<Setting> {
@@ -138,24 +123,6 @@ mod tests {
         assert_eq!(s.value, toml::Value::Boolean(true));
         let s = Setting::parse("excitation.path=[1,2]").unwrap();
         assert_eq!(s.value, toml::Value::String("[1,2]".into()));
-    }
-
-    #[test]
-    fn a_relative_record_path_is_rebased_and_nothing_else() {
-        let base = std::path::Path::new("/data/study");
-        let s = Setting::parse("excitation.path=records/a.AT2")
-            .unwrap()
-            .relative_to(base);
-        assert_eq!(
-            s.value,
-            toml::Value::String("/data/study/records/a.AT2".into())
-        );
-        let s = Setting::parse("excitation.path=/abs/a.AT2")
-            .unwrap()
-            .relative_to(base);
-        assert_eq!(s.value, toml::Value::String("/abs/a.AT2".into()));
-        let s = Setting::parse("excitation.amplitude=3").unwrap();
-        assert_eq!(s.clone().relative_to(base), s);
     }
 
     #[test]
