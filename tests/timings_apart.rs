@@ -5,7 +5,7 @@ mod common;
 
 use std::path::{Path, PathBuf};
 
-use common::{flexrock, reference_model};
+use common::{file_names, flexrock, reference_model};
 
 /// Runs `flexrock <args> --out <dir>` twice into two directories; returns both.
 fn twice(name: &str, args: &[&str]) -> (PathBuf, PathBuf, String) {
@@ -22,20 +22,11 @@ fn twice(name: &str, args: &[&str]) -> (PathBuf, PathBuf, String) {
     (dirs[0].clone(), dirs[1].clone(), stdout)
 }
 
-fn names(dir: &Path) -> Vec<String> {
-    let mut names: Vec<String> = std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .collect();
-    names.sort();
-    names
-}
-
 /// Every file but timings.json has the same bytes in both directories; returns timings.json of
 /// the first, parsed.
 fn same_but_timings(a: &Path, b: &Path) -> serde_json::Map<String, serde_json::Value> {
-    assert_eq!(names(a), names(b));
-    for name in names(a) {
+    assert_eq!(file_names(a), file_names(b));
+    for name in file_names(a) {
         if name != "timings.json" {
             let (x, y) = (
                 std::fs::read(a.join(&name)).unwrap(),
