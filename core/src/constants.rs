@@ -138,6 +138,32 @@ impl ModeShapeIntegrals {
     }
 }
 
+/// The velocity shape while rocking, V = s' U + r' xi (eq. 13), with s' = ds/dq and r' = 1 - s'
+/// constant while rocking (the paper's (-s_n U + B xi)/d), and its integrals per unit height.
+struct RockingShape {
+    ds: f64,
+    dr: f64,
+    /// int_0^1 U V dxi.
+    int_uv: f64,
+    /// int_0^1 V dxi.
+    int_v: f64,
+    /// int_0^1 V^2 dxi.
+    int_v2: f64,
+}
+
+impl RockingShape {
+    fn new(shape: &ModeShapeIntegrals, flexural_slope: f64) -> Self {
+        let (ds, dr) = (flexural_slope, 1.0 - flexural_slope);
+        RockingShape {
+            ds,
+            dr,
+            int_uv: ds * shape.int_u2 + dr * shape.int_u_xi,
+            int_v: ds * shape.int_u + dr / 2.0,
+            int_v2: ds * ds * shape.int_u2 + 2.0 * ds * dr * shape.int_u_xi + dr * dr / 3.0,
+        }
+    }
+}
+
 /// Every constant the automaton and the reports need, derived once from a [`Body`].
 #[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct Constants {
@@ -251,14 +277,10 @@ impl Constants {
             ));
         }
 
-        // Eq. 13 (per unit H): integrals of the rocking velocity shape V = s' U + r' xi, with
-        // s' = ds/dq and r' = 1 - s' constant while rocking (the paper: (-s_n U + B xi)/d).
-        let (ds, dr) = (rocking.flexural_slope, 1.0 - rocking.flexural_slope);
-        let int_uv = ds * shape.int_u2 + dr * shape.int_u_xi;
-        let int_v = ds * shape.int_u + dr / 2.0;
-        let int_v2 = ds * ds * shape.int_u2 + 2.0 * ds * dr * shape.int_u_xi + dr * dr / 3.0;
-        let nu2 = int_uv / int_v2;
-        let beta2 = int_v / int_v2;
+        let v = RockingShape::new(&shape, rocking.flexural_slope);
+        let (ds, dr) = (v.ds, v.dr);
+        let nu2 = v.int_uv / v.int_v2;
+        let beta2 = v.int_v / v.int_v2;
 
         // Eqs. 19-22: angular momentum about the pivot toe (uplift) and the landing edge. The
         // body turns about the toe at r'/H per unit q', so the centroid's vertical motion adds
@@ -303,6 +325,19 @@ impl Constants {
             gravity_parameter_ratio: gravity_parameter / SELF_WEIGHT_BUCKLING_PARAMETER,
             width: b,
         })
+    }
+
+    /// M int_0^1 (shape)^2 dxi, kg: the kinetic energy of the body's horizontal motion is this
+    /// times q'^2/2, with the shape U before uplift and V while rocking (the inertial term of the
+    /// virtual-work balance, book/src/model.md §4-§5). The mass M is Me / int U.
+    pub fn kinetic_mass(&self, rocking: bool) -> f64 {
+        let shape = &self.mode_shape;
+        let mass = self.generalised_mass / shape.int_u;
+        if rocking {
+            mass * RockingShape::new(shape, self.rocking_flexural_slope).int_v2
+        } else {
+            mass * shape.int_u2
+        }
     }
 
     /// Flexural rigidity that gives `body` (whose own `flexural_rigidity` is ignored) the
