@@ -861,3 +861,87 @@ fn completions_and_the_manual_page_name_every_subcommand() {
         );
     }
 }
+
+/// One rule for relative record paths: relative to the file that names them, and on the command
+/// line relative to the current directory. `--set excitation.path=elCentro.AT2` run from a
+/// directory that holds the record reads it there (the model file is elsewhere); from a directory
+/// without it, the path is refused naming the full path it was looked for at. A sweep file's
+/// `set` is relative to the sweep file.
+#[test]
+fn a_record_path_is_relative_to_where_it_was_given() {
+    let dir = common::scratch_dir("cli-relative-paths");
+    let model = common::repo("models/elcentro1940.toml");
+    let record = common::repo("validation/records/elCentro.AT2");
+    let here = dir.join("here");
+    std::fs::create_dir_all(here.join("study/rec")).unwrap();
+    std::fs::copy(&record, here.join("elCentro.AT2")).unwrap();
+    std::fs::copy(&record, here.join("study/rec/short.AT2")).unwrap();
+    let run_in = |cwd: &std::path::Path, args: &[&str]| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_flexrock"))
+            .args(args)
+            .current_dir(cwd)
+            .output()
+            .unwrap()
+    };
+    let out = dir.join("out");
+    let (model, out_s) = (model.to_str().unwrap(), out.to_str().unwrap());
+    let o = run_in(
+        &here,
+        &[
+            "run",
+            model,
+            "--set",
+            "excitation.path=elCentro.AT2",
+            "--set",
+            "excitation.end=1",
+            "--out",
+            out_s,
+        ],
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    // The models directory has no elCentro.AT2: the run read the one in the current directory.
+    assert!(!common::repo("models/elCentro.AT2").exists());
+    let summary = std::fs::read_to_string(out.join("summary.json")).unwrap();
+    assert!(summary.contains("here/elCentro.AT2"), "{summary}");
+
+    // From a directory without the record, the path the model file itself would resolve
+    // (../validation/records/...) is looked for beside the current directory, and the message
+    // names that full path.
+    let elsewhere = dir.join("elsewhere");
+    std::fs::create_dir_all(&elsewhere).unwrap();
+    let o = run_in(
+        &elsewhere,
+        &[
+            "run",
+            model,
+            "--set",
+            "excitation.path=../validation/records/elCentro.AT2",
+            "--out",
+            out_s,
+        ],
+    );
+    assert_eq!(o.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    let looked_at = dir.join("validation/records/elCentro.AT2");
+    assert!(stderr.contains(&*looked_at.to_string_lossy()), "{stderr}");
+
+    // A sweep file's `set` is relative to the sweep file, whatever the current directory.
+    std::fs::write(
+        here.join("study/sweep.toml"),
+        "set = [\"excitation.path=rec/short.AT2\", \"excitation.end=0.5\"]\nvary = [\"excitation.scale=1,2\"]\n",
+    )
+    .unwrap();
+    let sweep_file = here.join("study/sweep.toml");
+    let o = run_in(
+        &elsewhere,
+        &[
+            "sweep",
+            model,
+            "--sweep-file",
+            sweep_file.to_str().unwrap(),
+            "--out",
+            dir.join("sweep").to_str().unwrap(),
+        ],
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+}

@@ -384,7 +384,20 @@ fn recorded_motion(
         .read(&path, format, s.dt)
         .map_err(|e| Error::Record {
             key: "excitation.path".to_string(),
-            source: e,
+            source: match e {
+                // Name the file by the full path it was looked for at, so that the message says
+                // which directory a relative path was read from.
+                crate::record::RecordError::Read { error, .. } => {
+                    let here = std::env::current_dir().unwrap_or_default();
+                    crate::record::RecordError::Read {
+                        file: super::setting::normalised(&here.join(&path))
+                            .display()
+                            .to_string(),
+                        error,
+                    }
+                }
+                other => other,
+            },
         })?;
     let is_at2 = matches!(format, Some(RecordFormat::PeerAt2))
         || (format.is_none() && RecordFormat::from_extension(&path) == Some(RecordFormat::PeerAt2));
