@@ -71,6 +71,7 @@ pub mod simulate;
 pub mod solution;
 pub mod solver;
 mod suggest;
+pub mod units;
 
 pub use automaton::Automaton;
 pub use body::Body;

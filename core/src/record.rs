@@ -85,7 +85,7 @@ pub const UNIT_NAMES: &str = "\"g\", \"m/s2\" or \"cm/s2\"";
 /// m/s^2 (g is standard gravity, whatever a body's `gravity`).
 pub fn acceleration_unit(key: &str, units: &str) -> crate::Result<(&'static str, f64)> {
     match units {
-        "g" => Ok(("g", crate::model::STANDARD_GRAVITY)),
+        "g" => Ok(("g", crate::units::STANDARD_GRAVITY)),
         "m/s2" => Ok(("m/s2", 1.0)),
         "cm/s2" => Ok(("cm/s2", 0.01)),
         other => Err(crate::Error::invalid(

@@ -4,7 +4,6 @@
 use serde::{Deserialize, Serialize};
 
 use crate::automaton::{Automaton, EventKind, Mode};
-use crate::solver::History;
 
 /// One row of the history (a row of history.csv, whose columns are these fields; the restoring
 /// force is the column `F`).
@@ -97,6 +96,16 @@ impl Episode {
     pub fn duration(&self) -> Option<f64> {
         self.t_end.map(|end| end - self.t_start)
     }
+}
+
+/// Whether a run keeps its sampled history, or only its events, peaks and statistics (sweeps,
+/// where thousands of runs need one row each).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum History {
+    /// Samples every `output_dt`, and both sides of every event.
+    Sampled,
+    /// No samples: events, peaks, the energy balance at events, statistics.
+    PeaksOnly,
 }
 
 /// A peak of q and when it happened.

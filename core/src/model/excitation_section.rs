@@ -361,8 +361,7 @@ fn check_tail(tail: f64) -> Result<f64> {
     Ok(tail)
 }
 
-/// Standard gravity, for records in units of g (independent of the body's `gravity`).
-pub const STANDARD_GRAVITY: f64 = 9.80665;
+pub use crate::units::STANDARD_GRAVITY;
 
 /// Reads and trims the record of a `kind = "record"` section; returns it with the tail length.
 fn recorded_motion(
