@@ -3,7 +3,9 @@
 use serde::{Deserialize, Serialize};
 
 use crate::body::{Body, ConstantSet, SelfWeight};
-use crate::error::{Error, Result};
+use crate::invalid::InvalidParameter;
+
+type Result<T> = std::result::Result<T, InvalidParameter>;
 use crate::flexural_shape::SelfWeightedShape;
 
 /// First root of cos L cosh L = -1 (first cantilever mode).
@@ -227,7 +229,7 @@ impl Constants {
         let shape = ModeShapeIntegrals::for_body(body)
             .filter(|_| gravity_parameter < SELF_WEIGHT_BUCKLING_PARAMETER);
         let Some(shape) = shape else {
-            return Err(Error::invalid(
+            return Err(InvalidParameter::new(
                 "derived gravity parameter M g H^2/EI",
                 gravity_parameter,
                 &format!(
@@ -244,7 +246,7 @@ impl Constants {
             && omega > 0.0
             && crate::limits::at_least(2.0 * std::f64::consts::PI / omega, MIN_PERIOD))
         {
-            return Err(Error::invalid(
+            return Err(InvalidParameter::new(
                 "derived pre-uplift period T (s)",
                 2.0 * std::f64::consts::PI / omega,
                 &format!(
@@ -262,7 +264,7 @@ impl Constants {
         let rocking = RockingBranch::new(&shape, ke, s_n, b, mg / h);
 
         if !(rocking.stiffness < 0.0 && rocking.topple_displacement > s_n) {
-            return Err(Error::invalid(
+            return Err(InvalidParameter::new(
                 "derived restoring force while rocking",
                 format!(
                     "dF/dq = {} N/m, F = 0 at q = {} m",
@@ -292,7 +294,7 @@ impl Constants {
         let zeta_uplift = (int_uy + rotary) / (int_vy + rotary + vertical);
         let zeta_landing = (int_uy + rotary) / (int_vy + rotary - vertical);
         if !(zeta_landing > 0.0 && zeta_landing < 1.0) {
-            return Err(Error::invalid(
+            return Err(InvalidParameter::new(
                 "derived landing ratio zetaL",
                 zeta_landing,
                 &format!(
@@ -370,7 +372,7 @@ impl Constants {
                     Constants::new(&trial)
                         .map(|c| c.period)
                         .unwrap_or_else(|e| match e {
-                            Error::InvalidParameter { key, .. } if key.contains("period") => 0.0,
+                            InvalidParameter { key, .. } if key.contains("period") => 0.0,
                             _ => f64::INFINITY,
                         })
                 };
@@ -382,7 +384,7 @@ impl Constants {
                     high *= 2.0;
                     doublings += 1;
                     if doublings > 200 || !high.is_finite() {
-                        return Err(Error::invalid(
+                        return Err(InvalidParameter::new(
                             "body.period",
                             period,
                             "no flexural rigidity gives this period with the weight in the bending",
@@ -409,7 +411,7 @@ impl Constants {
                     _ => (low, period_of(low)),
                 };
                 if (reached - period).abs() > 1e-6 * period {
-                    return Err(Error::invalid(
+                    return Err(InvalidParameter::new(
                         "body.period",
                         period,
                         &format!(

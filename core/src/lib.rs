@@ -63,6 +63,7 @@ pub mod fem;
 pub mod findings;
 pub mod flexural_shape;
 pub mod format;
+pub mod invalid;
 pub mod limits;
 pub mod model;
 pub mod record;

@@ -482,7 +482,14 @@ impl Sweep {
                         _ => None,
                     },
                 };
-                let rigid_minimum = |block: fn(f64, f64, f64) -> Result<RigidBlock>| {
+                let rigid_minimum = |block: fn(
+                    f64,
+                    f64,
+                    f64,
+                ) -> std::result::Result<
+                    RigidBlock,
+                    crate::solver::SolverError,
+                >| {
                     let trial = |value: f64| -> Result<find_min::Trial> {
                         let model = self.model(&at(value))?;
                         let b = &model.body;

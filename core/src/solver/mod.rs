@@ -3,6 +3,7 @@
 
 pub mod adaptive;
 pub mod budget;
+mod error;
 pub mod newmark;
 
 use serde::Serialize;
@@ -17,6 +18,7 @@ pub struct InitialState {
 }
 
 pub use crate::solution::History;
+pub use error::SolverError;
 
 /// The times at which the history is sampled: every `output_dt` from 0, and the final time.
 #[derive(Debug, Clone)]
