@@ -534,3 +534,41 @@ fn the_commands_page_quotes_the_help_of_every_command_as_printed() {
     }
     assert!(quoted >= 15, "{quoted} help texts");
 }
+
+#[test]
+fn every_output_the_reference_pages_quote_is_what_the_program_prints() {
+    // Blocks that start with `$ flexrock ...`, run from the repository root, where their
+    // relative paths point. They write nothing, so they may run there.
+    let mut runs = 0;
+    for name in [
+        "model-file.md",
+        "commands.md",
+        "outputs.md",
+        "limits.md",
+        "accuracy-and-speed.md",
+    ] {
+        let text = page(name);
+        for first in text.lines().filter(|l| l.starts_with("$ flexrock ")) {
+            let args: Vec<&str> = first["$ flexrock ".len()..].split_whitespace().collect();
+            assert!(
+                !args.contains(&"--out"),
+                "{name}: `{first}` would write into the repository"
+            );
+            let o = std::process::Command::new(env!("CARGO_BIN_EXE_flexrock"))
+                .args(&args)
+                .current_dir(common::repo(""))
+                .output()
+                .unwrap();
+            assert!(o.status.success(), "{name}: `{first}` failed");
+            let mut printed = String::from_utf8_lossy(&o.stderr).into_owned();
+            printed.push_str(&String::from_utf8_lossy(&o.stdout));
+            assert_eq!(
+                quoted_block(&text, first).unwrap(),
+                printed,
+                "{name}: `{first}` prints something else"
+            );
+            runs += 1;
+        }
+    }
+    assert!(runs >= 16, "{runs} quoted runs");
+}
