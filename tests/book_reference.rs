@@ -2,7 +2,8 @@
 //! every model-file key (book/src/reference/model-file.md), every column of every output table
 //! in order (outputs.md, against the column constants the writers use), every key of
 //! summary.json, and every limit constant with its value (limits.md, against the constants and
-//! a scan of the source for `MAX_`, `MIN_` and `EXIT_` constants).
+//! a scan of the source for `MAX_`, `MIN_` and `EXIT_` constants). Likewise the developer
+//! guide: the code map links every source file, and the tests page lists every test file.
 //!
 //! A table is found by the HTML comment just above it (`<!-- columns: history.csv -->`), which
 //! the built book does not show. A table's names are the backticked names of its first column,
@@ -571,4 +572,56 @@ fn every_output_the_reference_pages_quote_is_what_the_program_prints() {
         }
     }
     assert!(runs >= 16, "{runs} quoted runs");
+}
+
+/// The `.rs` files under `dir`, as paths relative to it, sorted.
+fn rust_files(dir: &Path) -> Vec<String> {
+    fn walk(root: &Path, dir: &Path, out: &mut Vec<String>) {
+        for entry in std::fs::read_dir(dir).unwrap().flatten() {
+            let path = entry.path();
+            if path.is_dir() {
+                walk(root, &path, out);
+            } else if path.extension().is_some_and(|e| e == "rs") {
+                let relative = path.strip_prefix(root).unwrap();
+                out.push(relative.to_string_lossy().replace('\\', "/"));
+            }
+        }
+    }
+    let mut out = Vec::new();
+    walk(dir, dir, &mut out);
+    out.sort();
+    out
+}
+
+#[test]
+fn the_code_map_links_every_source_file() {
+    let map = std::fs::read_to_string(common::repo("book/src/developer/code-map.md")).unwrap();
+    let mut missing = Vec::new();
+    for crate_dir in ["core/src", "src"] {
+        for file in rust_files(&common::repo(crate_dir)) {
+            let link = format!("(../../../{crate_dir}/{file})");
+            if !map.contains(&link) {
+                missing.push(format!("{crate_dir}/{file}"));
+            }
+        }
+    }
+    assert!(
+        missing.is_empty(),
+        "book/src/developer/code-map.md links no row to: {}",
+        missing.join(", ")
+    );
+}
+
+#[test]
+fn the_tests_page_lists_exactly_the_test_files() {
+    let text = std::fs::read_to_string(common::repo("book/src/developer/tests.md")).unwrap();
+    let mut listed = listed(&text, "test files");
+    let mut files: Vec<String> = rust_files(&common::repo("tests"))
+        .into_iter()
+        .filter(|f| !f.contains('/'))
+        .map(|f| format!("tests/{f}"))
+        .collect();
+    listed.sort();
+    files.sort();
+    assert_eq!(listed, files, "the table of book/src/developer/tests.md");
 }
