@@ -361,7 +361,12 @@ fn sweep(args: SweepArgs) -> flexrock::Result<Output> {
             .num_threads(threads)
             .build_global();
     }
-    let sweep = Sweep::new(&path, request)?;
+    let given = Overrides {
+        settings: request.settings.clone(),
+        ..Overrides::default()
+    };
+    let sweep = Sweep::new(&path, request)
+        .map_err(|e| flexrock::flags::named_by_flags(e, &given, &FemOverrides::default()))?;
     let out = args.out.unwrap_or_else(|| default_out_dir(&path, "-sweep"));
     let bar = if args.quiet {
         indicatif::ProgressBar::hidden()
@@ -662,8 +667,12 @@ fn execute(command: Command) -> flexrock::Result<Output> {
             set,
             timings,
         } => {
-            let model = Model::load(&path, &set.overrides(&path))?;
-            let setup = model.fem_with(&FemOverrides { nx, ny, scheme, dt })?;
+            let overrides = set.overrides(&path);
+            let model = load(&path, &overrides)?;
+            let fem_overrides = FemOverrides { nx, ny, scheme, dt };
+            let setup = model
+                .fem_with(&fem_overrides)
+                .map_err(|e| flexrock::flags::named_by_flags(e, &overrides, &fem_overrides))?;
             if modes {
                 fem_modes(&model, &setup)
             } else if pushover {
@@ -681,7 +690,7 @@ fn execute(command: Command) -> flexrock::Result<Output> {
 
 /// `flexrock props`: the body and its derived constants, as a table or as JSON.
 fn props(path: &std::path::Path, json: bool, set: SetArgs) -> flexrock::Result<Output> {
-    let model = Model::load(path, &set.overrides(path))?;
+    let model = load(path, &set.overrides(path))?;
     Ok(if json {
         Output {
             stdout: flexrock::output::json_bytes(&flexrock::run::properties(&model)),
@@ -700,7 +709,7 @@ fn run(
     plot: bool,
     wall_times: flexrock::output::WallTimes,
 ) -> flexrock::Result<Output> {
-    let model = Model::load(path, overrides)?;
+    let model = load(path, overrides)?;
     let out = out.unwrap_or_else(|| default_out_dir(path, ""));
     flexrock::output::check_creatable(&out)?;
     let report = flexrock::run::run_to_dir_with(&model, &out, plot, wall_times)?;
@@ -863,7 +872,14 @@ fn load_with_duration(
         duration,
         ..set.overrides(path)
     };
-    Model::load(path, &overrides)
+    load(path, &overrides)
+}
+
+/// Reads and validates the model file `path` with `overrides`; a message about a value a flag
+/// gave names the flag.
+fn load(path: &std::path::Path, overrides: &Overrides) -> flexrock::Result<Model> {
+    Model::load(path, overrides)
+        .map_err(|e| flexrock::flags::named_by_flags(e, overrides, &FemOverrides::default()))
 }
 
 fn default_out_dir(model: &std::path::Path, suffix: &str) -> PathBuf {

@@ -217,3 +217,23 @@ def test_a_record_path_set_in_python_is_relative_to_the_current_directory(tmp_pa
     monkeypatch.chdir(elsewhere)
     with pytest.raises(flexrock.FlexrockError, match=str(elsewhere / "here.AT2")):
         model.set("excitation.path", "here.AT2")
+
+
+def test_run_settings_as_arguments_named_in_their_errors(tmp_path):
+    # duration and output_dt as arguments, equal to the same keys on the command line; an error
+    # about an argument names the argument and its key, never a command-line flag.
+    run_cli("run", MODEL, "--out", tmp_path, "--duration", "3", "--set", "solver.output_dt=0.01")
+    model = flexrock.Model.from_file(MODEL)
+    result = flexrock.simulate(model, duration=3.0, output_dt=0.01)
+    same_as_cli(result, tmp_path)
+    assert result.t[-1] == 3.0
+    for argument, key, value in [("rtol", "solver.rtol", -1.0), ("duration", "simulation.duration", -3.0),
+                                 ("output_dt", "solver.output_dt", 0.0)]:
+        with pytest.raises(flexrock.FlexrockError) as error:
+            flexrock.simulate(model, **{argument: value})
+        message = str(error.value)
+        assert message.startswith(f"{argument} (sets {key}) = "), message
+        assert "--" not in message, message
+    with pytest.raises(flexrock.FlexrockError) as error:
+        model.set("excitation.amplitud", 1.0)
+    assert "--set" not in str(error.value) and "excitation.amplitud" in str(error.value)

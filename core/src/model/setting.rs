@@ -55,13 +55,13 @@ impl Setting {
     pub fn parse(text: &str) -> Result<Setting> {
         let Some((key, value)) = text.split_once('=') else {
             return Err(Error::invalid(
-                "--set",
+                "setting",
                 text,
                 "must be KEY=VALUE, e.g. excitation.amplitude=4.5",
             ));
         };
         let key = key.trim();
-        check_key(key).map_err(|rule| Error::invalid("--set", text, &rule))?;
+        check_key(key).map_err(|rule| Error::invalid("setting", text, &rule))?;
         let value = value.trim();
         let parsed = toml::from_str::<toml::Table>(&format!("value = {value}"))
             .ok()
