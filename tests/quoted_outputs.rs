@@ -377,6 +377,17 @@ fn the_readme_is_a_front_page() {
         size <= 12 * 1024,
         "README.md has {size} bytes, more than 12 KiB: move the detail into the book"
     );
+    // The test command the README gives is the one CI runs.
+    let ci = std::fs::read_to_string(root().join(".ci/run")).unwrap();
+    let command = ci
+        .lines()
+        .find(|l| l.starts_with("cargo test"))
+        .expect(".ci/run runs cargo test");
+    let readme = std::fs::read_to_string(root().join("README.md")).unwrap();
+    assert!(
+        readme.lines().any(|l| l.trim() == command),
+        "README.md does not give CI's test command `{command}` on a line of its own"
+    );
 }
 
 #[test]
