@@ -329,14 +329,14 @@ fn sweep(args: SweepArgs) -> flexrock::Result<Output> {
         ));
     };
     let mut request = Request {
-        settings: args.set.settings,
+        settings: args.set.settings_for(&path),
         scan: args.scan,
         tol: args.tol,
         chunk_size: args.chunk_size,
         ..Request::default()
     };
     if let Some(file) = &args.sweep_file {
-        request.add_file(file)?;
+        request.add_file(file, &path)?;
     }
     for text in &args.vary {
         request.vary(text, std::path::Path::new("."))?;
@@ -399,9 +399,20 @@ struct SetArgs {
 }
 
 impl SetArgs {
-    fn overrides(self) -> Overrides {
+    /// The `--set` keys for the model file `model`: a record path typed here is relative to the
+    /// current directory, and is written again relative to the model file, which reads it.
+    fn settings_for(self, model: &std::path::Path) -> Vec<Setting> {
+        let here = std::env::current_dir().unwrap_or_default();
+        let model_dir = here.join(model.parent().unwrap_or(std::path::Path::new("")));
+        self.settings
+            .into_iter()
+            .map(|s| s.rebased(&here, &model_dir))
+            .collect()
+    }
+
+    fn overrides(self, model: &std::path::Path) -> Overrides {
         Overrides {
-            settings: self.settings,
+            settings: self.settings_for(model),
             ..Overrides::default()
         }
     }
@@ -544,7 +555,7 @@ fn execute(command: Command) -> flexrock::Result<Output> {
                 duration,
                 dt,
                 newmark_variant: variant,
-                settings: set.settings,
+                settings: set.settings_for(&path),
             };
             run(&path, out, &overrides, plot, timings.wall_times())
         }
@@ -651,7 +662,7 @@ fn execute(command: Command) -> flexrock::Result<Output> {
             set,
             timings,
         } => {
-            let model = Model::load(&path, &set.overrides())?;
+            let model = Model::load(&path, &set.overrides(&path))?;
             let setup = model.fem_with(&FemOverrides { nx, ny, scheme, dt })?;
             if modes {
                 fem_modes(&model, &setup)
@@ -670,7 +681,7 @@ fn execute(command: Command) -> flexrock::Result<Output> {
 
 /// `flexrock props`: the body and its derived constants, as a table or as JSON.
 fn props(path: &std::path::Path, json: bool, set: SetArgs) -> flexrock::Result<Output> {
-    let model = Model::load(path, &set.overrides())?;
+    let model = Model::load(path, &set.overrides(path))?;
     Ok(if json {
         Output {
             stdout: flexrock::output::json_bytes(&flexrock::run::properties(&model)),
@@ -850,7 +861,7 @@ fn load_with_duration(
 ) -> flexrock::Result<Model> {
     let overrides = Overrides {
         duration,
-        ..set.overrides()
+        ..set.overrides(path)
     };
     Model::load(path, &overrides)
 }

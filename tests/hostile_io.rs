@@ -1,4 +1,4 @@
-//! Hostile input and output (issue 9): a full disk or a closed pipe on standard output, special
+//! Hostile input and output: a full disk or a closed pipe on standard output, special
 //! files as outputs and records, a failed write in the middle of a set, temporaries of a killed
 //! run, values that must be refused before anything is computed, sizes beyond the limits, and
 //! the program against its documents.

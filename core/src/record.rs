@@ -83,12 +83,15 @@ pub const UNIT_NAMES: &str = "\"g\", \"m/s2\" or \"cm/s2\"";
 
 /// The canonical name of the unit `units` named by the key or flag `key`, and its factor to
 /// m/s^2 (g is standard gravity, whatever a body's `gravity`).
-pub fn acceleration_unit(key: &str, units: &str) -> crate::Result<(&'static str, f64)> {
+pub fn acceleration_unit(
+    key: &str,
+    units: &str,
+) -> Result<(&'static str, f64), crate::invalid::InvalidParameter> {
     match units {
-        "g" => Ok(("g", crate::model::STANDARD_GRAVITY)),
+        "g" => Ok(("g", crate::units::STANDARD_GRAVITY)),
         "m/s2" => Ok(("m/s2", 1.0)),
         "cm/s2" => Ok(("cm/s2", 0.01)),
-        other => Err(crate::Error::invalid(
+        other => Err(crate::invalid::InvalidParameter::new(
             key,
             format!("\"{other}\""),
             &format!("must be {UNIT_NAMES}"),
@@ -107,11 +110,11 @@ pub enum RecordFormat {
 
 impl RecordFormat {
     /// The format named `name` (`peer-at2`, `csv`) by a model file key or flag `key`.
-    pub fn from_name(key: &str, name: &str) -> crate::Result<Self> {
+    pub fn from_name(key: &str, name: &str) -> Result<Self, crate::invalid::InvalidParameter> {
         match name {
             "peer-at2" => Ok(Self::PeerAt2),
             "csv" => Ok(Self::Csv),
-            other => Err(crate::Error::invalid(
+            other => Err(crate::invalid::InvalidParameter::new(
                 key,
                 format!("\"{other}\""),
                 "must be \"peer-at2\" or \"csv\"",

@@ -109,10 +109,18 @@ impl Model {
     /// key or value raises FlexrockError and leaves the model as it was.
     fn set(&mut self, key: &str, value: &Bound<'_, PyAny>) -> PyResult<()> {
         check_key(key).map_err(|rule| err(flexrock::Error::invalid("key", key, &rule)))?;
+        // A record path typed here is relative to the current directory; the model file reads
+        // it relative to its own directory (a model given as text reads from the current one).
+        let here = std::env::current_dir()?;
+        let model_dir = match &self.path {
+            Some(path) => here.join(path.parent().unwrap_or(std::path::Path::new(""))),
+            None => here.clone(),
+        };
         let setting = Setting {
             key: key.to_string(),
             value: toml_value(value)?,
-        };
+        }
+        .rebased(&here, &model_dir);
         let mut settings = self.settings.clone();
         settings.retain(|s| s.key != key);
         settings.push(setting);

@@ -201,3 +201,19 @@ def test_sweep_of_a_model_text_reads_its_record_from_the_current_directory(monke
     assert list(from_text["status"]) == ["ok", "ok"]
     for name in ["max_abs_q_over_B", "n_uplift", "steps"]:
         assert np.array_equal(from_text[name], from_file[name]), name
+
+
+def test_a_record_path_set_in_python_is_relative_to_the_current_directory(tmp_path, monkeypatch):
+    # One rule for relative paths: a path typed in Python, like one on the command line, is
+    # relative to the current directory, not to the model file (whose directory has no such file).
+    shutil.copy(ROOT / "validation" / "records" / "elCentro.AT2", tmp_path / "here.AT2")
+    model = flexrock.Model.from_file(ROOT / "models" / "elcentro1940.toml")
+    monkeypatch.chdir(tmp_path)
+    model.set("excitation.path", "here.AT2")
+    model.set("excitation.end", 1.0)
+    assert flexrock.simulate(model).summary["n_uplift"] >= 0
+    elsewhere = tmp_path / "elsewhere"
+    elsewhere.mkdir()
+    monkeypatch.chdir(elsewhere)
+    with pytest.raises(flexrock.FlexrockError, match=str(elsewhere / "here.AT2")):
+        model.set("excitation.path", "here.AT2")

@@ -361,8 +361,7 @@ pub const DEFAULT_ATOL: f64 = 1e-12;
 pub const DEFAULT_OUTPUT_DT: f64 = 0.005;
 /// Largest initial top velocity, m/s.
 pub const MAX_INITIAL_VELOCITY: f64 = 100.0;
-/// Longest simulated time, s.
-pub const MAX_DURATION: f64 = 1e4;
+pub use crate::limits::MAX_DURATION;
 
 /// A validated model, ready to run.
 pub struct Model {
@@ -711,7 +710,7 @@ fn body_from_section(s: &BodySection) -> Result<Body> {
             Constants::flexural_rigidity_for_period(period, &body)?
         }
     };
-    body.validated()
+    Ok(body.validated()?)
 }
 
 /// `value`, a product of the keys `factors` (each finite and positive), when it is finite and
