@@ -7,7 +7,7 @@ use serde::Serialize;
 
 use crate::automaton::EventKind;
 use crate::body::{Body, SelfWeight};
-use crate::constants::{Constants, SELF_WEIGHT_BUCKLING_PARAMETER, SELF_WEIGHT_WARNING_SHARE};
+use crate::constants::Constants;
 use crate::error::Result;
 use crate::excitation::FloorMotion;
 use crate::model::STANDARD_GRAVITY;
@@ -17,7 +17,8 @@ use crate::solution::{Solution, SolverStats};
 use crate::solver::{InitialState, SolverSettings};
 
 pub use flexrock_core::simulate::{
-    properties, simulate, simulate_peaks, simulate_with, Properties, Provenance, VERSION,
+    properties, simulate, simulate_peaks, simulate_with, warnings, Properties, Provenance,
+    ENERGY_RESIDUAL_WARNING_SHARE, VERSION,
 };
 
 /// The human-readable table of `flexrock props`.
@@ -236,45 +237,6 @@ pub fn summary<'a>(model: &'a Model, solution: &'a Solution) -> RunSummary<'a> {
         duration: model.duration,
         inputs: &model.file,
     }
-}
-
-/// Share of the energy scale above which the energy residual is reported as a warning.
-pub const ENERGY_RESIDUAL_WARNING_SHARE: f64 = 1e-2;
-
-/// The warnings of a run: an energy residual beyond [`ENERGY_RESIDUAL_WARNING_SHARE`] of the
-/// energy scale, a gravity parameter beyond [`SELF_WEIGHT_WARNING_SHARE`] of buckling, and a run
-/// that ended while the body was rocking.
-pub fn warnings(model: &Model, solution: &Solution) -> Vec<String> {
-    let mut warnings = Vec::new();
-    let scale = solution.energy_scale;
-    if solution.energy_residual_share() > ENERGY_RESIDUAL_WARNING_SHARE {
-        warnings.push(format!(
-            "the energy residual reached {:.3e} J, {:.1} % of the energy scale {:.3e} J (above {} %): \
-             the solution is no more accurate than that; tighten the tolerance (or the Newmark step)",
-            solution.max_energy_residual,
-            100.0 * solution.max_energy_residual / scale,
-            scale,
-            100.0 * ENERGY_RESIDUAL_WARNING_SHARE
-        ));
-    }
-    let c = &model.constants;
-    if c.self_weight == SelfWeight::Paper && c.gravity_parameter_ratio > SELF_WEIGHT_WARNING_SHARE {
-        warnings.push(format!(
-            "M g H^2/EI = {:.4} is {:.3} of its buckling value {SELF_WEIGHT_BUCKLING_PARAMETER} (above {}): \
-             the self-weight the paper's model leaves out of bending matters for this body; \
-             body.self_weight = \"consistent\" puts it in (book: the model, §7a)",
-            c.gravity_parameter, c.gravity_parameter_ratio, SELF_WEIGHT_WARNING_SHARE
-        ));
-    }
-    if solution.ended_while_rocking() {
-        warnings.push(format!(
-            "the run ended while the body was rocking ({} at t = {} s): no overturning within the \
-             duration, which does not mean it would not overturn later; lengthen simulation.duration",
-            solution.final_mode.name(),
-            solution.final_time
-        ));
-    }
-    warnings
 }
 
 /// Result of `flexrock run`.

@@ -616,10 +616,14 @@ fn the_code_map_links_every_source_file() {
 fn the_tests_page_lists_exactly_the_test_files() {
     let text = std::fs::read_to_string(common::repo("book/src/developer/tests.md")).unwrap();
     let mut listed = listed(&text, "test files");
-    let mut files: Vec<String> = rust_files(&common::repo("tests"))
-        .into_iter()
-        .filter(|f| !f.contains('/'))
-        .map(|f| format!("tests/{f}"))
+    let mut files: Vec<String> = ["tests", "core/tests"]
+        .iter()
+        .flat_map(|dir| {
+            rust_files(&common::repo(dir))
+                .into_iter()
+                .filter(|f| !f.contains('/'))
+                .map(move |f| format!("{dir}/{f}"))
+        })
         .collect();
     listed.sort();
     files.sort();

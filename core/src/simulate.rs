@@ -5,8 +5,8 @@
 use serde::Serialize;
 
 use crate::automaton::Automaton;
-use crate::body::Body;
-use crate::constants::Constants;
+use crate::body::{Body, SelfWeight};
+use crate::constants::{Constants, SELF_WEIGHT_BUCKLING_PARAMETER, SELF_WEIGHT_WARNING_SHARE};
 use crate::error::Result;
 use crate::model::Model;
 use crate::solution::Solution;
@@ -85,4 +85,43 @@ pub fn properties(model: &Model) -> Properties<'_> {
         body: &model.body,
         constants: &model.constants,
     }
+}
+
+/// Share of the energy scale above which the energy residual is reported as a warning.
+pub const ENERGY_RESIDUAL_WARNING_SHARE: f64 = 1e-2;
+
+/// The warnings of a run: an energy residual beyond [`ENERGY_RESIDUAL_WARNING_SHARE`] of the
+/// energy scale, a gravity parameter beyond [`SELF_WEIGHT_WARNING_SHARE`] of buckling, and a run
+/// that ended while the body was rocking.
+pub fn warnings(model: &Model, solution: &Solution) -> Vec<String> {
+    let mut warnings = Vec::new();
+    let scale = solution.energy_scale;
+    if solution.energy_residual_share() > ENERGY_RESIDUAL_WARNING_SHARE {
+        warnings.push(format!(
+            "the energy residual reached {:.3e} J, {:.1} % of the energy scale {:.3e} J (above {} %): \
+             the solution is no more accurate than that; tighten the tolerance (or the Newmark step)",
+            solution.max_energy_residual,
+            100.0 * solution.max_energy_residual / scale,
+            scale,
+            100.0 * ENERGY_RESIDUAL_WARNING_SHARE
+        ));
+    }
+    let c = &model.constants;
+    if c.self_weight == SelfWeight::Paper && c.gravity_parameter_ratio > SELF_WEIGHT_WARNING_SHARE {
+        warnings.push(format!(
+            "M g H^2/EI = {:.4} is {:.3} of its buckling value {SELF_WEIGHT_BUCKLING_PARAMETER} (above {}): \
+             the self-weight the paper's model leaves out of bending matters for this body; \
+             body.self_weight = \"consistent\" puts it in (book: the model, §7a)",
+            c.gravity_parameter, c.gravity_parameter_ratio, SELF_WEIGHT_WARNING_SHARE
+        ));
+    }
+    if solution.ended_while_rocking() {
+        warnings.push(format!(
+            "the run ended while the body was rocking ({} at t = {} s): no overturning within the \
+             duration, which does not mean it would not overturn later; lengthen simulation.duration",
+            solution.final_mode.name(),
+            solution.final_time
+        ));
+    }
+    warnings
 }

@@ -1,37 +1,9 @@
 //! Helpers shared by the integration tests.
 #![allow(dead_code)]
 
-use flexrock::automaton::{EventKind, Mode};
-use flexrock::model::{Model, Overrides};
-use flexrock::solution::Solution;
-
-/// The reference body of book/src/model.md §8 (the paper's example) with the given excitation,
-/// simulation and solver sections (TOML text) appended.
-pub fn reference_body(extra: &str) -> String {
-    format!(
-        "[body]\nheight = 4.0\nwidth = 0.7\ndepth = 1.0\ndensity = 600.0\nyoungs_modulus = 5.0e6\n\
-         damping_ratio = 0.05\ngravity = 9.81\n\n{extra}"
-    )
-}
-
-pub fn model(text: &str) -> Model {
-    match Model::from_toml_str(text, &Overrides::default()) {
-        Ok(m) => m,
-        Err(e) => panic!("test model is invalid: {e}\n{text}"),
-    }
-}
-
-pub fn solve(text: &str) -> Solution {
-    flexrock::run::simulate(&model(text)).expect("simulation succeeds")
-}
-
-/// A fresh, empty directory under cargo's temporary directory for integration tests.
-pub fn scratch_dir(name: &str) -> std::path::PathBuf {
-    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("scratch dir");
-    dir
-}
+#[path = "../../core/tests/common/mod.rs"]
+mod physics;
+pub use physics::*;
 
 /// Runs the `flexrock` binary.
 pub fn flexrock(args: &[&str]) -> std::process::Output {
@@ -79,46 +51,4 @@ pub fn file_names(dir: &std::path::Path) -> Vec<String> {
         .collect();
     names.sort();
     names
-}
-
-/// Closed-form response of q'' + 2 h w q' + w^2 q = -beta1 A sin(W t) from rest, W = 2 pi / Tp:
-/// the pre-uplift motion under a harmonic floor acceleration.
-pub fn damped_oscillator_response(
-    omega: f64,
-    damping_ratio: f64,
-    beta1: f64,
-    amplitude: f64,
-    period: f64,
-) -> impl Fn(f64) -> f64 {
-    let (w, h, big_w) = (omega, damping_ratio, 2.0 * std::f64::consts::PI / period);
-    let f0 = -beta1 * amplitude;
-    let den = (w * w - big_w * big_w).powi(2) + (2.0 * h * w * big_w).powi(2);
-    let xs = f0 * (w * w - big_w * big_w) / den;
-    let xc = -f0 * 2.0 * h * w * big_w / den;
-    let wd = w * (1.0 - h * h).sqrt();
-    let e = -xc;
-    let g = (h * w * e - big_w * xs) / wd;
-    move |t: f64| {
-        xs * (big_w * t).sin()
-            + xc * (big_w * t).cos()
-            + (-h * w * t).exp() * (e * (wd * t).cos() + g * (wd * t).sin())
-    }
-}
-
-/// The first logged event whose q' does not point across its guard (an uplift or an overturn
-/// away from the floor, a landing back towards it), described; None when every event does.
-pub fn event_against_its_direction(sol: &Solution) -> Option<String> {
-    sol.events.iter().find_map(|e| {
-        let side = if e.from == Mode::RockRight || e.to == Mode::RockRight {
-            1.0
-        } else {
-            -1.0
-        };
-        let outward = side * e.qdot_before;
-        let right = match e.kind {
-            EventKind::Uplift | EventKind::Overturn => outward > 0.0,
-            EventKind::Landing => outward < 0.0,
-        };
-        (!right).then(|| format!("{:?} at t = {} with q' = {}", e.kind, e.t, e.qdot_before))
-    })
 }

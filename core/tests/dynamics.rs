@@ -3,7 +3,7 @@
 
 mod common;
 
-use flexrock::automaton::{EventKind, Mode};
+use flexrock_core::automaton::{EventKind, Mode};
 
 fn free_body(e_factor: f64, damping: f64, q0: f64, qdot0: f64, duration: f64) -> String {
     format!(
@@ -22,7 +22,7 @@ fn weak_harmonic_matches_the_damped_oscillator() {
          [simulation]\nduration = 6.0\n[solver]\nrtol = 1e-10\natol = 1e-12\noutput_dt = 0.01\n",
     );
     let model = common::model(&text);
-    let sol = flexrock::run::simulate(&model).unwrap();
+    let sol = flexrock_core::simulate::simulate(&model).unwrap();
     assert!(sol.events.is_empty(), "too weak to uplift");
 
     // q'' + 2 h w q' + w^2 q = -beta1 A sin(W t), q(0) = q'(0) = 0: closed form.
@@ -101,7 +101,7 @@ fn no_missed_events_at_loose_tolerance() {
     );
     let tight = loose.replace("rtol = 1e-4\natol = 1e-6", "rtol = 1e-10\natol = 1e-12");
     let (a, b) = (common::solve(&loose), common::solve(&tight));
-    let seq = |s: &flexrock::solution::Solution| {
+    let seq = |s: &flexrock_core::solution::Solution| {
         s.events
             .iter()
             .map(|e| (e.kind, e.from, e.to))
@@ -152,7 +152,7 @@ fn resets_follow_the_zetas() {
          [simulation]\nduration = 6.0\n",
     );
     let model = common::model(&text);
-    let sol = flexrock::run::simulate(&model).unwrap();
+    let sol = flexrock_core::simulate::simulate(&model).unwrap();
     let c = &model.constants;
     for e in &sol.events {
         let expected = match e.kind {
@@ -264,8 +264,8 @@ fn runs_end_at_their_stop_time_after_crossings_in_the_last_step() {
              [solver]\nmethod = \"tsit45\"\nrtol = 0.001\natol = 0.00001\noutput_dt = 0.01\n"
         );
         let model = common::model(&text);
-        let sol =
-            flexrock::run::simulate(&model).unwrap_or_else(|e| panic!("duration {duration}: {e}"));
+        let sol = flexrock_core::simulate::simulate(&model)
+            .unwrap_or_else(|e| panic!("duration {duration}: {e}"));
         assert!((sol.final_time - duration).abs() < 1e-9, "{duration}");
         assert!((sol.samples.last().unwrap().t - duration).abs() < 1e-9);
     }

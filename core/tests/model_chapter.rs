@@ -8,9 +8,9 @@ mod common;
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 
-use flexrock::constants::Constants;
+use flexrock_core::constants::Constants;
 
-const CHAPTER: &str = include_str!("../book/src/model.md");
+const CHAPTER: &str = include_str!("../../book/src/model.md");
 
 /// The numbered sections of the chapter: "1" ... "10", "7a", "7b", "7c".
 fn sections() -> BTreeSet<String> {
@@ -77,7 +77,7 @@ fn cited_files() -> Vec<PathBuf> {
         }
     }
     let mut files = Vec::new();
-    walk(&common::repo(""), &mut files);
+    walk(&common::workspace_file(""), &mut files);
     files
 }
 

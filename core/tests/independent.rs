@@ -4,13 +4,15 @@
 //! file's tolerance (rtol = 1e-10) and must give the same event sequence, event times within
 //! 1e-6 s and peaks within 1e-7 m.
 
-use std::path::{Path, PathBuf};
+mod common;
 
-use flexrock::model::{Model, Overrides};
+use std::path::PathBuf;
+
+use flexrock_core::model::{Model, Overrides};
 use serde_json::Value;
 
 fn cases() -> Vec<PathBuf> {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/cases");
+    let dir = common::workspace_file("tests/data/cases");
     let mut cases: Vec<PathBuf> = std::fs::read_dir(&dir)
         .expect("tests/data/cases exists")
         .map(|e| e.unwrap().path())
@@ -53,7 +55,7 @@ fn matches_the_independent_solution(method: &str) {
             ..Overrides::default()
         };
         let model = Model::load(case, &overrides).unwrap();
-        let sol = flexrock::run::simulate(&model).unwrap();
+        let sol = flexrock_core::simulate::simulate(&model).unwrap();
 
         // Constants.
         let c = &expected["constants"];

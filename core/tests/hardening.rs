@@ -15,11 +15,11 @@
 
 mod common;
 
-use flexrock::automaton::{EventKind, Mode};
-use flexrock::model::{Model, Overrides};
-use flexrock::solution::Solution;
-use flexrock::solver::adaptive::{AdaptiveMethod, AdaptiveSettings};
-use flexrock::solver::SolverSettings;
+use flexrock_core::automaton::{EventKind, Mode};
+use flexrock_core::model::{Model, Overrides};
+use flexrock_core::solution::Solution;
+use flexrock_core::solver::adaptive::{AdaptiveMethod, AdaptiveSettings};
+use flexrock_core::solver::SolverSettings;
 
 const METHODS: [AdaptiveMethod; 4] = [
     AdaptiveMethod::Bdf,
@@ -41,7 +41,7 @@ fn settings(method: AdaptiveMethod, rtol: f64) -> SolverSettings {
 }
 
 fn solve(model: &Model, method: AdaptiveMethod, rtol: f64, context: &str) -> Solution {
-    match flexrock::run::simulate_with(model, &settings(method, rtol)) {
+    match flexrock_core::simulate::simulate_with(model, &settings(method, rtol)) {
         Ok(s) => s,
         Err(e) => panic!("{context}, {} at rtol {rtol:e}: {e}", method.name()),
     }
@@ -224,8 +224,9 @@ fn every_method_finishes_every_record_at_every_tolerance() {
     for record in RECORDS {
         for scale in [0.0, 1.0, 5.0] {
             let model = common::model(&common::reference_body(&format!(
-                "[excitation]\nkind = \"record\"\npath = \"validation/records/{record}\"\nscale = {scale}\n\
-                 tail = 2.0\n[simulation]\n"
+                "[excitation]\nkind = \"record\"\npath = \"{}\"\nscale = {scale}\n\
+                 tail = 2.0\n[simulation]\n",
+                common::workspace_file(&format!("validation/records/{record}")).display()
             )));
             let context = format!("{record} x {scale}");
             let tight = solve(&model, AdaptiveMethod::Tsit45, 1e-10, &context);
@@ -342,9 +343,9 @@ fn a_jump_of_the_floor_at_a_pulse_end_restarts_the_method() {
     for method in ["bdf", "esdirk34", "tr-bdf2", "tsit45"] {
         for rtol in [1e-8, 1e-10, 1e-11, 1e-12] {
             let model = common::model(&text(method, rtol));
-            let solution = flexrock::run::simulate(&model)
+            let solution = flexrock_core::simulate::simulate(&model)
                 .unwrap_or_else(|e| panic!("{method} at rtol {rtol:e}: {e}"));
-            let kinds = |s: &flexrock::solution::Solution| -> Vec<&'static str> {
+            let kinds = |s: &flexrock_core::solution::Solution| -> Vec<&'static str> {
                 s.events.iter().map(|e| e.kind.name()).collect()
             };
             assert_eq!(kinds(&solution), kinds(&reference), "{method} {rtol:e}");
@@ -371,12 +372,20 @@ fn a_trivially_short_run_runs_with_every_method() {
             let overrides = Overrides {
                 method: Some(method.into()),
                 duration: Some(duration),
-                settings: vec![flexrock::model::Setting::number("simulation.qdot0", qdot0)],
+                settings: vec![flexrock_core::model::Setting::number(
+                    "simulation.qdot0",
+                    qdot0,
+                )],
                 ..Overrides::default()
             };
-            let model = Model::load(&common::reference_model(), &overrides).unwrap();
+            let model = Model::load(
+                &common::workspace_file("models/ichinose1986.toml"),
+                &overrides,
+            )
+            .unwrap();
             let context = format!("{method}, duration {duration} s");
-            let sol = flexrock::run::simulate(&model).unwrap_or_else(|e| panic!("{context}: {e}"));
+            let sol = flexrock_core::simulate::simulate(&model)
+                .unwrap_or_else(|e| panic!("{context}: {e}"));
             assert!(sol.events.is_empty(), "{context}");
             let last = sol.samples.last().expect("a final sample");
             assert_eq!(last.t, duration, "{context}");
@@ -404,9 +413,13 @@ fn the_energy_warning_ignores_rounding_of_tiny_energies() {
         duration: Some(1e-6),
         ..Overrides::default()
     };
-    let model = Model::load(&common::reference_model(), &overrides).unwrap();
-    let sol = flexrock::run::simulate(&model).unwrap();
-    let warnings = flexrock::run::warnings(&model, &sol);
+    let model = Model::load(
+        &common::workspace_file("models/ichinose1986.toml"),
+        &overrides,
+    )
+    .unwrap();
+    let sol = flexrock_core::simulate::simulate(&model).unwrap();
+    let warnings = flexrock_core::simulate::warnings(&model, &sol);
     assert!(
         !warnings.iter().any(|w| w.contains("energy residual")),
         "{warnings:?} (residual {} J of {} J)",
@@ -418,9 +431,13 @@ fn the_energy_warning_ignores_rounding_of_tiny_energies() {
         rtol: Some(1e-2),
         ..Overrides::default()
     };
-    let model = Model::load(&common::reference_model(), &overrides).unwrap();
-    let sol = flexrock::run::simulate(&model).unwrap();
-    let warnings = flexrock::run::warnings(&model, &sol);
+    let model = Model::load(
+        &common::workspace_file("models/ichinose1986.toml"),
+        &overrides,
+    )
+    .unwrap();
+    let sol = flexrock_core::simulate::simulate(&model).unwrap();
+    let warnings = flexrock_core::simulate::warnings(&model, &sol);
     assert!(
         warnings.iter().any(|w| w.contains("energy residual")),
         "{warnings:?}"

@@ -4,8 +4,8 @@
 
 mod common;
 
-use flexrock::automaton::{EventKind, Mode};
-use flexrock::model::{Model, Overrides};
+use flexrock_core::automaton::{EventKind, Mode};
+use flexrock_core::model::{Model, Overrides};
 use proptest::prelude::*;
 
 proptest! {
@@ -55,7 +55,7 @@ proptest! {
             // Bodies the model refuses (unstable, too squat, Newmark beyond its limit) are fine.
             return Ok(());
         };
-        let sol = flexrock::run::simulate(&model).map_err(|e| TestCaseError::fail(format!("{e}\n{text}")))?;
+        let sol = flexrock_core::simulate::simulate(&model).map_err(|e| TestCaseError::fail(format!("{e}\n{text}")))?;
         let s_n = model.constants.uplift_displacement;
         // The overturning guard: B in the paper's model, where F = 0 in the consistent one.
         let b = model.constants.topple_displacement;

@@ -1,9 +1,9 @@
 //! Whatever the text of a model file, reading it gives a model or an error, never a panic.
 
-use flexrock::model::{Model, Overrides};
+use flexrock_core::model::{Model, Overrides};
 use proptest::prelude::*;
 
-const REFERENCE: &str = include_str!("../models/ichinose1986.toml");
+const REFERENCE: &str = include_str!("../../models/ichinose1986.toml");
 
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(2000))]
@@ -37,7 +37,7 @@ proptest! {
 }
 
 /// The reference body with `extra` appended (TOML sections), read as a model.
-fn reference_with(extra: &str, overrides: &Overrides) -> flexrock::error::Result<Model> {
+fn reference_with(extra: &str, overrides: &Overrides) -> flexrock_core::error::Result<Model> {
     let text = format!("[body]\nheight = 4.0\nwidth = 0.7\ndepth = 1.0\ndensity = 600.0\n{extra}");
     Model::from_toml_str(&text, overrides)
 }
@@ -72,7 +72,7 @@ fn documented_inclusive_limits_accept_their_exact_values() {
         "youngs_modulus = 5e6\n{PULSE}amplitude = 1.0\n[solver]\nmethod = \"newmark\"\ndt = 9e-9\n"
     ));
     // 1e6 FEM steps: 0.9 / 9e-7.
-    flexrock::flexrock_core::fem::check_run_size(2, 5, 9e-7, 0.9).expect("1e6 steps");
+    flexrock_core::fem::check_run_size(2, 5, 9e-7, 0.9).expect("1e6 steps");
 
     // Beyond the limits, the message prints the limit as written.
     let refused = |extra: &str| match reference_with(extra, &none) {
@@ -122,7 +122,7 @@ fn a_body_that_lifts_off_under_its_own_weight_is_refused() {
 fn an_overflowing_body_product_blames_the_key_that_was_set() {
     // M = density H B D overflows at H = 1e308: the message names body.height, not body.mass.
     let overrides = Overrides {
-        settings: vec![flexrock::model::Setting::number("body.height", 1e308)],
+        settings: vec![flexrock_core::model::Setting::number("body.height", 1e308)],
         ..Overrides::default()
     };
     let text = format!(
