@@ -16,7 +16,7 @@
 # Not rerun: the OpenSees and scipy reference sides (validation/opensees/, the reference columns
 # of validation/sweep/*_comparison.csv, tests/data/cases/ of validation/independent/); their
 # outputs are committed with the commands and versions that made them, and flexrock's side of
-# each comparison is checked here (3, 4) or by the test suite (tests/independent.rs).
+# each comparison is checked here (3, 4) or by the test suite (core/tests/independent.rs).
 #
 # Wall times are not compared: every command runs with --timings-apart, so they go to the
 # timings.json of each result directory, committed as measured when the evidence was made and put
