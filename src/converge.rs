@@ -350,21 +350,7 @@ pub fn run_converge(
 
     let mut cases = Vec::new();
     for (method, dt, rtol, settings) in configurations {
-        let failed = |status: String| Case {
-            method: method.clone(),
-            dt,
-            rtol,
-            max_q_error: f64::NAN,
-            max_event_time_error: f64::NAN,
-            peak_error: f64::NAN,
-            event_count_difference: 0,
-            unmatched_events: 0,
-            steps: 0,
-            rhs_evaluations: 0,
-            wall_time_s: 0.0,
-            max_energy_residual: f64::NAN,
-            status,
-        };
+        let failed = |status: String| Case::failed(&method, dt, rtol, status);
         let mut solution = match simulate_with(model, &settings) {
             Ok(s) => s,
             Err(e) => {
@@ -414,6 +400,27 @@ pub fn run_converge(
     files.extend(timings.file());
     let files = output::write_atomically(out_dir, &files)?;
     Ok(ConvergeReport { summary, files })
+}
+
+impl Case {
+    /// A case whose run failed with `status`: nothing measured (NaN errors, no counts).
+    fn failed(method: &str, dt: Option<f64>, rtol: Option<f64>, status: String) -> Case {
+        Case {
+            method: method.to_string(),
+            dt,
+            rtol,
+            max_q_error: f64::NAN,
+            max_event_time_error: f64::NAN,
+            peak_error: f64::NAN,
+            event_count_difference: 0,
+            unmatched_events: 0,
+            steps: 0,
+            rhs_evaluations: 0,
+            wall_time_s: 0.0,
+            max_energy_residual: f64::NAN,
+            status,
+        }
+    }
 }
 
 fn cases_table(cases: &[Case]) -> Vec<u8> {
@@ -625,21 +632,12 @@ mod tests {
     /// A failed case's row holds its method, settings and status, and nothing measured.
     #[test]
     fn a_failed_case_has_empty_measurements() {
-        let case = Case {
-            method: "newmark-compensate".to_string(),
-            dt: Some(0.5),
-            rtol: None,
-            max_q_error: f64::NAN,
-            max_event_time_error: f64::NAN,
-            peak_error: f64::NAN,
-            event_count_difference: 0,
-            unmatched_events: 0,
-            steps: 0,
-            rhs_evaluations: 0,
-            wall_time_s: 0.0,
-            max_energy_residual: f64::NAN,
-            status: "the newmark solver failed at t = 1 s: too many events".to_string(),
-        };
+        let case = Case::failed(
+            "newmark-compensate",
+            Some(0.5),
+            None,
+            "the newmark solver failed at t = 1 s: too many events".to_string(),
+        );
         let text = String::from_utf8(cases_table(&[case])).unwrap();
         let mut reader = csv::Reader::from_reader(text.as_bytes());
         let row = reader.records().next().unwrap().unwrap();

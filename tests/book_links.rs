@@ -10,6 +10,8 @@
 //! book is refused: mdBook turns it into `.html`, which the built book does not have. A page
 //! that is gone may be kept as a redirect of `book/book.toml` (`[output.html.redirect]`).
 
+mod common;
+
 use std::collections::{BTreeMap, BTreeSet, HashMap};
 use std::path::{Component, Path, PathBuf};
 
@@ -44,18 +46,7 @@ pub fn heading_id(heading: &str) -> String {
     }
     // A link in a heading keeps its text only.
     let text = strip_link_targets(&text);
-    text.trim()
-        .chars()
-        .filter_map(|c| {
-            if c.is_alphanumeric() || c == '_' || c == '-' {
-                Some(c.to_ascii_lowercase())
-            } else if c.is_whitespace() {
-                Some('-')
-            } else {
-                None
-            }
-        })
-        .collect()
+    common::anchor_of(&text)
 }
 
 /// `[text](target)` becomes `text`.

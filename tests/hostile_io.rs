@@ -578,24 +578,10 @@ fn a_history_of_ten_million_rows_is_refused() {
 
 /// The user documentation: README.md and every page of the book (book/src/), one text.
 fn docs() -> String {
-    fn pages(dir: &std::path::Path, text: &mut String) {
-        let mut entries: Vec<_> = std::fs::read_dir(dir)
-            .unwrap()
-            .map(|e| e.unwrap().path())
-            .collect();
-        entries.sort();
-        for path in entries {
-            if path.is_dir() {
-                pages(&path, text);
-            } else if path.extension().is_some_and(|e| e == "md") {
-                text.push_str(&std::fs::read_to_string(&path).unwrap());
-                text.push('\n');
-            }
-        }
-    }
-    let mut text = std::fs::read_to_string(common::repo("README.md")).unwrap();
-    pages(&common::repo("book/src"), &mut text);
-    text
+    common::documents()
+        .iter()
+        .map(|doc| std::fs::read_to_string(common::repo(&doc.to_string_lossy())).unwrap() + "\n")
+        .collect()
 }
 
 const METHODS: [&str; 5] = ["bdf", "esdirk34", "tr-bdf2", "tsit45", "newmark"];

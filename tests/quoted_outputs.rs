@@ -221,27 +221,6 @@ fn root() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
 }
 
-/// README.md and every page of the book, as paths relative to the repository root, in order.
-fn documents() -> Vec<PathBuf> {
-    fn pages(dir: &Path, into: &mut Vec<PathBuf>) {
-        let mut entries: Vec<PathBuf> = std::fs::read_dir(dir)
-            .unwrap()
-            .map(|e| e.unwrap().path())
-            .collect();
-        entries.sort();
-        for path in entries {
-            if path.is_dir() {
-                pages(&path, into);
-            } else if path.extension().is_some_and(|e| e == "md") {
-                into.push(path.strip_prefix(root()).unwrap().to_path_buf());
-            }
-        }
-    }
-    let mut docs = vec![PathBuf::from("README.md")];
-    pages(&root().join("book/src"), &mut docs);
-    docs
-}
-
 /// A scratch directory for one document, with the repository's inputs linked in.
 fn workspace(doc: &Path) -> PathBuf {
     let name = doc.to_string_lossy().replace(['/', '.'], "-");
@@ -340,7 +319,7 @@ fn the_documents_quote_what_the_program_prints() {
     let mut failures = Vec::new();
     let mut commands = 0;
     let mut shown = std::collections::BTreeSet::new();
-    for doc in documents() {
+    for doc in common::documents() {
         let text = std::fs::read_to_string(root().join(&doc)).unwrap();
         let runs = quoted_runs(&text).len();
         let pictures = figures(&text);

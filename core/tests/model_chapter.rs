@@ -32,21 +32,7 @@ fn anchors() -> BTreeSet<String> {
     CHAPTER
         .lines()
         .filter(|line| line.starts_with('#'))
-        .map(|line| {
-            line.trim_start_matches('#')
-                .trim()
-                .chars()
-                .filter_map(|c| {
-                    if c.is_alphanumeric() || c == '-' || c == '_' {
-                        Some(c.to_ascii_lowercase())
-                    } else if c.is_whitespace() {
-                        Some('-')
-                    } else {
-                        None
-                    }
-                })
-                .collect()
-        })
+        .map(|line| common::anchor_of(line.trim_start_matches('#')))
         .collect()
 }
 

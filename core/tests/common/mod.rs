@@ -76,9 +76,53 @@ pub fn event_against_its_direction(sol: &Solution) -> Option<String> {
     })
 }
 
-/// A file of the repository (the workspace's root), by its path from the root.
+/// A file of the repository, by its path from the root: the workspace's root, the directory
+/// of Cargo.lock (this module serves the tests of both crates).
 pub fn workspace_file(path: &str) -> std::path::PathBuf {
-    std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("..")
-        .join(path)
+    let manifest = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let root = manifest
+        .ancestors()
+        .find(|dir| dir.join("Cargo.lock").is_file())
+        .unwrap_or(manifest);
+    root.join(path)
+}
+
+/// mdBook's anchor of a heading's plain text (as a repository host makes it too): lower case,
+/// whitespace to hyphens, everything but letters, digits, '-' and '_' dropped.
+pub fn anchor_of(text: &str) -> String {
+    text.trim()
+        .chars()
+        .filter_map(|c| {
+            if c.is_alphanumeric() || c == '_' || c == '-' {
+                Some(c.to_ascii_lowercase())
+            } else if c.is_whitespace() {
+                Some('-')
+            } else {
+                None
+            }
+        })
+        .collect()
+}
+
+/// The user documentation: README.md and every page of the book (book/src/), as paths from the
+/// repository's root, in a fixed order.
+pub fn documents() -> Vec<std::path::PathBuf> {
+    fn pages(root: &std::path::Path, dir: &std::path::Path, into: &mut Vec<std::path::PathBuf>) {
+        let mut entries: Vec<std::path::PathBuf> = std::fs::read_dir(dir)
+            .unwrap()
+            .map(|e| e.unwrap().path())
+            .collect();
+        entries.sort();
+        for path in entries {
+            if path.is_dir() {
+                pages(root, &path, into);
+            } else if path.extension().is_some_and(|e| e == "md") {
+                into.push(path.strip_prefix(root).unwrap().to_path_buf());
+            }
+        }
+    }
+    let root = workspace_file("");
+    let mut docs = vec![std::path::PathBuf::from("README.md")];
+    pages(&root, &root.join("book/src"), &mut docs);
+    docs
 }
