@@ -452,14 +452,23 @@ fn figures(summary: &ConvergeSummary) -> Result<(String, String)> {
         }
         m
     };
+    // (column, panel title, axis label with unit)
     let titles = [
-        ("max_q_error", "max |q error| on the grid", "m"),
-        ("max_event_time_error", "max event-time error", "s"),
-        ("peak_error", "peak error of q", "m"),
+        (
+            "max_q_error",
+            "Error of q on the output grid",
+            "max |Δq| (m)",
+        ),
+        (
+            "max_event_time_error",
+            "Error of the event times",
+            "max |Δt_event| (s)",
+        ),
+        ("peak_error", "Error of the peak of |q|", "|Δq_peak| (m)"),
     ];
     let mut dt_panels = Vec::new();
     let mut work_panels = Vec::new();
-    for (name, title, unit) in titles {
+    for (name, title, y_label) in titles {
         let mut dt_series = Vec::new();
         let mut work_series = Vec::new();
         for (i, method) in methods.iter().enumerate() {
@@ -499,9 +508,9 @@ fn figures(summary: &ConvergeSummary) -> Result<(String, String)> {
             }
         }
         dt_panels.push(Panel {
-            title: format!("Newmark: {title} against dt"),
-            x_label: "dt (s)".to_string(),
-            y_label: format!("{title} ({unit})"),
+            title: format!("Newmark: {title}"),
+            x_label: "Δt (s)".to_string(),
+            y_label: y_label.to_string(),
             series: dt_series,
             log_x: true,
             log_y: true,
@@ -509,9 +518,9 @@ fn figures(summary: &ConvergeSummary) -> Result<(String, String)> {
             ..Panel::default()
         });
         work_panels.push(Panel {
-            title: format!("{title} against work"),
+            title: title.to_string(),
             x_label: "right-hand-side evaluations".to_string(),
-            y_label: format!("{title} ({unit})"),
+            y_label: y_label.to_string(),
             series: work_series,
             log_x: true,
             log_y: true,
