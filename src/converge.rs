@@ -482,13 +482,21 @@ fn figures(summary: &ConvergeSummary) -> Result<(String, String)> {
                 .iter()
                 .map(|c| (c.rhs_evaluations as f64, metric(c, name)))
                 .collect();
-            work_series.push(Series::line(method, work, i + 1).with_markers());
+            work_series.push(
+                Series::line(method, work, i + 1)
+                    .with_width(2)
+                    .with_markers(),
+            );
             if cases.first().is_some_and(|c| c.dt.is_some()) {
                 let points: Vec<(f64, f64)> = cases
                     .iter()
                     .map(|c| (c.dt.unwrap_or(f64::NAN), metric(c, name)))
                     .collect();
-                dt_series.push(Series::line(method, points, i + 1).with_markers());
+                dt_series.push(
+                    Series::line(method, points, i + 1)
+                        .with_width(2)
+                        .with_markers(),
+                );
             }
         }
         // Guides through the first compensate point: slopes 1 and 2.
@@ -500,11 +508,16 @@ fn figures(summary: &ConvergeSummary) -> Result<(String, String)> {
             let (x0, y0) = (anchor.dt.unwrap_or(1.0), metric(anchor, name));
             let x1 = summary.cases.iter().filter_map(|c| c.dt).fold(x0, f64::min);
             for (order, color) in [(1.0, 5), (2.0, 6)] {
-                dt_series.push(Series::line(
-                    &format!("slope {order}"),
-                    vec![(x0, y0), (x1, y0 * (x1 / x0).powf(order))],
-                    color,
-                ));
+                // Guides, not data: thin and dashed.
+                dt_series.push(
+                    Series::line(
+                        &format!("slope {order}"),
+                        vec![(x0, y0), (x1, y0 * (x1 / x0).powf(order))],
+                        color,
+                    )
+                    .with_width(1)
+                    .dashed(),
+                );
             }
         }
         dt_panels.push(Panel {
