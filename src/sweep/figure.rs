@@ -144,8 +144,8 @@ fn record_name(path: &str) -> String {
 }
 
 /// Incremental dynamic analysis: max |q|/B against the intensity axis `x`, one line per value of
-/// the other axis (a record, or any other setting), overturned points marked with a cross at
-/// |q|/B = 1, where the line of that record ends.
+/// the other axis (a record, or any other setting), overturned points marked with a cross in the
+/// record's colour at |q|/B = 1, where the line of that record ends.
 fn ida(plan: &Plan, table: &SweepTable, x: usize) -> Result<Vec<u8>> {
     let q_column = table.column("max_abs_q_over_B")?;
     let over_column = table.column("overturned")?;
@@ -210,10 +210,18 @@ fn ida(plan: &Plan, table: &SweepTable, x: usize) -> Result<Vec<u8>> {
         if !beyond.is_empty() {
             panel = panel.with(Series::markers("", beyond, color, Marker::Circle));
         }
-        crosses.extend(group.iter().filter(|p| p.2).map(|p| (p.0, p.1)));
+        let over: Vec<(f64, f64)> = group.iter().filter(|p| p.2).map(|p| (p.0, p.1)).collect();
+        crosses.extend(over.iter().copied());
+        if !over.is_empty() {
+            panel = panel.with(Series::markers("", over, color, Marker::Cross));
+        }
     }
     if !crosses.is_empty() {
-        panel = panel.with(Series::markers("overturned", crosses, 0, Marker::Cross));
+        // The legend's entry for the crosses, in black; drawn first, each under the cross in
+        // its record's colour.
+        panel
+            .series
+            .insert(0, Series::markers("overturned", crosses, 0, Marker::Cross));
     }
     panel.dashed_lines = vec![(1.0, "|q| = B".to_string())];
     panel.legend = Legend::Outside;
