@@ -245,11 +245,11 @@ struct PlotArgs {
     /// embedded DejaVu Sans font, no system fonts needed) or both.
     #[arg(long, value_enum, default_value_t = PlotFormat::Svg)]
     format: PlotFormat,
-    /// Width of every figure, pixels (200 to 10000) [default: 1150 for plot_motion and
+    /// Width of every figure, pixels (200 to 6000) [default: 1150 for plot_motion and
     /// plot_energy, 1920 for plot_force].
     #[arg(long, value_name = "PX")]
     width: Option<u32>,
-    /// Height of every figure, pixels (200 to 10000) [default: 1320 for plot_motion, 560 for
+    /// Height of every figure, pixels (200 to 6000) [default: 1320 for plot_motion, 560 for
     /// plot_force, 760 for plot_energy].
     #[arg(long, value_name = "PX")]
     height: Option<u32>,

@@ -28,7 +28,7 @@ pub const FIGURES: [&str; 3] = ["plot_motion.svg", "plot_force.svg", "plot_energ
 /// [`FIGURES`]: four time panels stacked, three square panels side by side, two time panels.
 pub const DEFAULT_SIZES: [(u32, u32); 3] = [(1150, 1320), (1920, 560), (1150, 760)];
 /// The smallest and largest width or height `flexrock plot` draws, pixels.
-pub const SIZE_LIMITS: (u32, u32) = (200, 10_000);
+pub const SIZE_LIMITS: (u32, u32) = (200, 6_000);
 
 /// What `flexrock plot` draws: formats, size and time window.
 #[derive(Debug, Clone, PartialEq)]
