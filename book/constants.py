@@ -50,7 +50,11 @@ def rocking_constants(int_u, int_u2, int_u_xi, ke, s_n, ds):
     den = H * H * (ds * int_u_xi + dr / 3.0) + B * B / 12.0
     zeta_u = num / (den + B * B / 4.0 * dr)
     zeta_l = num / (den - B * B / 4.0 * dr)
-    return nu2, beta2, zeta_u, zeta_l
+    # Kinetic energy of the horizontal motion, M int (shape)^2 q'^2/2 (U before uplift, V while
+    # rocking): the share kept at uplift and at landing (section 5).
+    kept_u = zeta_u**2 * int_v2 / int_u2
+    kept_l = int_u2 / (zeta_l**2 * int_v2)
+    return nu2, beta2, zeta_u, zeta_l, kept_u, kept_l
 
 
 def paper_variant(int_u, int_u2, int_u_xi, beta1, c_k, c_m, label):
@@ -59,7 +63,7 @@ def paper_variant(int_u, int_u2, int_u_xi, beta1, c_k, c_m, label):
     omega = math.sqrt(ke / me)
     s_n = B / (2.0 * EI * c_m / (M * G * H * H) + 2.0 * int_u)
     ds = -s_n / (B - s_n)
-    nu2, beta2, zu, zl = rocking_constants(int_u, int_u2, int_u_xi, ke, s_n, ds)
+    nu2, beta2, zu, zl, ku, kl = rocking_constants(int_u, int_u2, int_u_xi, ke, s_n, ds)
     print(f"== paper's model, {label} constants")
     rows = [
         ("int U", int_u), ("int U^2", int_u2), ("int U xi", int_u_xi), ("beta1", beta1),
@@ -67,7 +71,8 @@ def paper_variant(int_u, int_u2, int_u_xi, beta1, c_k, c_m, label):
         ("T (s)", 2 * math.pi / omega), ("gamma/E (s)", 2 * DAMPING / omega), ("s_n (m)", s_n),
         ("s_n/B", s_n / B), ("Ke s_n (N)", ke * s_n), ("dF/dq rocking (N/m)", ke * ds),
         ("ds/dq rocking", ds), ("nu2", nu2), ("beta2", beta2), ("zetaU", zu), ("zetaL", zl),
-        ("zetaU/zetaL", zu / zl), ("a_up = omega^2 s_n/beta1 (m/s^2)", omega**2 * s_n / beta1),
+        ("zetaU/zetaL", zu / zl), ("kinetic energy kept at uplift", ku),
+        ("kinetic energy kept at landing", kl), ("a_up = omega^2 s_n/beta1 (m/s^2)", omega**2 * s_n / beta1),
         ("rigid-limit uplift factor", c_k / (2 * int_u * c_m * beta1)),
     ]
     for name, value in rows:
@@ -191,7 +196,7 @@ def consistent_variant():
     k_r = M * G * i1 * i1 / (i2 * H)
     dfdq = ke * ds - k_r * (1 - ds)
     q_topple = s_n - ke * s_n / dfdq
-    nu2, beta2, zu, zl = rocking_constants(i1, i2, ix, ke, s_n, ds)
+    nu2, beta2, zu, zl, ku, kl = rocking_constants(i1, i2, ix, ke, s_n, ds)
     print("== self-weight-consistent variant")
     rows = [
         ("gamma_g", gamma_g), ("Omega/L^4", omega_c / L**4), ("int psi", i1), ("int psi^2", i2),
@@ -200,7 +205,9 @@ def consistent_variant():
         ("s_n (m)", s_n), ("Ke s_n (N)", ke * s_n), ("kappa", kappa), ("ds/dq rocking", ds),
         ("k_r (N/m)", k_r), ("dF/dq rocking (N/m)", dfdq), ("q_topple (m)", q_topple),
         ("s at q_topple (m)", s_n + ds * (q_topple - s_n)), ("nu2", nu2), ("beta2", beta2),
-        ("zetaU", zu), ("zetaL", zl), ("a_up = omega^2 s_n/beta1 (m/s^2)", omega**2 * s_n * i2 / i1),
+        ("zetaU", zu), ("zetaL", zl), ("kinetic energy kept at uplift", ku),
+        ("kinetic energy kept at landing", kl),
+        ("a_up = omega^2 s_n/beta1 (m/s^2)", omega**2 * s_n * i2 / i1),
     ]
     for name, value in rows:
         print(f"  {name:36s} {value:.9g}")

@@ -19,7 +19,7 @@ class Model:
     @staticmethod
     def from_toml(text: str) -> Model: ...
     def set(self, key: str, value: Value) -> None:
-        """Set a model-file key (as --set KEY=VALUE); raises FlexrockError on a bad key or value."""
+        """Set a model-file key; raises FlexrockError, naming the key, on a bad key or value."""
     @property
     def settings(self) -> list[str]: ...
     @property
@@ -48,6 +48,8 @@ def simulate(
     method: Optional[str] = None,
     rtol: Optional[float] = None,
     atol: Optional[float] = None,
+    duration: Optional[float] = None,
+    output_dt: Optional[float] = None,
 ) -> Result: ...
 def sweep(
     model: Model,

@@ -420,6 +420,15 @@ fn cases_table(cases: &[Case]) -> Vec<u8> {
     let mut table = Table::new(&CONVERGENCE_COLUMNS);
     let optional = |x: Option<f64>| x.map(number).unwrap_or_default();
     for c in cases {
+        if c.status != "ok" {
+            // A case that failed measured nothing: its error, count and cost fields are empty,
+            // not NaN or zeros that read as values.
+            let mut row = vec![c.method.clone(), optional(c.dt), optional(c.rtol)];
+            row.resize(CONVERGENCE_COLUMNS.len() - 1, String::new());
+            row.push(c.status.clone());
+            table.row(row);
+            continue;
+        }
         table.row([
             c.method.clone(),
             optional(c.dt),
@@ -629,4 +638,45 @@ pub fn converge_text(report: &ConvergeReport) -> String {
         let _ = writeln!(t, "wrote {}", f.display());
     }
     t
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A failed case's row holds its method, settings and status, and nothing measured.
+    #[test]
+    fn a_failed_case_has_empty_measurements() {
+        let case = Case {
+            method: "newmark-compensate".to_string(),
+            dt: Some(0.5),
+            rtol: None,
+            max_q_error: f64::NAN,
+            max_event_time_error: f64::NAN,
+            peak_error: f64::NAN,
+            event_count_difference: 0,
+            unmatched_events: 0,
+            steps: 0,
+            rhs_evaluations: 0,
+            wall_time_s: 0.0,
+            max_energy_residual: f64::NAN,
+            status: "the newmark solver failed at t = 1 s: too many events".to_string(),
+        };
+        let text = String::from_utf8(cases_table(&[case])).unwrap();
+        let mut reader = csv::Reader::from_reader(text.as_bytes());
+        let row = reader.records().next().unwrap().unwrap();
+        assert_eq!(row.len(), CONVERGENCE_COLUMNS.len());
+        assert_eq!(&row[0], "newmark-compensate");
+        assert_eq!(&row[1], "0.5");
+        assert_eq!(&row[2], "");
+        for (k, field) in row
+            .iter()
+            .enumerate()
+            .take(CONVERGENCE_COLUMNS.len() - 1)
+            .skip(3)
+        {
+            assert_eq!(field, "", "{} of a failed case", CONVERGENCE_COLUMNS[k]);
+        }
+        assert!(row[CONVERGENCE_COLUMNS.len() - 1].starts_with("the newmark solver failed"));
+    }
 }

@@ -37,6 +37,7 @@ pub use flexrock_core::{
 pub mod compare;
 pub mod converge;
 pub mod fem;
+pub mod flags;
 pub mod output;
 pub mod plot;
 pub mod record_tools;

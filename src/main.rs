@@ -367,14 +367,14 @@ fn sweep(args: SweepArgs) -> flexrock::Result<Output> {
         ));
     };
     let mut request = Request {
-        settings: args.set.settings,
+        settings: args.set.settings_for(&path),
         scan: args.scan,
         tol: args.tol,
         chunk_size: args.chunk_size,
         ..Request::default()
     };
     if let Some(file) = &args.sweep_file {
-        request.add_file(file)?;
+        request.add_file(file, &path)?;
     }
     for text in &args.vary {
         request.vary(text, std::path::Path::new("."))?;
@@ -399,7 +399,12 @@ fn sweep(args: SweepArgs) -> flexrock::Result<Output> {
             .num_threads(threads)
             .build_global();
     }
-    let sweep = Sweep::new(&path, request)?;
+    let given = Overrides {
+        settings: request.settings.clone(),
+        ..Overrides::default()
+    };
+    let sweep = Sweep::new(&path, request)
+        .map_err(|e| flexrock::flags::named_by_flags(e, &given, &FemOverrides::default()))?;
     let out = args.out.unwrap_or_else(|| default_out_dir(&path, "-sweep"));
     let bar = if args.quiet {
         indicatif::ProgressBar::hidden()
@@ -437,9 +442,20 @@ struct SetArgs {
 }
 
 impl SetArgs {
-    fn overrides(self) -> Overrides {
+    /// The `--set` keys for the model file `model`: a record path typed here is relative to the
+    /// current directory, and is written again relative to the model file, which reads it.
+    fn settings_for(self, model: &std::path::Path) -> Vec<Setting> {
+        let here = std::env::current_dir().unwrap_or_default();
+        let model_dir = here.join(model.parent().unwrap_or(std::path::Path::new("")));
+        self.settings
+            .into_iter()
+            .map(|s| s.rebased(&here, &model_dir))
+            .collect()
+    }
+
+    fn overrides(self, model: &std::path::Path) -> Overrides {
         Overrides {
-            settings: self.settings,
+            settings: self.settings_for(model),
             ..Overrides::default()
         }
     }
@@ -582,7 +598,7 @@ fn execute(command: Command) -> flexrock::Result<Output> {
                 duration,
                 dt,
                 newmark_variant: variant,
-                settings: set.settings,
+                settings: set.settings_for(&path),
             };
             run(&path, out, &overrides, plot, timings.wall_times())
         }
@@ -689,8 +705,12 @@ fn execute(command: Command) -> flexrock::Result<Output> {
             set,
             timings,
         } => {
-            let model = Model::load(&path, &set.overrides())?;
-            let setup = model.fem_with(&FemOverrides { nx, ny, scheme, dt })?;
+            let overrides = set.overrides(&path);
+            let model = load(&path, &overrides)?;
+            let fem_overrides = FemOverrides { nx, ny, scheme, dt };
+            let setup = model
+                .fem_with(&fem_overrides)
+                .map_err(|e| flexrock::flags::named_by_flags(e, &overrides, &fem_overrides))?;
             if modes {
                 fem_modes(&model, &setup)
             } else if pushover {
@@ -708,7 +728,7 @@ fn execute(command: Command) -> flexrock::Result<Output> {
 
 /// `flexrock props`: the body and its derived constants, as a table or as JSON.
 fn props(path: &std::path::Path, json: bool, set: SetArgs) -> flexrock::Result<Output> {
-    let model = Model::load(path, &set.overrides())?;
+    let model = load(path, &set.overrides(path))?;
     Ok(if json {
         Output {
             stdout: flexrock::output::json_bytes(&flexrock::run::properties(&model)),
@@ -727,7 +747,7 @@ fn run(
     plot: bool,
     wall_times: flexrock::output::WallTimes,
 ) -> flexrock::Result<Output> {
-    let model = Model::load(path, overrides)?;
+    let model = load(path, overrides)?;
     let out = out.unwrap_or_else(|| default_out_dir(path, ""));
     flexrock::output::check_creatable(&out)?;
     let report = flexrock::run::run_to_dir_with(&model, &out, plot, wall_times)?;
@@ -901,9 +921,16 @@ fn load_with_duration(
 ) -> flexrock::Result<Model> {
     let overrides = Overrides {
         duration,
-        ..set.overrides()
+        ..set.overrides(path)
     };
-    Model::load(path, &overrides)
+    load(path, &overrides)
+}
+
+/// Reads and validates the model file `path` with `overrides`; a message about a value a flag
+/// gave names the flag.
+fn load(path: &std::path::Path, overrides: &Overrides) -> flexrock::Result<Model> {
+    Model::load(path, overrides)
+        .map_err(|e| flexrock::flags::named_by_flags(e, overrides, &FemOverrides::default()))
 }
 
 fn default_out_dir(model: &std::path::Path, suffix: &str) -> PathBuf {

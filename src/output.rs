@@ -115,7 +115,7 @@ pub fn events_csv(events: &[Event]) -> Vec<u8> {
 }
 
 /// Columns of episodes.csv, one row per rocking episode (units in the README's table).
-pub const EPISODE_COLUMNS: [&str; 15] = [
+pub const EPISODE_COLUMNS: [&str; 19] = [
     "index",
     "side",
     "t_start",
@@ -131,6 +131,10 @@ pub const EPISODE_COLUMNS: [&str; 15] = [
     "qdot_after_uplift",
     "qdot_before_landing",
     "qdot_after_landing",
+    "kinetic_energy_before_uplift",
+    "kinetic_energy_after_uplift",
+    "kinetic_energy_before_landing",
+    "kinetic_energy_after_landing",
 ];
 
 /// One field of a row of episodes.csv.
@@ -159,7 +163,7 @@ impl EpisodeField {
 /// peak rocking part into the body's rotation, r/H rad. A value that does not exist (no end
 /// within the run, no landing, no uplift for a run that starts rocking) is None, as is every
 /// value derived from it.
-pub fn episode_fields(e: &Episode, height: f64) -> [EpisodeField; 15] {
+pub fn episode_fields(e: &Episode, height: f64) -> [EpisodeField; 19] {
     use EpisodeField::{Count, Number, Word};
     let side = match e.mode {
         crate::automaton::Mode::RockLeft => "left",
@@ -181,6 +185,10 @@ pub fn episode_fields(e: &Episode, height: f64) -> [EpisodeField; 15] {
         Number(e.qdot_uplift.map(|(_, after)| after)),
         Number(e.qdot_landing.map(|(before, _)| before)),
         Number(e.qdot_landing.map(|(_, after)| after)),
+        Number(e.kinetic_energy_uplift.map(|(before, _)| before)),
+        Number(e.kinetic_energy_uplift.map(|(_, after)| after)),
+        Number(e.kinetic_energy_landing.map(|(before, _)| before)),
+        Number(e.kinetic_energy_landing.map(|(_, after)| after)),
     ]
 }
 

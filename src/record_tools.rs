@@ -96,7 +96,7 @@ fn header_units(record: &Record) -> Option<(&'static str, &'static str)> {
 
 /// The unit's canonical name and its factor to m/s^2.
 pub fn unit_factor(units: &str) -> Result<(&'static str, f64)> {
-    crate::record::acceleration_unit("--units", units)
+    Ok(crate::record::acceleration_unit("--units", units)?)
 }
 
 /// What the reader understood, for `flexrock record info`.

@@ -129,7 +129,7 @@ pub fn properties_table(model: &Model) -> String {
         fmt(c.gravity_parameter_ratio),
         "",
         match c.self_weight {
-            SelfWeight::Paper => "self-weight left out of bending; see README",
+            SelfWeight::Paper => "self-weight left out of bending; the model, §7a",
             SelfWeight::Consistent => "self-weight in the bending",
         },
     );
@@ -262,7 +262,7 @@ pub fn warnings(model: &Model, solution: &Solution) -> Vec<String> {
         warnings.push(format!(
             "M g H^2/EI = {:.4} is {:.3} of its buckling value {SELF_WEIGHT_BUCKLING_PARAMETER} (above {}): \
              the self-weight the paper's model leaves out of bending matters for this body; \
-             body.self_weight = \"consistent\" puts it in (README, Known limits)",
+             body.self_weight = \"consistent\" puts it in (book: the model, §7a)",
             c.gravity_parameter, c.gravity_parameter_ratio, SELF_WEIGHT_WARNING_SHARE
         ));
     }

@@ -1,4 +1,4 @@
-//! Hostile input and output (issue 9): a full disk or a closed pipe on standard output, special
+//! Hostile input and output: a full disk or a closed pipe on standard output, special
 //! files as outputs and records, a failed write in the middle of a set, temporaries of a killed
 //! run, values that must be refused before anything is computed, sizes beyond the limits, and
 //! the program against its documents.
@@ -576,7 +576,27 @@ fn a_history_of_ten_million_rows_is_refused() {
 
 // --- 7. the program and its documents ------------------------------------------------------
 
-const README: &str = include_str!("../README.md");
+/// The user documentation: README.md and every page of the book (book/src/), one text.
+fn docs() -> String {
+    fn pages(dir: &std::path::Path, text: &mut String) {
+        let mut entries: Vec<_> = std::fs::read_dir(dir)
+            .unwrap()
+            .map(|e| e.unwrap().path())
+            .collect();
+        entries.sort();
+        for path in entries {
+            if path.is_dir() {
+                pages(&path, text);
+            } else if path.extension().is_some_and(|e| e == "md") {
+                text.push_str(&std::fs::read_to_string(&path).unwrap());
+                text.push('\n');
+            }
+        }
+    }
+    let mut text = std::fs::read_to_string(common::repo("README.md")).unwrap();
+    pages(&common::repo("book/src"), &mut text);
+    text
+}
 
 const METHODS: [&str; 5] = ["bdf", "esdirk34", "tr-bdf2", "tsit45", "newmark"];
 
@@ -608,11 +628,12 @@ fn every_method_is_accepted_and_documented() {
         .nth(1)
         .and_then(|rest| rest.split("--dt").next())
         .unwrap();
-    let flag_line = README
+    let docs = docs();
+    let flag_line = docs
         .lines()
         .find(|l| l.starts_with("`run` flags override the file"))
         .unwrap();
-    let file_line = README
+    let file_line = docs
         .lines()
         .find(|l| l.starts_with("method = \"bdf\""))
         .unwrap();
@@ -625,7 +646,7 @@ fn every_method_is_accepted_and_documented() {
         assert!(file_line.contains(&format!("\"{method}\"")), "{file_line}");
     }
     assert!(method_help.contains("tsit45 (explicit)"), "{method_help}");
-    assert!(!README.contains("adaptive implicit solver"));
+    assert!(!docs.contains("adaptive implicit solver"));
 }
 
 #[test]
@@ -639,7 +660,7 @@ fn pushover_writes_where_the_readme_says() {
         .unwrap();
     assert!(o.status.success(), "{}", stderr_of(&o));
     assert!(dir.join("out/tower-pushover/pushover.csv").exists());
-    assert!(README.contains("out/<model file stem>-pushover"));
+    assert!(docs().contains("out/<model file stem>-pushover"));
     let help = String::from_utf8_lossy(&flexrock(&["fem", "--help"]).stdout).into_owned();
     assert!(help.contains("out/<model file stem>-pushover"), "{help}");
 }

@@ -207,7 +207,7 @@ fn the_constants_table_of_the_paper_example_is_the_programs_rounded() {
         ("paper", body("constants = \"paper\""), 0.0),
         ("consistent", body("self_weight = \"consistent\""), 1e-6),
     ];
-    let fields: [(&str, Field); 14] = [
+    let fields: [(&str, Field); 16] = [
         ("M_e", |c| c.generalised_mass),
         ("K_e", |c| c.generalised_stiffness),
         ("\\omega", |c| c.omega),
@@ -219,6 +219,12 @@ fn the_constants_table_of_the_paper_example_is_the_programs_rounded() {
         ("\\beta_2", |c| c.beta2),
         ("\\zeta_U", |c| c.zeta_uplift),
         ("\\zeta_L", |c| c.zeta_landing),
+        ("kinetic energy kept at uplift,", |c| {
+            c.zeta_uplift.powi(2) * c.kinetic_mass(true) / c.kinetic_mass(false)
+        }),
+        ("kinetic energy kept at landing,", |c| {
+            c.kinetic_mass(false) / (c.zeta_landing.powi(2) * c.kinetic_mass(true))
+        }),
         ("F'", |c| c.rocking_stiffness),
         ("q_{\\mathrm{topple}}", |c| c.topple_displacement),
         ("a_{\\mathrm{up}}", |c| c.quasi_static_uplift_acceleration),
@@ -252,5 +258,5 @@ fn the_constants_table_of_the_paper_example_is_the_programs_rounded() {
             "gamma_g/7.837",
         );
     }
-    assert_eq!(checked, 42);
+    assert_eq!(checked, 48);
 }

@@ -1,6 +1,6 @@
 //! The self-weight-consistent variant (`[body] self_weight = "consistent"`,
 //! validation/SELF-WEIGHT.md) against an elastic beam-column with the weight's P-Delta
-//! (OpenSees, 80 elements on no-tension toe springs, loads m U(y); issue 11 and
+//! (OpenSees, 80 elements on no-tension toe springs, loads m U(y);
 //! validation/opensees/), against its own limits, and as a model file key.
 
 mod common;
@@ -40,7 +40,7 @@ fn relative(a: f64, b: f64) -> f64 {
 
 #[test]
 fn the_consistent_variant_meets_the_beam_column_pushover_within_3_percent() {
-    // Issue 11, item 3 (OpenSees, confirmed by an independent continuum solution): Ke, uplift q
+    // The beam-column pushover (OpenSees, confirmed by an independent continuum solution): Ke, uplift q
     // and base shear, post-uplift slope, q at zero base shear, fixed-base period.
     let paper_e = body(5.0e6, "paper");
     let ke = paper_e.constants.generalised_stiffness;

@@ -237,13 +237,27 @@ fn events_and_episodes_hold_nothing_derived_from_what_did_not_happen() {
             &["floor_acc_at_uplift"],
             &["qdot_after_uplift"],
         );
+        derived_empty(
+            name,
+            &episodes,
+            &["qdot_before_uplift"],
+            &[
+                "kinetic_energy_before_uplift",
+                "kinetic_energy_after_uplift",
+            ],
+        );
         for row in &episodes {
             assert_eq!(
                 row["t_end"].is_empty(),
                 row["ended_by"] == "run-end",
                 "{row:?}"
             );
-            for column in ["qdot_before_landing", "qdot_after_landing"] {
+            for column in [
+                "qdot_before_landing",
+                "qdot_after_landing",
+                "kinetic_energy_before_landing",
+                "kinetic_energy_after_landing",
+            ] {
                 assert_eq!(
                     row[column].is_empty(),
                     row["ended_by"] != "landing",

@@ -110,6 +110,9 @@ pub struct Automaton {
     beta2: f64,
     zeta_uplift: f64,
     zeta_landing: f64,
+    /// M int U^2 and M int V^2, kg: the body's kinetic energy is these times q'^2/2.
+    kinetic_mass_pre_uplift: f64,
+    kinetic_mass_rocking: f64,
 }
 
 impl Automaton {
@@ -130,6 +133,8 @@ impl Automaton {
             beta2: constants.beta2,
             zeta_uplift: constants.zeta_uplift,
             zeta_landing: constants.zeta_landing,
+            kinetic_mass_pre_uplift: constants.kinetic_mass(false),
+            kinetic_mass_rocking: constants.kinetic_mass(true),
         }
     }
 
@@ -310,6 +315,17 @@ impl Automaton {
     /// Kinetic energy of the SDOF body, Me q'^2/2.
     pub fn kinetic_energy(&self, qdot: f64) -> f64 {
         0.5 * self.me * qdot * qdot
+    }
+
+    /// Kinetic energy of the body's horizontal motion in `mode`, J: M (int U^2) q'^2/2 before
+    /// uplift, M (int V^2) q'^2/2 while rocking (book/src/model.md §5). Unlike the SDOF energy,
+    /// it falls at every uplift and landing; the fall is the energy the impact takes.
+    pub fn body_kinetic_energy(&self, mode: Mode, qdot: f64) -> f64 {
+        let mass = match mode {
+            Mode::PreUplift => self.kinetic_mass_pre_uplift,
+            Mode::RockRight | Mode::RockLeft | Mode::Overturned => self.kinetic_mass_rocking,
+        };
+        0.5 * mass * qdot * qdot
     }
 
     /// The SDOF energy E = Me q'^2/2 + V(q) in `mode`, whose balance the solvers book.

@@ -2,7 +2,9 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::error::{Error, Result};
+use crate::invalid::InvalidParameter;
+
+type Result<T> = std::result::Result<T, InvalidParameter>;
 
 /// Which set of mode-shape constants to use (book/src/model.md §2, constants).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -109,14 +111,14 @@ impl Body {
         positive("body.flexural_rigidity", flexural_rigidity)?;
         positive("body.gravity", gravity)?;
         if !(0.0..1.0).contains(&damping_ratio) {
-            return Err(Error::invalid(
+            return Err(InvalidParameter::new(
                 "body.damping_ratio",
                 damping_ratio,
                 "the damping ratio must lie in [0, 1)",
             ));
         }
         if width >= height {
-            return Err(Error::invalid(
+            return Err(InvalidParameter::new(
                 "body.width",
                 width,
                 &format!(
@@ -152,7 +154,7 @@ pub(crate) fn positive(key: &str, value: f64) -> Result<()> {
     if value.is_finite() && value > 0.0 {
         Ok(())
     } else {
-        Err(Error::invalid(
+        Err(InvalidParameter::new(
             key,
             value,
             "must be a finite number greater than 0",

@@ -3,7 +3,9 @@
 use serde::{Deserialize, Serialize};
 
 use crate::body::{Body, ConstantSet, SelfWeight};
-use crate::error::{Error, Result};
+use crate::invalid::InvalidParameter;
+
+type Result<T> = std::result::Result<T, InvalidParameter>;
 use crate::flexural_shape::SelfWeightedShape;
 
 /// First root of cos L cosh L = -1 (first cantilever mode).
@@ -138,6 +140,32 @@ impl ModeShapeIntegrals {
     }
 }
 
+/// The velocity shape while rocking, V = s' U + r' xi (eq. 13), with s' = ds/dq and r' = 1 - s'
+/// constant while rocking (the paper's (-s_n U + B xi)/d), and its integrals per unit height.
+struct RockingShape {
+    ds: f64,
+    dr: f64,
+    /// int_0^1 U V dxi.
+    int_uv: f64,
+    /// int_0^1 V dxi.
+    int_v: f64,
+    /// int_0^1 V^2 dxi.
+    int_v2: f64,
+}
+
+impl RockingShape {
+    fn new(shape: &ModeShapeIntegrals, flexural_slope: f64) -> Self {
+        let (ds, dr) = (flexural_slope, 1.0 - flexural_slope);
+        RockingShape {
+            ds,
+            dr,
+            int_uv: ds * shape.int_u2 + dr * shape.int_u_xi,
+            int_v: ds * shape.int_u + dr / 2.0,
+            int_v2: ds * ds * shape.int_u2 + 2.0 * ds * dr * shape.int_u_xi + dr * dr / 3.0,
+        }
+    }
+}
+
 /// Every constant the automaton and the reports need, derived once from a [`Body`].
 #[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct Constants {
@@ -201,7 +229,7 @@ impl Constants {
         let shape = ModeShapeIntegrals::for_body(body)
             .filter(|_| gravity_parameter < SELF_WEIGHT_BUCKLING_PARAMETER);
         let Some(shape) = shape else {
-            return Err(Error::invalid(
+            return Err(InvalidParameter::new(
                 "derived gravity parameter M g H^2/EI",
                 gravity_parameter,
                 &format!(
@@ -218,7 +246,7 @@ impl Constants {
             && omega > 0.0
             && crate::limits::at_least(2.0 * std::f64::consts::PI / omega, MIN_PERIOD))
         {
-            return Err(Error::invalid(
+            return Err(InvalidParameter::new(
                 "derived pre-uplift period T (s)",
                 2.0 * std::f64::consts::PI / omega,
                 &format!(
@@ -236,7 +264,7 @@ impl Constants {
         let rocking = RockingBranch::new(&shape, ke, s_n, b, mg / h);
 
         if !(rocking.stiffness < 0.0 && rocking.topple_displacement > s_n) {
-            return Err(Error::invalid(
+            return Err(InvalidParameter::new(
                 "derived restoring force while rocking",
                 format!(
                     "dF/dq = {} N/m, F = 0 at q = {} m",
@@ -251,14 +279,10 @@ impl Constants {
             ));
         }
 
-        // Eq. 13 (per unit H): integrals of the rocking velocity shape V = s' U + r' xi, with
-        // s' = ds/dq and r' = 1 - s' constant while rocking (the paper: (-s_n U + B xi)/d).
-        let (ds, dr) = (rocking.flexural_slope, 1.0 - rocking.flexural_slope);
-        let int_uv = ds * shape.int_u2 + dr * shape.int_u_xi;
-        let int_v = ds * shape.int_u + dr / 2.0;
-        let int_v2 = ds * ds * shape.int_u2 + 2.0 * ds * dr * shape.int_u_xi + dr * dr / 3.0;
-        let nu2 = int_uv / int_v2;
-        let beta2 = int_v / int_v2;
+        let v = RockingShape::new(&shape, rocking.flexural_slope);
+        let (ds, dr) = (v.ds, v.dr);
+        let nu2 = v.int_uv / v.int_v2;
+        let beta2 = v.int_v / v.int_v2;
 
         // Eqs. 19-22: angular momentum about the pivot toe (uplift) and the landing edge. The
         // body turns about the toe at r'/H per unit q', so the centroid's vertical motion adds
@@ -270,7 +294,7 @@ impl Constants {
         let zeta_uplift = (int_uy + rotary) / (int_vy + rotary + vertical);
         let zeta_landing = (int_uy + rotary) / (int_vy + rotary - vertical);
         if !(zeta_landing > 0.0 && zeta_landing < 1.0) {
-            return Err(Error::invalid(
+            return Err(InvalidParameter::new(
                 "derived landing ratio zetaL",
                 zeta_landing,
                 &format!(
@@ -305,6 +329,19 @@ impl Constants {
         })
     }
 
+    /// M int_0^1 (shape)^2 dxi, kg: the kinetic energy of the body's horizontal motion is this
+    /// times q'^2/2, with the shape U before uplift and V while rocking (the inertial term of the
+    /// virtual-work balance, book/src/model.md §4-§5). The mass M is Me / int U.
+    pub fn kinetic_mass(&self, rocking: bool) -> f64 {
+        let shape = &self.mode_shape;
+        let mass = self.generalised_mass / shape.int_u;
+        if rocking {
+            mass * RockingShape::new(shape, self.rocking_flexural_slope).int_v2
+        } else {
+            mass * shape.int_u2
+        }
+    }
+
     /// Flexural rigidity that gives `body` (whose own `flexural_rigidity` is ignored) the
     /// pre-uplift period `period` in its variant. The paper's model inverts omega = sqrt(Ke/Me)
     /// directly; in the consistent variant omega also depends on EI through M g H^2/EI, and the
@@ -335,7 +372,7 @@ impl Constants {
                     Constants::new(&trial)
                         .map(|c| c.period)
                         .unwrap_or_else(|e| match e {
-                            Error::InvalidParameter { key, .. } if key.contains("period") => 0.0,
+                            InvalidParameter { key, .. } if key.contains("period") => 0.0,
                             _ => f64::INFINITY,
                         })
                 };
@@ -347,7 +384,7 @@ impl Constants {
                     high *= 2.0;
                     doublings += 1;
                     if doublings > 200 || !high.is_finite() {
-                        return Err(Error::invalid(
+                        return Err(InvalidParameter::new(
                             "body.period",
                             period,
                             "no flexural rigidity gives this period with the weight in the bending",
@@ -374,7 +411,7 @@ impl Constants {
                     _ => (low, period_of(low)),
                 };
                 if (reached - period).abs() > 1e-6 * period {
-                    return Err(Error::invalid(
+                    return Err(InvalidParameter::new(
                         "body.period",
                         period,
                         &format!(

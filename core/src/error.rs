@@ -2,6 +2,8 @@
 
 use std::path::PathBuf;
 
+use crate::invalid::InvalidParameter;
+
 /// Everything that can go wrong in flexrock, from reading a model file to writing results.
 #[derive(Debug, thiserror::Error)]
 pub enum Error {
@@ -150,35 +152,7 @@ pub enum Error {
     },
 }
 
-/// A value quoted in an error message. Numbers appear in their shortest exact form
-/// ([`crate::format::shortest`]), so that 1e300 reads `1e300`, not 301 digits.
-pub trait Quoted {
-    /// The value as an error message quotes it.
-    fn quoted(&self) -> String;
-}
-
-impl Quoted for f64 {
-    fn quoted(&self) -> String {
-        crate::format::shortest(*self)
-    }
-}
-
-impl Quoted for f32 {
-    fn quoted(&self) -> String {
-        crate::format::shortest(f64::from(*self))
-    }
-}
-
-macro_rules! quoted_by_display {
-    ($($t:ty),*) => {
-        $(impl Quoted for $t {
-            fn quoted(&self) -> String {
-                self.to_string()
-            }
-        })*
-    };
-}
-quoted_by_display!(usize, u8, u16, u32, u64, isize, i8, i16, i32, i64, bool, char, str, String);
+pub use crate::format::Quoted;
 
 impl<T: Quoted + ?Sized> Quoted for &T {
     fn quoted(&self) -> String {
@@ -189,12 +163,7 @@ impl<T: Quoted + ?Sized> Quoted for &T {
 impl Error {
     /// Shorthand for [`Error::InvalidParameter`]; numbers are quoted in their shortest form.
     pub fn invalid(key: &str, value: impl Quoted, rule: &str) -> Self {
-        let value = value.quoted();
-        Error::InvalidParameter {
-            key: key.to_string(),
-            rule: crate::suggest::rule_with_hint(&value, rule),
-            value,
-        }
+        InvalidParameter::new(key, value, rule).into()
     }
 
     /// The same error with the key `key` renamed to `name` (e.g. `solver.dt` to `--dt` when the
@@ -228,6 +197,27 @@ impl Error {
                 | Error::OutputTarget { .. }
                 | Error::Fem(crate::fem::FemError::InvalidParameter { .. })
         )
+    }
+}
+
+impl From<InvalidParameter> for Error {
+    fn from(e: InvalidParameter) -> Self {
+        Error::InvalidParameter {
+            key: e.key,
+            value: e.value,
+            rule: e.rule,
+        }
+    }
+}
+
+impl From<crate::solver::SolverError> for Error {
+    fn from(e: crate::solver::SolverError) -> Self {
+        match e {
+            crate::solver::SolverError::Invalid(e) => e.into(),
+            crate::solver::SolverError::Failed { method, t, message } => {
+                Error::Solver { method, t, message }
+            }
+        }
     }
 }
 

@@ -127,3 +127,33 @@ mod tests {
         assert_eq!(list(&[0.04, 0.0003125], shortest), "0.04,0.0003125");
     }
 }
+
+/// A value quoted in an error message. Numbers appear in their shortest exact form
+/// ([`shortest`]), so that 1e300 reads `1e300`, not 301 digits.
+pub trait Quoted {
+    /// The value as an error message quotes it.
+    fn quoted(&self) -> String;
+}
+
+impl Quoted for f64 {
+    fn quoted(&self) -> String {
+        shortest(*self)
+    }
+}
+
+impl Quoted for f32 {
+    fn quoted(&self) -> String {
+        shortest(f64::from(*self))
+    }
+}
+
+macro_rules! quoted_by_display {
+    ($($t:ty),*) => {
+        $(impl Quoted for $t {
+            fn quoted(&self) -> String {
+                self.to_string()
+            }
+        })*
+    };
+}
+quoted_by_display!(usize, u8, u16, u32, u64, isize, i8, i16, i32, i64, bool, char, str, String);

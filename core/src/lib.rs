@@ -63,6 +63,7 @@ pub mod fem;
 pub mod findings;
 pub mod flexural_shape;
 pub mod format;
+pub mod invalid;
 pub mod limits;
 pub mod model;
 pub mod record;
@@ -71,6 +72,7 @@ pub mod simulate;
 pub mod solution;
 pub mod solver;
 mod suggest;
+pub mod units;
 
 pub use automaton::Automaton;
 pub use body::Body;

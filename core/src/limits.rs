@@ -8,6 +8,9 @@
 //! difference a person means, and messages print the limit rounded as a person writes it
 //! ([`crate::format::readable`]).
 
+/// Longest simulated time, s.
+pub const MAX_DURATION: f64 = 1e4;
+
 /// Relative slack of an inclusive limit: a few units in the last place.
 const SLACK: f64 = 8.0 * f64::EPSILON;
 

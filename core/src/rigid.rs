@@ -56,9 +56,12 @@
 use serde::Serialize;
 
 use crate::constants::ModeShapeIntegrals;
-use crate::error::{Error, Result};
+use crate::invalid::InvalidParameter;
+use crate::solver::SolverError;
+
+type Result<T> = std::result::Result<T, SolverError>;
 use crate::excitation::{floor_limit_rule, within_floor_limit, FloorMotion};
-use crate::model::MAX_DURATION;
+use crate::limits::MAX_DURATION;
 use crate::solver::budget::RunBudget;
 use crate::solver::InitialState;
 
@@ -128,14 +131,15 @@ impl RigidBlock {
         check_geometry(height, width, gravity)?;
         let tipping = gravity * width / height;
         if !(uplift_acceleration.is_finite() && uplift_acceleration >= tipping) {
-            return Err(Error::invalid(
+            return Err(InvalidParameter::new(
                 "rigid.uplift_acceleration",
                 uplift_acceleration,
                 &format!(
                     "must be a finite number of at least g B/H = {tipping} m/s^2: below it a \
                      lifted block falls straight back"
                 ),
-            ));
+            )
+            .into());
         }
         Ok(RigidBlock {
             height,
@@ -196,22 +200,24 @@ fn check_geometry(height: f64, width: f64, gravity: f64) -> Result<()> {
         ("rigid.gravity", gravity),
     ] {
         if !(value.is_finite() && value > 0.0) {
-            return Err(Error::invalid(
+            return Err(InvalidParameter::new(
                 key,
                 value,
                 "must be a finite number greater than 0",
-            ));
+            )
+            .into());
         }
     }
     if width >= height {
-        return Err(Error::invalid(
+        return Err(InvalidParameter::new(
             "rigid.width",
             width,
             &format!(
                 "the width must be less than the height ({height} m): the equations are those of \
                  a slender block"
             ),
-        ));
+        )
+        .into());
     }
     Ok(())
 }
@@ -362,40 +368,42 @@ pub fn simulate_from(
     settings: &RigidSettings,
 ) -> Result<RigidOutcome> {
     if !(duration.is_finite() && duration > 0.0 && duration <= MAX_DURATION) {
-        return Err(Error::invalid(
+        return Err(InvalidParameter::new(
             "rigid.duration",
             duration,
             &format!("must be a finite number greater than 0 and at most {MAX_DURATION:e} s"),
-        ));
+        )
+        .into());
     }
     if !(settings.max_step.is_finite() && settings.max_step > 0.0) {
-        return Err(Error::invalid(
+        return Err(InvalidParameter::new(
             "rigid.max_step",
             settings.max_step,
             "must be a finite number greater than 0",
-        ));
+        )
+        .into());
     }
     if !(initial.q.is_finite() && initial.q.abs() < block.width) {
-        return Err(Error::invalid(
+        return Err(InvalidParameter::new(
             "rigid.q0",
             initial.q,
             &format!("must lie strictly between -B and B ({} m)", block.width),
-        ));
+        )
+        .into());
     }
     if !initial.qdot.is_finite() {
-        return Err(Error::invalid(
-            "rigid.qdot0",
-            initial.qdot,
-            "must be a finite number",
-        ));
+        return Err(
+            InvalidParameter::new("rigid.qdot0", initial.qdot, "must be a finite number").into(),
+        );
     }
     let peak = floor.peak_acceleration();
     if !within_floor_limit(peak) {
-        return Err(Error::invalid(
+        return Err(InvalidParameter::new(
             "rigid floor motion",
             floor.kind(),
             &floor_limit_rule(peak),
-        ));
+        )
+        .into());
     }
     Run::new(block, floor, initial, duration, settings.max_step).run()
 }
@@ -499,8 +507,8 @@ impl<'a> Run<'a> {
         Ok(self.outcome)
     }
 
-    fn failure(&self, message: String) -> Error {
-        Error::Solver {
+    fn failure(&self, message: String) -> SolverError {
+        SolverError::Failed {
             method: "rigid".to_string(),
             t: self.state.t,
             message,

@@ -35,14 +35,15 @@ pub fn simulate_peaks(model: &Model) -> Result<Solution> {
 fn solve(model: &Model, settings: &SolverSettings, history: History) -> Result<Solution> {
     let automaton = Automaton::new(&model.constants);
     let (floor, initial, duration) = (model.floor.as_ref(), model.initial, model.duration);
-    match settings {
+    let solution = match settings {
         SolverSettings::Adaptive(s) => {
             adaptive::solve(&automaton, floor, initial, duration, s, history)
         }
         SolverSettings::Newmark(s) => {
             newmark::solve(&automaton, floor, initial, duration, s, history)
         }
-    }
+    };
+    Ok(solution?)
 }
 
 /// The head of every summary flexrock writes (summary.json, compare.json, convergence.json,

@@ -4,7 +4,6 @@
 use serde::{Deserialize, Serialize};
 
 use crate::automaton::{Automaton, EventKind, Mode};
-use crate::solver::History;
 
 /// One row of the history (a row of history.csv, whose columns are these fields; the restoring
 /// force is the column `F`).
@@ -85,6 +84,11 @@ pub struct Episode {
     pub qdot_uplift: Option<(f64, f64)>,
     /// q' just before and just after the landing's reset, m/s; None without a landing.
     pub qdot_landing: Option<(f64, f64)>,
+    /// The body's kinetic energy ([`Automaton::body_kinetic_energy`]) just before and just
+    /// after the uplift, J; None for a run that starts rocking.
+    pub kinetic_energy_uplift: Option<(f64, f64)>,
+    /// The same just before and just after the landing, J; None without a landing.
+    pub kinetic_energy_landing: Option<(f64, f64)>,
 }
 
 impl Episode {
@@ -92,6 +96,16 @@ impl Episode {
     pub fn duration(&self) -> Option<f64> {
         self.t_end.map(|end| end - self.t_start)
     }
+}
+
+/// Whether a run keeps its sampled history, or only its events, peaks and statistics (sweeps,
+/// where thousands of runs need one row each).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum History {
+    /// Samples every `output_dt`, and both sides of every event.
+    Sampled,
+    /// No samples: events, peaks, the energy balance at events, statistics.
+    PeaksOnly,
 }
 
 /// A peak of q and when it happened.
@@ -243,6 +257,8 @@ impl<'a> Recorder<'a> {
                 peak_abs_r: automaton.rocking_part(mode, q0).abs(),
                 qdot_uplift: None,
                 qdot_landing: None,
+                kinetic_energy_uplift: None,
+                kinetic_energy_landing: None,
             }],
             _ => Vec::new(),
         };
@@ -361,6 +377,10 @@ impl<'a> Recorder<'a> {
             episode.ended_by = Some(kind);
             if kind == EventKind::Landing {
                 episode.qdot_landing = Some((qdot_before, qdot_after));
+                episode.kinetic_energy_landing = Some((
+                    a.body_kinetic_energy(from, qdot_before),
+                    a.body_kinetic_energy(to, qdot_after),
+                ));
             }
         }
         self.mode = to;
@@ -377,6 +397,11 @@ impl<'a> Recorder<'a> {
                 peak_abs_r: a.rocking_part(to, q).abs(),
                 qdot_uplift: Some((qdot_before, qdot_after)),
                 qdot_landing: None,
+                kinetic_energy_uplift: Some((
+                    a.body_kinetic_energy(from, qdot_before),
+                    a.body_kinetic_energy(to, qdot_after),
+                )),
+                kinetic_energy_landing: None,
             });
         }
         self.event_jumps += a.event_energy_jump(from, to, q, qdot_before, qdot_after);

@@ -109,10 +109,18 @@ impl Model {
     /// key or value raises FlexrockError and leaves the model as it was.
     fn set(&mut self, key: &str, value: &Bound<'_, PyAny>) -> PyResult<()> {
         check_key(key).map_err(|rule| err(flexrock::Error::invalid("key", key, &rule)))?;
+        // A record path typed here is relative to the current directory; the model file reads
+        // it relative to its own directory (a model given as text reads from the current one).
+        let here = std::env::current_dir()?;
+        let model_dir = match &self.path {
+            Some(path) => here.join(path.parent().unwrap_or(std::path::Path::new(""))),
+            None => here.clone(),
+        };
         let setting = Setting {
             key: key.to_string(),
             value: toml_value(value)?,
-        };
+        }
+        .rebased(&here, &model_dir);
         let mut settings = self.settings.clone();
         settings.retain(|s| s.key != key);
         settings.push(setting);
@@ -238,24 +246,66 @@ fn props<'py>(py: Python<'py>, model: &Model) -> PyResult<Bound<'py, PyAny>> {
     json(py, &flexrock::run::properties(&model.model))
 }
 
-/// Solves a model; `method`, `rtol` and `atol` as `flexrock run --method/--rtol/--atol`.
+/// An error about a value given as a Python argument, named by the argument: `rtol (sets
+/// solver.rtol) = -1: ...`; other errors as they are.
+fn err_naming(e: flexrock::Error, arguments: &[(&str, &str)]) -> PyErr {
+    match e {
+        flexrock::Error::InvalidParameter { key, value, rule } => {
+            let key = match arguments.iter().find(|(k, _)| *k == key) {
+                Some((_, argument)) => format!("{argument} (sets {key})"),
+                None => key,
+            };
+            err(flexrock::Error::InvalidParameter { key, value, rule })
+        }
+        other => err(other),
+    }
+}
+
+/// Solves a model. `method`, `rtol`, `atol`, `duration` (s) and `output_dt` (s) replace the
+/// model file's `solver.method`, `solver.rtol`, `solver.atol`, `simulation.duration` and
+/// `solver.output_dt` for this run; an error about one of them names the argument.
 #[pyfunction]
-#[pyo3(signature = (model, method=None, rtol=None, atol=None))]
+#[pyo3(signature = (model, method=None, rtol=None, atol=None, duration=None, output_dt=None))]
 fn simulate(
     py: Python<'_>,
     model: &Model,
     method: Option<String>,
     rtol: Option<f64>,
     atol: Option<f64>,
+    duration: Option<f64>,
+    output_dt: Option<f64>,
 ) -> PyResult<SimResult> {
-    let rebuilt = if method.is_some() || rtol.is_some() || atol.is_some() {
-        let overrides = Overrides {
+    let given = method.is_some()
+        || rtol.is_some()
+        || atol.is_some()
+        || duration.is_some()
+        || output_dt.is_some();
+    let rebuilt = if given {
+        let mut overrides = Overrides {
             method,
             rtol,
             atol,
+            duration,
             ..model.overrides()
         };
-        Some(model.build(&overrides).map_err(err)?)
+        if let Some(dt) = output_dt {
+            overrides.settings.retain(|s| s.key != "solver.output_dt");
+            overrides
+                .settings
+                .push(Setting::number("solver.output_dt", dt));
+        }
+        let arguments = [
+            ("solver.method", "method"),
+            ("solver.rtol", "rtol"),
+            ("solver.atol", "atol"),
+            ("simulation.duration", "duration"),
+            ("solver.output_dt", "output_dt"),
+        ];
+        Some(
+            model
+                .build(&overrides)
+                .map_err(|e| err_naming(e, &arguments))?,
+        )
     } else {
         None
     };

@@ -201,3 +201,39 @@ def test_sweep_of_a_model_text_reads_its_record_from_the_current_directory(monke
     assert list(from_text["status"]) == ["ok", "ok"]
     for name in ["max_abs_q_over_B", "n_uplift", "steps"]:
         assert np.array_equal(from_text[name], from_file[name]), name
+
+
+def test_a_record_path_set_in_python_is_relative_to_the_current_directory(tmp_path, monkeypatch):
+    # One rule for relative paths: a path typed in Python, like one on the command line, is
+    # relative to the current directory, not to the model file (whose directory has no such file).
+    shutil.copy(ROOT / "validation" / "records" / "elCentro.AT2", tmp_path / "here.AT2")
+    model = flexrock.Model.from_file(ROOT / "models" / "elcentro1940.toml")
+    monkeypatch.chdir(tmp_path)
+    model.set("excitation.path", "here.AT2")
+    model.set("excitation.end", 1.0)
+    assert flexrock.simulate(model).summary["n_uplift"] >= 0
+    elsewhere = tmp_path / "elsewhere"
+    elsewhere.mkdir()
+    monkeypatch.chdir(elsewhere)
+    with pytest.raises(flexrock.FlexrockError, match=str(elsewhere / "here.AT2")):
+        model.set("excitation.path", "here.AT2")
+
+
+def test_run_settings_as_arguments_named_in_their_errors(tmp_path):
+    # duration and output_dt as arguments, equal to the same keys on the command line; an error
+    # about an argument names the argument and its key, never a command-line flag.
+    run_cli("run", MODEL, "--out", tmp_path, "--duration", "3", "--set", "solver.output_dt=0.01")
+    model = flexrock.Model.from_file(MODEL)
+    result = flexrock.simulate(model, duration=3.0, output_dt=0.01)
+    same_as_cli(result, tmp_path)
+    assert result.t[-1] == 3.0
+    for argument, key, value in [("rtol", "solver.rtol", -1.0), ("duration", "simulation.duration", -3.0),
+                                 ("output_dt", "solver.output_dt", 0.0)]:
+        with pytest.raises(flexrock.FlexrockError) as error:
+            flexrock.simulate(model, **{argument: value})
+        message = str(error.value)
+        assert message.startswith(f"{argument} (sets {key}) = "), message
+        assert "--" not in message, message
+    with pytest.raises(flexrock.FlexrockError) as error:
+        model.set("excitation.amplitud", 1.0)
+    assert "--set" not in str(error.value) and "excitation.amplitud" in str(error.value)

@@ -178,8 +178,10 @@ impl Request {
         Ok(())
     }
 
-    /// Adds a sweep file to the request; file patterns in it are relative to the file.
-    pub fn add_file(&mut self, path: &Path) -> Result<()> {
+    /// Adds a sweep file to the request; file patterns and record paths in it are relative to
+    /// the file (its `set` record paths are written again relative to the model file `model`,
+    /// which reads them).
+    pub fn add_file(&mut self, path: &Path, model: &Path) -> Result<()> {
         // Read as a model file is (a regular file of limited size), so that /dev/zero is refused.
         let text = crate::model::read_model_text(path).map_err(|e| match e {
             Error::ReadModel { path, source } => Error::SweepFile {
@@ -197,8 +199,12 @@ impl Request {
             path: path.to_path_buf(),
             source: Box::new(e),
         };
+        let here = std::env::current_dir().unwrap_or_default();
+        let model_dir = here.join(model.parent().unwrap_or(Path::new("")));
         for text in &file.set {
-            self.settings.push(Setting::parse(text).map_err(in_file)?);
+            let setting = Setting::parse(text).map_err(in_file)?;
+            self.settings
+                .push(setting.rebased(&here.join(base), &model_dir));
         }
         for text in &file.vary {
             self.vary(text, base).map_err(in_file)?;
@@ -476,7 +482,14 @@ impl Sweep {
                         _ => None,
                     },
                 };
-                let rigid_minimum = |block: fn(f64, f64, f64) -> Result<RigidBlock>| {
+                let rigid_minimum = |block: fn(
+                    f64,
+                    f64,
+                    f64,
+                ) -> std::result::Result<
+                    RigidBlock,
+                    crate::solver::SolverError,
+                >| {
                     let trial = |value: f64| -> Result<find_min::Trial> {
                         let model = self.model(&at(value))?;
                         let b = &model.body;

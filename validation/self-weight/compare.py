@@ -287,7 +287,7 @@ def dynamics(fem_T):
                     model, extra = PAPER, []
                 else:
                     model = RECORD_MODEL
-                    extra = ["--set", f"excitation.path=../validation/records/{rec}.AT2",
+                    extra = ["--set", f"excitation.path=validation/records/{rec}.AT2",
                              "--set", f"excitation.scale={sc}"]
                 keep = efac == 1 and (rec == "paper-sine" or (rec == "A-ELC180" and sc == 1))
                 r = flexrock_dyn(rec, model, extra, v, efac, keep)

@@ -9,7 +9,7 @@ use serde::Serialize;
 /// shaking table comes near it (the largest recorded ground accelerations are a few g), and far
 /// beyond it the numbers stop meaning anything (a floor of 1e150 m/s^2 left one method running
 /// forever).
-pub const MAX_FLOOR_ACCELERATION: f64 = 20.0 * crate::model::STANDARD_GRAVITY;
+pub const MAX_FLOOR_ACCELERATION: f64 = 20.0 * crate::units::STANDARD_GRAVITY;
 
 /// True when a peak floor acceleration `peak` (m/s^2) is within [`MAX_FLOOR_ACCELERATION`]
 /// (NaN is not).

@@ -485,7 +485,7 @@ pub enum FemError {
     },
 }
 
-fn invalid(name: &'static str, value: impl crate::error::Quoted, rule: &str) -> FemError {
+fn invalid(name: &'static str, value: impl crate::format::Quoted, rule: &str) -> FemError {
     FemError::InvalidParameter {
         name,
         value: value.quoted(),

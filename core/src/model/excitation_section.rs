@@ -361,8 +361,7 @@ fn check_tail(tail: f64) -> Result<f64> {
     Ok(tail)
 }
 
-/// Standard gravity, for records in units of g (independent of the body's `gravity`).
-pub const STANDARD_GRAVITY: f64 = 9.80665;
+pub use crate::units::STANDARD_GRAVITY;
 
 /// Reads and trims the record of a `kind = "record"` section; returns it with the tail length.
 fn recorded_motion(
@@ -384,7 +383,20 @@ fn recorded_motion(
         .read(&path, format, s.dt)
         .map_err(|e| Error::Record {
             key: "excitation.path".to_string(),
-            source: e,
+            source: match e {
+                // Name the file by the full path it was looked for at, so that the message says
+                // which directory a relative path was read from.
+                crate::record::RecordError::Read { error, .. } => {
+                    let here = std::env::current_dir().unwrap_or_default();
+                    crate::record::RecordError::Read {
+                        file: super::setting::normalised(&here.join(&path))
+                            .display()
+                            .to_string(),
+                        error,
+                    }
+                }
+                other => other,
+            },
         })?;
     let is_at2 = matches!(format, Some(RecordFormat::PeerAt2))
         || (format.is_none() && RecordFormat::from_extension(&path) == Some(RecordFormat::PeerAt2));

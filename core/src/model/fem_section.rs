@@ -38,8 +38,7 @@ pub const DEFAULT_FEM_MU_K: f64 = 0.4;
 /// Deformed shapes are stored at these times (the paper's Fig. 9), s.
 pub const FEM_SNAPSHOT_TIMES: [f64; 6] = [0.9, 1.0, 1.1, 1.2, 1.3, 1.4];
 
-/// How the settings that the command line can override are named in messages: by their key in
-/// the model file, or by their flag when the value came from the command line.
+/// The model-file keys of the settings `flexrock fem` can override.
 struct Names {
     nx: &'static str,
     ny: &'static str,
@@ -55,8 +54,8 @@ const FILE_NAMES: Names = Names {
 };
 
 /// Builds the finite element analysis from `[body]` and `[fem]`, with command-line values in
-/// place of the file's, checked by the same rules; messages name the model-file key, or the flag
-/// (`--nx`, `--ny`, `--dt`, `--scheme`) of a value from the command line. The plane-stress body
+/// place of the file's, checked by the same rules; messages name the model-file key
+/// ([`FemOverrides::sets`] tells which values came from outside the file). The plane-stress body
 /// takes E = 12 EI/(D B^3) and the density M/(H B D) from the validated body, so every way of
 /// giving the stiffness and the mass works; the damping period defaults to the pre-uplift period
 /// T. Every rule is here, the size limits of `crate::fem` included. Only `flexrock fem` builds
@@ -76,20 +75,7 @@ pub fn fem_with_overrides(
     if let Some(scheme) = &overrides.scheme {
         section.scheme = Some(scheme.clone());
     }
-    let flag_or_key = |flag: bool, name: &'static str, key: &'static str| {
-        if flag {
-            name
-        } else {
-            key
-        }
-    };
-    let names = Names {
-        nx: flag_or_key(overrides.nx.is_some(), "--nx", FILE_NAMES.nx),
-        ny: flag_or_key(overrides.ny.is_some(), "--ny", FILE_NAMES.ny),
-        dt: flag_or_key(overrides.dt.is_some(), "--dt", FILE_NAMES.dt),
-        scheme: flag_or_key(overrides.scheme.is_some(), "--scheme", FILE_NAMES.scheme),
-    };
-    fem_setup(&file, body, constants, simulation_duration, &names)
+    fem_setup(&file, body, constants, simulation_duration, &FILE_NAMES)
 }
 
 fn fem_setup(

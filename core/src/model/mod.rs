@@ -191,14 +191,27 @@ pub struct FemSection {
 /// Command-line values of `flexrock fem` that take precedence over the `[fem]` section.
 #[derive(Debug, Clone, Default)]
 pub struct FemOverrides {
-    /// Elements across the width (`--nx`).
+    /// Elements across the width (`fem.nx`).
     pub nx: Option<usize>,
-    /// Elements up the height (`--ny`).
+    /// Elements up the height (`fem.ny`).
     pub ny: Option<usize>,
-    /// The time-stepping scheme's name (`--scheme`).
+    /// The time-stepping scheme's name (`fem.scheme`).
     pub scheme: Option<String>,
-    /// Time step, s (`--dt`).
+    /// Time step, s (`fem.dt`).
     pub dt: Option<f64>,
+}
+
+impl FemOverrides {
+    /// Whether a value from outside the model file set the key `key`.
+    pub fn sets(&self, key: &str) -> bool {
+        match key {
+            "fem.nx" => self.nx.is_some(),
+            "fem.ny" => self.ny.is_some(),
+            "fem.scheme" => self.scheme.is_some(),
+            "fem.dt" => self.dt.is_some(),
+            _ => false,
+        }
+    }
 }
 
 /// Largest model file read, bytes: a model file is a few hundred bytes.
@@ -267,7 +280,8 @@ fn parse_model_text(text: &str, settings: &[Setting], source: &Path) -> Result<M
     read_schema(&parse_table(text, source)?, settings, source)
 }
 
-/// Command-line values that take precedence over the file.
+/// Values from outside the model file (command-line flags, Python arguments) that take
+/// precedence over the file's.
 #[derive(Debug, Clone, Default)]
 pub struct Overrides {
     /// The solver (solver.method).
@@ -282,24 +296,25 @@ pub struct Overrides {
     pub dt: Option<f64>,
     /// Newmark variant (solver.newmark_variant).
     pub newmark_variant: Option<String>,
-    /// `--set KEY=VALUE`: any model-file key, applied to the file before the flags above.
+    /// Any model-file key set to a value (`--set KEY=VALUE`), applied to the file's table
+    /// before the fields above.
     pub settings: Vec<Setting>,
 }
 
 impl Overrides {
-    /// The command-line flag that set the model-file key `key`, if one did.
-    pub fn flag_for(&self, key: &str) -> Option<String> {
-        let flag = match key {
-            "solver.method" if self.method.is_some() => "--method",
-            "solver.rtol" if self.rtol.is_some() => "--rtol",
-            "solver.atol" if self.atol.is_some() => "--atol",
-            "solver.dt" if self.dt.is_some() => "--dt",
-            "solver.newmark_variant" if self.newmark_variant.is_some() => "--variant",
-            "simulation.duration" if self.duration.is_some() => "--duration",
-            _ if self.settings.iter().any(|s| s.key == key) => return Some(format!("--set {key}")),
-            _ => return None,
+    /// Whether a value from outside the model file set the key `key` (an error about it is then
+    /// not the file's: the caller names it as it was given, e.g. by the flag that set it).
+    pub fn sets(&self, key: &str) -> bool {
+        let field = match key {
+            "solver.method" => self.method.is_some(),
+            "solver.rtol" => self.rtol.is_some(),
+            "solver.atol" => self.atol.is_some(),
+            "solver.dt" => self.dt.is_some(),
+            "solver.newmark_variant" => self.newmark_variant.is_some(),
+            "simulation.duration" => self.duration.is_some(),
+            _ => false,
         };
-        Some(flag.to_string())
+        field || self.settings.iter().any(|s| s.key == key)
     }
 }
 
@@ -332,7 +347,7 @@ pub fn read_schema(table: &toml::Table, settings: &[Setting], source: &Path) -> 
                 if let Err(message) = read(alone) {
                     if read(table.clone()).is_ok() {
                         return Err(Error::invalid(
-                            &format!("--set {}", setting.key),
+                            &setting.key,
                             setting.value_text(),
                             &format!("does not fit the model file's schema: {message}"),
                         ));
@@ -361,8 +376,7 @@ pub const DEFAULT_ATOL: f64 = 1e-12;
 pub const DEFAULT_OUTPUT_DT: f64 = 0.005;
 /// Largest initial top velocity, m/s.
 pub const MAX_INITIAL_VELOCITY: f64 = 100.0;
-/// Longest simulated time, s.
-pub const MAX_DURATION: f64 = 1e4;
+pub use crate::limits::MAX_DURATION;
 
 /// A validated model, ready to run.
 pub struct Model {
@@ -391,20 +405,16 @@ impl Model {
         let file = parse_model_text(&text, &overrides.settings, path)?;
         let base_dir = path.parent().unwrap_or(Path::new("."));
         let mut model = Model::from_file(file, overrides, base_dir).map_err(|e| match e {
-            // A value the command line set is the flag's fault, not the file's.
-            Error::InvalidParameter { key, value, rule } if overrides.flag_for(&key).is_some() => {
-                let flag = overrides.flag_for(&key).unwrap_or_default();
-                let hint = if flag == "--dt" && rule.starts_with("not a parameter") {
-                    " (--dt needs --method newmark)"
+            // A value set from outside the file is not the file's fault: the error names its
+            // key alone, and the caller names it as it was given.
+            Error::InvalidParameter { key, value, rule } if overrides.sets(&key) => {
+                let hint = if key == "solver.dt" && rule.starts_with("not a parameter") {
+                    " (solver.dt is read only with solver.method = \"newmark\")"
                 } else {
                     ""
                 };
                 Error::InvalidParameter {
-                    key: if flag.starts_with("--set") {
-                        flag
-                    } else {
-                        format!("{flag} (sets {key})")
-                    },
+                    key,
                     value,
                     rule: format!("{rule}{hint}"),
                 }
@@ -518,9 +528,10 @@ impl Model {
             overrides,
         )
         .map_err(|e| match (e, &self.path) {
-            // A value of the file names the file; a flag's value names the flag.
+            // A value of the file names the file; a value set from outside names its key alone.
             (e @ Error::InvalidParameter { .. }, Some(path))
-                if !matches!(&e, Error::InvalidParameter { key, .. } if key.starts_with("--")) =>
+                if !matches!(&e, Error::InvalidParameter { key, .. }
+                    if key.split(", ").any(|k| overrides.sets(k))) =>
             {
                 Error::InModel {
                     path: path.clone(),
@@ -711,7 +722,7 @@ fn body_from_section(s: &BodySection) -> Result<Body> {
             Constants::flexural_rigidity_for_period(period, &body)?
         }
     };
-    body.validated()
+    Ok(body.validated()?)
 }
 
 /// `value`, a product of the keys `factors` (each finite and positive), when it is finite and

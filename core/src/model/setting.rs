@@ -3,6 +3,8 @@
 //! into [`super::ModelFile`], so that a set value meets exactly the schema and the rules a value
 //! written in the file meets.
 
+use std::path::{Component, Path, PathBuf};
+
 use crate::error::{Error, Result};
 
 /// One model-file key and the value it is given.
@@ -31,18 +33,35 @@ impl Setting {
         }
     }
 
+    /// The setting as the model file reads it. A record path (`excitation.path`) that is
+    /// relative is relative to where it was given: `given_in`, the current directory for the
+    /// command line and Python, a sweep file's directory for the file's `set`. The model file
+    /// reads record paths relative to its own directory, `model_dir`, so the path is written
+    /// again relative to that (by path arithmetic alone: `..` undoes the directory before it, and
+    /// links are not followed). Both directories must be absolute; other settings are unchanged.
+    pub fn rebased(self, given_in: &Path, model_dir: &Path) -> Setting {
+        match (&*self.key, &self.value) {
+            ("excitation.path", toml::Value::String(path)) if Path::new(path).is_relative() => {
+                let target = normalised(&given_in.join(path));
+                let relative = relative_path(&normalised(model_dir), &target);
+                Setting::text(&self.key, &relative.to_string_lossy())
+            }
+            _ => self,
+        }
+    }
+
     /// Parses `KEY=VALUE` as a user types it: the value is read as a TOML value (`4.5`, `1e-8`,
     /// `true`, `"bdf"`), and taken as a plain string when it is not one (`bdf`, `records/a.AT2`).
     pub fn parse(text: &str) -> Result<Setting> {
         let Some((key, value)) = text.split_once('=') else {
             return Err(Error::invalid(
-                "--set",
+                "setting",
                 text,
                 "must be KEY=VALUE, e.g. excitation.amplitude=4.5",
             ));
         };
         let key = key.trim();
-        check_key(key).map_err(|rule| Error::invalid("--set", text, &rule))?;
+        check_key(key).map_err(|rule| Error::invalid("setting", text, &rule))?;
         let value = value.trim();
         let parsed = toml::from_str::<toml::Table>(&format!("value = {value}"))
             .ok()
@@ -87,6 +106,40 @@ impl Setting {
     }
 }
 
+/// `path` with `.` dropped and each `..` undoing the directory before it.
+pub(crate) fn normalised(path: &Path) -> PathBuf {
+    let mut out = PathBuf::new();
+    for part in path.components() {
+        match part {
+            Component::CurDir => {}
+            Component::ParentDir => {
+                if matches!(out.components().next_back(), Some(Component::Normal(_))) {
+                    out.pop();
+                } else if !out.has_root() {
+                    out.push("..");
+                }
+            }
+            other => out.push(other),
+        }
+    }
+    out
+}
+
+/// `target` written relative to the directory `base` (both normalised, both absolute).
+fn relative_path(base: &Path, target: &Path) -> PathBuf {
+    let (base, target): (Vec<_>, Vec<_>) =
+        (base.components().collect(), target.components().collect());
+    let common = base.iter().zip(&target).take_while(|(a, b)| a == b).count();
+    let mut out = PathBuf::new();
+    for _ in common..base.len() {
+        out.push("..");
+    }
+    for part in &target[common..] {
+        out.push(part);
+    }
+    out
+}
+
 /// A value as a user reads it: numbers in their shortest exact form, strings bare.
 pub fn value_text(value: &toml::Value) -> String {
     match value {
@@ -123,6 +176,51 @@ mod tests {
         assert_eq!(s.value, toml::Value::Boolean(true));
         let s = Setting::parse("excitation.path=[1,2]").unwrap();
         assert_eq!(s.value, toml::Value::String("[1,2]".into()));
+    }
+
+    #[test]
+    fn a_relative_record_path_is_written_again_relative_to_the_model_file() {
+        let rebase = |text: &str, given_in: &str, model_dir: &str| {
+            let s = Setting::parse(text).unwrap();
+            s.rebased(Path::new(given_in), Path::new(model_dir))
+                .value_text()
+        };
+        // Given in the repository's root, read by a model in models/.
+        assert_eq!(
+            rebase(
+                "excitation.path=validation/records/a.AT2",
+                "/repo",
+                "/repo/models"
+            ),
+            "../validation/records/a.AT2"
+        );
+        // Given in a sibling directory, with `..` and `.` in it.
+        assert_eq!(
+            rebase(
+                "excitation.path=../records/./a.AT2",
+                "/repo/study/x",
+                "/repo/models"
+            ),
+            "../study/records/a.AT2"
+        );
+        // Given in the model's own directory, and below it.
+        assert_eq!(rebase("excitation.path=a.AT2", "/m", "/m"), "a.AT2");
+        assert_eq!(
+            rebase("excitation.path=r/a.AT2", "/m", "/m/deep/er"),
+            "../../r/a.AT2"
+        );
+        // `..` beyond the root stays at the root, as the file system has it.
+        assert_eq!(
+            rebase("excitation.path=../../a.AT2", "/x", "/m"),
+            "../a.AT2"
+        );
+        // Absolute paths and other keys are left as they are.
+        assert_eq!(
+            rebase("excitation.path=/abs/a.AT2", "/x", "/m"),
+            "/abs/a.AT2"
+        );
+        let s = Setting::parse("excitation.amplitude=3").unwrap();
+        assert_eq!(s.clone().rebased(Path::new("/x"), Path::new("/m")), s);
     }
 
     #[test]

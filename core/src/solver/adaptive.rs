@@ -34,7 +34,9 @@ use super::budget::RunBudget;
 use serde::Serialize;
 
 use crate::automaton::{Automaton, Guard, Mode};
-use crate::error::{Error, Result};
+use crate::solver::SolverError;
+
+type Result<T> = std::result::Result<T, SolverError>;
 use crate::excitation::FloorMotion;
 use crate::solution::{Recorder, Solution, SolverStats};
 use crate::solver::{History, InitialState, OutputGrid};
@@ -121,7 +123,7 @@ pub fn solve(
     let rhs_evaluations = Cell::new(0usize);
     let me = automaton.generalised_mass();
 
-    let solver_error = |t: f64, e: &dyn std::fmt::Display| Error::Solver {
+    let solver_error = |t: f64, e: &dyn std::fmt::Display| SolverError::Failed {
         method: settings.method.name().to_string(),
         t,
         message: e.to_string(),
@@ -277,8 +279,8 @@ fn at_stop(t: f64, stop: f64) -> bool {
 }
 
 impl<'d> Driver<'d> {
-    fn error(&self, t: f64, e: impl std::fmt::Display) -> Error {
-        Error::Solver {
+    fn error(&self, t: f64, e: impl std::fmt::Display) -> SolverError {
+        SolverError::Failed {
             method: self.settings.method.name().to_string(),
             t,
             message: e.to_string(),

@@ -3,6 +3,7 @@
 
 pub mod adaptive;
 pub mod budget;
+mod error;
 pub mod newmark;
 
 use serde::Serialize;
@@ -16,15 +17,8 @@ pub struct InitialState {
     pub qdot: f64,
 }
 
-/// Whether a run keeps its sampled history, or only its events, peaks and statistics (sweeps,
-/// where thousands of runs need one row each).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum History {
-    /// Samples every `output_dt`, and both sides of every event.
-    Sampled,
-    /// No samples: events, peaks, the energy balance at events, statistics.
-    PeaksOnly,
-}
+pub use crate::solution::History;
+pub use error::SolverError;
 
 /// The times at which the history is sampled: every `output_dt` from 0, and the final time.
 #[derive(Debug, Clone)]

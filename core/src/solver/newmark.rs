@@ -39,7 +39,9 @@ use std::time::Instant;
 use serde::Serialize;
 
 use crate::automaton::{Automaton, Guard, Mode};
-use crate::error::{Error, Result};
+use crate::solver::SolverError;
+
+type Result<T> = std::result::Result<T, SolverError>;
 use crate::excitation::FloorMotion;
 use crate::solution::{Recorder, Solution, SolverStats};
 use crate::solver::{History, InitialState, OutputGrid};
@@ -203,8 +205,8 @@ struct Stepper<'a> {
 }
 
 impl<'a> Stepper<'a> {
-    fn error(&self, t: f64, message: impl std::fmt::Display) -> Error {
-        Error::Solver {
+    fn error(&self, t: f64, message: impl std::fmt::Display) -> SolverError {
+        SolverError::Failed {
             method: self.settings.label(),
             t,
             message: message.to_string(),

@@ -1,0 +1,167 @@
+//! CSV records.
+//!
+//! Comma-separated, one row per sample, either two columns `t, acc` (the time column must start
+//! at 0 and be uniformly spaced to 1e-6 relative; dt is derived from it) or one column `acc`
+//! (dt must be given by the caller). An optional first row of non-numeric column names is
+//! kept in [`Record::title`]. `#` starts a comment that runs to the end of the line; blank
+//! lines are skipped.
+
+use super::{
+    check_dt, check_samples, dt_agrees, numbered_lines, parse_number, quote, strip_byte_order_mark,
+    Location, NumberError, Record, RecordError, RELATIVE_DT_TOLERANCE,
+};
+
+/// One CSV data row: its line number and its numbers.
+struct CsvRow {
+    line_number: usize,
+    fields: Vec<f64>,
+}
+
+/// Reads a CSV record from its text: two columns `t, acc` (uniform t from 0; dt derived and, if
+/// `dt` is given, checked against it) or one column `acc` (then `dt` is required).
+pub fn parse_csv(text: &str, source: &str, dt: Option<f64>) -> Result<Record, RecordError> {
+    let text = strip_byte_order_mark(text);
+    if text.trim().is_empty() {
+        return Err(RecordError::Empty {
+            file: source.to_string(),
+        });
+    }
+
+    let mut rows: Vec<CsvRow> = Vec::new();
+    let mut title = Vec::new();
+    let mut column_count: Option<usize> = None;
+    for (line_number, line) in numbered_lines(text) {
+        let content = line.split('#').next().unwrap_or("").trim();
+        if content.is_empty() {
+            continue;
+        }
+        let at = || Location::line(source, line_number);
+        let fields: Vec<&str> = content.split(',').map(str::trim).collect();
+
+        match column_count {
+            None => {
+                if !matches!(fields.len(), 1 | 2) {
+                    return Err(RecordError::BadColumnCount {
+                        at: at(),
+                        found: fields.len(),
+                    });
+                }
+                column_count = Some(fields.len());
+                let is_header_row = fields
+                    .iter()
+                    .all(|field| matches!(parse_number(field), Err(NumberError::NotANumber)));
+                if is_header_row {
+                    title.push(content.to_string());
+                    continue;
+                }
+            }
+            Some(expected) if fields.len() != expected => {
+                return Err(RecordError::RaggedRow {
+                    at: at(),
+                    expected,
+                    found: fields.len(),
+                });
+            }
+            Some(_) => {}
+        }
+
+        let numbers = fields
+            .iter()
+            .map(|field| match parse_number(field) {
+                Ok(value) => Ok(value),
+                Err(NumberError::NotANumber) => Err(RecordError::NotANumber {
+                    at: at(),
+                    token: quote(field),
+                }),
+                Err(NumberError::NotFinite) => Err(RecordError::NotFinite {
+                    at: at(),
+                    token: quote(field),
+                }),
+            })
+            .collect::<Result<Vec<f64>, RecordError>>()?;
+        rows.push(CsvRow {
+            line_number,
+            fields: numbers,
+        });
+    }
+
+    if rows.is_empty() {
+        return Err(RecordError::NoRows {
+            file: source.to_string(),
+        });
+    }
+
+    let has_time_column = column_count == Some(2);
+    let record_dt = if has_time_column {
+        let derived = dt_from_time_column(&rows, source)?;
+        if let Some(given) = dt {
+            let given = check_dt(given, Location::file(source))?;
+            if !dt_agrees(given, derived) {
+                return Err(RecordError::DtConflict {
+                    file: source.to_string(),
+                    given,
+                    found: derived,
+                });
+            }
+        }
+        derived
+    } else {
+        let given = dt.ok_or_else(|| RecordError::MissingDt {
+            file: source.to_string(),
+        })?;
+        check_dt(given, Location::file(source))?
+    };
+
+    let values: Vec<f64> = rows
+        .iter()
+        .filter_map(|row| row.fields.last().copied())
+        .collect();
+    check_samples(&values, source)?;
+    Ok(Record {
+        source: source.to_string(),
+        title,
+        dt: record_dt,
+        values,
+    })
+}
+
+/// The sampling interval of a uniform time column starting at 0 (the first field of each row).
+fn dt_from_time_column(rows: &[CsvRow], source: &str) -> Result<f64, RecordError> {
+    let times: Vec<(usize, f64)> = rows
+        .iter()
+        .filter_map(|row| Some((row.line_number, *row.fields.first()?)))
+        .collect();
+    let (Some(&(first_line, first_time)), Some(&(_, last_time))) = (times.first(), times.last())
+    else {
+        return Err(RecordError::NoRows {
+            file: source.to_string(),
+        });
+    };
+    if times.len() < 2 {
+        return Err(RecordError::TooFewRowsForDt {
+            file: source.to_string(),
+        });
+    }
+
+    let mean_step = (last_time - first_time) / (times.len() - 1) as f64;
+    let dt = check_dt(mean_step, Location::file(source))?;
+    if first_time.abs() > RELATIVE_DT_TOLERANCE * dt {
+        return Err(RecordError::TimeNotFromZero {
+            at: Location::line(source, first_line),
+            found: first_time,
+        });
+    }
+    for pair in times.windows(2) {
+        if let [(_, previous), (line_number, time)] = pair {
+            let step = time - previous;
+            if (step - dt).abs() > RELATIVE_DT_TOLERANCE * dt {
+                return Err(RecordError::NonUniformTime {
+                    at: Location::line(source, *line_number),
+                    step,
+                    mean: dt,
+                });
+            }
+        }
+    }
+    Ok(dt)
+}

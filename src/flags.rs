@@ -1,0 +1,100 @@
+//! The command line's names for model-file keys. The core names a value by its key
+//! (`solver.rtol`, `fem.nx`); a value given by a flag is named in what the command line prints by
+//! the flag that gave it (`--rtol (sets solver.rtol)`, `--nx`, `--set excitation.period`).
+
+use crate::error::Error;
+use crate::model::{FemOverrides, Overrides};
+
+/// The flag that set the model-file key `key`, as a message names it, if a flag did.
+fn flag_for(key: &str, overrides: &Overrides, fem: &FemOverrides) -> Option<String> {
+    let solver_flag = match key {
+        "solver.method" if overrides.method.is_some() => Some("--method"),
+        "solver.rtol" if overrides.rtol.is_some() => Some("--rtol"),
+        "solver.atol" if overrides.atol.is_some() => Some("--atol"),
+        "solver.dt" if overrides.dt.is_some() => Some("--dt"),
+        "solver.newmark_variant" if overrides.newmark_variant.is_some() => Some("--variant"),
+        "simulation.duration" if overrides.duration.is_some() => Some("--duration"),
+        _ => None,
+    };
+    if let Some(flag) = solver_flag {
+        return Some(format!("{flag} (sets {key})"));
+    }
+    let fem_flag = match key {
+        "fem.nx" if fem.nx.is_some() => Some("--nx"),
+        "fem.ny" if fem.ny.is_some() => Some("--ny"),
+        "fem.dt" if fem.dt.is_some() => Some("--dt"),
+        "fem.scheme" if fem.scheme.is_some() => Some("--scheme"),
+        _ => None,
+    };
+    if let Some(flag) = fem_flag {
+        return Some(flag.to_string());
+    }
+    overrides
+        .settings
+        .iter()
+        .any(|s| s.key == key)
+        .then(|| format!("--set {key}"))
+}
+
+/// `error` with every key a flag set named by that flag (a key list such as `fem.nx, fem.ny`
+/// part by part); other errors are returned unchanged.
+pub fn named_by_flags(error: Error, overrides: &Overrides, fem: &FemOverrides) -> Error {
+    match error {
+        Error::InvalidParameter { key, value, rule } => {
+            let named: Vec<String> = key
+                .split(", ")
+                .map(|k| flag_for(k, overrides, fem).unwrap_or_else(|| k.to_string()))
+                .collect();
+            let rule = match rule
+                .strip_suffix(" (solver.dt is read only with solver.method = \"newmark\")")
+            {
+                Some(rule) if overrides.dt.is_some() => {
+                    format!("{rule} (--dt needs --method newmark)")
+                }
+                _ => rule,
+            };
+            Error::InvalidParameter {
+                key: named.join(", "),
+                value,
+                rule,
+            }
+        }
+        Error::InModel { path, source } => Error::InModel {
+            path,
+            source: Box::new(named_by_flags(*source, overrides, fem)),
+        },
+        other => other,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::Setting;
+
+    #[test]
+    fn keys_set_by_flags_are_named_by_the_flags_and_no_others() {
+        let overrides = Overrides {
+            rtol: Some(-1.0),
+            settings: vec![Setting::number("excitation.period", -1.0)],
+            ..Overrides::default()
+        };
+        let fem = FemOverrides {
+            nx: Some(200),
+            ..FemOverrides::default()
+        };
+        let named = |key: &str| match named_by_flags(
+            Error::invalid(key, 1.0, "a rule"),
+            &overrides,
+            &fem,
+        ) {
+            Error::InvalidParameter { key, .. } => key,
+            other => panic!("{other:?}"),
+        };
+        assert_eq!(named("solver.rtol"), "--rtol (sets solver.rtol)");
+        assert_eq!(named("solver.atol"), "solver.atol");
+        assert_eq!(named("excitation.period"), "--set excitation.period");
+        assert_eq!(named("fem.nx, fem.ny"), "--nx, fem.ny");
+        assert_eq!(named("body.width"), "body.width");
+    }
+}
