@@ -90,8 +90,8 @@ enum Command {
     /// Parametric study: run the model at every point of a grid of model-file keys (or search
     /// the smallest overturning value at each), one row per point in sweep.csv, with sweep.json
     /// and a figure (SVG): a map over two numeric axes, a spectrum of a minimum search, or for
-    /// records against excitation.scale or excitation.amplitude an incremental dynamic analysis
-    /// (ida.svg). Re-running the same command resumes an interrupted sweep.
+    /// records (excitation.path) against excitation.scale or excitation.amplitude an
+    /// incremental dynamic analysis (ida.svg). Re-running the same command resumes an interrupted sweep.
     Sweep(SweepArgs),
     /// Print a shell completion script for flexrock (bash, zsh, fish, elvish or powershell),
     /// e.g. `flexrock completions bash > ~/.local/share/bash-completion/completions/flexrock`.

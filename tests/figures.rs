@@ -534,6 +534,20 @@ fn a_sweep_over_records_and_scales_draws_an_incremental_dynamic_analysis() {
             .iter()
             .any(|e| e.tag == "text" && e.text == "overturned"));
     }
+    // A sweep of the amplitude beside another setting than records draws no such figure.
+    let other = scratch_dir("figures-ida").join("not-records");
+    run_ok(&[
+        "sweep",
+        repo("models/pulse-map.toml").to_str().unwrap(),
+        "--out",
+        other.to_str().unwrap(),
+        "--vary",
+        "excitation.shape=symmetric,antisymmetric",
+        "--vary",
+        "excitation.amplitude=2,4",
+        "--quiet",
+    ]);
+    assert!(!other.join("ida.svg").exists());
     // Each record's line passes through one marker per standing point (circles of its colour).
     let standing = rows.len() - overturned;
     let circles = elements

@@ -6,8 +6,8 @@
 //! - `spectrum.svg` for a minimum search over one numeric axis: the smallest overturning value
 //!   against the axis, in physical and in dimensionless units, with the rigid block's (the
 //!   slender Housner block of the same geometry, and the rigid limit of the elastic model);
-//! - `ida.svg` for a sweep over an intensity (`excitation.scale` or `excitation.amplitude`)
-//!   alone or beside one other axis, usually records (`excitation.path`): max |q|/B against the
+//! - `ida.svg` for a sweep over records (`excitation.path`) and an intensity (`excitation.scale`
+//!   or `excitation.amplitude`), or over `excitation.scale` alone: max |q|/B against the
 //!   intensity, one line per record, overturned points marked (incremental dynamic analysis).
 
 use std::path::Path;
@@ -120,8 +120,8 @@ pub fn figures(plan: &Plan, table: &SweepTable) -> Result<Vec<(String, Vec<u8>)>
             "spectrum.svg".to_string(),
             spectrum(plan, table, *x)?,
         )]),
-        // Incremental dynamic analysis: records (or one) against an intensity.
-        (None, 1 | 2, [x]) if is_intensity(&plan.axes[*x].key) => {
+        // Incremental dynamic analysis: records against an intensity, or one record's scale.
+        (None, 1 | 2, [x]) if is_ida(plan, *x) => {
             Ok(vec![(IDA_FILE.to_string(), ida(plan, table, *x)?)])
         }
         _ => Ok(Vec::new()),
@@ -131,9 +131,16 @@ pub fn figures(plan: &Plan, table: &SweepTable) -> Result<Vec<(String, Vec<u8>)>
 /// The figure of a sweep over records and an intensity (incremental dynamic analysis).
 pub const IDA_FILE: &str = "ida.svg";
 
-/// True for the keys that scale the excitation: the intensity of an incremental analysis.
-fn is_intensity(key: &str) -> bool {
-    matches!(key, "excitation.scale" | "excitation.amplitude")
+/// True for a sweep whose numeric axis `x` scales the excitation (excitation.scale or
+/// excitation.amplitude) beside an axis of records (excitation.path), or is excitation.scale
+/// alone (one record): an incremental dynamic analysis.
+fn is_ida(plan: &Plan, x: usize) -> bool {
+    let key = plan.axes[x].key.as_str();
+    let records = plan.axes.iter().any(|a| a.key == "excitation.path");
+    match plan.axes.len() {
+        1 => key == "excitation.scale",
+        _ => records && matches!(key, "excitation.scale" | "excitation.amplitude"),
+    }
 }
 
 /// The short name of a record file: its file name.
