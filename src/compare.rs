@@ -554,9 +554,8 @@ fn compare_figure(
     label: &str,
 ) -> Result<String> {
     let s_n = model.constants.uplift_displacement;
-    let end = reference.final_time.max(other.final_time);
     let panel = |title: &str, y_label: &str, value: fn(&Sample) -> f64, s_n_lines: bool| {
-        let mut series = vec![
+        let series = vec![
             Series::line(
                 "reference",
                 reference.samples.iter().map(|x| (x.t, value(x))).collect(),
@@ -568,25 +567,27 @@ fn compare_figure(
                 1,
             ),
         ];
-        if s_n_lines {
-            series.push(Series::line("+s_n", vec![(0.0, s_n), (end, s_n)], 2));
-            series.push(Series::line("-s_n", vec![(0.0, -s_n), (end, -s_n)], 2));
-        }
+        let reference_lines = if s_n_lines {
+            vec![(s_n, "±s_n (uplift)".to_string()), (-s_n, String::new())]
+        } else {
+            Vec::new()
+        };
         Panel {
             title: title.to_string(),
             x_label: "t (s)".to_string(),
             y_label: y_label.to_string(),
             series,
+            reference_lines,
             // Beside the plot: inside, it covered the curves of the last seconds.
             legend: Legend::Outside,
             ..Panel::default()
         }
     };
     let panels = [
-        panel("top displacement q", "q (m)", |x| x.q, true),
-        panel("flexural part s", "s (m)", |x| x.s, true),
-        panel("rocking part r", "r (m)", |x| x.r, false),
-        panel("top velocity q'", "q' (m/s)", |x| x.qdot, false),
+        panel("Top displacement", "q (m)", |x| x.q, true),
+        panel("Flexural part", "s (m)", |x| x.s, true),
+        panel("Rocking part", "r (m)", |x| x.r, false),
+        panel("Top velocity", "dq/dt (m/s)", |x| x.qdot, false),
     ];
     plot::figure("compare.svg", &panels, 1, (1150, 300))
 }
@@ -601,14 +602,25 @@ fn relations_figure(reference: &Solution, other: &Solution, label: &str) -> Resu
             Series::line("reference", reference.samples.iter().map(xy).collect(), 0),
             Series::line(label, other.samples.iter().map(xy).collect(), 1),
         ],
+        // A preference: the figure moves it to a corner the curves leave free, or beside the plot.
         legend: Legend::LowerRight,
         ..Panel::default()
     };
     let panels = [
-        panel("q against r (Fig. 12)", "r (m)", "q (m)", |x| (x.r, x.q)),
-        panel("s against r (Fig. 13)", "r (m)", "s (m)", |x| (x.r, x.s)),
+        panel(
+            "Top displacement against rocking part",
+            "r (m)",
+            "q (m)",
+            |x| (x.r, x.q),
+        ),
+        panel(
+            "Flexural part against rocking part",
+            "r (m)",
+            "s (m)",
+            |x| (x.r, x.s),
+        ),
     ];
-    plot::figure("compare_relations.svg", &panels, 2, (520, 460))
+    plot::figure("compare_relations.svg", &panels, 2, (680, 560))
 }
 
 /// The printed table of `flexrock compare`.

@@ -468,14 +468,23 @@ fn figures(summary: &ConvergeSummary) -> Result<(String, String)> {
         }
         m
     };
+    // (column, panel title, axis label with unit)
     let titles = [
-        ("max_q_error", "max |q error| on the grid", "m"),
-        ("max_event_time_error", "max event-time error", "s"),
-        ("peak_error", "peak error of q", "m"),
+        (
+            "max_q_error",
+            "Error of q on the output grid",
+            "max |Δq| (m)",
+        ),
+        (
+            "max_event_time_error",
+            "Error of the event times",
+            "max |Δt_event| (s)",
+        ),
+        ("peak_error", "Error of the peak of |q|", "|Δq_peak| (m)"),
     ];
     let mut dt_panels = Vec::new();
     let mut work_panels = Vec::new();
-    for (name, title, unit) in titles {
+    for (name, title, y_label) in titles {
         let mut dt_series = Vec::new();
         let mut work_series = Vec::new();
         for (i, method) in methods.iter().enumerate() {
@@ -489,13 +498,21 @@ fn figures(summary: &ConvergeSummary) -> Result<(String, String)> {
                 .iter()
                 .map(|c| (c.rhs_evaluations as f64, metric(c, name)))
                 .collect();
-            work_series.push(Series::line(method, work, i + 1).with_markers());
+            work_series.push(
+                Series::line(method, work, i + 1)
+                    .with_width(2)
+                    .with_markers(),
+            );
             if cases.first().is_some_and(|c| c.dt.is_some()) {
                 let points: Vec<(f64, f64)> = cases
                     .iter()
                     .map(|c| (c.dt.unwrap_or(f64::NAN), metric(c, name)))
                     .collect();
-                dt_series.push(Series::line(method, points, i + 1).with_markers());
+                dt_series.push(
+                    Series::line(method, points, i + 1)
+                        .with_width(2)
+                        .with_markers(),
+                );
             }
         }
         // Guides through the first compensate point: slopes 1 and 2.
@@ -507,17 +524,22 @@ fn figures(summary: &ConvergeSummary) -> Result<(String, String)> {
             let (x0, y0) = (anchor.dt.unwrap_or(1.0), metric(anchor, name));
             let x1 = summary.cases.iter().filter_map(|c| c.dt).fold(x0, f64::min);
             for (order, color) in [(1.0, 5), (2.0, 6)] {
-                dt_series.push(Series::line(
-                    &format!("slope {order}"),
-                    vec![(x0, y0), (x1, y0 * (x1 / x0).powf(order))],
-                    color,
-                ));
+                // Guides, not data: thin and dashed.
+                dt_series.push(
+                    Series::line(
+                        &format!("slope {order}"),
+                        vec![(x0, y0), (x1, y0 * (x1 / x0).powf(order))],
+                        color,
+                    )
+                    .with_width(1)
+                    .dashed(),
+                );
             }
         }
         dt_panels.push(Panel {
-            title: format!("Newmark: {title} against dt"),
-            x_label: "dt (s)".to_string(),
-            y_label: format!("{title} ({unit})"),
+            title: format!("Newmark: {title}"),
+            x_label: "Δt (s)".to_string(),
+            y_label: y_label.to_string(),
             series: dt_series,
             log_x: true,
             log_y: true,
@@ -525,9 +547,9 @@ fn figures(summary: &ConvergeSummary) -> Result<(String, String)> {
             ..Panel::default()
         });
         work_panels.push(Panel {
-            title: format!("{title} against work"),
+            title: title.to_string(),
             x_label: "right-hand-side evaluations".to_string(),
-            y_label: format!("{title} ({unit})"),
+            y_label: y_label.to_string(),
             series: work_series,
             log_x: true,
             log_y: true,

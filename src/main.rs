@@ -69,11 +69,10 @@ enum Command {
         timings: TimingsArg,
     },
     /// Draw the figures of a run directory (history.csv, events.csv, summary.json of
-    /// `flexrock run`) into it: plot_motion.svg, plot_force.svg and plot_energy.svg.
-    Plot {
-        /// Output directory of `flexrock run`.
-        dir: PathBuf,
-    },
+    /// `flexrock run`) into it: plot_motion (floor acceleration, q, s and r, dq/dt against t,
+    /// with the events marked on every panel), plot_force (F(q), q against r, s against r) and
+    /// plot_energy (energy balance and residual), as SVG, PNG or both.
+    Plot(PlotArgs),
     /// Print the event log of a run directory (its events.csv) as a table, or with --csv or
     /// --json its rocking episodes (episodes.csv): one row per episode with its side, start,
     /// end, duration, peak |q| and rotation, floor acceleration at uplift and q' before and
@@ -90,7 +89,9 @@ enum Command {
     },
     /// Parametric study: run the model at every point of a grid of model-file keys (or search
     /// the smallest overturning value at each), one row per point in sweep.csv, with sweep.json
-    /// and a map or spectrum (SVG). Re-running the same command resumes an interrupted sweep.
+    /// and a figure (SVG): a map over two numeric axes, a spectrum of a minimum search, or for
+    /// records (excitation.path) against excitation.scale or excitation.amplitude an
+    /// incremental dynamic analysis (ida.svg). Re-running the same command resumes an interrupted sweep.
     Sweep(SweepArgs),
     /// Print a shell completion script for flexrock (bash, zsh, fish, elvish or powershell),
     /// e.g. `flexrock completions bash > ~/.local/share/bash-completion/completions/flexrock`.
@@ -233,6 +234,43 @@ impl TimingsArg {
             flexrock::output::WallTimes::Inline
         }
     }
+}
+
+/// The arguments of `flexrock plot`.
+#[derive(clap::Args, Debug)]
+struct PlotArgs {
+    /// Output directory of `flexrock run`.
+    dir: PathBuf,
+    /// Image format: svg (plot_motion.svg, ...), png (plot_motion.png, ..., drawn with the
+    /// embedded DejaVu Sans font, no system fonts needed) or both.
+    #[arg(long, value_enum, default_value_t = PlotFormat::Svg)]
+    format: PlotFormat,
+    /// Width of every figure, pixels (200 to 6000) [default: 1150 for plot_motion and
+    /// plot_energy, 1920 for plot_force].
+    #[arg(long, value_name = "PX")]
+    width: Option<u32>,
+    /// Height of every figure, pixels (200 to 6000) [default: 1320 for plot_motion, 560 for
+    /// plot_force, 760 for plot_energy].
+    #[arg(long, value_name = "PX")]
+    height: Option<u32>,
+    /// Draw only from this time on, s (0 or more, finite, less than --to) [default: the start
+    /// of the run]. The energy curves keep their values accumulated since t = 0.
+    #[arg(long, value_name = "T0", allow_negative_numbers = true)]
+    from: Option<f64>,
+    /// Draw only up to this time, s (finite, more than --from) [default: the end of the run].
+    #[arg(long, value_name = "T1", allow_negative_numbers = true)]
+    to: Option<f64>,
+}
+
+/// The image formats of `flexrock plot`.
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+enum PlotFormat {
+    /// SVG.
+    Svg,
+    /// PNG (8-bit RGB).
+    Png,
+    /// SVG and PNG.
+    Both,
 }
 
 #[derive(clap::Args)]
@@ -564,7 +602,7 @@ fn execute(command: Command) -> flexrock::Result<Output> {
             };
             run(&path, out, &overrides, plot, timings.wall_times())
         }
-        Command::Plot { dir } => plot(&dir),
+        Command::Plot(args) => plot(args),
         Command::Events { dir, csv, json } => events(&dir, csv, json),
         Command::Completions { shell } => {
             let mut script = Vec::new();
@@ -720,8 +758,21 @@ fn run(
 }
 
 /// `flexrock plot`: the figures of a run directory.
-fn plot(dir: &std::path::Path) -> flexrock::Result<Output> {
-    let written = flexrock::run_plot::plot_dir(dir)?;
+fn plot(args: PlotArgs) -> flexrock::Result<Output> {
+    use flexrock::plot::Format;
+    let formats = match args.format {
+        PlotFormat::Svg => vec![Format::Svg],
+        PlotFormat::Png => vec![Format::Png],
+        PlotFormat::Both => vec![Format::Svg, Format::Png],
+    };
+    let options = flexrock::run_plot::PlotOptions {
+        formats,
+        width: args.width,
+        height: args.height,
+        from: args.from,
+        to: args.to,
+    };
+    let written = flexrock::run_plot::plot_dir_with(&args.dir, &options)?;
     Ok(Output::text(
         written
             .iter()

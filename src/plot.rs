@@ -1,6 +1,8 @@
 //! SVG figures from series of points. Knows nothing about solvers or models: callers hand it
 //! panels of named (x, y) series and get the SVG text back, to be written atomically.
 
+use plotters::coord::types::RangedCoordf64;
+use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
@@ -22,6 +24,9 @@ pub struct Series {
     pub line: bool,
     /// Line width in pixels [default: 2 for color 0, else 1].
     pub width: Option<u32>,
+    /// Draw the line dashed, so that a curve under it shows through the gaps (two curves that
+    /// nearly coincide stay apart to the eye).
+    pub dashed: bool,
 }
 
 /// The shape of a series' markers.
@@ -47,6 +52,7 @@ impl Series {
             marker: None,
             line: true,
             width: None,
+            dashed: false,
         }
     }
 
@@ -68,6 +74,12 @@ impl Series {
     /// The series drawn `width` pixels wide.
     pub fn with_width(mut self, width: u32) -> Self {
         self.width = Some(width);
+        self
+    }
+
+    /// The series drawn dashed.
+    pub fn dashed(mut self) -> Self {
+        self.dashed = true;
         self
     }
 
@@ -100,6 +112,20 @@ pub struct Panel {
     /// Horizontal dashed lines in dark grey (e.g. the overturning limit +-B), with their legend
     /// text (empty: none).
     pub dashed_lines: Vec<(f64, String)>,
+    /// Thin vertical lines across the whole panel (events in time), drawn under the series.
+    pub vertical_lines: Vec<VerticalLine>,
+}
+
+/// A thin vertical line across a panel, at an abscissa, in a palette colour; the first line of
+/// each non-empty label gets a legend entry.
+#[derive(Debug, Clone)]
+pub struct VerticalLine {
+    /// The abscissa.
+    pub x: f64,
+    /// Index into the palette.
+    pub color: usize,
+    /// The legend text (empty: none).
+    pub label: String,
 }
 
 impl Panel {
@@ -120,8 +146,11 @@ impl Panel {
     }
 }
 
-/// Where a panel's legend goes: a corner inside the plotting area (choose one the data leave
-/// free), or a strip to the right of it, where it cannot cover any curve.
+/// Where a panel's legend goes: a corner inside the plotting area, or a strip to the right of it,
+/// where it cannot cover any curve. A corner is a preference: when the legend box there would
+/// cover any drawn point or line of the panel, the first free corner of upper right, upper left,
+/// lower right, lower left is taken, and when none is free the legend goes beside the plot
+/// ([`Legend::Outside`]).
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub enum Legend {
     #[default]
@@ -154,30 +183,132 @@ const PALETTE: [RGBColor; 8] = [
     RGBColor(23, 190, 207),
 ];
 
-/// Draws `panels` in a grid of `columns` columns, each panel `size` pixels; returns the SVG text.
-pub fn figure(name: &str, panels: &[Panel], columns: usize, size: (u32, u32)) -> Result<String> {
-    let columns = columns.max(1);
-    let rows = panels.len().div_ceil(columns).max(1);
-    let mut svg = String::new();
-    {
-        let root =
-            SVGBackend::with_string(&mut svg, (size.0 * columns as u32, size.1 * rows as u32))
-                .into_drawing_area();
-        let fail = |e: &dyn std::fmt::Display| Error::Plot {
-            name: name.to_string(),
-            message: e.to_string(),
-        };
-        root.fill(&WHITE).map_err(|e| fail(&e))?;
-        let areas = root.split_evenly((rows, columns));
-        for (panel, area) in panels.iter().zip(areas.iter()) {
-            draw_panel(panel, area).map_err(|e| fail(&e))?;
-        }
-        root.present().map_err(|e| fail(&e))?;
-    }
-    Ok(svg)
+/// The embedded font (DejaVu Sans, assets/fonts/LICENSE-DejaVu.txt): PNG text is drawn with it
+/// and every figure's text is measured with it, so no system font is needed.
+static FONT: &[u8] = include_bytes!("../assets/fonts/DejaVuSans.ttf");
+
+/// Registers the embedded font as "sans-serif" (once); every drawing calls this first.
+pub fn register_fonts() {
+    static ONCE: std::sync::Once = std::sync::Once::new();
+    ONCE.call_once(|| {
+        // The font is a fixed, valid file: a failure here is a broken build, and the tests
+        // (which draw text) catch it.
+        let loaded = plotters::style::register_font("sans-serif", FontStyle::Normal, FONT);
+        assert!(loaded.is_ok(), "the embedded DejaVu Sans font loads");
+    });
 }
 
-type Area<'a> = DrawingArea<SVGBackend<'a>, plotters::coord::Shift>;
+/// The image format of a figure.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Format {
+    /// SVG text.
+    Svg,
+    /// PNG, 8-bit RGB.
+    Png,
+}
+
+impl Format {
+    /// The file extension, without the dot.
+    pub fn extension(self) -> &'static str {
+        match self {
+            Format::Svg => "svg",
+            Format::Png => "png",
+        }
+    }
+}
+
+/// Draws `panels` in a grid of `columns` columns, each panel `size` pixels; returns the SVG text.
+pub fn figure(name: &str, panels: &[Panel], columns: usize, size: (u32, u32)) -> Result<String> {
+    let bytes = figure_sized(
+        Format::Svg,
+        name,
+        panels,
+        columns,
+        grid_size(panels, columns, size),
+    )?;
+    Ok(String::from_utf8(bytes).unwrap_or_default())
+}
+
+/// [`figure`] in `format` (SVG text or PNG bytes), the whole figure `total` pixels (the panels
+/// share it evenly).
+pub fn figure_sized(
+    format: Format,
+    name: &str,
+    panels: &[Panel],
+    columns: usize,
+    (width, height): (u32, u32),
+) -> Result<Vec<u8>> {
+    match format {
+        Format::Svg => {
+            let mut svg = String::new();
+            {
+                let root = SVGBackend::with_string(&mut svg, (width, height)).into_drawing_area();
+                draw_figure(name, &root, panels, columns, false)?;
+            }
+            Ok(svg.into_bytes())
+        }
+        Format::Png => {
+            let mut pixels = vec![255u8; 3 * width as usize * height as usize];
+            {
+                let root =
+                    BitMapBackend::with_buffer(&mut pixels, (width, height)).into_drawing_area();
+                draw_figure(name, &root, panels, columns, true)?;
+            }
+            encode_png(name, &pixels, (width, height))
+        }
+    }
+}
+
+/// 8-bit RGB pixels, row by row, as a PNG file.
+pub fn encode_png(name: &str, pixels: &[u8], (width, height): (u32, u32)) -> Result<Vec<u8>> {
+    let fail = |e: &dyn std::fmt::Display| Error::Plot {
+        name: name.to_string(),
+        message: e.to_string(),
+    };
+    let mut bytes = Vec::new();
+    {
+        let mut encoder = png::Encoder::new(&mut bytes, width, height);
+        encoder.set_color(png::ColorType::Rgb);
+        encoder.set_depth(png::BitDepth::Eight);
+        let mut writer = encoder.write_header().map_err(|e| fail(&e))?;
+        writer.write_image_data(pixels).map_err(|e| fail(&e))?;
+        writer.finish().map_err(|e| fail(&e))?;
+    }
+    Ok(bytes)
+}
+
+fn grid_size(panels: &[Panel], columns: usize, size: (u32, u32)) -> (u32, u32) {
+    let columns = columns.max(1);
+    let rows = panels.len().div_ceil(columns).max(1);
+    (size.0 * columns as u32, size.1 * rows as u32)
+}
+
+fn draw_figure<DB: DrawingBackend>(
+    name: &str,
+    root: &DrawingArea<DB, Shift>,
+    panels: &[Panel],
+    columns: usize,
+    raster: bool,
+) -> Result<()>
+where
+    DB::ErrorType: 'static,
+{
+    register_fonts();
+    let columns = columns.max(1);
+    let rows = panels.len().div_ceil(columns).max(1);
+    let fail = |e: &dyn std::fmt::Display| Error::Plot {
+        name: name.to_string(),
+        message: e.to_string(),
+    };
+    root.fill(&WHITE).map_err(|e| fail(&e))?;
+    let areas = root.split_evenly((rows, columns));
+    for (panel, area) in panels.iter().zip(areas.iter()) {
+        draw_panel(panel, area, raster).map_err(|e| fail(&e))?;
+    }
+    root.present().map_err(|e| fail(&e))?;
+    Ok(())
+}
+
 /// One unbroken stretch of a curve, in drawing coordinates.
 type Polyline = Vec<(f64, f64)>;
 
@@ -195,12 +326,17 @@ const TICK_FONT: u32 = 20;
 const LEGEND_FONT: u32 = 20;
 /// Marker size, pixels (half the width of a marker).
 const MARKER_SIZE: i32 = 5;
+/// The grid at the tick marks: one light grey, no minor lines (they darken a printed figure).
+const GRID: RGBColor = RGBColor(222, 222, 222);
+/// The frame of an inside legend (a colour no series uses, so that tests find the box).
+pub const LEGEND_FRAME: RGBColor = RGBColor(180, 180, 180);
 
 /// What a legend shows for one entry.
 #[derive(Clone, Copy)]
 enum Swatch {
     Line(RGBColor, u32),
-    Dashed(RGBColor),
+    Dashed(RGBColor, u32),
+    Vertical(RGBColor),
     Marker(RGBColor, Marker),
 }
 
@@ -406,31 +542,324 @@ fn axis_ranges(
     (x0, x1, y0, y1)
 }
 
-fn draw_panel(
+/// The chart of a panel on `area`, with the axis ranges.
+fn build_chart<'a, DB: DrawingBackend>(
     panel: &Panel,
-    whole: &Area<'_>,
-) -> std::result::Result<(), Box<dyn std::error::Error>> {
-    let (area, strip) = if panel.legend == Legend::Outside {
+    area: &'a DrawingArea<DB, Shift>,
+    (x0, x1, y0, y1): (f64, f64, f64, f64),
+) -> std::result::Result<
+    ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>,
+    Box<dyn std::error::Error>,
+>
+where
+    DB::ErrorType: 'static,
+{
+    Ok(ChartBuilder::on(area)
+        .caption(&panel.title, ("sans-serif", TITLE_FONT))
+        .margin(MARGIN)
+        .x_label_area_size(X_LABEL_AREA)
+        .y_label_area_size(Y_LABEL_AREA)
+        .build_cartesian_2d(x0..x1, y0..y1)?)
+}
+
+/// The axis ranges for a panel drawn on an area of `dims` pixels.
+fn ranges_on(
+    panel: &Panel,
+    series: &[(&Series, Vec<Polyline>)],
+    (width, height): (u32, u32),
+) -> ((f64, f64, f64, f64), (u32, u32)) {
+    let plot_w = width.saturating_sub(Y_LABEL_AREA + 2 * MARGIN).max(1);
+    let plot_h = height
+        .saturating_sub(X_LABEL_AREA + 2 * MARGIN + CAPTION)
+        .max(1);
+    (
+        axis_ranges(panel, series, (plot_w, plot_h)),
+        (plot_w, plot_h),
+    )
+}
+
+/// A straight stretch of a drawing, in pixels, with the half width of its stroke.
+#[derive(Debug, Clone, Copy)]
+pub struct Stroke {
+    /// Start.
+    pub a: (f64, f64),
+    /// End.
+    pub b: (f64, f64),
+    /// Half the stroke width (or the marker radius), pixels.
+    pub half_width: f64,
+}
+
+/// True when the stroke touches the rectangle `(left, top, right, bottom)` (pixels).
+pub fn stroke_hits_box(s: &Stroke, (l, t, r, b): (f64, f64, f64, f64)) -> bool {
+    let (l, t, r, b) = (
+        l - s.half_width,
+        t - s.half_width,
+        r + s.half_width,
+        b + s.half_width,
+    );
+    // Liang-Barsky clipping of the segment against the widened box.
+    let (dx, dy) = (s.b.0 - s.a.0, s.b.1 - s.a.1);
+    let (mut u0, mut u1) = (0.0f64, 1.0f64);
+    for (p, q) in [
+        (-dx, s.a.0 - l),
+        (dx, r - s.a.0),
+        (-dy, s.a.1 - t),
+        (dy, b - s.a.1),
+    ] {
+        if p == 0.0 {
+            if q < 0.0 {
+                return false;
+            }
+        } else {
+            let u = q / p;
+            if p < 0.0 {
+                u0 = u0.max(u);
+            } else {
+                u1 = u1.min(u);
+            }
+            if u0 > u1 {
+                return false;
+            }
+        }
+    }
+    true
+}
+
+/// Everything a panel draws inside its plotting area, as strokes in the pixel coordinates of
+/// that area (origin at its upper left corner).
+fn drawn_strokes<DB: DrawingBackend>(
+    chart: &ChartContext<'_, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>,
+    panel: &Panel,
+    series: &[(&Series, Vec<Polyline>)],
+    (x0, x1, y0, y1): (f64, f64, f64, f64),
+    plot: (u32, u32),
+) -> Vec<Stroke> {
+    let area = chart.plotting_area();
+    let (xr, yr) = area.get_pixel_range();
+    let at = |p: (f64, f64)| {
+        let (x, y) = area.map_coordinate(&p);
+        (f64::from(x - xr.start), f64::from(y - yr.start))
+    };
+    let mut strokes = Vec::new();
+    let mut marks = Vec::new();
+    let mut line = |a: (f64, f64), b: (f64, f64), width: u32| {
+        strokes.push(Stroke {
+            a: at(a),
+            b: at(b),
+            half_width: 0.5 * f64::from(width),
+        })
+    };
+    for (level, _) in panel.reference_lines.iter().chain(&panel.dashed_lines) {
+        line((x0, *level), (x1, *level), 1);
+    }
+    for v in &panel.vertical_lines {
+        line((v.x, y0), (v.x, y1), 1);
+    }
+    for (s, pieces) in series {
+        for points in pieces {
+            if s.line {
+                for piece in decimate(points, (x0, x1), (y0, y1), plot) {
+                    if piece.len() == 1 {
+                        line(piece[0], piece[0], s.stroke_width());
+                    }
+                    for w in piece.windows(2) {
+                        line(w[0], w[1], s.stroke_width());
+                    }
+                }
+            }
+            if s.marker.is_some() {
+                for &p in points {
+                    marks.push(Stroke {
+                        a: at(p),
+                        b: at(p),
+                        half_width: f64::from(MARKER_SIZE + 1),
+                    });
+                }
+            }
+        }
+    }
+    strokes.extend(marks);
+    strokes
+}
+
+/// The legend entries of a panel, series first, then the reference lines and vertical lines.
+fn legend_entries<'p>(
+    panel: &'p Panel,
+    series: &[(&'p Series, Vec<Polyline>)],
+) -> Vec<(&'p str, Swatch)> {
+    let mut legend: Vec<(&str, Swatch)> = Vec::new();
+    for (s, pieces) in series {
+        let color = PALETTE[s.color % PALETTE.len()];
+        if !s.name.is_empty() && !pieces.is_empty() {
+            legend.push((
+                s.name.as_str(),
+                match (s.line, s.marker) {
+                    (false, Some(shape)) => Swatch::Marker(color, shape),
+                    _ if s.dashed => Swatch::Dashed(color, s.stroke_width().clamp(1, 4)),
+                    _ => Swatch::Line(color, s.stroke_width().clamp(2, 4)),
+                },
+            ));
+        }
+    }
+    for (_, label) in &panel.reference_lines {
+        if !label.is_empty() {
+            legend.push((label, Swatch::Line(REFERENCE_GREY, 1)));
+        }
+    }
+    for (_, label) in &panel.dashed_lines {
+        if !label.is_empty() {
+            legend.push((label, Swatch::Dashed(DASHED_GREY, 1)));
+        }
+    }
+    let mut seen: Vec<&str> = Vec::new();
+    for v in &panel.vertical_lines {
+        if !v.label.is_empty() && !seen.contains(&v.label.as_str()) {
+            seen.push(&v.label);
+            legend.push((&v.label, Swatch::Vertical(event_colour(v.color))));
+        }
+    }
+    legend
+}
+
+const REFERENCE_GREY: RGBColor = RGBColor(150, 150, 150);
+const DASHED_GREY: RGBColor = RGBColor(90, 90, 90);
+
+/// The colour of a vertical event line: the palette colour, lightened.
+fn event_colour(color: usize) -> RGBColor {
+    let c = PALETTE[color % PALETTE.len()];
+    let light = |v: u8| ((u16::from(v) + 255) / 2) as u8;
+    RGBColor(light(c.0), light(c.1), light(c.2))
+}
+
+/// Width and height of a legend box for `entries`, pixels.
+fn legend_box(entries: &[(&str, Swatch)]) -> (i32, i32) {
+    let font = ("sans-serif", LEGEND_FONT).into_font();
+    let step = LEGEND_FONT as i32 + 8;
+    let (swatch_width, gap, pad) = (24, 8, 8);
+    // The text is measured with the embedded DejaVu Sans at the nominal size, which is 1.24
+    // times the size the SVG asks for: room for a viewer that substitutes a wider sans-serif.
+    let text_width = entries
+        .iter()
+        .map(|(label, _)| {
+            let measured = font.box_size(label).map_or(0, |(w, _)| w);
+            measured.max(LEGEND_FONT / 2 * label.chars().count() as u32)
+        })
+        .max()
+        .unwrap_or(0) as i32;
+    (
+        pad + swatch_width + gap + text_width + pad,
+        pad + step * entries.len() as i32 + pad / 2,
+    )
+}
+
+/// Upper left corner of a legend box of `size` in an area of `dims`, at a corner (`Outside`:
+/// the top of the strip).
+fn legend_origin(placement: Legend, (w, h): (i32, i32), (width, height): (i32, i32)) -> (i32, i32) {
+    let inset = LEGEND_INSET;
+    match placement {
+        Legend::Outside => (0, (MARGIN + CAPTION) as i32),
+        Legend::UpperRight => (width - w - inset, inset),
+        Legend::LowerRight => (width - w - inset, height - h - inset),
+        Legend::UpperLeft => (inset, inset),
+        Legend::LowerLeft => (inset, height - h - inset),
+    }
+}
+
+/// Gap between an inside legend and the plotting area's edge, pixels.
+const LEGEND_INSET: i32 = 6;
+
+/// Where a legend box goes: at `(left, top)` in the plotting area, or beside the plot.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Placement {
+    Inside(i32, i32),
+    Outside,
+}
+
+/// The legend placement of a panel drawn on an area of `dims`: the panel's corner when the
+/// legend box there covers nothing drawn (with two pixels of air), else the first free one of
+/// the other corners, the middles of the left and right edges, of the top and bottom edges,
+/// and the centre; else beside the plot. The layout is found by building the same chart on a
+/// scratch SVG of the same size.
+fn choose_legend(
+    panel: &Panel,
+    series: &[(&Series, Vec<Polyline>)],
+    dims: (u32, u32),
+) -> Placement {
+    if panel.legend == Legend::Outside {
+        return Placement::Outside;
+    }
+    let entries = legend_entries(panel, series);
+    if entries.is_empty() {
+        return Placement::Inside(0, 0);
+    }
+    let mut scratch = String::new();
+    let scratch_area = SVGBackend::with_string(&mut scratch, dims).into_drawing_area();
+    let (ranges, plot) = ranges_on(panel, series, dims);
+    let Ok(chart) = build_chart(panel, &scratch_area, ranges) else {
+        return Placement::Outside;
+    };
+    let strokes = drawn_strokes(&chart, panel, series, ranges, plot);
+    let (xr, yr) = chart.plotting_area().get_pixel_range();
+    let area = (xr.end - xr.start, yr.end - yr.start);
+    let size = legend_box(&entries);
+    let mut candidates = vec![legend_origin(panel.legend, size, area)];
+    for corner in [
+        Legend::UpperRight,
+        Legend::UpperLeft,
+        Legend::LowerRight,
+        Legend::LowerLeft,
+    ] {
+        candidates.push(legend_origin(corner, size, area));
+    }
+    let (left, right) = (LEGEND_INSET, area.0 - size.0 - LEGEND_INSET);
+    let (top, bottom) = (LEGEND_INSET, area.1 - size.1 - LEGEND_INSET);
+    let (centre_x, centre_y) = ((area.0 - size.0) / 2, (area.1 - size.1) / 2);
+    candidates.extend([
+        (left, centre_y),
+        (right, centre_y),
+        (centre_x, top),
+        (centre_x, bottom),
+        (centre_x, centre_y),
+    ]);
+    candidates
+        .into_iter()
+        .find(|&(x, y)| {
+            // A box wider or taller than the plotting area does not fit inside.
+            let fits = x >= 0 && y >= 0 && x + size.0 <= area.0 && y + size.1 <= area.1;
+            let rect = (
+                f64::from(x) - 2.0,
+                f64::from(y) - 2.0,
+                f64::from(x + size.0) + 2.0,
+                f64::from(y + size.1) + 2.0,
+            );
+            fits && !strokes.iter().any(|s| stroke_hits_box(s, rect))
+        })
+        .map_or(Placement::Outside, |(x, y)| Placement::Inside(x, y))
+}
+
+/// Draws one panel. `raster`: the backend is plotters' rasteriser, which fills a wide polyline
+/// as one polygon (even-odd: a path that retraces itself comes out hollow), so wide lines are
+/// drawn segment by segment with round joints instead.
+fn draw_panel<DB: DrawingBackend>(
+    panel: &Panel,
+    whole: &DrawingArea<DB, Shift>,
+    raster: bool,
+) -> std::result::Result<(), Box<dyn std::error::Error>>
+where
+    DB::ErrorType: 'static,
+{
+    let series = drawable_pieces(panel);
+    let placement = choose_legend(panel, &series, whole.dim_in_pixel());
+    let (area, strip) = if placement == Placement::Outside {
         let width = whole.dim_in_pixel().0;
         let (left, right) = whole.split_horizontally(width.saturating_sub(LEGEND_STRIP));
         (left, Some(right))
     } else {
         (whole.clone(), None)
     };
-    let series = drawable_pieces(panel);
-    let (width, height) = area.dim_in_pixel();
-    let plot_w = width.saturating_sub(Y_LABEL_AREA + 2 * MARGIN).max(1);
-    let plot_h = height
-        .saturating_sub(X_LABEL_AREA + 2 * MARGIN + CAPTION)
-        .max(1);
-    let (x0, x1, y0, y1) = axis_ranges(panel, &series, (plot_w, plot_h));
-
-    let mut chart = ChartBuilder::on(&area)
-        .caption(&panel.title, ("sans-serif", TITLE_FONT))
-        .margin(MARGIN)
-        .x_label_area_size(X_LABEL_AREA)
-        .y_label_area_size(Y_LABEL_AREA)
-        .build_cartesian_2d(x0..x1, y0..y1)?;
+    let (ranges, (plot_w, plot_h)) = ranges_on(panel, &series, area.dim_in_pixel());
+    let (x0, x1, y0, y1) = ranges;
+    let mut chart = build_chart(panel, &area, ranges)?;
     let log_label = |v: &f64| {
         if (v - v.round()).abs() < 1e-9 {
             format!("1e{}", v.round() as i64)
@@ -461,50 +890,55 @@ fn draw_panel(
         .axis_desc_style(("sans-serif", AXIS_FONT))
         .x_label_formatter(if panel.log_x { &log_label } else { &x_label })
         .y_label_formatter(if panel.log_y { &log_label } else { &y_label })
-        .light_line_style(RGBColor(235, 235, 235))
+        .bold_line_style(GRID.stroke_width(1))
+        .light_line_style(TRANSPARENT)
+        .max_light_lines(0)
+        .axis_style(BLACK.stroke_width(1))
         .draw()?;
 
-    // The legend lists the series first, then the reference lines.
-    let mut legend: Vec<(&str, Swatch)> = Vec::new();
-    let mut levels: Vec<(&str, Swatch)> = Vec::new();
-    let grey = RGBColor(150, 150, 150);
-    let dark_grey = RGBColor(90, 90, 90);
-    for (level, label) in &panel.reference_lines {
+    for v in &panel.vertical_lines {
+        chart.draw_series(LineSeries::new(
+            [(v.x, y0), (v.x, y1)],
+            event_colour(v.color).stroke_width(1),
+        ))?;
+    }
+    for (level, _) in &panel.reference_lines {
         chart.draw_series(LineSeries::new(
             [(x0, *level), (x1, *level)],
-            grey.stroke_width(1),
+            REFERENCE_GREY.stroke_width(1),
         ))?;
-        if !label.is_empty() {
-            levels.push((label, Swatch::Line(grey, 1)));
-        }
     }
-    for (level, label) in &panel.dashed_lines {
+    for (level, _) in &panel.dashed_lines {
         chart.draw_series(DashedLineSeries::new(
             [(x0, *level), (x1, *level)],
             8,
             5,
-            dark_grey.stroke_width(1),
+            DASHED_GREY.stroke_width(1),
         ))?;
-        if !label.is_empty() {
-            levels.push((label, Swatch::Dashed(dark_grey)));
-        }
     }
     for (s, pieces) in &series {
         let color = PALETTE[s.color % PALETTE.len()];
         let style = color.stroke_width(s.stroke_width());
-        if !s.name.is_empty() && !pieces.is_empty() {
-            legend.push((
-                s.name.as_str(),
-                match (s.line, s.marker) {
-                    (false, Some(shape)) => Swatch::Marker(color, shape),
-                    _ => Swatch::Line(color, s.stroke_width().clamp(2, 4)),
-                },
-            ));
-        }
         for points in pieces {
             if s.line {
                 for piece in decimate(points, (x0, x1), (y0, y1), (plot_w, plot_h)) {
-                    chart.draw_series(LineSeries::new(piece, style))?;
+                    if s.dashed {
+                        chart.draw_series(DashedLineSeries::new(piece, 9, 6, style))?;
+                    } else if raster && s.stroke_width() > 1 {
+                        chart.draw_series(
+                            piece
+                                .windows(2)
+                                .map(|w| PathElement::new(vec![w[0], w[1]], style)),
+                        )?;
+                        if s.stroke_width() > 2 {
+                            let r = s.stroke_width() / 2;
+                            chart.draw_series(
+                                piece.iter().map(|&p| Circle::new(p, r, color.filled())),
+                            )?;
+                        }
+                    } else {
+                        chart.draw_series(LineSeries::new(piece, style))?;
+                    }
                 }
             }
             if let Some(shape) = s.marker {
@@ -512,61 +946,42 @@ fn draw_panel(
             }
         }
     }
-    legend.extend(levels);
+    let legend = legend_entries(panel, &series);
     if legend.is_empty() {
         return Ok(());
     }
     match strip {
-        Some(strip) => draw_legend(&strip, &legend, Legend::Outside),
+        Some(strip) => draw_legend(&strip, &legend, Placement::Outside),
         None => draw_legend(
             &chart.plotting_area().strip_coord_spec(),
             &legend,
-            panel.legend,
+            placement,
         ),
     }
 }
 
 /// Draws a legend, one entry a line: in a corner of `area` (the plotting area) inside a white
 /// box, or for [`Legend::Outside`] from the top of `area` (the strip) down.
-fn draw_legend(
-    area: &Area<'_>,
+fn draw_legend<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
     entries: &[(&str, Swatch)],
-    placement: Legend,
-) -> std::result::Result<(), Box<dyn std::error::Error>> {
+    placement: Placement,
+) -> std::result::Result<(), Box<dyn std::error::Error>>
+where
+    DB::ErrorType: 'static,
+{
     let font = ("sans-serif", LEGEND_FONT).into_font().color(&BLACK);
     let step = LEGEND_FONT as i32 + 8;
     let (swatch_width, gap, pad) = (24, 8, 8);
-    // plotters' estimate without font files is narrow for the sans-serif fonts viewers use
-    // (DejaVu Sans is about 0.6 em a character): take the larger of the two.
-    let text_width = entries
-        .iter()
-        .map(|(label, _)| {
-            let estimate = area.estimate_text_size(label, &font).map_or(0, |(w, _)| w);
-            estimate.max((0.6 * (LEGEND_FONT * label.chars().count() as u32) as f64) as u32)
-        })
-        .max()
-        .unwrap_or(0) as i32;
-    let box_width = pad + swatch_width + gap + text_width + pad;
-    let box_height = pad + step * entries.len() as i32 + pad / 2;
-    let (width, height) = area.dim_in_pixel();
-    let (width, height) = (width as i32, height as i32);
-    let inset = 6;
+    let size = legend_box(entries);
     let (left, top) = match placement {
-        Legend::Outside => (0, (MARGIN + CAPTION) as i32),
-        Legend::UpperRight => (width - box_width - inset, inset),
-        Legend::LowerRight => (width - box_width - inset, height - box_height - inset),
-        Legend::UpperLeft => (inset, inset),
-        Legend::LowerLeft => (inset, height - box_height - inset),
+        Placement::Inside(x, y) => (x, y),
+        Placement::Outside => legend_origin(Legend::Outside, size, (0, 0)),
     };
-    if placement != Legend::Outside {
-        area.draw(&Rectangle::new(
-            [(left, top), (left + box_width, top + box_height)],
-            WHITE.mix(0.85).filled(),
-        ))?;
-        area.draw(&Rectangle::new(
-            [(left, top), (left + box_width, top + box_height)],
-            RGBColor(180, 180, 180).stroke_width(1),
-        ))?;
+    if placement != Placement::Outside {
+        let corners = [(left, top), (left + size.0, top + size.1)];
+        area.draw(&Rectangle::new(corners, WHITE.mix(0.85).filled()))?;
+        area.draw(&Rectangle::new(corners, LEGEND_FRAME.stroke_width(1)))?;
     }
     for (i, (label, swatch)) in entries.iter().enumerate() {
         let y = top + pad + step / 2 + i as i32 * step;
@@ -576,14 +991,21 @@ fn draw_legend(
                 vec![(x, y), (x + swatch_width, y)],
                 color.stroke_width(width),
             ))?,
-            Swatch::Dashed(color) => {
+            Swatch::Dashed(color, width) => {
                 for dash in [0, 14] {
                     area.draw(&PathElement::new(
                         vec![(x + dash, y), (x + dash + 9, y)],
-                        color.stroke_width(1),
+                        color.stroke_width(width),
                     ))?;
                 }
             }
+            Swatch::Vertical(color) => area.draw(&PathElement::new(
+                vec![
+                    (x + swatch_width / 2, y - step / 2 + 3),
+                    (x + swatch_width / 2, y + step / 2 - 3),
+                ],
+                color.stroke_width(2),
+            ))?,
             Swatch::Marker(color, shape) => {
                 draw_markers(area, &[(x + swatch_width / 2, y)], shape, color)?
             }
@@ -620,6 +1042,45 @@ mod tests {
         for text in ["title A", "x (s)", "y (m)", "sine", "broken", "limit"] {
             assert!(svg.contains(text), "{text}");
         }
+    }
+
+    /// Dark pixels in the top `rows` rows of a PNG figure.
+    fn dark_pixels_on_top(png_bytes: &[u8], rows: u32) -> usize {
+        let decoder = png::Decoder::new(std::io::Cursor::new(png_bytes));
+        let mut reader = decoder.read_info().unwrap();
+        let mut buf = vec![0; reader.output_buffer_size().unwrap()];
+        let info = reader.next_frame(&mut buf).unwrap();
+        assert_eq!(info.color_type, png::ColorType::Rgb);
+        let stride = info.line_size;
+        (0..rows as usize)
+            .flat_map(|y| buf[y * stride..(y + 1) * stride].chunks(3))
+            .filter(|p| p.iter().all(|&v| v < 128))
+            .count()
+    }
+
+    #[test]
+    fn png_figures_draw_their_text_with_the_embedded_font() {
+        // An empty panel draws nothing in its top rows but its title: with a title, dark
+        // pixels appear there (the glyphs), without one none do.
+        let titled = figure_sized(
+            Format::Png,
+            "t.png",
+            &[Panel::new("Title ABC", "t (s)", "q (m)")],
+            1,
+            (500, 300),
+        )
+        .unwrap();
+        let untitled = figure_sized(
+            Format::Png,
+            "u.png",
+            &[Panel::new("", "t (s)", "q (m)")],
+            1,
+            (500, 300),
+        )
+        .unwrap();
+        assert_eq!(&titled[..4], b"\x89PNG");
+        assert!(dark_pixels_on_top(&titled, 30) > 50, "no title drawn");
+        assert_eq!(dark_pixels_on_top(&untitled, 30), 0);
     }
 
     #[test]

@@ -15,49 +15,270 @@
 use std::path::{Path, PathBuf};
 
 use crate::automaton::{Automaton, EventKind};
+use crate::error::Error;
 use crate::error::Result;
 use crate::output;
-use crate::plot::{self, Legend, Marker, Panel, Series};
+use crate::plot::{self, Format, Legend, Marker, Panel, Series, VerticalLine};
 use crate::run_dir::{HistoryRow, RunData};
 
 /// The figure files, in the order they are written.
 pub const FIGURES: [&str; 3] = ["plot_motion.svg", "plot_force.svg", "plot_energy.svg"];
 
+/// The figures' default sizes in pixels (width, height of the whole figure), in the order of
+/// [`FIGURES`]: four time panels stacked, three square panels side by side, two time panels.
+pub const DEFAULT_SIZES: [(u32, u32); 3] = [(1150, 1320), (1920, 560), (1150, 760)];
+/// The smallest and largest width or height `flexrock plot` draws, pixels.
+pub const SIZE_LIMITS: (u32, u32) = (200, 6_000);
+
+/// What `flexrock plot` draws: formats, size and time window.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PlotOptions {
+    /// The formats, each a file per figure (plot_motion.svg, plot_motion.png, ...).
+    pub formats: Vec<Format>,
+    /// The width of every figure, pixels [default: each figure's own, [`DEFAULT_SIZES`]].
+    pub width: Option<u32>,
+    /// The height of every figure, pixels [default: each figure's own].
+    pub height: Option<u32>,
+    /// Draw only t in [from, to], s [default: the whole run].
+    pub from: Option<f64>,
+    /// See `from`.
+    pub to: Option<f64>,
+}
+
+impl Default for PlotOptions {
+    fn default() -> Self {
+        PlotOptions {
+            formats: vec![Format::Svg],
+            width: None,
+            height: None,
+            from: None,
+            to: None,
+        }
+    }
+}
+
+impl PlotOptions {
+    /// Checks the options: sizes within [`SIZE_LIMITS`], times finite, not negative, and from
+    /// before to. The error names the flag, its value and the rule.
+    pub fn check(&self) -> Result<()> {
+        let bad = |flag: &str, value: String, rule: String| Error::InvalidParameter {
+            key: flag.to_string(),
+            value,
+            rule,
+        };
+        for (flag, size) in [("--width", self.width), ("--height", self.height)] {
+            if let Some(px) = size {
+                if !(SIZE_LIMITS.0..=SIZE_LIMITS.1).contains(&px) {
+                    return Err(bad(
+                        flag,
+                        px.to_string(),
+                        format!("must be from {} to {} pixels", SIZE_LIMITS.0, SIZE_LIMITS.1),
+                    ));
+                }
+            }
+        }
+        for (flag, t) in [("--from", self.from), ("--to", self.to)] {
+            if let Some(t) = t {
+                if !t.is_finite() || t < 0.0 {
+                    return Err(bad(
+                        flag,
+                        t.to_string(),
+                        "must be a finite time in seconds, 0 or more".to_string(),
+                    ));
+                }
+            }
+        }
+        if let (Some(from), Some(to)) = (self.from, self.to) {
+            if from >= to {
+                return Err(bad(
+                    "--from",
+                    from.to_string(),
+                    format!("must be less than --to ({to} s)"),
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// The time window, if any: [from, to], either end open.
+    fn window(&self) -> Option<(f64, f64)> {
+        (self.from.is_some() || self.to.is_some()).then(|| {
+            (
+                self.from.unwrap_or(f64::NEG_INFINITY),
+                self.to.unwrap_or(f64::INFINITY),
+            )
+        })
+    }
+}
+
 /// Reads the run directory `dir` and writes its figures into it, as one atomic set. Nothing is
 /// written when a file of the run is missing or malformed.
 pub fn plot_dir(dir: &Path) -> Result<Vec<PathBuf>> {
+    plot_dir_with(dir, &PlotOptions::default())
+}
+
+/// [`plot_dir`] with formats, size and time window. A window that holds no row of the history
+/// is refused, naming the flag.
+pub fn plot_dir_with(dir: &Path, options: &PlotOptions) -> Result<Vec<PathBuf>> {
+    options.check()?;
     let data = RunData::read(dir)?;
-    let figures = figures(&data)?;
-    output::write_atomically(dir, &figures)
+    let files = figures_with(&data, options)?;
+    let set: Vec<(&str, Vec<u8>)> = files.iter().map(|(n, b)| (n.as_str(), b.clone())).collect();
+    output::write_atomically(dir, &set)
 }
 
 /// The SVG files of a run, named as in [`FIGURES`]. Each figure is drawn and its series dropped
 /// before the next, so that a history of a million rows is held once, not once per figure.
 pub fn figures(data: &RunData) -> Result<Vec<(&'static str, Vec<u8>)>> {
+    let files = figures_with(data, &PlotOptions::default())?;
+    Ok(FIGURES
+        .iter()
+        .copied()
+        .zip(files.into_iter().map(|(_, b)| b))
+        .collect())
+}
+
+/// The figure files of a run in every format of `options`: plot_motion.svg, plot_motion.png, ...
+pub fn figures_with(data: &RunData, options: &PlotOptions) -> Result<Vec<(String, Vec<u8>)>> {
     let automaton = Automaton::new(&data.summary.constants);
-    let motion = plot::figure(FIGURES[0], &motion_panels(data), 1, (1150, 330))?;
-    let force = plot::figure(FIGURES[1], &force_panels(data, &automaton), 3, (640, 560))?;
-    let energy = plot::figure(FIGURES[2], &energy_panels(data, &automaton), 1, (1150, 380))?;
-    Ok(vec![
-        (FIGURES[0], motion.into_bytes()),
-        (FIGURES[1], force.into_bytes()),
-        (FIGURES[2], energy.into_bytes()),
-    ])
+    let windowed;
+    let (shown, window) = match options.window() {
+        None => (data, None),
+        Some((t0, t1)) => {
+            let history: Vec<HistoryRow> = data
+                .history
+                .iter()
+                .filter(|r| r.t >= t0 && r.t <= t1)
+                .cloned()
+                .collect();
+            if history.len() < 2 {
+                let end = data.history.last().map_or(0.0, |r| r.t);
+                let (flag, value) = match (options.from, options.to) {
+                    (Some(from), _) if from >= end => ("--from", from),
+                    (_, Some(to)) => ("--to", to),
+                    (Some(from), None) => ("--from", from),
+                    (None, None) => ("--from", t0),
+                };
+                return Err(Error::InvalidParameter {
+                    key: flag.to_string(),
+                    value: value.to_string(),
+                    rule: format!(
+                        "the window holds fewer than two rows of the history (the run spans 0 to {} s)",
+                        output::significant(end, 6)
+                    ),
+                });
+            }
+            windowed = RunData {
+                history,
+                events: data
+                    .events
+                    .iter()
+                    .filter(|e| e.t >= t0 && e.t <= t1)
+                    .cloned()
+                    .collect(),
+                summary: data.summary.clone(),
+            };
+            (&windowed, Some((t0, t1)))
+        }
+    };
+    let size = |i: usize| {
+        let (w, h) = DEFAULT_SIZES[i];
+        (options.width.unwrap_or(w), options.height.unwrap_or(h))
+    };
+    let mut energy = energy_panels(data, &automaton);
+    if let Some((t0, t1)) = window {
+        for panel in &mut energy {
+            for s in &mut panel.series {
+                s.points = clip_time(&s.points, t0, t1);
+            }
+        }
+    }
+    let mut files = Vec::new();
+    for (i, panels, columns) in [
+        (0, motion_panels(shown), 1),
+        (1, force_panels(shown, &automaton), 3),
+        (2, energy, 1),
+    ] {
+        for &format in &options.formats {
+            let stem = FIGURES[i].trim_end_matches(".svg");
+            let name = format!("{stem}.{}", format.extension());
+            let bytes = plot::figure_sized(format, &name, &panels, columns, size(i))?;
+            files.push((name, bytes));
+        }
+    }
+    Ok(files)
+}
+
+/// The points of a curve whose x never decreases, within [t0, t1], with the curve's value
+/// at t0 and t1 interpolated when they fall between two points.
+fn clip_time(points: &[(f64, f64)], t0: f64, t1: f64) -> Vec<(f64, f64)> {
+    let at = |a: (f64, f64), b: (f64, f64), t: f64| {
+        let f = if b.0 > a.0 {
+            (t - a.0) / (b.0 - a.0)
+        } else {
+            0.0
+        };
+        (t, a.1 + f * (b.1 - a.1))
+    };
+    let mut out = Vec::new();
+    for (i, &p) in points.iter().enumerate() {
+        let prev = i.checked_sub(1).map(|j| points[j]);
+        if let Some(a) = prev {
+            if a.0 < t0 && p.0 > t0 {
+                out.push(at(a, p, t0));
+            }
+        }
+        if p.0 >= t0 && p.0 <= t1 {
+            out.push(p);
+        }
+        if let Some(a) = prev {
+            if a.0 < t1 && p.0 > t1 {
+                out.push(at(a, p, t1));
+            }
+        }
+    }
+    out
 }
 
 fn series(rows: &[HistoryRow], xy: impl Fn(&HistoryRow) -> (f64, f64)) -> Vec<(f64, f64)> {
     rows.iter().map(xy).collect()
 }
 
-/// A time series drawn one pixel wide (a record's floor motion is dense).
+/// A time series, drawn two pixels wide: readable when the figure is printed a column wide.
 fn curve(name: &str, points: Vec<(f64, f64)>, color: usize) -> Series {
-    Series::line(name, points, color).with_width(1)
+    Series::line(name, points, color).with_width(2)
 }
 
 /// +-level with one legend entry.
 fn pair(level: f64, label: String) -> Vec<(f64, String)> {
     vec![(level, label), (-level, String::new())]
 }
+
+/// The run's events as thin vertical lines, one colour per kind, for every time panel.
+fn event_lines(data: &RunData) -> Vec<VerticalLine> {
+    EVENT_STYLES
+        .iter()
+        .flat_map(|&(kind, color, _)| {
+            let n = data.events.iter().filter(|e| e.kind == kind).count();
+            let label = format!("{} ({n})", kind.name());
+            data.events
+                .iter()
+                .filter(move |e| e.kind == kind)
+                .map(move |e| VerticalLine {
+                    x: e.t,
+                    color,
+                    label: label.clone(),
+                })
+        })
+        .collect()
+}
+
+/// Colour and marker of each kind of event.
+const EVENT_STYLES: [(EventKind, usize, Marker); 3] = [
+    (EventKind::Uplift, 1, Marker::TriangleUp),
+    (EventKind::Landing, 2, Marker::TriangleDown),
+    (EventKind::Overturn, 4, Marker::Cross),
+];
 
 /// Panels of plot_motion.svg.
 pub fn motion_panels(data: &RunData) -> Vec<Panel> {
@@ -66,15 +287,16 @@ pub fn motion_panels(data: &RunData) -> Vec<Panel> {
     let (s_n, b) = (c.uplift_displacement, c.width);
     let s_n_label = format!("±s_n = {} m", output::significant(s_n, 4));
     let b_label = format!("±B = {} m", output::significant(b, 4));
+    let events = event_lines(data);
 
-    let mut floor = Panel::new("floor acceleration a(t)", "t (s)", "a (m/s²)").with(curve(
+    let mut floor = Panel::new("Floor acceleration", "t (s)", "a (m/s²)").with(curve(
         "a(t)",
         series(h, |r| (r.t, r.floor_acc)),
         0,
     ));
     floor.legend = Legend::Outside;
 
-    let mut q = Panel::new("top displacement q(t)", "t (s)", "q (m)").with(curve(
+    let mut q = Panel::new("Top displacement", "t (s)", "q (m)").with(curve(
         "q(t)",
         series(h, |r| (r.t, r.q)),
         0,
@@ -83,26 +305,18 @@ pub fn motion_panels(data: &RunData) -> Vec<Panel> {
     q.dashed_lines = pair(b, format!("{b_label} (overturning)"));
     q.legend = Legend::Outside;
 
-    let mut parts = Panel::new(
-        "flexural part s(t) and rocking part r(t)",
-        "t (s)",
-        "s, r (m)",
-    )
-    .with(curve("s(t), flexural", series(h, |r| (r.t, r.s)), 2))
-    .with(curve("r(t), rocking", series(h, |r| (r.t, r.r)), 1));
+    let mut parts = Panel::new("Flexural part s and rocking part r", "t (s)", "s, r (m)")
+        .with(curve("s(t), flexural", series(h, |r| (r.t, r.s)), 2))
+        .with(curve("r(t), rocking", series(h, |r| (r.t, r.r)), 1));
     parts.reference_lines = pair(s_n, s_n_label);
     parts.legend = Legend::Outside;
 
-    let mut velocity = Panel::new("top velocity q'(t) (Fig. 6)", "t (s)", "q' (m/s)").with(curve(
-        "q'(t)",
+    let mut velocity = Panel::new("Top velocity", "t (s)", "dq/dt (m/s)").with(curve(
+        "dq/dt",
         series(h, |r| (r.t, r.qdot)),
         0,
     ));
-    for (kind, color, marker) in [
-        (EventKind::Uplift, 1, Marker::TriangleUp),
-        (EventKind::Landing, 2, Marker::TriangleDown),
-        (EventKind::Overturn, 4, Marker::Cross),
-    ] {
+    for (kind, color, marker) in EVENT_STYLES {
         let points: Vec<(f64, f64)> = data
             .events
             .iter()
@@ -115,7 +329,17 @@ pub fn motion_panels(data: &RunData) -> Vec<Panel> {
         }
     }
     velocity.legend = Legend::Outside;
-    vec![floor, q, parts, velocity]
+    let mut panels = vec![floor, q, parts, velocity];
+    for (i, panel) in panels.iter_mut().enumerate() {
+        panel.vertical_lines = events.clone();
+        // The q' panel lists the events with its markers; the others list the lines.
+        if i == 3 {
+            for line in &mut panel.vertical_lines {
+                line.label.clear();
+            }
+        }
+    }
+    panels
 }
 
 /// Points of the model's F(q) over [-B, B], with the kinks at +-s_n exactly.
@@ -136,21 +360,15 @@ pub fn force_panels(data: &RunData, automaton: &Automaton) -> Vec<Panel> {
     let h = &data.history;
     // The run's path first and wide, the model's curve over it and thin: where the run went,
     // the black line runs inside a red band.
-    let mut force = Panel::new("restoring force F(q) (Fig. 3)", "q (m)", "F (N)")
+    let mut force = Panel::new("Restoring force", "q (m)", "F (N)")
         .with(Series::line("this run", series(h, |r| (r.q, r.restoring_force)), 1).with_width(6))
         .with(Series::line("model F(q)", restoring_force_curve(automaton), 0).with_width(1));
     // F has the sign of q: the upper left quarter is empty.
     force.legend = Legend::UpperLeft;
-    let q_r = Panel::new("q against r (Fig. 12)", "r (m)", "q (m)").with(Series::line(
-        "",
-        series(h, |r| (r.r, r.q)),
-        0,
-    ));
-    let s_r = Panel::new("s against r (Fig. 13)", "r (m)", "s (m)").with(Series::line(
-        "",
-        series(h, |r| (r.r, r.s)),
-        0,
-    ));
+    let q_r = Panel::new("Top displacement against rocking part", "r (m)", "q (m)")
+        .with(Series::line("", series(h, |r| (r.r, r.q)), 0));
+    let s_r = Panel::new("Flexural part against rocking part", "r (m)", "s (m)")
+        .with(Series::line("", series(h, |r| (r.r, r.s)), 0));
     vec![force, q_r, s_r]
 }
 
@@ -177,9 +395,9 @@ pub fn energy_panels(data: &RunData, automaton: &Automaton) -> Vec<Panel> {
     let h = &data.history;
     let kinetic = |r: &HistoryRow| automaton.kinetic_energy(r.qdot);
     let potential = |r: &HistoryRow| automaton.potential_energy(r.mode, r.q);
-    let mut books = Panel::new("energy books", "t (s)", "energy (J)")
+    let mut books = Panel::new("Energy balance", "t (s)", "E (J)")
         .with(curve(
-            "kinetic Me q'²/2",
+            "kinetic M_e (dq/dt)²/2",
             series(h, |r| (r.t, kinetic(r))),
             2,
         ))
@@ -213,22 +431,14 @@ pub fn energy_panels(data: &RunData, automaton: &Automaton) -> Vec<Panel> {
     } else {
         1.0
     };
-    let mut residual = Panel::new(
-        &format!(
-            "energy residual / energy scale ({} J, summary.json)",
-            output::significant(scale, 4)
-        ),
-        "t (s)",
-        "residual / scale",
-    )
-    .with(curve(
-        "residual / scale",
+    let mut residual = Panel::new("Energy residual", "t (s)", "ΔE / E_s").with(curve(
+        &format!("ΔE / E_s, E_s = {} J", output::significant(scale, 4)),
         series(h, |r| (r.t, r.energy_residual / scale)),
         0,
     ));
     residual.reference_lines = pair(
         summary.max_energy_residual / scale,
-        "±max |residual|".to_string(),
+        "±max |ΔE| / E_s".to_string(),
     );
     residual.legend = Legend::Outside;
     vec![books, residual]

@@ -67,30 +67,31 @@ fn tags_balance(svg: &str) -> bool {
 fn assert_figures(dir: &Path) {
     let titles: [&[&str]; 3] = [
         &[
-            "floor acceleration a(t)",
-            "top displacement q(t)",
-            "flexural part s(t) and rocking part r(t)",
-            "top velocity q",
-            "(Fig. 6)",
+            "Floor acceleration",
+            "Top displacement",
+            "Flexural part s and rocking part r",
+            "Top velocity",
+            "dq/dt (m/s)",
             "uplift (",
             "landing (",
             "s_n",
         ],
         &[
-            "restoring force F(q) (Fig. 3)",
-            "q against r (Fig. 12)",
-            "s against r (Fig. 13)",
+            "Restoring force",
+            "Top displacement against rocking part",
+            "Flexural part against rocking part",
             "this run",
             "model F(q)",
         ],
         &[
-            "energy books",
+            "Energy balance",
             "kinetic",
             "potential V(q)",
             "input work",
             "damping work",
             "lost at events",
-            "energy residual / energy scale",
+            "Energy residual",
+            "ΔE / E_s",
         ],
     ];
     for (name, titles) in FIGURES.iter().zip(titles) {
@@ -496,5 +497,5 @@ fn events_of_a_run_without_events_says_so() {
     // Its velocity panel has no markers, and its figures are still drawn.
     let svg = std::fs::read_to_string(out.join(FIGURES[0])).unwrap();
     assert!(!svg.contains("uplift ("));
-    assert!(svg.contains("top velocity"));
+    assert!(svg.contains("Top velocity"));
 }

@@ -201,7 +201,7 @@ pub(crate) fn figure(model: &Model, a: &PushoverAnalysis) -> Panel {
     let automaton = Automaton::new(&model.constants);
     let mut panel = Panel::new(
         &format!(
-            "Static pushover, {} x {} mesh, P-Delta {}",
+            "Static pushover, {} × {} mesh, P-Δ {}",
             a.setup.settings.nx,
             a.setup.settings.ny,
             if a.setup.settings.p_delta {
@@ -210,8 +210,8 @@ pub(crate) fn figure(model: &Model, a: &PushoverAnalysis) -> Panel {
                 "off"
             }
         ),
-        "top displacement q (m)",
-        "base shear (N)",
+        "q (m)",
+        "base shear V_b (N)",
     );
     // the curves start low: small q with a large shear is empty in every case
     panel.legend = Legend::UpperLeft;

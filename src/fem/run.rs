@@ -372,7 +372,7 @@ fn time_series(steps: &[FemStep], f: fn(&FemStep) -> f64) -> Vec<(f64, f64)> {
 
 fn sn_lines(s_n: f64) -> Vec<(f64, String)> {
     vec![
-        (s_n, "+-s_n (SDOF uplift)".to_string()),
+        (s_n, "±s_n (SDOF uplift)".to_string()),
         (-s_n, String::new()),
     ]
 }
@@ -385,7 +385,7 @@ fn deformed_shapes(a: &FemAnalysis) -> Panel {
     let spacing = 2.0 * b.width + 2.0 * SHAPE_MAGNIFICATION * b.width;
     let mut chart = Panel::new(
         &format!(
-            "Deformed shapes (x{SHAPE_MAGNIFICATION}), {} x {} mesh",
+            "Deformed shapes (×{SHAPE_MAGNIFICATION}), {} × {} mesh",
             s.nx, s.ny
         ),
         "x (m, shapes offset)",
@@ -429,9 +429,9 @@ pub fn figures(model: &Model, a: &FemAnalysis) -> Vec<(&'static str, Panel)> {
     let steps = &a.result.steps;
     let s_n = model.constants.uplift_displacement;
     let mut components = Panel::new(
-        "Top displacement q and its parts (FEM)",
+        "Top displacement and its parts (FEM)",
         "t (s)",
-        "displacement relative to the floor (m)",
+        "q and parts (m)",
     )
     .with(Series::line("q", time_series(steps, |s| s.q), 0))
     .with(Series::line(
@@ -456,7 +456,7 @@ pub fn figures(model: &Model, a: &FemAnalysis) -> Vec<(&'static str, Panel)> {
     ));
     components.reference_lines = sn_lines(s_n);
     let q_r = Panel::new(
-        "Top displacement q vs rocking part r (FEM)",
+        "Top displacement against rocking part (FEM)",
         "r (m)",
         "q (m)",
     )
@@ -465,22 +465,23 @@ pub fn figures(model: &Model, a: &FemAnalysis) -> Vec<(&'static str, Panel)> {
         steps.iter().map(|s| (s.rocking, s.q)).collect(),
         2,
     ));
-    let s_r =
-        Panel::new("Flexural part s vs rocking part r (FEM)", "r (m)", "s (m)").with(Series::line(
+    let s_r = Panel::new("Flexural part against rocking part (FEM)", "r (m)", "s (m)").with(
+        Series::line(
             "",
             steps.iter().map(|s| (s.rocking, s.flexural)).collect(),
             2,
-        ));
+        ),
+    );
     let velocity = Panel::new(
         "Top velocity relative to the floor (FEM)",
         "t (s)",
-        "top velocity (m/s)",
+        "dq/dt (m/s)",
     )
     .with(Series::line("", time_series(steps, |s| s.top_velocity), 2));
     let momentum = Panel::new(
-        "Angular momentum about the toes (FEM), clockwise positive",
+        "Angular momentum about the toes (FEM, clockwise positive)",
         "t (s)",
-        "angular momentum (kg m^2/s)",
+        "L (kg m²/s)",
     )
     .with(Series::line(
         "about the left toe",
@@ -761,35 +762,43 @@ fn comparison_figures(
     let sdof_series = |f: fn(&crate::solution::Sample) -> (f64, f64)| {
         Series::line("SDOF", sdof.samples.iter().map(f).collect(), 1)
     };
-    let mut q = Panel::new("Top displacement q: SDOF and FEM", "t (s)", "q (m)")
+    let mut q = Panel::new("Top displacement: SDOF and FEM", "t (s)", "q (m)")
         .with(sdof_series(|s| (s.t, s.q)))
         .with(Series::line("FEM", time_series(steps, |s| s.q), 2));
     q.reference_lines = sn_lines(model.constants.uplift_displacement);
-    let mut s = Panel::new("Flexural part s: SDOF and FEM", "t (s)", "s (m)")
+    let mut s = Panel::new("Flexural part: SDOF and FEM", "t (s)", "s (m)")
         .with(sdof_series(|s| (s.t, s.s)))
         .with(Series::line("FEM", time_series(steps, |s| s.flexural), 2));
     s.reference_lines = sn_lines(model.constants.uplift_displacement);
-    let velocity = Panel::new("Top velocity: SDOF and FEM", "t (s)", "top velocity (m/s)")
+    let velocity = Panel::new("Top velocity: SDOF and FEM", "t (s)", "dq/dt (m/s)")
         .with(sdof_series(|s| (s.t, s.qdot)))
         .with(Series::line(
             "FEM",
             time_series(steps, |s| s.top_velocity),
             2,
         ));
-    let q_r = Panel::new("q vs r: SDOF and FEM", "r (m)", "q (m)")
-        .with(sdof_series(|s| (s.r, s.q)))
-        .with(Series::line(
-            "FEM",
-            steps.iter().map(|s| (s.rocking, s.q)).collect(),
-            2,
-        ));
-    let s_r = Panel::new("s vs r: SDOF and FEM", "r (m)", "s (m)")
-        .with(sdof_series(|s| (s.r, s.s)))
-        .with(Series::line(
-            "FEM",
-            steps.iter().map(|s| (s.rocking, s.flexural)).collect(),
-            2,
-        ));
+    let q_r = Panel::new(
+        "Top displacement against rocking part: SDOF and FEM",
+        "r (m)",
+        "q (m)",
+    )
+    .with(sdof_series(|s| (s.r, s.q)))
+    .with(Series::line(
+        "FEM",
+        steps.iter().map(|s| (s.rocking, s.q)).collect(),
+        2,
+    ));
+    let s_r = Panel::new(
+        "Flexural part against rocking part: SDOF and FEM",
+        "r (m)",
+        "s (m)",
+    )
+    .with(sdof_series(|s| (s.r, s.s)))
+    .with(Series::line(
+        "FEM",
+        steps.iter().map(|s| (s.rocking, s.flexural)).collect(),
+        2,
+    ));
     vec![
         ("compare_q.svg", q),
         ("compare_flexural.svg", s),

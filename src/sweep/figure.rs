@@ -5,16 +5,20 @@
 //!   g tan(alpha)) or period (plotted as omega_p/p);
 //! - `spectrum.svg` for a minimum search over one numeric axis: the smallest overturning value
 //!   against the axis, in physical and in dimensionless units, with the rigid block's (the
-//!   slender Housner block of the same geometry, and the rigid limit of the elastic model).
+//!   slender Housner block of the same geometry, and the rigid limit of the elastic model);
+//! - `ida.svg` for a sweep over records (`excitation.path`) and an intensity (`excitation.scale`
+//!   or `excitation.amplitude`), or over `excitation.scale` alone: max |q|/B against the
+//!   intensity, one line per record, overturned points marked (incremental dynamic analysis).
 
 use std::path::Path;
 
 use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 use super::store::Counts;
 use super::Plan;
 use crate::error::{Error, Result};
-use crate::plot::{Legend, Panel, Series};
+use crate::plot::{Legend, Marker, Panel, Series};
 
 /// sweep.csv read back: its columns and rows of text.
 pub struct SweepTable {
@@ -116,20 +120,157 @@ pub fn figures(plan: &Plan, table: &SweepTable) -> Result<Vec<(String, Vec<u8>)>
             "spectrum.svg".to_string(),
             spectrum(plan, table, *x)?,
         )]),
+        // Incremental dynamic analysis: records against an intensity, or one record's scale.
+        (None, 1 | 2, [x]) if is_ida(plan, *x) => {
+            Ok(vec![(IDA_FILE.to_string(), ida(plan, table, *x)?)])
+        }
         _ => Ok(Vec::new()),
     }
+}
+
+/// The figure of a sweep over records and an intensity (incremental dynamic analysis).
+pub const IDA_FILE: &str = "ida.svg";
+
+/// True for a sweep whose numeric axis `x` scales the excitation (excitation.scale or
+/// excitation.amplitude) beside an axis of records (excitation.path), or is excitation.scale
+/// alone (one record): an incremental dynamic analysis.
+fn is_ida(plan: &Plan, x: usize) -> bool {
+    let key = plan.axes[x].key.as_str();
+    let records = plan.axes.iter().any(|a| a.key == "excitation.path");
+    match plan.axes.len() {
+        1 => key == "excitation.scale",
+        _ => records && matches!(key, "excitation.scale" | "excitation.amplitude"),
+    }
+}
+
+/// The short name of a record file: its file name.
+fn record_name(path: &str) -> String {
+    Path::new(path)
+        .file_name()
+        .map_or_else(|| path.to_string(), |n| n.to_string_lossy().into_owned())
+}
+
+/// Incremental dynamic analysis: max |q|/B against the intensity axis `x`, one line per value of
+/// the other axis (a record, or any other setting), overturned points marked with a cross in the
+/// record's colour at |q|/B = 1, where the line of that record ends.
+fn ida(plan: &Plan, table: &SweepTable, x: usize) -> Result<Vec<u8>> {
+    let q_column = table.column("max_abs_q_over_B")?;
+    let over_column = table.column("overturned")?;
+    let other = (0..plan.axes.len()).find(|&i| i != x);
+    let groups = other.map_or(1, |o| plan.axes[o].len());
+    // (intensity, max |q|/B, overturned) per group.
+    let mut points: Vec<Vec<(f64, f64, bool)>> = vec![Vec::new(); groups];
+    for (r, row) in table.rows.iter().enumerate() {
+        let point: usize = row[0].parse().map_err(|_| Error::ReadResult {
+            path: table.path.clone(),
+            message: format!("row {} has no point number", r + 1),
+        })?;
+        let c = plan.coordinates(point);
+        let Some(xv) = plan.axes[x].number(c[x]) else {
+            continue;
+        };
+        let overturned = row[over_column] == "true";
+        let value = table.number(r, q_column);
+        let g = other.map_or(0, |o| c[o]);
+        match (overturned, value) {
+            (true, _) => points[g].push((xv, 1.0, true)),
+            (false, Some(v)) => points[g].push((xv, v, false)),
+            (false, None) => {}
+        }
+    }
+    let mut panel = Panel::new(
+        "Incremental dynamic analysis",
+        &axis_label(&plan.axes[x].key),
+        "max |q| / B",
+    );
+    let mut crosses = Vec::new();
+    for (g, mut group) in points.into_iter().enumerate() {
+        group.sort_by(|a, b| a.0.total_cmp(&b.0));
+        // The line up to the first overturning point; the points beyond it overturn too, or
+        // (rarely, resurrection) stand again: those are drawn as markers only.
+        let first_over = group.iter().position(|p| p.2);
+        let upto = first_over.map_or(group.len(), |i| i + 1);
+        let line: Vec<(f64, f64)> = group[..upto].iter().map(|p| (p.0, p.1)).collect();
+        let name = match other {
+            Some(o) if plan.axes[o].key == "excitation.path" => {
+                record_name(&plan.axes[o].values[g])
+            }
+            Some(o) => format!(
+                "{} = {}",
+                axis_label(&plan.axes[o].key),
+                plan.axes[o].values[g]
+            ),
+            None => "max |q| / B".to_string(),
+        };
+        // Palette colours 1..7 (0, black, is for references), with a marker shape per line.
+        let color = 1 + g % 7;
+        panel = panel.with(
+            Series::line(&name, line, color)
+                .with_width(2)
+                .with_markers(),
+        );
+        let beyond: Vec<(f64, f64)> = group[upto..]
+            .iter()
+            .filter(|p| !p.2)
+            .map(|p| (p.0, p.1))
+            .collect();
+        if !beyond.is_empty() {
+            panel = panel.with(Series::markers("", beyond, color, Marker::Circle));
+        }
+        let over: Vec<(f64, f64)> = group.iter().filter(|p| p.2).map(|p| (p.0, p.1)).collect();
+        crosses.extend(over.iter().copied());
+        if !over.is_empty() {
+            panel = panel.with(Series::markers("", over, color, Marker::Cross));
+        }
+    }
+    if !crosses.is_empty() {
+        // The legend's entry for the crosses, in black; drawn first, each under the cross in
+        // its record's colour.
+        panel
+            .series
+            .insert(0, Series::markers("overturned", crosses, 0, Marker::Cross));
+    }
+    panel.dashed_lines = vec![(1.0, "|q| = B".to_string())];
+    panel.legend = Legend::Outside;
+    crate::plot::figure(IDA_FILE, &[panel], 1, (1100, 600)).map(String::into_bytes)
 }
 
 /// The dimensionless column that stands for an axis, and its label.
 fn dimensionless(key: &str) -> Option<(&'static str, &'static str)> {
     match key {
-        "excitation.amplitude" | "excitation.scale" => Some((
-            "amplitude_over_g_tan_alpha",
-            "peak floor acceleration / (g tan alpha)",
-        )),
-        "excitation.period" => Some(("omega_p_over_p", "omega_p / p")),
+        "excitation.amplitude" => Some(("amplitude_over_g_tan_alpha", "a_p / (g tan α)")),
+        "excitation.scale" => Some(("amplitude_over_g_tan_alpha", "PFA / (g tan α)")),
+        "excitation.period" => Some(("omega_p_over_p", "ω_p / p")),
         _ => None,
     }
+}
+
+/// The axis label of a model-file key: the quantity's symbol and unit (the key itself for a key
+/// without one here).
+pub fn axis_label(key: &str) -> String {
+    let label = match key {
+        "excitation.amplitude" => "a_p (m/s²)",
+        "excitation.period" => "T_p (s)",
+        "excitation.scale" => "scale factor",
+        "excitation.cycles" => "cycles",
+        "excitation.start" => "t_start (s)",
+        "excitation.ramp" => "t_ramp (s)",
+        "body.height" => "H (m)",
+        "body.width" => "B (m)",
+        "body.depth" => "depth (m)",
+        "body.period" => "T (s)",
+        "body.damping_ratio" => "h",
+        "body.youngs_modulus" => "E (Pa)",
+        "body.flexural_rigidity" => "EI (N m²)",
+        "body.density" => "ρ (kg/m³)",
+        "body.mass" => "mass (kg)",
+        "body.poisson_ratio" => "ν",
+        "body.gravity" => "g (m/s²)",
+        "solver.dt" => "Δt (s)",
+        "solver.rtol" => "rtol",
+        _ => key,
+    };
+    label.to_string()
 }
 
 /// The colour of max |q|/B in [0, 1]: a perceptually ordered ramp (dark blue, teal, yellow).
@@ -251,9 +392,9 @@ fn map(plan: &Plan, table: &SweepTable, x: usize, y: usize) -> Result<Option<Vec
     };
     let mut views: Vec<(Vec<f64>, String, Vec<f64>, String)> = vec![(
         physical(x),
-        plan.axes[x].key.clone(),
+        axis_label(&plan.axes[x].key),
         physical(y),
-        plan.axes[y].key.clone(),
+        axis_label(&plan.axes[y].key),
     )];
     let dx = dimensionless(&plan.axes[x].key);
     let dy = dimensionless(&plan.axes[y].key);
@@ -264,7 +405,7 @@ fn map(plan: &Plan, table: &SweepTable, x: usize, y: usize) -> Result<Option<Vec
                     return Ok((values, label.to_string()));
                 }
             }
-            Ok((physical(axis), plan.axes[axis].key.clone()))
+            Ok((physical(axis), axis_label(&plan.axes[axis].key)))
         };
         let (xs, xl) = axis_view(x, dx)?;
         let (ys, yl) = axis_view(y, dy)?;
@@ -286,16 +427,20 @@ fn map(plan: &Plan, table: &SweepTable, x: usize, y: usize) -> Result<Option<Vec
     }
 
     let panel = (720u32, 600u32);
-    let legend_width = 110u32;
+    let legend_width = 170u32;
     let width = panel.0 * views.len() as u32 + legend_width;
+    let titles = ["Peak response", "Peak response, dimensionless"];
     let mut svg = String::new();
     {
+        crate::plot::register_fonts();
         let root = SVGBackend::with_string(&mut svg, (width, panel.1)).into_drawing_area();
         root.fill(&WHITE).map_err(plot_error)?;
         let (maps, bar) = root.split_horizontally(panel.0 * views.len() as u32);
         let areas = maps.split_evenly((1, views.len()));
-        for ((xs, x_label, ys, y_label), area) in views.iter().zip(areas.iter()) {
-            draw_map(area, &cells, xs, ys, x_label, y_label).map_err(plot_error)?;
+        for (((xs, x_label, ys, y_label), area), title) in
+            views.iter().zip(areas.iter()).zip(titles)
+        {
+            draw_map(area, &cells, xs, ys, x_label, y_label, title).map_err(plot_error)?;
         }
         draw_colour_bar(&bar).map_err(plot_error)?;
         root.present().map_err(plot_error)?;
@@ -305,6 +450,33 @@ fn map(plan: &Plan, table: &SweepTable, x: usize, y: usize) -> Result<Option<Vec
 
 type Area<'a> = DrawingArea<SVGBackend<'a>, plotters::coord::Shift>;
 
+/// Font sizes, as in the figures of crate::plot.
+const TITLE_FONT: u32 = 26;
+const AXIS_FONT: u32 = 22;
+const TICK_FONT: u32 = 20;
+/// The boundary between overturned and standing cells.
+const BOUNDARY: RGBColor = RGBColor(220, 30, 30);
+
+/// Fills the rectangle between two corners given in pixels of `area` (any order), one pixel
+/// wider and taller on the right and bottom, so that neighbouring cells overlap and no hairline
+/// of the background shows between them in any viewer or zoom; clipped to `limit` (width,
+/// height).
+fn fill_cell(
+    area: &Area<'_>,
+    (xa, ya): (i32, i32),
+    (xb, yb): (i32, i32),
+    limit: (i32, i32),
+    color: RGBColor,
+) -> std::result::Result<(), Box<dyn std::error::Error>> {
+    let (left, right) = (xa.min(xb), (xa.max(xb) + 1).min(limit.0));
+    let (top, bottom) = (ya.min(yb), (ya.max(yb) + 1).min(limit.1));
+    area.draw(&Rectangle::new(
+        [(left, top), (right, bottom)],
+        color.filled(),
+    ))?;
+    Ok(())
+}
+
 fn draw_map(
     area: &Area<'_>,
     cells: &[Vec<Cell>],
@@ -312,6 +484,7 @@ fn draw_map(
     ys: &[f64],
     x_label: &str,
     y_label: &str,
+    title: &str,
 ) -> std::result::Result<(), Box<dyn std::error::Error>> {
     // Cells in ascending order of both coordinates, whatever the order the axes were given in.
     let (ox, oy) = (ascending(xs), ascending(ys));
@@ -323,34 +496,44 @@ fn draw_map(
         .collect();
     let range = |e: &[f64]| e[0]..e[e.len() - 1];
     let mut chart = ChartBuilder::on(area)
-        .caption("max |q| / B (black: overturned)", ("sans-serif", 22))
+        .caption(title, ("sans-serif", TITLE_FONT))
         .margin(14)
-        .x_label_area_size(50)
-        .y_label_area_size(80)
+        .x_label_area_size(60)
+        .y_label_area_size(96)
         .build_cartesian_2d(range(&ex), range(&ey))?;
     chart
         .configure_mesh()
         .disable_mesh()
         .x_desc(x_label)
         .y_desc(y_label)
-        .label_style(("sans-serif", 16))
-        .axis_desc_style(("sans-serif", 18))
+        .label_style(("sans-serif", TICK_FONT))
+        .axis_desc_style(("sans-serif", AXIS_FONT))
         .draw()?;
-    let mut rects = Vec::new();
+    // The cells in pixels of the plotting area, overlapping by a pixel (no seams).
+    let plotting = chart.plotting_area();
+    let (xr, yr) = plotting.get_pixel_range();
+    let limit = (xr.end - xr.start, yr.end - yr.start);
+    let pixels = plotting.strip_coord_spec();
+    let at = |x: f64, y: f64| {
+        let (a, b) = plotting.map_coordinate(&(x, y));
+        (a - xr.start, b - yr.start)
+    };
     for (i, column) in cells.iter().enumerate() {
         for (j, cell) in column.iter().enumerate() {
-            let style = match (cell.value, cell.overturned) {
-                (_, true) => BLACK.filled(),
-                (Some(v), false) => colour(v).filled(),
-                (None, false) => RGBColor(255, 255, 255).filled(),
+            let color = match (cell.value, cell.overturned) {
+                (_, true) => BLACK,
+                (Some(v), false) => colour(v),
+                (None, false) => WHITE,
             };
-            rects.push(Rectangle::new(
-                [(ex[i], ey[j]), (ex[i + 1], ey[j + 1])],
-                style,
-            ));
+            fill_cell(
+                &pixels,
+                at(ex[i], ey[j]),
+                at(ex[i + 1], ey[j + 1]),
+                limit,
+                color,
+            )?;
         }
     }
-    chart.draw_series(rects)?;
     // Invalid or failed points: a grey cross.
     let grey = RGBColor(140, 140, 140);
     for (i, column) in cells.iter().enumerate() {
@@ -364,7 +547,7 @@ fn draw_map(
         }
     }
     // The boundary: every cell edge between an overturned and a standing cell.
-    let red = RGBColor(220, 30, 30).stroke_width(3);
+    let red = BOUNDARY.stroke_width(3);
     let mut boundary = Vec::new();
     for i in 0..cells.len() {
         for j in 0..cells[i].len() {
@@ -381,25 +564,72 @@ fn draw_map(
     Ok(())
 }
 
+/// The colour bar of max |q|/B, labelled, with the key to the overturned cells and their
+/// boundary below it.
 fn draw_colour_bar(area: &Area<'_>) -> std::result::Result<(), Box<dyn std::error::Error>> {
-    let mut chart = ChartBuilder::on(area)
-        .margin_top(60)
-        .margin_bottom(64)
-        .margin_right(10)
-        .y_label_area_size(46)
-        .build_cartesian_2d(0.0..1.0, 0.0..1.0)?;
-    chart
-        .configure_mesh()
-        .disable_mesh()
-        .disable_x_axis()
-        .y_labels(6)
-        .label_style(("sans-serif", 15))
-        .draw()?;
+    // Drawn in pixels: the bar, its ticks and values on the right, the label beside them
+    // (reading upwards), and below it the key to the overturned cells and their boundary.
+    let (_, height) = area.dim_in_pixel();
+    let (left, right) = (12, 36);
+    let (top, bottom) = (74, height as i32 - 130);
+    let span = f64::from(bottom - top);
+    let y_of = |v: f64| bottom - (v * span).round() as i32;
     let steps = 100;
-    chart.draw_series((0..steps).map(|k| {
+    for k in 0..steps {
         let (a, b) = (k as f64 / steps as f64, (k + 1) as f64 / steps as f64);
-        Rectangle::new([(0.0, a), (1.0, b)], colour(0.5 * (a + b)).filled())
-    }))?;
+        // One pixel taller than the step: neighbours overlap, no seams.
+        area.draw(&Rectangle::new(
+            [(left, y_of(b)), (right, y_of(a) + 1)],
+            colour(0.5 * (a + b)).filled(),
+        ))?;
+    }
+    area.draw(&Rectangle::new(
+        [(left, top), (right, bottom + 1)],
+        BLACK.stroke_width(1),
+    ))?;
+    let tick_font = ("sans-serif", TICK_FONT).into_font().color(&BLACK);
+    for i in 0..=5 {
+        let v = f64::from(i) / 5.0;
+        let y = y_of(v);
+        area.draw(&PathElement::new(
+            vec![(right, y), (right + 5, y)],
+            BLACK.stroke_width(1),
+        ))?;
+        area.draw(&Text::new(
+            format!("{v:.1}"),
+            (right + 9, y),
+            tick_font.pos(Pos::new(HPos::Left, VPos::Center)),
+        ))?;
+    }
+    let label_font = ("sans-serif", AXIS_FONT)
+        .into_font()
+        .transform(FontTransform::Rotate270)
+        .color(&BLACK);
+    area.draw(&Text::new(
+        "max |q| / B",
+        (right + 64, (top + bottom) / 2),
+        label_font.pos(Pos::new(HPos::Center, VPos::Center)),
+    ))?;
+    let font = ("sans-serif", TICK_FONT).into_font().color(&BLACK);
+    let y = bottom + 40;
+    area.draw(&Rectangle::new(
+        [(left, y), (left + 22, y + 22)],
+        BLACK.filled(),
+    ))?;
+    area.draw(&Text::new(
+        "overturned",
+        (left + 30, y + 11),
+        font.pos(Pos::new(HPos::Left, VPos::Center)),
+    ))?;
+    area.draw(&PathElement::new(
+        vec![(left, y + 48), (left + 22, y + 48)],
+        BOUNDARY.stroke_width(3),
+    ))?;
+    area.draw(&Text::new(
+        "boundary",
+        (left + 30, y + 48),
+        font.pos(Pos::new(HPos::Left, VPos::Center)),
+    ))?;
     Ok(())
 }
 
@@ -463,30 +693,36 @@ fn spectrum(plan: &Plan, table: &SweepTable, x: usize) -> Result<Vec<u8>> {
         sort(v);
     }
     // Short labels: the legend strip holds about 26 characters.
-    let housner = "Housner block (uplift g B/H)";
+    let housner = "rigid block (Housner)";
     let limit = format!(
         "rigid limit ({:.3} g B/H)",
         crate::constants::ModeShapeIntegrals::exact().rigid_limit_uplift_factor()
     );
+    // The two rigid curves nearly coincide: Housner's wide and solid underneath, the rigid
+    // limit dashed on top of it, so that both show.
     let curves =
         |elastic: Vec<(f64, f64)>, rigid: Vec<(f64, f64)>, limit_curve: Vec<(f64, f64)>| {
             vec![
-                Series::line("elastic body (flexrock)", elastic, 2).with_markers(),
-                Series::line(housner, rigid, 1),
-                Series::line(&limit, limit_curve, 4),
+                Series::line(housner, rigid, 1).with_width(4),
+                Series::line(&limit, limit_curve, 5).with_width(2).dashed(),
+                Series::line("elastic body", elastic, 2)
+                    .with_width(2)
+                    .with_markers(),
             ]
         };
-    let title = format!("smallest overturning {}", find.key);
-    let mut left = Panel::new(&title, &axis.key, &find.key);
+    let quantity = match find.key.as_str() {
+        "excitation.amplitude" => "amplitude",
+        "excitation.scale" => "scale factor",
+        _ => "value",
+    };
+    let title = format!("Smallest overturning {quantity}");
+    let mut left = Panel::new(&title, &axis_label(&axis.key), &axis_label(&find.key));
     left.series = curves(physical, rigid_physical, limit_physical);
     left.legend = Legend::Outside;
     let mut panels = vec![left];
     if let Some((_, x_label)) = dx {
-        let mut right = Panel::new(
-            "dimensionless",
-            x_label,
-            "peak floor acceleration / (g tan alpha)",
-        );
+        let y_label = dimensionless(&find.key).map_or("a_p / (g tan α)", |d| d.1);
+        let mut right = Panel::new(&format!("{title}, dimensionless"), x_label, y_label);
         right.series = curves(scaled, rigid_scaled, limit_scaled);
         right.legend = Legend::Outside;
         panels.push(right);

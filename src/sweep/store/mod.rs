@@ -106,7 +106,13 @@ pub struct SweepReport {
 const SUMMARY_FILE: &str = "sweep.json";
 const TABLE_FILE: &str = "sweep.csv";
 /// Every file of a finished sweep, the only names a sweep ever removes from its directory.
-const RESULT_FILES: [&str; 4] = [TABLE_FILE, "map.svg", "spectrum.svg", SUMMARY_FILE];
+const RESULT_FILES: [&str; 5] = [
+    TABLE_FILE,
+    "map.svg",
+    "spectrum.svg",
+    figure::IDA_FILE,
+    SUMMARY_FILE,
+];
 
 /// Progress of a sweep, for a progress bar: points done (including resumed ones) of the points
 /// this process is to do.
