@@ -63,7 +63,7 @@ pub enum RecordError {
         found: &'static str,
     },
 
-    /// The file is larger than [`MAX_RECORD_BYTES`].
+    /// The file is larger than [`MAX_RECORD_BYTES`](super::MAX_RECORD_BYTES).
     #[error(
         "{file}: the file has {size} bytes, more than the limit for a record, {limit} bytes \
          ({} MiB); real AT2 files have a few MB",
@@ -126,7 +126,7 @@ pub enum RecordError {
         found: String,
     },
 
-    /// The record has fewer than [`MIN_SAMPLES`] values.
+    /// The record has fewer than [`MIN_SAMPLES`](super::MIN_SAMPLES) values.
     #[error(
         "{file}: the record has {}; a record needs at least 2 samples (one interval of dt) to \
          define the floor acceleration between them",
@@ -166,7 +166,7 @@ pub enum RecordError {
         found: f64,
     },
 
-    /// dt is below [`MIN_DT`].
+    /// dt is below [`MIN_DT`](super::MIN_DT).
     #[error(
         "{at}: dt = {} s is below the smallest sampling interval accepted, {} s (100 kHz; \
          accelerographs sample at 100 Hz to a few kHz)",
