@@ -649,13 +649,7 @@ fn episodes_of_free_rocking_follow_housners_closed_form() {
 #[test]
 fn episodes_give_the_bodys_kinetic_energy_across_each_impact() {
     let out = common::scratch_dir("cli-episodes-energy").join("out");
-    let model = reference_model();
-    let o = flexrock(&[
-        "run",
-        model.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+    let o = common::run_reference(&out, &[]);
     assert!(o.status.success());
     let rows = episode_rows(&out);
     assert!(rows.len() >= 3);
@@ -716,13 +710,7 @@ fn episodes_give_the_bodys_kinetic_energy_across_each_impact() {
 #[test]
 fn episodes_agree_with_the_event_log_and_the_history() {
     let out = common::scratch_dir("cli-episodes-paper").join("out");
-    let model = reference_model();
-    let o = flexrock(&[
-        "run",
-        model.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+    let o = common::run_reference(&out, &[]);
     assert!(o.status.success());
     let rows = episode_rows(&out);
     let mut events = csv::Reader::from_path(out.join("events.csv")).unwrap();

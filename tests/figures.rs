@@ -241,15 +241,8 @@ fn compare_dir(name: &str) -> PathBuf {
 
 fn run_dir(name: &str, extra: &[&str]) -> PathBuf {
     let out = scratch_dir(name).join("run");
-    let model = reference_model();
-    let mut args = vec![
-        "run",
-        model.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-    ];
-    args.extend_from_slice(extra);
-    run_ok(&args);
+    let o = common::run_reference(&out, extra);
+    assert!(o.status.success(), "{extra:?}: {}", stderr_of(&o));
     out
 }
 

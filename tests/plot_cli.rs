@@ -5,7 +5,7 @@ mod common;
 
 use std::path::{Path, PathBuf};
 
-use common::{file_names, flexrock, reference_model, scratch_dir};
+use common::{file_names, flexrock, scratch_dir};
 use flexrock::run_dir::RunData;
 use flexrock::run_plot::FIGURES;
 
@@ -16,15 +16,7 @@ fn stderr_of(o: &std::process::Output) -> String {
 /// Runs the reference model (with extra flags) into `dir/name` and returns that directory.
 fn run_reference(dir: &Path, name: &str, extra: &[&str]) -> PathBuf {
     let out = dir.join(name);
-    let model = reference_model();
-    let mut args = vec![
-        "run",
-        model.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-    ];
-    args.extend_from_slice(extra);
-    let o = flexrock(&args);
+    let o = common::run_reference(&out, extra);
     assert!(o.status.success(), "{}", stderr_of(&o));
     out
 }

@@ -23,6 +23,19 @@ pub fn reference_model() -> std::path::PathBuf {
     repo("models/ichinose1986.toml")
 }
 
+/// Runs the paper's example, `flexrock run models/ichinose1986.toml --out OUT EXTRA...`.
+pub fn run_reference(out: &std::path::Path, extra: &[&str]) -> std::process::Output {
+    let model = reference_model();
+    let mut args = vec![
+        "run",
+        model.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ];
+    args.extend_from_slice(extra);
+    flexrock(&args)
+}
+
 /// Runs `flexrock SUBCOMMAND model --out DIR` on a model text that must be refused: exit code 2,
 /// no output directory, no panic. Returns the error message.
 pub fn refused(subcommand: &str, name: &str, model_text: &str) -> String {
