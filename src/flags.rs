@@ -45,9 +45,7 @@ pub fn named_by_flags(error: Error, overrides: &Overrides, fem: &FemOverrides) -
                 .split(", ")
                 .map(|k| flag_for(k, overrides, fem).unwrap_or_else(|| k.to_string()))
                 .collect();
-            let rule = match rule
-                .strip_suffix(" (solver.dt is read only with solver.method = \"newmark\")")
-            {
+            let rule = match rule.strip_suffix(crate::model::DT_WITHOUT_NEWMARK) {
                 Some(rule) if overrides.dt.is_some() => {
                     format!("{rule} (--dt needs --method newmark)")
                 }
@@ -96,5 +94,17 @@ mod tests {
         assert_eq!(named("excitation.period"), "--set excitation.period");
         assert_eq!(named("fem.nx, fem.ny"), "--nx, fem.ny");
         assert_eq!(named("body.width"), "body.width");
+        let dt = Overrides {
+            dt: Some(0.01),
+            ..Overrides::default()
+        };
+        let rule = format!("not a parameter of bdf{}", crate::model::DT_WITHOUT_NEWMARK);
+        match named_by_flags(Error::invalid("solver.dt", 0.01, &rule), &dt, &fem) {
+            Error::InvalidParameter { key, rule, .. } => {
+                assert_eq!(key, "--dt (sets solver.dt)");
+                assert_eq!(rule, "not a parameter of bdf (--dt needs --method newmark)");
+            }
+            other => panic!("{other:?}"),
+        }
     }
 }

@@ -161,10 +161,7 @@ fn ida(plan: &Plan, table: &SweepTable, x: usize) -> Result<Vec<u8>> {
     // (intensity, max |q|/B, overturned) per group.
     let mut points: Vec<Vec<(f64, f64, bool)>> = vec![Vec::new(); groups];
     for (r, row) in table.rows.iter().enumerate() {
-        let point: usize = row[0].parse().map_err(|_| Error::ReadResult {
-            path: table.path.clone(),
-            message: format!("row {} has no point number", r + 1),
-        })?;
+        let point = point_of(table, r, row)?;
         let c = plan.coordinates(point);
         let Some(xv) = plan.axes[x].number(c[x]) else {
             continue;
@@ -337,6 +334,14 @@ fn drawable(values: &[f64]) -> bool {
     !e.is_empty() && e.iter().all(|x| x.is_finite()) && e.windows(2).all(|w| w[0] < w[1])
 }
 
+/// The point number of row `r` (its first field).
+fn point_of(table: &SweepTable, r: usize, row: &[String]) -> Result<usize> {
+    row[0].parse().map_err(|_| Error::ReadResult {
+        path: table.path.clone(),
+        message: format!("row {} has no point number", r + 1),
+    })
+}
+
 fn plot_error(e: impl std::fmt::Display) -> Error {
     Error::Plot {
         name: "map.svg".to_string(),
@@ -362,10 +367,7 @@ fn map(plan: &Plan, table: &SweepTable, x: usize, y: usize) -> Result<Option<Vec
         nx
     ];
     for (r, row) in table.rows.iter().enumerate() {
-        let point: usize = row[0].parse().map_err(|_| Error::ReadResult {
-            path: table.path.clone(),
-            message: format!("row {} has no point number", r + 1),
-        })?;
+        let point = point_of(table, r, row)?;
         let c = plan.coordinates(point);
         cells[c[x]][c[y]] = Cell {
             value: table.number(r, q_column),

@@ -301,6 +301,10 @@ pub struct Overrides {
     pub settings: Vec<Setting>,
 }
 
+/// What a message about `solver.dt` set from outside the file adds when the method is not
+/// Newmark's (the command line names the flags instead).
+pub const DT_WITHOUT_NEWMARK: &str = " (solver.dt is read only with solver.method = \"newmark\")";
+
 impl Overrides {
     /// Whether a value from outside the model file set the key `key` (an error about it is then
     /// not the file's: the caller names it as it was given, e.g. by the flag that set it).
@@ -409,7 +413,7 @@ impl Model {
             // key alone, and the caller names it as it was given.
             Error::InvalidParameter { key, value, rule } if overrides.sets(&key) => {
                 let hint = if key == "solver.dt" && rule.starts_with("not a parameter") {
-                    " (solver.dt is read only with solver.method = \"newmark\")"
+                    DT_WITHOUT_NEWMARK
                 } else {
                     ""
                 };
