@@ -7,7 +7,7 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 /// The modules from the bottom up. A module may use only the modules before it.
-const LAYERS: [&str; 20] = [
+const LAYERS: [&str; 22] = [
     // units and formatting
     "units",
     "format",
@@ -23,6 +23,7 @@ const LAYERS: [&str; 20] = [
     "record",
     // numerics
     "solution",
+    "tables",
     "solver",
     "rigid",
     "fem",
@@ -31,6 +32,7 @@ const LAYERS: [&str; 20] = [
     "error",
     "model",
     "simulate",
+    "summary",
     // analysis
     "sweep",
 ];

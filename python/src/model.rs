@@ -4,7 +4,7 @@ use std::path::PathBuf;
 
 use pyo3::prelude::*;
 
-use flexrock::model::{check_key, Overrides, Setting};
+use flexrock_core::model::{check_key, Overrides, Setting};
 
 use crate::{err, FlexrockError};
 
@@ -16,14 +16,17 @@ pub(crate) struct Model {
     /// The text of a model given as text.
     pub(crate) text: Option<String>,
     pub(crate) settings: Vec<Setting>,
-    pub(crate) model: flexrock::model::Model,
+    pub(crate) model: flexrock_core::model::Model,
 }
 
 impl Model {
-    pub(crate) fn build(&self, overrides: &Overrides) -> flexrock::Result<flexrock::model::Model> {
+    pub(crate) fn build(
+        &self,
+        overrides: &Overrides,
+    ) -> flexrock_core::Result<flexrock_core::model::Model> {
         match (&self.path, &self.text) {
-            (Some(path), _) => flexrock::model::Model::load(path, overrides),
-            (None, Some(text)) => flexrock::model::Model::from_toml_str(text, overrides),
+            (Some(path), _) => flexrock_core::model::Model::load(path, overrides),
+            (None, Some(text)) => flexrock_core::model::Model::from_toml_str(text, overrides),
             (None, None) => unreachable!("a model has a file or a text"),
         }
     }
@@ -65,7 +68,7 @@ impl Model {
     /// Reads and validates a model file (as `flexrock run FILE`).
     #[staticmethod]
     fn from_file(path: PathBuf) -> PyResult<Model> {
-        let model = flexrock::model::Model::load(&path, &Overrides::default()).map_err(err)?;
+        let model = flexrock_core::model::Model::load(&path, &Overrides::default()).map_err(err)?;
         Ok(Model {
             path: Some(path),
             text: None,
@@ -78,8 +81,8 @@ impl Model {
     /// directory).
     #[staticmethod]
     fn from_toml(text: String) -> PyResult<Model> {
-        let model =
-            flexrock::model::Model::from_toml_str(&text, &Overrides::default()).map_err(err)?;
+        let model = flexrock_core::model::Model::from_toml_str(&text, &Overrides::default())
+            .map_err(err)?;
         Ok(Model {
             path: None,
             text: Some(text),
@@ -91,7 +94,7 @@ impl Model {
     /// Sets a model-file key (as `--set KEY=VALUE`), checked by the rules of the file; on a bad
     /// key or value raises FlexrockError and leaves the model as it was.
     fn set(&mut self, key: &str, value: &Bound<'_, PyAny>) -> PyResult<()> {
-        check_key(key).map_err(|rule| err(flexrock::Error::invalid("key", key, &rule)))?;
+        check_key(key).map_err(|rule| err(flexrock_core::Error::invalid("key", key, &rule)))?;
         // A record path typed here is relative to the current directory; the model file reads
         // it relative to its own directory (a model given as text reads from the current one).
         let here = std::env::current_dir()?;
