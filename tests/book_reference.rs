@@ -9,7 +9,7 @@
 //! the built book does not show. A table's names are the backticked names of its first column,
 //! in order.
 
-mod common;
+use crate::common;
 
 use std::collections::BTreeMap;
 use std::path::Path;

@@ -1,8 +1,8 @@
 //! The command line: the end-to-end run and every bad-input rule (message, exit code, no output).
 
-mod common;
+use crate::common;
 
-use common::{flexrock, reference_model};
+use crate::common::{flexrock, reference_model};
 
 #[test]
 fn run_writes_its_four_files_with_their_schemas() {

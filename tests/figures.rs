@@ -4,11 +4,11 @@
 //! with units), plus the figure of a sweep over records and `flexrock plot`'s formats, sizes and
 //! time window.
 
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 
-use common::{flexrock, reference_model, repo, scratch_dir};
+use crate::common::{flexrock, reference_model, repo, scratch_dir};
 
 fn stderr_of(o: &std::process::Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()

@@ -3,12 +3,12 @@
 //! run, values that must be refused before anything is computed, sizes beyond the limits, and
 //! the program against its documents.
 
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 
-use common::{flexrock, reference_model, repo, scratch_dir};
+use crate::common::{flexrock, reference_model, repo, scratch_dir};
 
 fn bin() -> Command {
     Command::new(env!("CARGO_BIN_EXE_flexrock"))

@@ -1,9 +1,9 @@
 //! The Newmark solver: second-order convergence to the closed form before uplift, convergence to
 //! the adaptive reference with events, the stability limit, and the compare/converge files.
 
-mod common;
+use crate::common;
 
-use common::{flexrock, reference_model};
+use crate::common::{flexrock, reference_model};
 
 use std::path::Path;
 

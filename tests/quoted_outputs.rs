@@ -15,7 +15,7 @@
 //! commands write (relative to the scratch directory); the committed copy must be that file, byte
 //! for byte. `book/figures.sh` writes them anew (this test with `FLEXROCK_WRITE_FIGURES=1`).
 
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 use std::process::Command;

@@ -2,12 +2,12 @@
 //! requests, thread-count independence, resuming after kills, shards and their merge, the
 //! minimum search against independent runs, and the rigid limit of the spectrum.
 
-mod common;
+use crate::common;
 
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
-use common::{flexrock, repo, scratch_dir};
+use crate::common::{flexrock, repo, scratch_dir};
 use flexrock::model::{Model, Overrides, Setting};
 
 /// sweep.csv as rows of column name -> text.

@@ -2,9 +2,7 @@
 //! --shard, the shard comes from SLURM_ARRAY_TASK_ID, SLURM_ARRAY_TASK_MIN and
 //! SLURM_ARRAY_TASK_COUNT; `flexrock sweep merge` joins the shards into what one process writes.
 
-mod common;
-
-use common::{file_names, repo, scratch_dir};
+use crate::common::{file_names, repo, scratch_dir};
 use std::path::Path;
 use std::process::Output;
 

@@ -3,13 +3,13 @@
 //! finished results damaged. Every case ends either in the bytes of an uninterrupted run or in a
 //! refusal with exit code 2 that names the file; nothing of the user's is removed.
 
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
-use common::{flexrock, repo, scratch_dir};
+use crate::common::{flexrock, repo, scratch_dir};
 
 fn files_of(dir: &Path) -> Vec<(String, Vec<u8>)> {
     let mut files: Vec<(String, Vec<u8>)> = std::fs::read_dir(dir)

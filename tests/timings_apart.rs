@@ -1,11 +1,11 @@
 //! `--timings-apart`: the wall times go to timings.json and every other file a command writes is
 //! the same bytes from run to run (what validation/check.sh compares with the committed evidence).
 
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 
-use common::{file_names, flexrock, reference_model};
+use crate::common::{file_names, flexrock, reference_model};
 
 /// Runs `flexrock <args> --out <dir>` twice into two directories; returns both.
 fn twice(name: &str, args: &[&str]) -> (PathBuf, PathBuf, String) {
