@@ -163,12 +163,7 @@ fn a_table_that_leaves_out_or_reorders_a_column_is_caught() {
 #[test]
 fn summary_json_has_exactly_the_documented_keys() {
     let out = common::scratch_dir("book-reference-summary");
-    let o = common::flexrock(&[
-        "run",
-        common::reference_model().to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+    let o = common::run_reference(&out, &[]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let text = std::fs::read_to_string(out.join("summary.json")).unwrap();
     let summary: serde_json::Value = serde_json::from_str(&text).unwrap();
@@ -555,11 +550,7 @@ fn every_output_the_reference_pages_quote_is_what_the_program_prints() {
                 !args.contains(&"--out"),
                 "{name}: `{first}` would write into the repository"
             );
-            let o = std::process::Command::new(env!("CARGO_BIN_EXE_flexrock"))
-                .args(&args)
-                .current_dir(common::repo(""))
-                .output()
-                .unwrap();
+            let o = common::flexrock_in(&common::repo(""), &args);
             assert!(o.status.success(), "{name}: `{first}` failed");
             let mut printed = String::from_utf8_lossy(&o.stderr).into_owned();
             printed.push_str(&String::from_utf8_lossy(&o.stdout));

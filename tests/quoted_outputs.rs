@@ -236,11 +236,9 @@ fn check_commands(doc: &Path, text: &str, dir: &Path) -> Vec<String> {
     let mut failures = Vec::new();
     for run in quoted_runs(text) {
         let where_ = format!("{}:{}: `flexrock {}`", doc.display(), run.line, run.command);
-        let o = Command::new(env!("CARGO_BIN_EXE_flexrock"))
-            .args(shell_words(&run.command))
-            .current_dir(dir)
-            .output()
-            .unwrap();
+        let args = shell_words(&run.command);
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        let o = common::flexrock_in(dir, &args);
         let mut printed = String::from_utf8_lossy(&o.stderr).into_owned();
         printed.push_str(&String::from_utf8_lossy(&o.stdout));
         if !o.status.success() {

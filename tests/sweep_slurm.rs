@@ -38,7 +38,7 @@ fn sweep_args(out: &Path) -> Vec<String> {
 /// Runs the binary with exactly these SLURM_ARRAY_TASK_* variables (none inherited, so that the
 /// test means the same inside a Slurm job).
 fn flexrock_in_task(args: &[String], vars: &[(&str, &str)]) -> Output {
-    let mut command = std::process::Command::new(env!("CARGO_BIN_EXE_flexrock"));
+    let mut command = crate::common::flexrock_command();
     command.args(args);
     for name in SLURM_VARS {
         command.env_remove(name);

@@ -109,12 +109,7 @@ fn compare_and_converge_keep_every_time_apart() {
 #[test]
 fn without_the_flag_the_times_stay_where_they_were() {
     let out = common::scratch_dir("timings-inline").join("result");
-    let o = flexrock(&[
-        "run",
-        reference_model().to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+    let o = common::run_reference(&out, &[]);
     assert!(o.status.success());
     assert!(!out.join("timings.json").exists());
     assert!(
