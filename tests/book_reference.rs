@@ -620,3 +620,45 @@ fn the_tests_page_lists_exactly_the_test_files() {
     files.sort();
     assert_eq!(listed, files, "the table of book/src/developer/tests.md");
 }
+
+/// The modules a test binary's main file declares (`mod name;` lines), sorted.
+fn declared_modules(main: &str) -> Vec<String> {
+    let mut modules: Vec<String> = main
+        .lines()
+        .filter_map(|line| line.trim().strip_prefix("mod "))
+        .filter_map(|rest| rest.strip_suffix(';'))
+        .map(str::to_string)
+        .collect();
+    modules.sort();
+    modules
+}
+
+#[test]
+fn every_test_file_is_a_module_of_its_crates_test_binary() {
+    // Cargo.toml sets `autotests = false`: a file that its crate's binary does not declare is
+    // never built nor run.
+    for (dir, main) in [
+        ("tests", "integration.rs"),
+        ("core/tests", "core_integration.rs"),
+    ] {
+        let text = std::fs::read_to_string(common::repo(dir).join(main)).unwrap();
+        let mut files: Vec<String> = rust_files(&common::repo(dir))
+            .into_iter()
+            .filter(|f| !f.contains('/') && f != main)
+            .map(|f| f.trim_end_matches(".rs").to_string())
+            .collect();
+        files.push("common".to_string());
+        files.sort();
+        assert_eq!(
+            declared_modules(&text),
+            files,
+            "the modules of {dir}/{main}"
+        );
+    }
+}
+
+#[test]
+fn declared_modules_are_the_mod_lines() {
+    let main = "//! mod not_this;\nmod common;\n\n// A group.\nmod b;\nmod a;\nfn f() {}\n";
+    assert_eq!(declared_modules(main), ["a", "b", "common"]);
+}
