@@ -18,7 +18,6 @@
 use crate::common;
 
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
 /// A command the documents show: where it is, the command line after `$ flexrock `, and the
 /// lines quoted after it.
