@@ -184,8 +184,7 @@ fn the_checker_sees_an_upward_import() {
 
 /// [`code_without_tests`] of text rather than a file.
 fn code_without_tests_of(text: &str) -> String {
-    let dir = std::env::temp_dir().join(format!("flexrock-layers-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = crate::common::scratch_dir("layers-module");
     let file = dir.join("module.rs");
     std::fs::write(
         &file,
