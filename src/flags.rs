@@ -61,6 +61,10 @@ pub fn named_by_flags(error: Error, overrides: &Overrides, fem: &FemOverrides) -
             path,
             source: Box::new(named_by_flags(*source, overrides, fem)),
         },
+        Error::Record { key, source } => Error::Record {
+            key: flag_for(&key, overrides, fem).unwrap_or(key),
+            source,
+        },
         other => other,
     }
 }

@@ -867,6 +867,25 @@ fn a_record_path_is_relative_to_where_it_was_given() {
     let looked_at = dir.join("validation/records/elCentro.AT2");
     assert!(stderr.contains(&*looked_at.to_string_lossy()), "{stderr}");
 
+    // Refused for another reason (a directory, not a record file): the message still names the
+    // full path, by the flag that set it, and not as the model file's fault.
+    std::fs::create_dir_all(here.join("rec.AT2")).unwrap();
+    let o = run_in(
+        &here,
+        &[
+            "run",
+            model,
+            "--set",
+            "excitation.path=./study/../rec.AT2",
+            "--out",
+            out_s,
+        ],
+    );
+    assert_eq!(o.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    let full = format!("--set excitation.path: {}:", here.join("rec.AT2").display());
+    assert!(stderr.starts_with(&format!("error: {full}")), "{stderr}");
+
     // A sweep file's `set` is relative to the sweep file, whatever the current directory.
     std::fs::write(
         here.join("study/sweep.toml"),

@@ -426,6 +426,8 @@ impl Model {
                     rule: format!("{rule}{hint}"),
                 }
             }
+            // A record named from outside the file is not the file's either.
+            e @ Error::Record { .. } if overrides.sets("excitation.path") => e,
             other => Error::InModel {
                 path: path.to_path_buf(),
                 source: Box::new(other),

@@ -274,7 +274,29 @@ pub fn read_record(
     format: Option<RecordFormat>,
     dt: Option<f64>,
 ) -> Result<Record, RecordError> {
-    let source = path.display().to_string();
+    read_record_named(path, &path.display().to_string(), format, dt)
+}
+
+/// [`read_record`], with the file named `name` in every error (a full path, say, where `path`
+/// is relative to another directory); the record's source is `path` as given.
+pub fn read_record_named(
+    path: &Path,
+    name: &str,
+    format: Option<RecordFormat>,
+    dt: Option<f64>,
+) -> Result<Record, RecordError> {
+    let mut record = read_named(path, name, format, dt)?;
+    record.source = path.display().to_string();
+    Ok(record)
+}
+
+fn read_named(
+    path: &Path,
+    name: &str,
+    format: Option<RecordFormat>,
+    dt: Option<f64>,
+) -> Result<Record, RecordError> {
+    let source = name.to_string();
     let format = match format.or_else(|| RecordFormat::from_extension(path)) {
         Some(format) => format,
         None => {
