@@ -212,8 +212,7 @@ def _table_of_flat_columns(flat, axes) -> dict:
     arrays, text as lists of str), until the compiled sweep returns the typed table itself."""
     import numpy as np
 
-    ints = {"point", "n_uplift", "n_landing", "n_episodes", "steps", "rhs_evaluations", "nfev",
-            "scan_points"}
+    ints = {"point", "n_uplift", "n_landing", "steps", "rhs_evaluations"}
     columns, kinds, values = [], [], []
     for name, column in flat.items():
         if isinstance(column, list):
@@ -237,7 +236,4 @@ def _table_of_flat_columns(flat, axes) -> dict:
         vals = list(vals)
         numeric = all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in vals)
         typed_axes.append((key, [float(v) for v in vals] if numeric else [str(v) for v in vals]))
-    for i, name in enumerate(columns):
-        if any(name == key for key, _ in typed_axes) and kinds[i] == "str":
-            pass
     return {"columns": columns, "kinds": kinds, "values": values, "axes": typed_axes}
