@@ -186,7 +186,7 @@ pub(crate) fn toml_value(value: &Bound<'_, PyAny>) -> PyResult<toml::Value> {
 
 #[pymethods]
 impl Model {
-    /// Reads and validates a model file (as `flexrock run FILE`).
+    /// Reads and validates a model file; its record paths are relative to its directory.
     #[staticmethod]
     fn from_file(path: PathBuf) -> PyResult<Model> {
         let model = flexrock::model::Model::load(&path, &Overrides::default()).map_err(err)?;
@@ -269,8 +269,9 @@ impl Model {
         })
     }
 
-    /// Sets a model-file key (as `--set KEY=VALUE`), checked by the rules of the file; on a bad
-    /// key or value raises FlexrockError and leaves the model as it was.
+    /// Sets a model-file key, checked by the rules of the file; on a bad key or value raises
+    /// FlexrockError naming the key and leaves the model as it was. A record path is relative to
+    /// the current directory.
     fn set(&mut self, key: &str, value: &Bound<'_, PyAny>) -> PyResult<()> {
         check_key(key).map_err(|rule| err(flexrock::Error::invalid("key", key, &rule)))?;
         // A record path typed here is relative to the current directory; the model file reads

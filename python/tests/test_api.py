@@ -91,10 +91,17 @@ def test_get_gives_the_value_in_effect():
     model.set("excitation.amplitude", 3.25)
     assert model.get("excitation.amplitude") == 3.25
     # Omitted keys: the core's defaults (the book's model-file reference), else None.
-    assert "gravity" not in file["body"]
-    assert model.get("body.gravity") == 9.81
-    assert model.get("solver.rtol") == file.get("solver", {}).get("rtol", 1e-10)
-    assert model.get("simulation.q0") == file.get("simulation", {}).get("q0", 0.0)
+    defaults = [("body.gravity", 9.81), ("body.depth", 1.0), ("body.damping_ratio", 0.05),
+                ("body.self_weight", "paper"), ("body.constants", "exact"), ("solver.method", "bdf"),
+                ("solver.rtol", 1e-10), ("solver.atol", 1e-12), ("solver.output_dt", 0.005),
+                ("simulation.q0", 0.0)]
+    omitted = 0
+    for key, default in defaults:
+        section, name = key.split(".")
+        given = file.get(section, {}).get(name)
+        omitted += given is None
+        assert model.get(key) == (default if given is None else given), key
+    assert omitted >= 3
     assert model.get("body.mass") is None
     with pytest.raises(flexrock.FlexrockError) as error:
         model.get("excitation.amplitud")
@@ -146,7 +153,7 @@ def test_a_ground_motion_from_a_record_files_samples_is_that_file():
     assert file_model.ground_motion is None and model.ground_motion.source == "arrays"
 
 
-def test_read_record_reads_what_the_model_file_reads():
+def test_read_record_reads_what_the_model_file_reads(tmp_path):
     gm = flexrock.read_record(AT2)
     dt, values = read_at2(AT2)
     assert (gm.dt, gm.units, gm.source) == (dt, "g", str(AT2))
@@ -155,8 +162,12 @@ def test_read_record_reads_what_the_model_file_reads():
     model = file_model.with_ground_motion(gm)
     model.set("excitation.tail", 5.0)
     same_results(flexrock.simulate(model), flexrock.simulate(file_model))
-    with pytest.raises(flexrock.FlexrockError, match="units"):
-        flexrock.read_record(ROOT / "validation" / "records" / "PROVENANCE.md", format="csv")
+    csv = tmp_path / "one.csv"
+    csv.write_text("0.0\n0.5\n-0.25\n")
+    with pytest.raises(flexrock.FlexrockError, match="^units = None: required for CSV"):
+        flexrock.read_record(csv, dt=0.01)
+    one = flexrock.read_record(csv, dt=0.01, units="cm/s2")
+    assert list(one.acceleration) == [0.0, 0.005, -0.0025] and one.dt == 0.01
     with pytest.raises(flexrock.FlexrockError, match="nonexistent"):
         flexrock.read_record("nonexistent.AT2")
 
@@ -169,7 +180,10 @@ def test_a_sine_ground_motion_gives_the_floor_acceleration_it_was_given():
     model = flexrock.Model.from_file(MODEL).with_ground_motion(
         flexrock.GroundMotion(a, dt=dt, units="m/s2"))
     result = flexrock.simulate(model, duration=3.0, output_dt=dt)
-    assert np.allclose(result.floor_acc, 2.0 * np.sin(2 * np.pi * result.t), atol=1e-12)
+    assert np.allclose(result.floor_acc, np.interp(result.t, t, a), rtol=0, atol=1e-12)
+    on_grid = np.abs(result.t / dt - np.round(result.t / dt)) < 1e-9
+    assert on_grid.sum() == len(t)
+    assert np.allclose(result.floor_acc[on_grid], a, rtol=0, atol=1e-12)
 
 
 @pytest.mark.parametrize("kwargs, message", [

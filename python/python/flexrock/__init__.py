@@ -45,6 +45,143 @@ __all__ = [
 
 Value = Union[bool, int, float, str]
 
+FlexrockError.__doc__ = """An error of flexrock: a bad model key, value, argument or file.
+
+A `ValueError`. The message names the model-file key (``excitation.amplitude``) or the Python
+argument (``acceleration[17]``, ``rtol (sets solver.rtol)``), the value and the rule it breaks,
+and where there is one, the closest known name (``did you mean ...``).
+
+Examples
+--------
+>>> try:
+...     model.set("excitation.amplitud", 3.0)
+... except flexrock.FlexrockError as e:
+...     print(e)
+"""
+
+Model.__doc__ = """A model: a model file (or its text, or a dict of its tables) and the keys set on it.
+
+Build one with `Model.from_file`, `Model.from_toml` or `Model.from_dict`; every constructor and
+`set` validates the model by the rules of the model file.
+
+Parameters
+----------
+(none: use the static constructors)
+    ``Model.from_file(path)``: a model file; its record paths are relative to its directory.
+    ``Model.from_toml(text)``: the text of a model file; record paths relative to the current
+    directory. ``Model.from_dict(d)``: the file's tables as a nested dict,
+    ``{"body": {...}, "excitation": {...}, "solver": {...}}``; record paths relative to the
+    current directory.
+
+Methods
+-------
+set(key, value)
+    Sets a model-file key (``"excitation.amplitude"``, ``"solver.method"``); a record path is
+    relative to the current directory. Raises FlexrockError naming the key on a bad key or value,
+    and leaves the model as it was.
+get(key)
+    The value in effect: set with `set`, else the file's, else the default the core uses where it
+    has one, else None. An unknown key raises FlexrockError naming it ("did you mean ...").
+to_dict(), to_toml()
+    The model file with the settings applied (record paths relative to the current directory):
+    ``Model.from_dict(m.to_dict())`` and ``Model.from_toml(m.to_toml())`` solve to the same
+    numbers, bit for bit. Raise FlexrockError for a model with a ground motion from arrays.
+with_ground_motion(ground_motion)
+    A new model whose ``[excitation]`` is the `GroundMotion` (``kind = "record"``); the
+    model's other tables and settings stay, its ``excitation.*`` settings are dropped. The record
+    keys ``excitation.scale``, ``start``, ``end`` and ``tail`` may then be set as for a record
+    file; ``simulation.duration``, when the model gives one, still applies (else the record's
+    length plus the tail).
+
+Returns
+-------
+Model
+    The constructors return a validated model; ``with_ground_motion`` a new one.
+
+Raises
+------
+FlexrockError
+    A model that breaks a rule of the model file (the message names the key).
+
+Examples
+--------
+>>> model = flexrock.Model.from_dict({
+...     "body": {"height": 4.0, "width": 0.7, "density": 600.0, "youngs_modulus": 5e6},
+...     "excitation": {"kind": "paper-sine", "amplitude": 2.5, "period": 1.0, "ramp": 1.0},
+...     "simulation": {"duration": 6.0}})
+>>> model.set("excitation.amplitude", 3.0)
+>>> model.get("excitation.amplitude"), model.get("body.gravity")
+(3.0, 9.81)
+>>> text = model.to_toml()
+"""
+
+GroundMotion.__doc__ = """A floor acceleration record sampled at a uniform interval, from arrays.
+
+Checked by the rules and limits of a record file; a model solved under it
+(`Model.with_ground_motion`) uses the core's recorded motion, linear between samples, so its
+numbers equal those of a record file with the same samples.
+
+Parameters
+----------
+acceleration : array_like of float, 1-D
+    The samples, first at t = 0, in `units`: finite, at least 2.
+dt : float, optional
+    Sampling interval, s: at least 1e-5 s. Give `dt` or `time`.
+time : array_like of float, optional (keyword)
+    The sample times, s: from 0, uniformly spaced to 1e-6 relative (as a CSV record's time
+    column); dt is their mean step.
+units : {"g", "m/s2", "cm/s2"} (keyword, required)
+    The units of `acceleration`, as ``excitation.units`` names them (g is standard gravity,
+    9.80665 m/s^2).
+source : str, optional (keyword)
+    A name for tables and messages (default "arrays").
+
+Returns
+-------
+GroundMotion
+    Attributes ``dt`` (s), ``acceleration`` (m/s^2, numpy), ``time`` (s, numpy), ``units``,
+    ``source``, ``duration`` (s), and ``len()``.
+
+Raises
+------
+FlexrockError
+    A value that breaks a rule, named by its argument: ``acceleration[17] = NaN: ...``,
+    ``dt = -1: must be > 0 s``, ``time[3] = 0.035: the times must be uniformly spaced ...``.
+    A peak beyond 20 g is refused when a model takes the motion.
+
+Examples
+--------
+>>> t = np.arange(0, 10, 0.01)
+>>> gm = flexrock.GroundMotion(0.3 * np.sin(2 * np.pi * t), dt=0.01, units="g")
+>>> shaken = flexrock.simulate(model.with_ground_motion(gm))
+"""
+
+Result.__doc__ = """The solution of `simulate`.
+
+Attributes
+----------
+t, q, qdot, s, r, floor_acc, F, energy_residual, work_input, work_damping : numpy.ndarray
+    The columns of history.csv (s, m, m/s, m, m, m/s^2, N, J, J, J).
+mode : numpy.ndarray of str
+    The mode at each sample.
+events : list of dict
+    The event log (events.csv's columns).
+episodes : list of dict
+    The rocking episodes (episodes.csv's columns; None where empty).
+summary : dict
+    The keys of summary.json.
+
+Methods
+-------
+to_pandas()
+    The history as a pandas DataFrame (ImportError without pandas).
+
+Examples
+--------
+>>> result = flexrock.simulate(model)
+>>> result.q.max(), result.summary["n_uplift"]
+"""
+
 
 def props(model: Model) -> dict:
     """The body as understood and its derived constants.
@@ -57,7 +194,7 @@ def props(model: Model) -> dict:
     Returns
     -------
     dict
-        The JSON of ``flexrock props --json``: ``body``, ``constants`` (period, s_n, ...).
+        The JSON the command line's props command writes: ``body``, ``constants`` (period, s_n, ...).
 
     Examples
     --------
