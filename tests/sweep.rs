@@ -827,7 +827,7 @@ fn the_rows_in_memory_are_the_rows_of_sweep_csv() {
         ],
         ..Request::default()
     };
-    let sweep = Sweep::new(&pulse_model(), request).unwrap();
+    let sweep = Sweep::new(&pulse_model(), request, Path::new(".")).unwrap();
     let rows = store::rows(&sweep, &store::Silent);
     let mut table = flexrock::output::Table::new(
         &sweep

@@ -72,6 +72,7 @@ pub mod simulate;
 pub mod solution;
 pub mod solver;
 mod suggest;
+pub mod sweep;
 pub mod units;
 
 pub use automaton::Automaton;

@@ -7,7 +7,7 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 /// The modules from the bottom up. A module may use only the modules before it.
-const LAYERS: [&str; 19] = [
+const LAYERS: [&str; 20] = [
     // units and formatting
     "units",
     "format",
@@ -31,6 +31,8 @@ const LAYERS: [&str; 19] = [
     "error",
     "model",
     "simulate",
+    // analysis
+    "sweep",
 ];
 
 /// The files of module `name` under `src`: `name.rs`, or every file under `name/`.

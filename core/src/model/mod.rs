@@ -263,7 +263,10 @@ pub fn read_model_table(path: &Path) -> Result<(String, toml::Table)> {
     Ok((text, table))
 }
 
-fn parse_table(text: &str, source: &Path) -> Result<toml::Table> {
+/// What names a model given as text (not read from a file) in messages.
+pub const MODEL_TEXT: &str = "(model text)";
+
+pub(crate) fn parse_table(text: &str, source: &Path) -> Result<toml::Table> {
     toml::from_str(text).map_err(|e| Error::ParseModel {
         path: source.to_path_buf(),
         message: e.to_string().trim_end().to_string(),
@@ -437,7 +440,7 @@ impl Model {
     /// Parses and validates the text of a model file; record paths are relative to the
     /// current directory.
     pub fn from_toml_str(text: &str, overrides: &Overrides) -> Result<Model> {
-        let file = parse_model_text(text, &overrides.settings, Path::new("(model text)"))?;
+        let file = parse_model_text(text, &overrides.settings, Path::new(MODEL_TEXT))?;
         Model::from_file(file, overrides, Path::new("."))
     }
 
