@@ -214,7 +214,26 @@ impl Model {
         })
     }
 
-    /// Reads and validates a model given as a nested dict (see the package's documentation).
+    /// Reads and validates a model given as a nested dict of the model file's tables.
+    ///
+    /// Parameters
+    /// ----------
+    /// d : dict
+    ///     ``{"body": {...}, "excitation": {...}, "simulation": {...}, "solver": {...}}``, values
+    ///     bool, int, float or str; record paths relative to the current directory.
+    ///
+    /// Returns
+    /// -------
+    /// Model
+    ///
+    /// Raises
+    /// ------
+    /// FlexrockError
+    ///     A key the model file does not know or a value that breaks its rules (named).
+    ///
+    /// Examples
+    /// --------
+    /// >>> m = flexrock.Model.from_dict({"body": {...}, "excitation": {"kind": "free"}})
     #[staticmethod]
     fn from_dict(d: &Bound<'_, PyDict>) -> PyResult<Model> {
         let table = toml_table(d, "")?;
@@ -222,7 +241,28 @@ impl Model {
         Model::from_toml(text)
     }
 
-    /// The value of a model-file key in effect (see the package's documentation).
+    /// The value of a model-file key in effect.
+    ///
+    /// Parameters
+    /// ----------
+    /// key : str
+    ///     ``section.name``, e.g. ``"excitation.amplitude"``.
+    ///
+    /// Returns
+    /// -------
+    /// bool, int, float, str or None
+    ///     The value set with `set`, else the file's, else the default the solver uses for a key
+    ///     the file leaves out, else None. A record path is relative to the current directory.
+    ///
+    /// Raises
+    /// ------
+    /// FlexrockError
+    ///     A key the model file does not know, named, with the closest known key.
+    ///
+    /// Examples
+    /// --------
+    /// >>> model.get("body.gravity")
+    /// 9.81
     fn get<'py>(&self, py: Python<'py>, key: &str) -> PyResult<Bound<'py, PyAny>> {
         match value_in_effect(&self.effective()?, key).map_err(err)? {
             Some(value) => py_value(py, &value),
@@ -231,18 +271,68 @@ impl Model {
     }
 
     /// The model file's tables with the settings applied, as a nested dict.
+    ///
+    /// Returns
+    /// -------
+    /// dict
+    ///     ``Model.from_dict`` of it solves to the same numbers; record paths are relative to
+    ///     the current directory.
+    ///
+    /// Raises
+    /// ------
+    /// FlexrockError
+    ///     For a model whose ground motion was given as arrays (it has no record file).
+    ///
+    /// Examples
+    /// --------
+    /// >>> flexrock.Model.from_dict(model.to_dict())
     fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         self.has_a_file("to_dict")?;
         py_value(py, &toml::Value::Table(self.effective()?))
     }
 
     /// The model file with the settings applied, as TOML text.
+    ///
+    /// Returns
+    /// -------
+    /// str
+    ///     ``Model.from_toml`` of it solves to the same numbers; record paths are relative to
+    ///     the current directory.
+    ///
+    /// Raises
+    /// ------
+    /// FlexrockError
+    ///     For a model whose ground motion was given as arrays (it has no record file).
+    ///
+    /// Examples
+    /// --------
+    /// >>> pathlib.Path("mine.toml").write_text(model.to_toml())
     fn to_toml(&self) -> PyResult<String> {
         self.has_a_file("to_toml")?;
         toml::to_string(&self.effective()?).map_err(|e| FlexrockError::new_err(e.to_string()))
     }
 
-    /// A copy of the model with its `[excitation]` replaced by a ground motion.
+    /// A new model whose ``[excitation]`` is a ground motion given as arrays.
+    ///
+    /// Parameters
+    /// ----------
+    /// ground_motion : GroundMotion
+    ///     The record; the model's other tables and settings stay, its ``excitation.*``
+    ///     settings are dropped. ``excitation.scale``, ``start``, ``end`` and ``tail`` may then
+    ///     be set as for a record file.
+    ///
+    /// Returns
+    /// -------
+    /// Model
+    ///
+    /// Raises
+    /// ------
+    /// FlexrockError
+    ///     A motion the model refuses (e.g. a peak beyond 20 g).
+    ///
+    /// Examples
+    /// --------
+    /// >>> shaken = model.with_ground_motion(flexrock.read_record("validation/records/elCentro.AT2"))
     fn with_ground_motion(&self, ground_motion: &GroundMotion) -> PyResult<Model> {
         let settings: Vec<Setting> = self
             .settings
