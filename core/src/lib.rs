@@ -72,7 +72,9 @@ pub mod simulate;
 pub mod solution;
 pub mod solver;
 mod suggest;
+pub mod summary;
 pub mod sweep;
+pub mod tables;
 pub mod units;
 
 pub use automaton::Automaton;

@@ -7,7 +7,7 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 /// The modules from the bottom up. A module may use only the modules before it.
-const LAYERS: [&str; 20] = [
+const LAYERS: [&str; 22] = [
     // units and formatting
     "units",
     "format",
@@ -23,6 +23,7 @@ const LAYERS: [&str; 20] = [
     "record",
     // numerics
     "solution",
+    "tables",
     "solver",
     "rigid",
     "fem",
@@ -31,6 +32,7 @@ const LAYERS: [&str; 20] = [
     "error",
     "model",
     "simulate",
+    "summary",
     // analysis
     "sweep",
 ];
@@ -182,8 +184,7 @@ fn the_checker_sees_an_upward_import() {
 
 /// [`code_without_tests`] of text rather than a file.
 fn code_without_tests_of(text: &str) -> String {
-    let dir = std::env::temp_dir().join(format!("flexrock-layers-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = crate::common::scratch_dir("layers-module");
     let file = dir.join("module.rs");
     std::fs::write(
         &file,

@@ -20,7 +20,7 @@ create_exception!(
     "An error of flexrock, with the message the command line prints."
 );
 
-pub(crate) fn err(e: flexrock::Error) -> PyErr {
+pub(crate) fn err(e: flexrock_core::Error) -> PyErr {
     FlexrockError::new_err(e.to_string())
 }
 
@@ -28,7 +28,7 @@ pub(crate) fn err(e: flexrock::Error) -> PyErr {
 #[pyo3(name = "_native")]
 fn flexrock_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("FlexrockError", m.py().get_type::<FlexrockError>())?;
-    m.add("__version__", flexrock::run::VERSION)?;
+    m.add("__version__", flexrock_core::simulate::VERSION)?;
     m.add_class::<model::Model>()?;
     m.add_class::<simulate::SimResult>()?;
     m.add_class::<motion::GroundMotion>()?;

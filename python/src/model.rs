@@ -24,11 +24,11 @@ pub(crate) struct Model {
     pub(crate) settings: Vec<Setting>,
     /// A ground motion given as arrays, in place of the file's `[excitation]` table.
     pub(crate) ground_motion: Option<Arc<Motion>>,
-    pub(crate) model: flexrock::model::Model,
+    pub(crate) model: flexrock_core::model::Model,
 }
 
 impl Model {
-    pub(crate) fn build(&self, overrides: &Overrides) -> flexrock::Result<flexrock::model::Model> {
+    pub(crate) fn build(&self, overrides: &Overrides) -> flexrock_core::Result<flexrock_core::model::Model> {
         if let Some(motion) = &self.ground_motion {
             let mut table = self.base_table()?;
             table.insert("excitation".to_owned(), motion.excitation_table());
@@ -43,19 +43,19 @@ impl Model {
             );
         }
         match (&self.path, &self.text) {
-            (Some(path), _) => flexrock::model::Model::load(path, overrides),
-            (None, Some(text)) => flexrock::model::Model::from_toml_str(text, overrides),
+            (Some(path), _) => flexrock_core::model::Model::load(path, overrides),
+            (None, Some(text)) => flexrock_core::model::Model::from_toml_str(text, overrides),
             (None, None) => unreachable!("a model has a file or a text"),
         }
     }
 
     /// The model file's table as written (without the settings).
-    fn base_table(&self) -> flexrock::Result<toml::Table> {
+    fn base_table(&self) -> flexrock_core::Result<toml::Table> {
         match (&self.path, &self.text) {
             (Some(path), _) => Ok(read_model_table(path)?.1),
             (None, text) => {
                 toml::from_str(text.as_deref().unwrap_or_default()).map_err(|e| {
-                    flexrock_core::error::Error::ParseModel {
+                    flexrock_core::Error::ParseModel {
                         path: self.source(),
                         message: e.to_string().trim_end().to_string(),
                     }
@@ -189,7 +189,7 @@ impl Model {
     /// Reads and validates a model file; its record paths are relative to its directory.
     #[staticmethod]
     fn from_file(path: PathBuf) -> PyResult<Model> {
-        let model = flexrock::model::Model::load(&path, &Overrides::default()).map_err(err)?;
+        let model = flexrock_core::model::Model::load(&path, &Overrides::default()).map_err(err)?;
         Ok(Model {
             path: Some(path),
             text: None,
@@ -203,8 +203,8 @@ impl Model {
     /// directory).
     #[staticmethod]
     fn from_toml(text: String) -> PyResult<Model> {
-        let model =
-            flexrock::model::Model::from_toml_str(&text, &Overrides::default()).map_err(err)?;
+        let model = flexrock_core::model::Model::from_toml_str(&text, &Overrides::default())
+            .map_err(err)?;
         Ok(Model {
             path: None,
             text: Some(text),
@@ -363,7 +363,7 @@ impl Model {
     /// FlexrockError naming the key and leaves the model as it was. A record path is relative to
     /// the current directory.
     fn set(&mut self, key: &str, value: &Bound<'_, PyAny>) -> PyResult<()> {
-        check_key(key).map_err(|rule| err(flexrock::Error::invalid("key", key, &rule)))?;
+        check_key(key).map_err(|rule| err(flexrock_core::Error::invalid("key", key, &rule)))?;
         // A record path typed here is relative to the current directory; the model file reads
         // it relative to its own directory (a model given as text reads from the current one).
         let here = std::env::current_dir()?;

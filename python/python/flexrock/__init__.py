@@ -338,39 +338,4 @@ def sweep(
             "sweep: the model's ground motion was given as arrays; a sweep reads its record from "
             "a file: write the samples to a CSV record file and set excitation.path to it"
         )
-    table = _native.sweep(model, dict(axes), find_min=find_min, scan=scan, tol=tol)
-    if isinstance(table, dict) and "columns" in table and "kinds" in table:
-        return SweepResult(table)
-    return SweepResult(_table_of_flat_columns(table, axes))
-
-
-def _table_of_flat_columns(flat, axes) -> dict:
-    """The sweep table of the compiled sweep's former flat dict of columns (numbers as float64
-    arrays, text as lists of str), until the compiled sweep returns the typed table itself."""
-    import numpy as np
-
-    ints = {"point", "n_uplift", "n_landing", "steps", "rhs_evaluations"}
-    columns, kinds, values = [], [], []
-    for name, column in flat.items():
-        if isinstance(column, list):
-            if all(v in ("true", "false", "") for v in column) and any(column):
-                kinds.append("bool")
-                values.append([None if v == "" else v == "true" for v in column])
-            else:
-                kinds.append("str")
-                values.append([None if v == "" else v for v in column])
-        else:
-            array = np.asarray(column)
-            if name in ints or array.dtype.kind in "iu":
-                kinds.append("int")
-                values.append([None if np.isnan(v) else int(v) for v in array.astype(float)])
-            else:
-                kinds.append("float")
-                values.append([None if np.isnan(v) else float(v) for v in array])
-        columns.append(name)
-    typed_axes = []
-    for key, vals in axes.items():
-        vals = list(vals)
-        numeric = all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in vals)
-        typed_axes.append((key, [float(v) for v in vals] if numeric else [str(v) for v in vals]))
-    return {"columns": columns, "kinds": kinds, "values": values, "axes": typed_axes}
+    return SweepResult(_native.sweep(model, dict(axes), find_min=find_min, scan=scan, tol=tol))
