@@ -28,13 +28,19 @@ pub(crate) struct Model {
 }
 
 impl Model {
-    pub(crate) fn build(&self, overrides: &Overrides) -> flexrock_core::Result<flexrock_core::model::Model> {
+    pub(crate) fn build(
+        &self,
+        overrides: &Overrides,
+    ) -> flexrock_core::Result<flexrock_core::model::Model> {
         if let Some(motion) = &self.ground_motion {
             let mut table = self.base_table()?;
             table.insert("excitation".to_owned(), motion.excitation_table());
             let file = read_schema(&table, &overrides.settings, &self.source())?;
             let records = RecordCache::default();
-            records.insert(&Path::new(".").join(&motion.record.source), motion.record.clone());
+            records.insert(
+                &Path::new(".").join(&motion.record.source),
+                motion.record.clone(),
+            );
             return flexrock_core::model::Model::from_file_cached(
                 file,
                 overrides,
@@ -53,14 +59,12 @@ impl Model {
     fn base_table(&self) -> flexrock_core::Result<toml::Table> {
         match (&self.path, &self.text) {
             (Some(path), _) => Ok(read_model_table(path)?.1),
-            (None, text) => {
-                toml::from_str(text.as_deref().unwrap_or_default()).map_err(|e| {
-                    flexrock_core::Error::ParseModel {
-                        path: self.source(),
-                        message: e.to_string().trim_end().to_string(),
-                    }
-                })
-            }
+            (None, text) => toml::from_str(text.as_deref().unwrap_or_default()).map_err(|e| {
+                flexrock_core::Error::ParseModel {
+                    path: self.source(),
+                    message: e.to_string().trim_end().to_string(),
+                }
+            }),
         }
     }
 
@@ -134,7 +138,10 @@ pub(crate) fn py_value<'py>(py: Python<'py>, value: &toml::Value) -> PyResult<Bo
             d.into_any()
         }
         toml::Value::Array(a) => {
-            let items = a.iter().map(|v| py_value(py, v)).collect::<PyResult<Vec<_>>>()?;
+            let items = a
+                .iter()
+                .map(|v| py_value(py, v))
+                .collect::<PyResult<Vec<_>>>()?;
             pyo3::types::PyList::new(py, items)?.into_any()
         }
         toml::Value::Datetime(d) => d.to_string().into_bound_py_any(py)?,
@@ -151,9 +158,8 @@ fn toml_table(d: &Bound<'_, PyDict>, at: &str) -> PyResult<toml::Table> {
         let here = format!("{at}[{key:?}]");
         let value = match value.cast::<PyDict>() {
             Ok(inner) => toml::Value::Table(toml_table(inner, &here)?),
-            Err(_) => toml_value(&value).map_err(|e| {
-                FlexrockError::new_err(format!("d{here}: {}", e.value(d.py())))
-            })?,
+            Err(_) => toml_value(&value)
+                .map_err(|e| FlexrockError::new_err(format!("d{here}: {}", e.value(d.py()))))?,
         };
         table.insert(key, value);
     }

@@ -30,7 +30,10 @@ impl Motion {
     pub(crate) fn excitation_table(&self) -> toml::Value {
         let mut t = toml::Table::new();
         t.insert("kind".into(), toml::Value::String("record".into()));
-        t.insert("path".into(), toml::Value::String(self.record.source.clone()));
+        t.insert(
+            "path".into(),
+            toml::Value::String(self.record.source.clone()),
+        );
         t.insert("units".into(), toml::Value::String(self.units.into()));
         toml::Value::Table(t)
     }
@@ -84,26 +87,25 @@ impl GroundMotion {
     ) -> PyResult<GroundMotion> {
         let (units, factor) = unit(units)?;
         let values = floats(acceleration, "acceleration")?;
-        let dt = match (dt, time) {
-            (Some(dt), None) => dt,
-            (None, Some(time)) => {
-                let times = floats(time, "time")?;
-                if times.len() != values.len() {
-                    return Err(FlexrockError::new_err(format!(
-                        "time has {} values and acceleration {}: give one time per sample",
-                        times.len(),
-                        values.len()
-                    )));
+        let dt =
+            match (dt, time) {
+                (Some(dt), None) => dt,
+                (None, Some(time)) => {
+                    let times = floats(time, "time")?;
+                    if times.len() != values.len() {
+                        return Err(FlexrockError::new_err(format!(
+                            "time has {} values and acceleration {}: give one time per sample",
+                            times.len(),
+                            values.len()
+                        )));
+                    }
+                    dt_from_times("time", &times).map_err(invalid)?
                 }
-                dt_from_times("time", &times).map_err(invalid)?
-            }
-            _ => {
-                return Err(FlexrockError::new_err(
+                _ => return Err(FlexrockError::new_err(
                     "give the sampling interval either as dt (s) or as time (s, one per sample), \
                      not both and not neither",
-                ))
-            }
-        };
+                )),
+            };
         let source = source.unwrap_or_else(|| "arrays".to_owned());
         let record =
             record_from_samples(&source, "dt", dt, "acceleration", values).map_err(invalid)?;
@@ -133,7 +135,10 @@ impl GroundMotion {
     #[getter]
     fn time<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         let dt = self.motion.record.dt;
-        PyArray1::from_iter(py, (0..self.motion.record.values.len()).map(|k| k as f64 * dt))
+        PyArray1::from_iter(
+            py,
+            (0..self.motion.record.values.len()).map(|k| k as f64 * dt),
+        )
     }
 
     /// The units the samples were given in: "g", "m/s2" or "cm/s2".
@@ -183,7 +188,8 @@ pub(crate) fn read_record(
         .transpose()
         .map_err(invalid)?;
     let record = read_record_file(&path, format, dt).map_err(invalid)?;
-    let is_at2 = format.or_else(|| RecordFormat::from_extension(&path)) == Some(RecordFormat::PeerAt2);
+    let is_at2 =
+        format.or_else(|| RecordFormat::from_extension(&path)) == Some(RecordFormat::PeerAt2);
     let units = match (units, is_at2) {
         (Some(u), _) => u,
         (None, true) => "g",
