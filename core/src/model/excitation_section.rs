@@ -25,6 +25,14 @@ pub struct RecordCache {
 }
 
 impl RecordCache {
+    /// Puts `record` in the cache as if read from the file `path` without a format or a dt
+    /// given: a model whose `excitation.path` names `path` (joined to its base directory) and
+    /// no `excitation.format` or `excitation.dt` takes the record from here, and reads no file.
+    pub fn insert(&self, path: &Path, record: Record) {
+        self.lock()
+            .insert((path.to_path_buf(), None, None), Arc::new(record));
+    }
+
     fn read(
         &self,
         path: &Path,

@@ -9,8 +9,10 @@ mod excitation_section;
 mod fem_section;
 mod setting;
 mod solver_section;
+mod table;
 
 pub use setting::{check_key, value_text, Setting};
+pub use table::{default_value, effective_table, schema_keys, value_in_effect};
 
 use excitation_section::floor_from_section;
 pub use excitation_section::RecordCache;

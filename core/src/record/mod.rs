@@ -13,6 +13,7 @@
 mod at2;
 mod csv;
 mod error;
+mod samples;
 #[cfg(test)]
 mod tests;
 
@@ -21,6 +22,7 @@ use std::path::Path;
 pub use at2::parse_at2;
 pub use csv::parse_csv;
 pub use error::{Location, RecordError};
+pub use samples::{check_sample_dt, dt_from_times, record_from_samples, MAX_SAMPLES};
 
 /// An accelerogram sampled at a uniform interval.
 #[derive(Debug, Clone, PartialEq)]
