@@ -297,3 +297,18 @@ def test_a_sweep_equals_the_command_lines_table_typed(tmp_path):
     assert got["n_uplift"].dtype == np.int64
     assert list(got["n_uplift"]) == [int(r["n_uplift"]) for r in rows]
     assert list(got["max_abs_q_over_B"]) == [float(r["max_abs_q_over_B"]) for r in rows]
+
+
+@pytest.mark.parametrize(
+    "kwargs, message",
+    [
+        (dict(find_min=("excitation.amplitude", 2.0, 1.0)), r"^find_min = 2:1: LO must be below HI"),
+        (dict(find_min=("excitation.amplitude", 1.0, float("nan"))), r"^find_min = 1:NaN: "),
+        (dict(find_min=("excitation.amplitude", 1.0, 2.0), scan=1), r"^scan = 1: must lie in"),
+        (dict(find_min=("excitation.amplitude", 1.0, 2.0), tol=-1.0), r"^tol = -1: must be a positive"),
+    ],
+)
+def test_sweep_errors_name_the_argument(kwargs, message):
+    model = flexrock.Model.from_file(ROOT / "models" / "sine-pulse.toml")
+    with pytest.raises(flexrock.FlexrockError, match=message):
+        flexrock.sweep(model, {"excitation.period": [0.8]}, **kwargs)

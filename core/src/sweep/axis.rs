@@ -129,10 +129,28 @@ pub fn parse_interval(text: &str) -> Result<(String, Interval)> {
     };
     let lo = number(lo).map_err(|rule| Error::invalid(&flag, spec, &rule))?;
     let hi = number(hi).map_err(|rule| Error::invalid(&flag, spec, &rule))?;
-    if lo >= hi {
-        return Err(Error::invalid(&flag, spec, "LO must be below HI"));
+    let interval = Interval { lo, hi };
+    check_interval(key, &interval)?;
+    Ok((key.to_string(), interval))
+}
+
+/// The rules of a minimum search's interval: finite ends, at most [`MAX_MAGNITUDE`] in size,
+/// LO below HI.
+pub fn check_interval(key: &str, interval: &Interval) -> Result<()> {
+    let spec = format!(
+        "{}:{}",
+        crate::format::shortest(interval.lo),
+        crate::format::shortest(interval.hi)
+    );
+    let flag = format!("find_min {key}");
+    for x in [interval.lo, interval.hi] {
+        finite(x, &crate::format::shortest(x))
+            .map_err(|rule| Error::invalid(&flag, &spec, &rule))?;
     }
-    Ok((key.to_string(), Interval { lo, hi }))
+    if interval.lo >= interval.hi {
+        return Err(Error::invalid(&flag, &spec, "LO must be below HI"));
+    }
+    Ok(())
 }
 
 fn split<'a>(text: &'a str, flag: &str) -> Result<(&'a str, &'a str)> {
@@ -401,6 +419,21 @@ mod tests {
         let ratio: f64 = log[1].parse::<f64>().unwrap() / 0.2;
         assert!((ratio - (15f64).powf(1.0 / 39.0)).abs() < 1e-12);
         assert_eq!(values("1.50, 2,3e0"), ["1.5", "2", "3"]);
+    }
+
+    #[test]
+    fn an_interval_made_in_code_meets_the_rules_of_a_parsed_one() {
+        let check = |lo, hi| check_interval("excitation.amplitude", &Interval { lo, hi });
+        assert!(check(0.5, 15.0).is_ok());
+        for (lo, hi) in [
+            (2.0, 1.0),
+            (1.0, 1.0),
+            (f64::NAN, 1.0),
+            (0.0, f64::INFINITY),
+        ] {
+            let e = check(lo, hi).expect_err("refused").to_string();
+            assert!(e.starts_with("find_min excitation.amplitude = "), "{e}");
+        }
     }
 
     #[test]

@@ -281,6 +281,8 @@ impl Sweep {
         let find_min = match &request.find_min {
             None => None,
             Some((key, interval)) => {
+                // An interval made in code (not parsed from `KEY=LO:HI`) meets the same rules.
+                axis::check_interval(key, interval)?;
                 let scan = request.scan.unwrap_or(find_min::DEFAULT_SCAN);
                 if !(2..=axis::MAX_AXIS_VALUES).contains(&scan) {
                     return Err(Error::invalid(
