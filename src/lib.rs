@@ -30,8 +30,8 @@
 
 pub use flexrock_core;
 pub use flexrock_core::{
-    automaton, body, constants, error, excitation, findings, flexural_shape, format, model, record,
-    rigid, solution, solver,
+    automaton, body, constants, error, excitation, findings, format, model, record, rigid,
+    solution, solver,
 };
 
 pub mod compare;

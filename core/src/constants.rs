@@ -37,7 +37,7 @@ pub const MIN_PERIOD: f64 = 1e-4;
 
 /// The numbers of the flexural shape the model is built from, per unit height: the paper's
 /// cantilever mode U (exact, or as printed in the paper), or the self-weighted mode psi of the
-/// consistent variant ([`crate::flexural_shape`]).
+/// consistent variant (the crate's `flexural_shape` module).
 #[derive(Debug, Clone, Copy, Serialize, Deserialize)]
 pub struct ModeShapeIntegrals {
     /// int_0^1 U dxi.

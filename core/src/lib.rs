@@ -8,7 +8,7 @@
 //! 1. **A model**: [`Model::load`] reads a model file (the book's model-file reference lists its
 //!    keys), [`Model::from_toml_str`] its text; [`Overrides`] set keys from outside the file,
 //!    each checked by the file's rules. Errors name the key, the value and the rule.
-//! 2. **A solution**: [`simulate`] solves it with the solver the file names and returns a
+//! 2. **A solution**: [`simulate()`] solves it with the solver the file names and returns a
 //!    [`Solution`]: the sampled history, every event (uplift, landing, overturning) located to
 //!    the solver's tolerance, the rocking episodes, peaks and energy books;
 //!    [`summary::summary`] is the run's summary.json.
@@ -60,7 +60,7 @@
 //!   banded solver, eigenvalues, dynamics, pushover);
 //! - [`rigid`]: the slender rigid block of the rigid limit (Housner's block), which the elastic
 //!   body must tend to as E grows; [`findings`]: the paper's qualitative findings in numbers;
-//! - [`flexural_shape`]: the self-weighted cantilever mode psi of the consistent variant;
+//! - `flexural_shape` (private): the self-weighted cantilever mode psi of the consistent variant;
 //! - [`tables`]: the columns of a run's tables; [`summary`]: summary.json of a run;
 //! - [`sweep`]: parametric studies and minimum overturning searches;
 //! - [`error`]: the one error type; [`format`](mod@format): numbers and file kinds for messages.
@@ -106,10 +106,10 @@ pub mod error;
 pub mod excitation;
 pub mod fem;
 pub mod findings;
-pub mod flexural_shape;
+mod flexural_shape;
 pub mod format;
-pub mod invalid;
-pub mod limits;
+mod invalid;
+mod limits;
 pub mod model;
 pub mod record;
 pub mod rigid;
@@ -120,15 +120,17 @@ mod suggest;
 pub mod summary;
 pub mod sweep;
 pub mod tables;
-pub mod units;
+mod units;
 
 pub use automaton::Automaton;
 pub use body::Body;
 pub use constants::Constants;
 pub use error::{Error, Result};
 pub use excitation::FloorMotion;
+pub use invalid::InvalidParameter;
 pub use model::{Model, Overrides};
 pub use simulate::{properties, simulate, simulate_peaks, simulate_with, Properties, Provenance};
 pub use solution::Solution;
 pub use solver::SolverSettings;
 pub use sweep::Sweep;
+pub use units::STANDARD_GRAVITY;
