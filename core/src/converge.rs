@@ -401,7 +401,7 @@ mod tests {
     #[test]
     fn slopes_of_power_laws_are_their_exponents() {
         let mut cases = Vec::new();
-        for dt in [0.1, 0.05, 0.025, 0.0125] {
+        for dt in [0.1_f64, 0.05, 0.025, 0.0125] {
             let errors = [3.0 * dt * dt, 0.5 * dt, 2.0 * dt.powi(3)];
             cases.push(case("newmark-compensate", Some(dt), 10, errors));
         }

@@ -13,7 +13,7 @@ use super::run::ELEMENT;
 use super::FemBody;
 use crate::automaton::Automaton;
 use crate::error::Result;
-use crate::model::{Model, ModelFile};
+use crate::model::{FemSetup, Model, ModelFile};
 use crate::output::{self, Table};
 use crate::plot::{self, Legend, Panel, Series};
 use crate::run::VERSION;
