@@ -1,0 +1,220 @@
+//! `simulate` and its `Result` (numpy arrays of the history, the events, the episodes and the
+//! summary), and `props`.
+
+use numpy::PyArray1;
+use pyo3::exceptions::PyImportError;
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList};
+
+use flexrock::model::{Overrides, Setting};
+use flexrock::output::HISTORY_COLUMNS;
+
+use crate::model::Model;
+use crate::{err, FlexrockError};
+
+/// The solution of `simulate`: history columns as numpy arrays, events, summary.
+#[pyclass(module = "flexrock", name = "Result")]
+pub(crate) struct SimResult {
+    #[pyo3(get)]
+    t: Py<PyAny>,
+    #[pyo3(get)]
+    q: Py<PyAny>,
+    #[pyo3(get)]
+    qdot: Py<PyAny>,
+    #[pyo3(get)]
+    s: Py<PyAny>,
+    #[pyo3(get)]
+    r: Py<PyAny>,
+    /// Mode names (as history.csv): a numpy array of str.
+    #[pyo3(get)]
+    mode: Py<PyAny>,
+    #[pyo3(get)]
+    floor_acc: Py<PyAny>,
+    #[pyo3(get, name = "F")]
+    force: Py<PyAny>,
+    #[pyo3(get)]
+    energy_residual: Py<PyAny>,
+    #[pyo3(get)]
+    work_input: Py<PyAny>,
+    #[pyo3(get)]
+    work_damping: Py<PyAny>,
+    #[pyo3(get)]
+    events: Py<PyAny>,
+    /// The rocking episodes: dicts with episodes.csv's columns (None where the CSV is empty).
+    #[pyo3(get)]
+    episodes: Py<PyAny>,
+    #[pyo3(get)]
+    summary: Py<PyAny>,
+}
+
+#[pymethods]
+impl SimResult {
+    /// The history as a pandas DataFrame, with history.csv's columns.
+    fn to_pandas<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let pandas = py.import("pandas").map_err(|_| {
+            PyImportError::new_err(
+                "Result.to_pandas() needs pandas: pip install pandas (or pip install './python[pandas]')",
+            )
+        })?;
+        let columns = PyDict::new(py);
+        for name in HISTORY_COLUMNS {
+            columns.set_item(name, self.column(py, name))?;
+        }
+        pandas.call_method1("DataFrame", (columns,))
+    }
+
+    fn __repr__(&self, py: Python<'_>) -> PyResult<String> {
+        let n = self.t.bind(py).len()?;
+        let events = self.events.bind(py).len()?;
+        Ok(format!("Result({n} samples, {events} events)"))
+    }
+}
+
+impl SimResult {
+    fn column(&self, py: Python<'_>, name: &str) -> Py<PyAny> {
+        let c = match name {
+            "t" => &self.t,
+            "q" => &self.q,
+            "qdot" => &self.qdot,
+            "s" => &self.s,
+            "r" => &self.r,
+            "mode" => &self.mode,
+            "floor_acc" => &self.floor_acc,
+            "F" => &self.force,
+            "energy_residual" => &self.energy_residual,
+            "work_input" => &self.work_input,
+            _ => &self.work_damping,
+        };
+        c.clone_ref(py)
+    }
+}
+
+fn json<'py, T: serde::Serialize>(py: Python<'py>, value: &T) -> PyResult<Bound<'py, PyAny>> {
+    let text = serde_json::to_string(value).map_err(|e| FlexrockError::new_err(e.to_string()))?;
+    py.import("json")?.call_method1("loads", (text,))
+}
+
+/// The body as understood and its derived constants: the JSON of `flexrock props --json`.
+#[pyfunction]
+pub(crate) fn props<'py>(py: Python<'py>, model: &Model) -> PyResult<Bound<'py, PyAny>> {
+    json(py, &flexrock::run::properties(&model.model))
+}
+
+/// An error about a value given as a Python argument, named by the argument: `rtol (sets
+/// solver.rtol) = -1: ...`; other errors as they are.
+fn err_naming(e: flexrock::Error, arguments: &[(&str, &str)]) -> PyErr {
+    match e {
+        flexrock::Error::InvalidParameter { key, value, rule } => {
+            let key = match arguments.iter().find(|(k, _)| *k == key) {
+                Some((_, argument)) => format!("{argument} (sets {key})"),
+                None => key,
+            };
+            err(flexrock::Error::InvalidParameter { key, value, rule })
+        }
+        other => err(other),
+    }
+}
+
+/// Solves a model. `method`, `rtol`, `atol`, `duration` (s) and `output_dt` (s) replace the
+/// model file's `solver.method`, `solver.rtol`, `solver.atol`, `simulation.duration` and
+/// `solver.output_dt` for this run; an error about one of them names the argument.
+#[pyfunction]
+#[pyo3(signature = (model, method=None, rtol=None, atol=None, duration=None, output_dt=None))]
+pub(crate) fn simulate(
+    py: Python<'_>,
+    model: &Model,
+    method: Option<String>,
+    rtol: Option<f64>,
+    atol: Option<f64>,
+    duration: Option<f64>,
+    output_dt: Option<f64>,
+) -> PyResult<SimResult> {
+    let given = method.is_some()
+        || rtol.is_some()
+        || atol.is_some()
+        || duration.is_some()
+        || output_dt.is_some();
+    let rebuilt = if given {
+        let mut overrides = Overrides {
+            method,
+            rtol,
+            atol,
+            duration,
+            ..model.overrides()
+        };
+        if let Some(dt) = output_dt {
+            overrides.settings.retain(|s| s.key != "solver.output_dt");
+            overrides
+                .settings
+                .push(Setting::number("solver.output_dt", dt));
+        }
+        let arguments = [
+            ("solver.method", "method"),
+            ("solver.rtol", "rtol"),
+            ("solver.atol", "atol"),
+            ("simulation.duration", "duration"),
+            ("solver.output_dt", "output_dt"),
+        ];
+        Some(
+            model
+                .build(&overrides)
+                .map_err(|e| err_naming(e, &arguments))?,
+        )
+    } else {
+        None
+    };
+    let m = rebuilt.as_ref().unwrap_or(&model.model);
+    let solution = py.detach(|| flexrock::run::simulate(m)).map_err(err)?;
+    let samples = &solution.samples;
+    let column = |f: fn(&flexrock::solution::Sample) -> f64| -> Py<PyAny> {
+        PyArray1::from_vec(py, samples.iter().map(f).collect())
+            .into_any()
+            .unbind()
+    };
+    let modes: Vec<&str> = samples.iter().map(|s| s.mode.name()).collect();
+    let numpy = py.import("numpy")?;
+    let mode = numpy.call_method1("array", (modes,))?.unbind();
+    let events = PyList::empty(py);
+    for e in &solution.events {
+        let d = PyDict::new(py);
+        d.set_item("index", e.index)?;
+        d.set_item("t", e.t)?;
+        d.set_item("kind", e.kind.name())?;
+        d.set_item("from", e.from.name())?;
+        d.set_item("to", e.to.name())?;
+        d.set_item("q", e.q)?;
+        d.set_item("qdot_before", e.qdot_before)?;
+        d.set_item("qdot_after", e.qdot_after)?;
+        events.append(d)?;
+    }
+    let episodes = PyList::empty(py);
+    for e in &solution.episodes {
+        use flexrock::output::{episode_fields, EpisodeField, EPISODE_COLUMNS};
+        let d = PyDict::new(py);
+        for (column, field) in EPISODE_COLUMNS.iter().zip(episode_fields(e, m.body.height)) {
+            match field {
+                EpisodeField::Count(n) => d.set_item(column, n)?,
+                EpisodeField::Word(w) => d.set_item(column, w)?,
+                EpisodeField::Number(x) => d.set_item(column, x)?,
+            }
+        }
+        episodes.append(d)?;
+    }
+    let summary = json(py, &flexrock::run::summary(m, &solution))?.unbind();
+    Ok(SimResult {
+        t: column(|s| s.t),
+        q: column(|s| s.q),
+        qdot: column(|s| s.qdot),
+        s: column(|s| s.s),
+        r: column(|s| s.r),
+        mode,
+        floor_acc: column(|s| s.floor_acc),
+        force: column(|s| s.restoring_force),
+        energy_residual: column(|s| s.energy_residual),
+        work_input: column(|s| s.work_input),
+        work_damping: column(|s| s.work_damping),
+        events: events.into_any().unbind(),
+        episodes: episodes.into_any().unbind(),
+        summary,
+    })
+}
