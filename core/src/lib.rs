@@ -88,9 +88,9 @@ pub mod units;
 
 pub use automaton::Automaton;
 pub use body::Body;
-pub use compare::{compare, match_events, Comparison, EventPair};
+pub use compare::{match_events, Comparison, EventPair};
 pub use constants::Constants;
-pub use converge::{converge, Case, Convergence, Slope, SlopeKind};
+pub use converge::{Case, Convergence, Slope, SlopeKind};
 pub use error::{Error, Result};
 pub use excitation::FloorMotion;
 pub use fem_check::{FemAnalysis, FemComparison};

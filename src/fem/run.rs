@@ -18,11 +18,11 @@ use crate::run::VERSION;
 use crate::solution::Solution;
 use flexrock_core::{fem_check, table};
 
+use flexrock_core::fem_check::{analyse as analyse_run, compare as compare_solutions};
 pub use flexrock_core::fem_check::{
-    analyse as analyse_run, compare as compare_solutions, event_rows, history_rows, modes, peaks,
-    uplift_episodes, EventRow, FemAnalysis, FemComparison, FemComparisonRow, FemPeaks, FemWarning,
-    HistoryRow, Modes, UpliftEpisode, COMPARISON_COLUMNS, ELEMENT, MODE_COUNT,
-    UPLIFT_ROCKING_FRACTION,
+    event_rows, history_rows, modes, peaks, uplift_episodes, EventRow, FemAnalysis, FemComparison,
+    FemComparisonRow, FemPeaks, FemWarning, HistoryRow, Modes, UpliftEpisode, COMPARISON_COLUMNS,
+    ELEMENT, MODE_COUNT, UPLIFT_ROCKING_FRACTION,
 };
 
 /// Column names of fem_history.csv (a contract): the names of
