@@ -107,10 +107,12 @@ pub fn configurations(
             .reference_settings(options.reference_rtol)
             .map_err(flag("--reference-rtol"))?,
     );
-    let configurations =
-        flexrock_core::converge::configurations(model, &options.dts, &options.rtols)
-            .map_err(|e| e.renamed("solver.dt", "--dt"))
-            .map_err(flag("--rtol"))?;
+    let mut configurations = flexrock_core::converge::newmark_configurations(model, &options.dts)
+        .map_err(|e| e.renamed("solver.dt", "--dt"))?;
+    configurations.extend(
+        flexrock_core::converge::adaptive_configurations(model, &options.rtols)
+            .map_err(flag("--rtol"))?,
+    );
     // Every value is valid on its own; errors are measured against the reference: one no tighter than a case measures the
     // reference's own error, and the orders printed would mean nothing.
     let tightest = options.rtols.iter().copied().fold(f64::INFINITY, f64::min);

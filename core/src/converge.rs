@@ -273,10 +273,18 @@ pub struct Configuration {
 }
 
 /// Every case of the study, checked by the rules `Model::newmark_settings` and
-/// `Model::reference_settings` apply: both Newmark variants at each of `dts`, then each adaptive
-/// method at each of `rtols`. An error names the model key the value stands for (`solver.dt`,
-/// `rtol` or `solver.rtol`).
+/// `Model::reference_settings` apply: both Newmark variants at each of `dts`
+/// ([`newmark_configurations`]), then each adaptive method at each of `rtols`
+/// ([`adaptive_configurations`]).
 pub fn configurations(model: &Model, dts: &[f64], rtols: &[f64]) -> Result<Vec<Configuration>> {
+    let mut configurations = newmark_configurations(model, dts)?;
+    configurations.extend(adaptive_configurations(model, rtols)?);
+    Ok(configurations)
+}
+
+/// The Newmark cases: the compensate variant at each of `dts`, then the substep variant. An
+/// error names the model key the value stands for (`solver.dt`).
+pub fn newmark_configurations(model: &Model, dts: &[f64]) -> Result<Vec<Configuration>> {
     let mut configurations = Vec::new();
     for variant in [NewmarkVariant::Compensate, NewmarkVariant::Substep] {
         for &dt in dts {
@@ -289,6 +297,13 @@ pub fn configurations(model: &Model, dts: &[f64], rtols: &[f64]) -> Result<Vec<C
             });
         }
     }
+    Ok(configurations)
+}
+
+/// The adaptive cases: each adaptive method at each of `rtols`. An error names the key the
+/// value stands for (`rtol`).
+pub fn adaptive_configurations(model: &Model, rtols: &[f64]) -> Result<Vec<Configuration>> {
+    let mut configurations = Vec::new();
     for method in [
         AdaptiveMethod::Bdf,
         AdaptiveMethod::Esdirk34,
