@@ -63,7 +63,7 @@ fn map(c: &mut Criterion) {
         |b| {
             b.iter(|| {
                 let _ = std::fs::remove_dir_all(&out);
-                let sweep = Sweep::new(&model_file(), request()).unwrap();
+                let sweep = Sweep::new(&model_file(), request(), Path::new(".")).unwrap();
                 let target = store::Target {
                     out: out.clone(),
                     ..store::Target::default()

@@ -6,5 +6,5 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 mkdir -p book/src/figures
-FLEXROCK_WRITE_FIGURES=1 cargo test --release --test quoted_outputs \
-    the_documents_quote_what_the_program_prints
+FLEXROCK_WRITE_FIGURES=1 cargo test --release --test integration -- --exact \
+    quoted_outputs::the_documents_quote_what_the_program_prints

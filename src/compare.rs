@@ -17,7 +17,7 @@ use crate::plot::{self, Legend, Panel, Series};
 use crate::run::{simulate_with, VERSION};
 use crate::solution::{Extremum, Sample, Solution, SolverStats};
 use crate::solver::SolverSettings;
-use flexrock_core::table;
+use flexrock_core::columns;
 
 pub use flexrock_core::compare::{
     compare, grid_rows, match_events, max_event_shift, on_grid, Comparison, EventAgreement,
@@ -26,10 +26,10 @@ pub use flexrock_core::compare::{
 };
 
 /// Column names of compare.csv (a contract): the names of [`EVENT_COLUMNS`].
-pub const COMPARE_COLUMNS: [&str; 11] = table::names(&EVENT_COLUMNS);
+pub const COMPARE_COLUMNS: [&str; 11] = columns::names(&EVENT_COLUMNS);
 
 /// Column names of compare_history.csv (a contract): the names of [`GRID_COLUMNS`].
-pub const COMPARE_HISTORY_COLUMNS: [&str; 10] = table::names(&GRID_COLUMNS);
+pub const COMPARE_HISTORY_COLUMNS: [&str; 10] = columns::names(&GRID_COLUMNS);
 
 /// Options of `flexrock compare`.
 #[derive(Debug, Clone)]
@@ -214,7 +214,7 @@ pub fn run_compare(
 fn events_table(comparison: &Comparison) -> Vec<u8> {
     let mut table = Table::new(&COMPARE_COLUMNS);
     for row in comparison.event_rows() {
-        table.row(table::fields(&EVENT_COLUMNS, &row));
+        table.row(columns::fields(&EVENT_COLUMNS, &row));
     }
     table.into_bytes()
 }
@@ -222,7 +222,7 @@ fn events_table(comparison: &Comparison) -> Vec<u8> {
 fn history_table(reference: &Solution, other: &Solution, output_dt: f64) -> Vec<u8> {
     let mut table = Table::new(&COMPARE_HISTORY_COLUMNS);
     for row in grid_rows(reference, other, output_dt) {
-        table.row(table::fields(&GRID_COLUMNS, &row));
+        table.row(columns::fields(&GRID_COLUMNS, &row));
     }
     table.into_bytes()
 }

@@ -15,7 +15,7 @@ use crate::plot::{self, Legend, Panel, Series};
 use crate::run::VERSION;
 use crate::solution::SolverStats;
 use crate::solver::SolverSettings;
-use flexrock_core::table;
+use flexrock_core::columns;
 
 pub use flexrock_core::converge::{
     converge, methods, slopes, Case, Configuration, Convergence, Slope, SlopeKind, CASE_COLUMNS,
@@ -23,7 +23,7 @@ pub use flexrock_core::converge::{
 };
 
 /// Column names of convergence.csv (a contract): the names of [`CASE_COLUMNS`].
-pub const CONVERGENCE_COLUMNS: [&str; 13] = table::names(&CASE_COLUMNS);
+pub const CONVERGENCE_COLUMNS: [&str; 13] = columns::names(&CASE_COLUMNS);
 
 /// Options of `flexrock converge`.
 #[derive(Debug, Clone)]
@@ -184,7 +184,7 @@ pub fn run_converge(
 fn cases_table(cases: &[Case]) -> Vec<u8> {
     let mut table = Table::new(&CONVERGENCE_COLUMNS);
     for c in cases {
-        table.row(table::fields(&CASE_COLUMNS, c));
+        table.row(columns::fields(&CASE_COLUMNS, c));
     }
     table.into_bytes()
 }

@@ -61,6 +61,48 @@ pub fn named_by_flags(error: Error, overrides: &Overrides, fem: &FemOverrides) -
             path,
             source: Box::new(named_by_flags(*source, overrides, fem)),
         },
+        Error::Record { key, source } => Error::Record {
+            key: flag_for(&key, overrides, fem).unwrap_or(key),
+            source,
+        },
+        other => other,
+    }
+}
+
+/// The flag of a sweep request's value named by the sweep file's key (`vary KEY`,
+/// `find_min KEY`, `scan`, `tol`, `chunk_size`), as the core names it.
+fn sweep_flag_for(key: &str) -> Option<String> {
+    let (name, rest) = match key.split_once(' ') {
+        Some((name, rest)) => (name, Some(rest)),
+        None => (key, None),
+    };
+    let flag = match name {
+        "vary" => "--vary",
+        "find_min" => "--find-min",
+        "scan" if rest.is_none() => "--scan",
+        "tol" if rest.is_none() => "--tol",
+        "chunk_size" if rest.is_none() => "--chunk-size",
+        _ => return None,
+    };
+    Some(match rest {
+        Some(rest) => format!("{flag} {rest}"),
+        None => flag.to_string(),
+    })
+}
+
+/// `error` with a sweep request's values named by their flags (`--vary KEY`, `--scan`, ...)
+/// rather than the sweep file's keys; other errors are returned unchanged.
+pub fn sweep_named_by_flags(error: Error) -> Error {
+    match error {
+        Error::InvalidParameter { key, value, rule } => Error::InvalidParameter {
+            key: sweep_flag_for(&key).unwrap_or(key),
+            value,
+            rule,
+        },
+        Error::InModel { path, source } => Error::InModel {
+            path,
+            source: Box::new(sweep_named_by_flags(*source)),
+        },
         other => other,
     }
 }
@@ -94,6 +136,19 @@ mod tests {
         assert_eq!(named("excitation.period"), "--set excitation.period");
         assert_eq!(named("fem.nx, fem.ny"), "--nx, fem.ny");
         assert_eq!(named("body.width"), "body.width");
+        let sweep_named = |key: &str| match sweep_named_by_flags(Error::invalid(key, 1.0, "r")) {
+            Error::InvalidParameter { key, .. } => key,
+            other => panic!("{other:?}"),
+        };
+        assert_eq!(
+            sweep_named("vary excitation.amplitude"),
+            "--vary excitation.amplitude"
+        );
+        assert_eq!(sweep_named("vary"), "--vary");
+        assert_eq!(sweep_named("find_min body.width"), "--find-min body.width");
+        assert_eq!(sweep_named("chunk_size"), "--chunk-size");
+        assert_eq!(sweep_named("scan"), "--scan");
+        assert_eq!(sweep_named("solver.rtol"), "solver.rtol");
         let dt = Overrides {
             dt: Some(0.01),
             ..Overrides::default()

@@ -366,22 +366,32 @@ fn sweep(args: SweepArgs) -> flexrock::Result<Output> {
             "name a model file",
         ));
     };
-    let mut request = Request {
-        settings: args.set.settings_for(&path),
-        scan: args.scan,
-        tol: args.tol,
-        chunk_size: args.chunk_size,
-        ..Request::default()
-    };
-    if let Some(file) = &args.sweep_file {
-        request.add_file(file, &path)?;
-    }
-    for text in &args.vary {
-        request.vary(text, std::path::Path::new("."))?;
-    }
-    if let Some(text) = &args.find_min {
-        request.find_min = Some(axis::parse_interval(text)?);
-    }
+    let here = std::env::current_dir().unwrap_or_default();
+    let sweep = (|| {
+        let mut request = Request {
+            settings: args.set.settings_for(&path),
+            scan: args.scan,
+            tol: args.tol,
+            chunk_size: args.chunk_size,
+            ..Request::default()
+        };
+        if let Some(file) = &args.sweep_file {
+            request.add_file(file, &path, &here)?;
+        }
+        for text in &args.vary {
+            request.vary(text, std::path::Path::new("."))?;
+        }
+        if let Some(text) = &args.find_min {
+            request.find_min = Some(axis::parse_interval(text)?);
+        }
+        let given = Overrides {
+            settings: request.settings.clone(),
+            ..Overrides::default()
+        };
+        Sweep::new(&path, request, &here)
+            .map_err(|e| flexrock::flags::named_by_flags(e, &given, &FemOverrides::default()))
+    })()
+    .map_err(flexrock::flags::sweep_named_by_flags)?;
     let shard = match &args.shard {
         Some(text) => Some(store::Shard::parse(text)?),
         None => store::Shard::from_slurm(|name| std::env::var(name).ok())?,
@@ -399,12 +409,6 @@ fn sweep(args: SweepArgs) -> flexrock::Result<Output> {
             .num_threads(threads)
             .build_global();
     }
-    let given = Overrides {
-        settings: request.settings.clone(),
-        ..Overrides::default()
-    };
-    let sweep = Sweep::new(&path, request)
-        .map_err(|e| flexrock::flags::named_by_flags(e, &given, &FemOverrides::default()))?;
     let out = args.out.unwrap_or_else(|| default_out_dir(&path, "-sweep"));
     let bar = if args.quiet {
         indicatif::ProgressBar::hidden()

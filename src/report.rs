@@ -40,7 +40,7 @@ pub struct ReportInputs {
 }
 
 /// Readers of values written as null (NaN) and of optional values whose key must be there.
-pub(crate) use flexrock_core::table::{nan_if_null, required};
+pub(crate) use flexrock_core::columns::{nan_if_null, required};
 
 /// A peak of q, as compare.json writes it.
 #[derive(Debug, Clone, Deserialize)]

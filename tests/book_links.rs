@@ -10,7 +10,7 @@
 //! book is refused: mdBook turns it into `.html`, which the built book does not have. A page
 //! that is gone may be kept as a redirect of `book/book.toml` (`[output.html.redirect]`).
 
-mod common;
+use crate::common;
 
 use std::collections::{BTreeMap, BTreeSet, HashMap};
 use std::path::{Component, Path, PathBuf};
@@ -528,8 +528,7 @@ fn every_link_of_the_book_and_the_readme_resolves() {
 
 /// A small repository with a book, written into a scratch directory.
 fn repository(name: &str, files: &[(&str, &str)]) -> PathBuf {
-    let root = Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
-    let _ = std::fs::remove_dir_all(&root);
+    let root = common::scratch_dir(name);
     for (path, text) in files {
         let path = root.join(path);
         std::fs::create_dir_all(path.parent().unwrap()).unwrap();

@@ -9,7 +9,7 @@
 //! the built book does not show. A table's names are the backticked names of its first column,
 //! in order.
 
-mod common;
+use crate::common;
 
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -132,14 +132,13 @@ fn the_output_tables_list_exactly_the_columns_the_writers_write() {
     let run = listed(&text, "columns: sweep.csv run");
     let find_min = listed(&text, "columns: sweep.csv find-min");
     let scales = listed(&text, "columns: sweep.csv scales");
-    assert_eq!(run, strings(&RunOutcome::COLUMNS));
-    let search: Vec<&str> = MinimumOutcome::COLUMNS
-        .iter()
-        .chain(&RigidMinima::COLUMNS)
-        .copied()
+    assert_eq!(run, strings(&RunOutcome::default().named().map(|(n, _)| n)));
+    let search: Vec<&str> = (MinimumOutcome::default().named().iter())
+        .chain(&RigidMinima::default().named())
+        .map(|(n, _)| *n)
         .collect();
     assert_eq!(find_min, strings(&search));
-    assert_eq!(scales, strings(&Scales::COLUMNS));
+    assert_eq!(scales, strings(&Scales::default().named().map(|(n, _)| n)));
     for (find, group) in [(false, &run), (true, &find_min)] {
         let mut documented = strings(&["status", "reason"]);
         documented.extend(group.iter().cloned());
@@ -163,12 +162,7 @@ fn a_table_that_leaves_out_or_reorders_a_column_is_caught() {
 #[test]
 fn summary_json_has_exactly_the_documented_keys() {
     let out = common::scratch_dir("book-reference-summary");
-    let o = common::flexrock(&[
-        "run",
-        common::reference_model().to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+    let o = common::run_reference(&out, &[]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let text = std::fs::read_to_string(out.join("summary.json")).unwrap();
     let summary: serde_json::Value = serde_json::from_str(&text).unwrap();
@@ -555,11 +549,7 @@ fn every_output_the_reference_pages_quote_is_what_the_program_prints() {
                 !args.contains(&"--out"),
                 "{name}: `{first}` would write into the repository"
             );
-            let o = std::process::Command::new(env!("CARGO_BIN_EXE_flexrock"))
-                .args(&args)
-                .current_dir(common::repo(""))
-                .output()
-                .unwrap();
+            let o = common::flexrock_in(&common::repo(""), &args);
             assert!(o.status.success(), "{name}: `{first}` failed");
             let mut printed = String::from_utf8_lossy(&o.stderr).into_owned();
             printed.push_str(&String::from_utf8_lossy(&o.stdout));
@@ -628,4 +618,46 @@ fn the_tests_page_lists_exactly_the_test_files() {
     listed.sort();
     files.sort();
     assert_eq!(listed, files, "the table of book/src/developer/tests.md");
+}
+
+/// The modules a test binary's main file declares (`mod name;` lines), sorted.
+fn declared_modules(main: &str) -> Vec<String> {
+    let mut modules: Vec<String> = main
+        .lines()
+        .filter_map(|line| line.trim().strip_prefix("mod "))
+        .filter_map(|rest| rest.strip_suffix(';'))
+        .map(str::to_string)
+        .collect();
+    modules.sort();
+    modules
+}
+
+#[test]
+fn every_test_file_is_a_module_of_its_crates_test_binary() {
+    // Cargo.toml sets `autotests = false`: a file that its crate's binary does not declare is
+    // never built nor run.
+    for (dir, main) in [
+        ("tests", "integration.rs"),
+        ("core/tests", "core_integration.rs"),
+    ] {
+        let text = std::fs::read_to_string(common::repo(dir).join(main)).unwrap();
+        let mut files: Vec<String> = rust_files(&common::repo(dir))
+            .into_iter()
+            .filter(|f| !f.contains('/') && f != main)
+            .map(|f| f.trim_end_matches(".rs").to_string())
+            .collect();
+        files.push("common".to_string());
+        files.sort();
+        assert_eq!(
+            declared_modules(&text),
+            files,
+            "the modules of {dir}/{main}"
+        );
+    }
+}
+
+#[test]
+fn declared_modules_are_the_mod_lines() {
+    let main = "//! mod not_this;\nmod common;\n\n// A group.\nmod b;\nmod a;\nfn f() {}\n";
+    assert_eq!(declared_modules(main), ["a", "b", "common"]);
 }

@@ -1,18 +1,13 @@
 //! The command line: the end-to-end run and every bad-input rule (message, exit code, no output).
 
-mod common;
+use crate::common;
 
-use common::{flexrock, reference_model};
+use crate::common::{flexrock, reference_model};
 
 #[test]
 fn run_writes_its_four_files_with_their_schemas() {
     let out = common::scratch_dir("cli-run").join("result");
-    let o = flexrock(&[
-        "run",
-        reference_model().to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+    let o = common::run_reference(&out, &[]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let stdout = String::from_utf8_lossy(&o.stdout);
     assert!(stdout.contains("uplifts"), "{stdout}");
@@ -313,13 +308,7 @@ fn unreadable_file() {
 fn command_line_overrides_are_checked_too() {
     let dir = common::scratch_dir("override");
     let out = dir.join("out");
-    let o = flexrock(&[
-        "run",
-        reference_model().to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-        "--rtol=-1",
-    ]);
+    let o = common::run_reference(&out, &["--rtol=-1"]);
     assert_eq!(o.status.code(), Some(2));
     assert_mentions(&String::from_utf8_lossy(&o.stderr), &["solver.rtol", "-1"]);
     assert!(!out.exists());
@@ -335,14 +324,7 @@ fn loose_tolerances_are_refused() {
         ("--atol", "0.01", &["solver.atol", "width"][..]),
     ] {
         let out = common::scratch_dir("loose").join("out");
-        let o = flexrock(&[
-            "run",
-            reference_model().to_str().unwrap(),
-            "--out",
-            out.to_str().unwrap(),
-            flag,
-            value,
-        ]);
+        let o = common::run_reference(&out, &[flag, value]);
         assert_eq!(o.status.code(), Some(2), "{flag} {value}");
         assert_mentions(&String::from_utf8_lossy(&o.stderr), words);
         assert!(!out.exists());
@@ -407,18 +389,10 @@ fn floor_motions_beyond_physics_are_refused() {
 fn warnings_reach_stderr_and_the_summary() {
     // The paper's body stopped at 1.2 s, while it rocks: not "no overturning".
     let out = common::scratch_dir("warnings").join("out");
-    let o = flexrock(&[
-        "run",
-        reference_model().to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-        "--duration",
-        "1.2",
-        "--rtol",
-        "1e-2",
-        "--atol",
-        "1e-3",
-    ]);
+    let o = common::run_reference(
+        &out,
+        &["--duration", "1.2", "--rtol", "1e-2", "--atol", "1e-3"],
+    );
     assert!(o.status.success());
     let stdout = String::from_utf8_lossy(&o.stdout);
     let stderr = String::from_utf8_lossy(&o.stderr);
@@ -482,16 +456,7 @@ fn warnings_reach_stderr_and_the_summary() {
 fn a_large_energy_residual_is_a_warning() {
     // At the loosest tolerance allowed the paper's example loses a fifth of its energy scale.
     let out = common::scratch_dir("residual").join("out");
-    let o = flexrock(&[
-        "run",
-        reference_model().to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-        "--rtol",
-        "1e-2",
-        "--atol",
-        "1e-3",
-    ]);
+    let o = common::run_reference(&out, &["--rtol", "1e-2", "--atol", "1e-3"]);
     assert!(o.status.success());
     let stderr = String::from_utf8_lossy(&o.stderr);
     assert_mentions(
@@ -502,12 +467,7 @@ fn a_large_energy_residual_is_a_warning() {
         ],
     );
     // The same run at the default tolerance does not warn about energy.
-    let o = flexrock(&[
-        "run",
-        reference_model().to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+    let o = common::run_reference(&out, &[]);
     assert!(!String::from_utf8_lossy(&o.stderr).contains("energy residual"));
 }
 
@@ -864,13 +824,7 @@ fn a_record_path_is_relative_to_where_it_was_given() {
     std::fs::create_dir_all(here.join("study/rec")).unwrap();
     std::fs::copy(&record, here.join("elCentro.AT2")).unwrap();
     std::fs::copy(&record, here.join("study/rec/short.AT2")).unwrap();
-    let run_in = |cwd: &std::path::Path, args: &[&str]| {
-        std::process::Command::new(env!("CARGO_BIN_EXE_flexrock"))
-            .args(args)
-            .current_dir(cwd)
-            .output()
-            .unwrap()
-    };
+    let run_in = common::flexrock_in;
     let out = dir.join("out");
     let (model, out_s) = (model.to_str().unwrap(), out.to_str().unwrap());
     let o = run_in(
@@ -912,6 +866,25 @@ fn a_record_path_is_relative_to_where_it_was_given() {
     let stderr = String::from_utf8_lossy(&o.stderr);
     let looked_at = dir.join("validation/records/elCentro.AT2");
     assert!(stderr.contains(&*looked_at.to_string_lossy()), "{stderr}");
+
+    // Refused for another reason (a directory, not a record file): the message still names the
+    // full path, by the flag that set it, and not as the model file's fault.
+    std::fs::create_dir_all(here.join("rec.AT2")).unwrap();
+    let o = run_in(
+        &here,
+        &[
+            "run",
+            model,
+            "--set",
+            "excitation.path=./study/../rec.AT2",
+            "--out",
+            out_s,
+        ],
+    );
+    assert_eq!(o.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    let full = format!("--set excitation.path: {}:", here.join("rec.AT2").display());
+    assert!(stderr.starts_with(&format!("error: {full}")), "{stderr}");
 
     // A sweep file's `set` is relative to the sweep file, whatever the current directory.
     std::fs::write(

@@ -1,9 +1,9 @@
 //! `flexrock fem`: files and columns written, the stability warning, --compare, --modes, and the
 //! [fem] input rules (message names the key, exit code 2, nothing written).
 
-mod common;
+use crate::common;
 
-use common::{file_names, flexrock, reference_model};
+use crate::common::{file_names, flexrock, reference_model};
 
 #[test]
 fn fem_writes_history_events_summary_and_figures() {

@@ -4,11 +4,11 @@
 //! with units), plus the figure of a sweep over records and `flexrock plot`'s formats, sizes and
 //! time window.
 
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 
-use common::{flexrock, reference_model, repo, scratch_dir};
+use crate::common::{flexrock, flexrock_in, reference_model, repo, scratch_dir};
 
 fn stderr_of(o: &std::process::Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
@@ -481,10 +481,11 @@ fn plot_motion_marks_the_events_on_every_panel() {
 
 #[test]
 fn a_sweep_over_records_and_scales_draws_an_incremental_dynamic_analysis() {
-    let out = scratch_dir("figures-ida").join("ida");
-    let o = std::process::Command::new(env!("CARGO_BIN_EXE_flexrock"))
-        .current_dir(repo(""))
-        .args([
+    let dir = scratch_dir("figures-ida");
+    let out = dir.join("ida");
+    let o = flexrock_in(
+        &repo(""),
+        &[
             "sweep",
             "models/elcentro1940.toml",
             "--out",
@@ -496,9 +497,8 @@ fn a_sweep_over_records_and_scales_draws_an_incremental_dynamic_analysis() {
             "--set",
             "excitation.tail=1",
             "--quiet",
-        ])
-        .output()
-        .unwrap();
+        ],
+    );
     assert!(o.status.success(), "{}", stderr_of(&o));
     let svg = read(&out.join("ida.svg"));
     let summary = read(&out.join("sweep.json"));
@@ -528,7 +528,7 @@ fn a_sweep_over_records_and_scales_draws_an_incremental_dynamic_analysis() {
             .any(|e| e.tag == "text" && e.text == "overturned"));
     }
     // A sweep of the amplitude beside another setting than records draws no such figure.
-    let other = scratch_dir("figures-ida").join("not-records");
+    let other = dir.join("not-records");
     run_ok(&[
         "sweep",
         repo("models/pulse-map.toml").to_str().unwrap(),

@@ -3,15 +3,15 @@
 //! run, values that must be refused before anything is computed, sizes beyond the limits, and
 //! the program against its documents.
 
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 
-use common::{flexrock, reference_model, repo, scratch_dir};
+use crate::common::{flexrock, reference_model, repo, scratch_dir};
 
 fn bin() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_flexrock"))
+    common::flexrock_command()
 }
 
 fn stderr_of(o: &std::process::Output) -> String {
@@ -256,17 +256,7 @@ fn a_device_as_output_is_refused_and_kept() {
 fn a_run_that_cannot_replace_one_file_leaves_the_others_as_they_were() {
     let dir = scratch_dir("hostile-set");
     let out = dir.join("out");
-    let model = reference_model();
-    let run = |duration: &str| {
-        flexrock(&[
-            "run",
-            model.to_str().unwrap(),
-            "--out",
-            out.to_str().unwrap(),
-            "--duration",
-            duration,
-        ])
-    };
+    let run = |duration: &str| common::run_reference(&out, &["--duration", duration]);
     assert!(run("2.0").status.success());
     let before: Vec<(String, Vec<u8>)> = ["history.csv", "events.csv", "episodes.csv"]
         .iter()
@@ -324,14 +314,7 @@ fn temporaries_of_a_killed_run_are_removed_by_the_next_one() {
     let unrelated = out.join(".flexrock-tmp-notes");
     std::fs::write(&unrelated, "mine").unwrap();
 
-    let o = flexrock(&[
-        "run",
-        reference_model().to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-        "--duration",
-        "1.0",
-    ]);
+    let o = common::run_reference(&out, &["--duration", "1.0"]);
     assert!(o.status.success(), "{}", stderr_of(&o));
     assert!(
         !stale_dir.exists(),

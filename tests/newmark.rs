@@ -1,9 +1,9 @@
 //! The Newmark solver: second-order convergence to the closed form before uplift, convergence to
 //! the adaptive reference with events, the stability limit, and the compare/converge files.
 
-mod common;
+use crate::common;
 
-use common::{flexrock, reference_model};
+use crate::common::{flexrock, reference_model};
 
 use std::path::Path;
 
@@ -199,18 +199,17 @@ fn keys_of_the_other_method_are_errors() {
 #[test]
 fn run_with_newmark_writes_the_usual_files() {
     let out = common::scratch_dir("newmark-run").join("result");
-    let o = flexrock(&[
-        "run",
-        reference_model().to_str().unwrap(),
-        "--method",
-        "newmark",
-        "--dt",
-        "0.02",
-        "--variant",
-        "substep",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+    let o = common::run_reference(
+        &out,
+        &[
+            "--method",
+            "newmark",
+            "--dt",
+            "0.02",
+            "--variant",
+            "substep",
+        ],
+    );
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let summary: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();

@@ -1,11 +1,11 @@
 //! `flexrock plot`, `flexrock run --plot` and `flexrock events` on real runs: the figures, their
 //! panels and contents, the event table, and broken run directories refused with nothing written.
 
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 
-use common::{file_names, flexrock, scratch_dir};
+use crate::common::{file_names, flexrock, scratch_dir};
 use flexrock::run_dir::RunData;
 use flexrock::run_plot::FIGURES;
 

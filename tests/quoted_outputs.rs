@@ -15,10 +15,9 @@
 //! commands write (relative to the scratch directory); the committed copy must be that file, byte
 //! for byte. `book/figures.sh` writes them anew (this test with `FLEXROCK_WRITE_FIGURES=1`).
 
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
 /// A command the documents show: where it is, the command line after `$ flexrock `, and the
 /// lines quoted after it.
@@ -236,11 +235,9 @@ fn check_commands(doc: &Path, text: &str, dir: &Path) -> Vec<String> {
     let mut failures = Vec::new();
     for run in quoted_runs(text) {
         let where_ = format!("{}:{}: `flexrock {}`", doc.display(), run.line, run.command);
-        let o = Command::new(env!("CARGO_BIN_EXE_flexrock"))
-            .args(shell_words(&run.command))
-            .current_dir(dir)
-            .output()
-            .unwrap();
+        let args = shell_words(&run.command);
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        let o = common::flexrock_in(dir, &args);
         let mut printed = String::from_utf8_lossy(&o.stderr).into_owned();
         printed.push_str(&String::from_utf8_lossy(&o.stdout));
         if !o.status.success() {

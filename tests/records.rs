@@ -1,9 +1,9 @@
 //! Recorded ground motions and pulses through the model file and the command line.
 //! Expected numbers were read off the record files with awk, independently of the reader.
 
-mod common;
+use crate::common;
 
-use common::{flexrock, repo};
+use crate::common::{flexrock, repo};
 
 use std::path::{Path, PathBuf};
 

@@ -2,11 +2,11 @@
 //! validation/REPORT.md byte for byte, and a summary with a key removed is an error naming the
 //! file and the key.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 
-use common::{repo, scratch_dir};
+use crate::common::{repo, scratch_dir};
 use flexrock::report::{report_text, write_report, ReportInputs};
 
 fn inputs(results: &Path) -> ReportInputs {

@@ -3,7 +3,7 @@
 //! (OpenSees, 80 elements on no-tension toe springs, loads m U(y);
 //! validation/opensees/), against its own limits, and as a model file key.
 
-mod common;
+use crate::common;
 
 use flexrock::automaton::{Automaton, Mode};
 use flexrock::body::SelfWeight;

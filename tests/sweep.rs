@@ -2,12 +2,12 @@
 //! requests, thread-count independence, resuming after kills, shards and their merge, the
 //! minimum search against independent runs, and the rigid limit of the spectrum.
 
-mod common;
+use crate::common;
 
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
-use common::{flexrock, repo, scratch_dir};
+use crate::common::{flexrock, flexrock_in, repo, scratch_dir};
 use flexrock::model::{Model, Overrides, Setting};
 
 /// sweep.csv as rows of column name -> text.
@@ -328,7 +328,7 @@ fn bad_requests_are_refused_before_anything_is_written() {
 
 /// A sweep of 24 x 20 points over the pulse model, with the given extra arguments.
 fn grid_sweep(out: &Path, extra: &[&str]) -> std::process::Command {
-    let mut command = std::process::Command::new(env!("CARGO_BIN_EXE_flexrock"));
+    let mut command = common::flexrock_command();
     command.args([
         "sweep",
         pulse_model().to_str().unwrap(),
@@ -434,25 +434,22 @@ fn a_directory_of_another_sweep_is_refused_and_left_alone() {
     let dir = scratch_dir("sweep-other");
     status_ok(&mut grid_sweep(&dir, &[]));
     let before = files_of(&dir);
-    let o = std::process::Command::new(env!("CARGO_BIN_EXE_flexrock"))
-        .args([
-            "sweep",
-            pulse_model().to_str().unwrap(),
-            "--out",
-            dir.to_str().unwrap(),
-            "--vary",
-            "excitation.period=0.5,0.6",
-            "--quiet",
-        ])
-        .output()
-        .unwrap();
+    let o = flexrock(&[
+        "sweep",
+        pulse_model().to_str().unwrap(),
+        "--out",
+        dir.to_str().unwrap(),
+        "--vary",
+        "excitation.period=0.5,0.6",
+        "--quiet",
+    ]);
     assert_eq!(o.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&o.stderr).contains("another sweep"));
     assert_eq!(files_of(&dir), before);
     // The same sweep named by another path (from another directory) is recognised as done.
-    let o = std::process::Command::new(env!("CARGO_BIN_EXE_flexrock"))
-        .current_dir(repo(""))
-        .args([
+    let o = flexrock_in(
+        &repo(""),
+        &[
             "sweep",
             "models/pulse-map.toml",
             "--out",
@@ -462,9 +459,8 @@ fn a_directory_of_another_sweep_is_refused_and_left_alone() {
             "--vary",
             "excitation.amplitude=lin:1:8:20",
             "--quiet",
-        ])
-        .output()
-        .unwrap();
+        ],
+    );
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     assert!(String::from_utf8_lossy(&o.stdout).contains("0 computed now"));
     assert_eq!(files_of(&dir), before);
@@ -645,9 +641,9 @@ fn records_and_scales_make_an_incremental_dynamic_analysis() {
     let out = dir.join("out");
     // Run from the repository, as a user types the pattern; the records' largest samples are
     // far below 20 g, 400 times El Centro's 0.35 g is not.
-    let o = std::process::Command::new(env!("CARGO_BIN_EXE_flexrock"))
-        .current_dir(repo(""))
-        .args([
+    let o = flexrock_in(
+        &repo(""),
+        &[
             "sweep",
             "models/elcentro1940.toml",
             "--out",
@@ -658,9 +654,8 @@ fn records_and_scales_make_an_incremental_dynamic_analysis() {
             "excitation.scale=1,2,400",
             "--set",
             "excitation.tail=1",
-        ])
-        .output()
-        .unwrap();
+        ],
+    );
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     // Not a terminal: no progress bar, nothing on standard error.
     assert!(
@@ -827,7 +822,7 @@ fn the_rows_in_memory_are_the_rows_of_sweep_csv() {
         ],
         ..Request::default()
     };
-    let sweep = Sweep::new(&pulse_model(), request).unwrap();
+    let sweep = Sweep::new(&pulse_model(), request, Path::new(".")).unwrap();
     let rows = store::rows(&sweep, &store::Silent);
     let mut table = flexrock::output::Table::new(
         &sweep

@@ -2,9 +2,7 @@
 //! --shard, the shard comes from SLURM_ARRAY_TASK_ID, SLURM_ARRAY_TASK_MIN and
 //! SLURM_ARRAY_TASK_COUNT; `flexrock sweep merge` joins the shards into what one process writes.
 
-mod common;
-
-use common::{file_names, repo, scratch_dir};
+use crate::common::{file_names, repo, scratch_dir};
 use std::path::Path;
 use std::process::Output;
 
@@ -40,7 +38,7 @@ fn sweep_args(out: &Path) -> Vec<String> {
 /// Runs the binary with exactly these SLURM_ARRAY_TASK_* variables (none inherited, so that the
 /// test means the same inside a Slurm job).
 fn flexrock_in_task(args: &[String], vars: &[(&str, &str)]) -> Output {
-    let mut command = std::process::Command::new(env!("CARGO_BIN_EXE_flexrock"));
+    let mut command = crate::common::flexrock_command();
     command.args(args);
     for name in SLURM_VARS {
         command.env_remove(name);

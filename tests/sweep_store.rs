@@ -3,13 +3,13 @@
 //! finished results damaged. Every case ends either in the bytes of an uninterrupted run or in a
 //! refusal with exit code 2 that names the file; nothing of the user's is removed.
 
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
-use common::{flexrock, repo, scratch_dir};
+use crate::common::{flexrock, repo, scratch_dir};
 
 fn files_of(dir: &Path) -> Vec<(String, Vec<u8>)> {
     let mut files: Vec<(String, Vec<u8>)> = std::fs::read_dir(dir)
@@ -29,7 +29,7 @@ fn files_of(dir: &Path) -> Vec<(String, Vec<u8>)> {
 
 /// `flexrock sweep models/pulse-map.toml --out OUT`, to be given its axes.
 fn pulse_sweep(out: &Path) -> Command {
-    let mut command = Command::new(env!("CARGO_BIN_EXE_flexrock"));
+    let mut command = common::flexrock_command();
     command.args([
         "sweep",
         repo("models/pulse-map.toml").to_str().unwrap(),
@@ -265,7 +265,7 @@ fn record_model(dir: &Path, record: &str) -> PathBuf {
 }
 
 fn scale_sweep(model: &Path, out: &Path, extra: &[&str]) -> Command {
-    let mut command = Command::new(env!("CARGO_BIN_EXE_flexrock"));
+    let mut command = common::flexrock_command();
     command.args([
         "sweep",
         model.to_str().unwrap(),
@@ -564,7 +564,7 @@ fn a_merge_killed_at_random_moments_leaves_the_old_result_or_the_new() {
         state ^= state << 13;
         state ^= state >> 7;
         state ^= state << 17;
-        let mut child = Command::new(env!("CARGO_BIN_EXE_flexrock"))
+        let mut child = common::flexrock_command()
             .args([
                 "sweep",
                 "merge",

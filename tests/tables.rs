@@ -4,12 +4,10 @@
 //! Newmark missing events, a run that ends while rocking), for the rule that a derived field
 //! is empty wherever a field it derives from is empty.
 
-mod common;
-
 use std::collections::HashMap;
 use std::path::Path;
 
-use common::{flexrock, repo, scratch_dir};
+use crate::common::{flexrock, repo, scratch_dir};
 
 type Row = HashMap<String, String>;
 

@@ -1,11 +1,11 @@
 //! `--timings-apart`: the wall times go to timings.json and every other file a command writes is
 //! the same bytes from run to run (what validation/check.sh compares with the committed evidence).
 
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 
-use common::{file_names, flexrock, reference_model};
+use crate::common::{file_names, flexrock, reference_model};
 
 /// Runs `flexrock <args> --out <dir>` twice into two directories; returns both.
 fn twice(name: &str, args: &[&str]) -> (PathBuf, PathBuf, String) {
@@ -109,12 +109,7 @@ fn compare_and_converge_keep_every_time_apart() {
 #[test]
 fn without_the_flag_the_times_stay_where_they_were() {
     let out = common::scratch_dir("timings-inline").join("result");
-    let o = flexrock(&[
-        "run",
-        reference_model().to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+    let o = common::run_reference(&out, &[]);
     assert!(o.status.success());
     assert!(!out.join("timings.json").exists());
     assert!(

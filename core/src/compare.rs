@@ -10,11 +10,11 @@
 use serde::Serialize;
 
 use crate::automaton::{EventKind, Mode};
+use crate::columns::{optional, Column};
 use crate::format::number;
 use crate::model::Model;
 use crate::solution::{Event, Extremum, Sample, Solution};
 use crate::solver::OutputGrid;
-use crate::table::{optional, Column};
 
 /// Relative tolerance of the adaptive reference solution.
 pub const DEFAULT_REFERENCE_RTOL: f64 = 1e-12;
@@ -415,7 +415,7 @@ pub fn grid_rows(reference: &Solution, other: &Solution, output_dt: f64) -> Vec<
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::table::{names, serialized_keys};
+    use crate::columns::{names, serialized_keys};
 
     fn event(t: f64, kind: EventKind, from: Mode, to: Mode) -> Event {
         Event {
@@ -531,7 +531,7 @@ mod tests {
         assert_eq!(rows[0].q_newmark, Some(12.5));
         assert_eq!(rows[1].index, 1);
         assert_eq!(rows[1].t_newmark, None);
-        let fields = crate::table::fields(&EVENT_COLUMNS, &rows[1]);
+        let fields = crate::columns::fields(&EVENT_COLUMNS, &rows[1]);
         assert_eq!(
             fields,
             [

@@ -9,6 +9,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::columns::{nan_if_null, optional, required, Column};
 use crate::compare::{compare, max_event_shift};
 use crate::error::Result;
 use crate::format::number;
@@ -18,7 +19,6 @@ use crate::solution::Solution;
 use crate::solver::adaptive::AdaptiveMethod;
 use crate::solver::newmark::NewmarkVariant;
 use crate::solver::SolverSettings;
-use crate::table::{nan_if_null, optional, required, Column};
 
 /// Newmark time steps of the study by default, s.
 pub const DEFAULT_DTS: [f64; 8] = [
@@ -396,7 +396,7 @@ fn measure(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::table::{fields, names, serialized_keys};
+    use crate::columns::{fields, names, serialized_keys};
 
     /// A case that ran, with the given step (or tolerance and work) and errors.
     fn case(method: &str, dt: Option<f64>, work: usize, errors: [f64; 3]) -> Case {

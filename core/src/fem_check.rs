@@ -9,6 +9,7 @@ use std::time::Instant;
 use serde::Serialize;
 
 use crate::automaton::EventKind;
+use crate::columns::Column;
 use crate::error::{Error, Result};
 use crate::fem::{
     critical_time_step, fixed_base_periods, highest_frequency, simulate_fem, ContactEvent,
@@ -17,7 +18,6 @@ use crate::fem::{
 use crate::format::number;
 use crate::model::{FemSetup, Model};
 use crate::solution::{Sample, Solution};
-use crate::table::Column;
 
 /// The element, in one line, for summaries and reports.
 pub const ELEMENT: &str = "QM6 4-node incompatible-mode quadrilateral, plane stress, lumped mass";
@@ -586,7 +586,7 @@ pub fn modes(model: &Model, setup: &FemSetup) -> Result<Modes> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::table::{fields, names, serialized_keys};
+    use crate::columns::{fields, names, serialized_keys};
     use ContactState::{Fixed, Free, Slip};
 
     /// A step at `t` with rocking part `rocking` and the given base states (q = rocking).

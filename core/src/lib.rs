@@ -3,6 +3,49 @@
 //! layer (no argument parsing, CSV writers or plots: the `flexrock` package builds those on top
 //! of this crate).
 //!
+//! # From a model file to a sweep
+//!
+//! 1. **A model**: [`Model::load`] reads a model file (the book's model-file reference lists its
+//!    keys), [`Model::from_toml_str`] its text; [`Overrides`] set keys from outside the file,
+//!    each checked by the file's rules. Errors name the key, the value and the rule.
+//! 2. **A solution**: [`simulate`] solves it with the solver the file names and returns a
+//!    [`Solution`]: the sampled history, every event (uplift, landing, overturning) located to
+//!    the solver's tolerance, the rocking episodes, peaks and energy books;
+//!    [`summary::summary`] is the run's summary.json.
+//! 3. **A study**: a [`sweep::Request`] (axes over any keys, settings, a minimum overturning
+//!    search) on a model file makes a [`Sweep`]; [`Sweep::rows`] computes every point (in
+//!    parallel with the `parallel` feature) into typed [`sweep::Row`]s whose cells
+//!    ([`sweep::Cell`]) are the columns of sweep.csv.
+//!
+//! ```
+//! use std::path::Path;
+//!
+//! use flexrock_core::sweep::{Axis, Cell, Request, Row};
+//! use flexrock_core::{Model, Overrides, Sweep};
+//!
+//! # let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+//! # std::env::set_current_dir(&root).unwrap();
+//! // The paper's example: its body under its sine, solved by the adaptive BDF driver.
+//! let model = Model::load(Path::new("models/ichinose1986.toml"), &Overrides::default())?;
+//! let solution = flexrock_core::simulate(&model)?;
+//! assert!(!solution.overturned && !solution.events.is_empty());
+//!
+//! // Three amplitudes of a 0.8 s one-sine pulse: 2 m/s^2 leaves the body standing.
+//! let request = Request {
+//!     axes: vec![Axis::parse("excitation.amplitude=2,4,6", Path::new("."))?],
+//!     ..Request::default()
+//! };
+//! let here = std::env::current_dir().unwrap();
+//! let sweep = Sweep::new(Path::new("models/sine-pulse.toml"), request, &here)?;
+//! let rows = sweep.rows(0..sweep.points(), &|| {});
+//! // A row's cells follow Row::columns (sweep.csv's columns after the point and the axes).
+//! let at = Row::columns(false).iter().position(|&c| c == "overturned").unwrap();
+//! let overturned: Vec<Cell> = rows.iter().map(|row| row.cells(false)[at].clone()).collect();
+//! assert_eq!(overturned, [false, true, true].map(|b| Cell::Bool(Some(b))));
+//! # Ok::<(), flexrock_core::Error>(())
+//! ```
+//!
+//! The pieces, each in its own module:
 //! The pieces, each in its own module:
 //! - [`body`]: the physical body; [`constants`]: everything derived from it
 //!   (book/src/model.md §2-§5);
@@ -18,8 +61,10 @@
 //! - [`rigid`]: the slender rigid block of the rigid limit (Housner's block), which the elastic
 //!   body must tend to as E grows; [`findings`]: the paper's qualitative findings in numbers;
 //! - [`flexural_shape`]: the self-weighted cantilever mode psi of the consistent variant;
+//! - [`tables`]: the columns of a run's tables; [`summary`]: summary.json of a run;
+//! - [`sweep`]: parametric studies and minimum overturning searches;
 //! - [`error`]: the one error type; [`format`](mod@format): numbers and file kinds for messages;
-//!   [`table`]: the typed rows of the analyses' tables and their columns;
+//!   [`columns`]: a table's columns as one list of (name, field), for the analyses' typed rows;
 //! - the analyses above [`simulate`](mod@simulate): [`compare`](mod@compare) (two solutions of
 //!   one model measured against each other: matched events, peaks, q(t) on the output grid),
 //!   [`converge`](mod@converge) (the convergence study: cases, orders and efficiency slopes),
@@ -63,6 +108,7 @@
 
 pub mod automaton;
 pub mod body;
+pub mod columns;
 pub mod compare;
 pub mod constants;
 pub mod converge;
@@ -83,7 +129,9 @@ pub mod simulate;
 pub mod solution;
 pub mod solver;
 mod suggest;
-pub mod table;
+pub mod summary;
+pub mod sweep;
+pub mod tables;
 pub mod units;
 
 pub use automaton::Automaton;
@@ -99,3 +147,4 @@ pub use pushover_check::PushoverAnalysis;
 pub use simulate::{properties, simulate, simulate_peaks, simulate_with, Properties, Provenance};
 pub use solution::Solution;
 pub use solver::SolverSettings;
+pub use sweep::Sweep;

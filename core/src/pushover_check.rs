@@ -8,11 +8,11 @@ use std::time::Instant;
 use serde::Serialize;
 
 use crate::automaton::Automaton;
+use crate::columns::Column;
 use crate::error::Result;
 use crate::fem::{pushover, BaseSupport, FemBody, Pushover};
 use crate::format::number;
 use crate::model::{FemSetup, Model};
-use crate::table::Column;
 
 /// The sweep prescribes q = k B / SWEEP_POINTS, k = 1..=SWEEP_POINTS.
 pub const SWEEP_POINTS: usize = 400;
@@ -188,8 +188,8 @@ pub fn rows(model: &Model, a: &PushoverAnalysis) -> Vec<PushoverRow> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::columns::{fields, names, serialized_keys};
     use crate::fem::PushoverPoint;
-    use crate::table::{fields, names, serialized_keys};
 
     fn point(q: f64, base_shear: f64, heel_lifted: bool, uplift: bool) -> PushoverPoint {
         PushoverPoint {

@@ -1,7 +1,7 @@
 //! Derived constants against the tables of book/src/model.md §2 (constants) and the closed forms of
 //! §7 (limits).
 
-mod common;
+use crate::common;
 
 use approx::assert_relative_eq;
 use flexrock_core::constants::{Constants, ModeShapeIntegrals, MODE_ROOT};

@@ -1,7 +1,7 @@
 //! The simulator against closed forms: the linear oscillator before uplift, Housner's rigid block
 //! in the rigid limit, and the event logic (no missed events, grazing starts, overturning).
 
-mod common;
+use crate::common;
 
 use flexrock_core::automaton::{EventKind, Mode};
 

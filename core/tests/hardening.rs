@@ -13,7 +13,7 @@
 //! body that rocks through many impacts amplifies the error of a loose run, tenfold every couple
 //! of impacts in the one case of 3000 random models where it was seen.
 
-mod common;
+use crate::common;
 
 use flexrock_core::automaton::{EventKind, Mode};
 use flexrock_core::model::{Model, Overrides};

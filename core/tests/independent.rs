@@ -4,7 +4,7 @@
 //! file's tolerance (rtol = 1e-10) and must give the same event sequence, event times within
 //! 1e-6 s and peaks within 1e-7 m.
 
-mod common;
+use crate::common;
 
 use std::path::PathBuf;
 

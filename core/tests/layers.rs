@@ -8,11 +8,11 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 /// The modules from the bottom up. A module may use only the modules before it.
-const LAYERS: [&str; 24] = [
+const LAYERS: [&str; 27] = [
     // units and formatting
     "units",
     "format",
-    "table",
+    "columns",
     "suggest",
     "limits",
     "invalid",
@@ -25,6 +25,7 @@ const LAYERS: [&str; 24] = [
     "record",
     // numerics
     "solution",
+    "tables",
     "solver",
     "rigid",
     "fem",
@@ -33,7 +34,9 @@ const LAYERS: [&str; 24] = [
     "error",
     "model",
     "simulate",
-    // the analyses
+    "summary",
+    // analysis
+    "sweep",
     "compare",
     "converge",
     "fem_check",
@@ -187,8 +190,7 @@ fn the_checker_sees_an_upward_import() {
 
 /// [`code_without_tests`] of text rather than a file.
 fn code_without_tests_of(text: &str) -> String {
-    let dir = std::env::temp_dir().join(format!("flexrock-layers-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = crate::common::scratch_dir("layers-module");
     let file = dir.join("module.rs");
     std::fs::write(
         &file,

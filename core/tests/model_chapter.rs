@@ -3,7 +3,7 @@
 //! book/constants.py, with the Python standard library alone) are the program's, rounded; every
 //! section that code, tests and documents cite exists; every link into it lands on a heading.
 
-mod common;
+use crate::common;
 
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};

@@ -2,7 +2,7 @@
 //! (or with a typed error), its events alternate as the automaton allows, and its history stays
 //! inside the model's relations. Catches panics and stuck event logic in corners no case names.
 
-mod common;
+use crate::common;
 
 use flexrock_core::automaton::{EventKind, Mode};
 use flexrock_core::model::{Model, Overrides};

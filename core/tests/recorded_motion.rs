@@ -1,7 +1,7 @@
 //! A sampled floor motion, piecewise linear between samples, against the exact solution of the
 //! linear oscillator under piecewise-linear forcing (the Nigam-Jennings recurrence).
 
-mod common;
+use crate::common;
 
 use flexrock_core::automaton::Automaton;
 use flexrock_core::excitation::{FloorMotion, RecordedMotion};

@@ -1,9 +1,11 @@
-//! Python bindings of flexrock: `Model`, `props`, `simulate` (a `Result` of numpy arrays) and
-//! `sweep` (a dict of sweep.csv's columns). Every number comes from the library exactly as the
+//! `flexrock._native`, the compiled half of the Python package `flexrock` (python/python/flexrock
+//! re-exports it with its documentation): `Model`, `GroundMotion`, `read_record`, `props`,
+//! `simulate` (a `Result` of numpy arrays) and `sweep` (sweep.csv's columns). Every number comes from the library exactly as the
 //! command line computes it; no file is written (but a temporary copy of a model given as text,
 //! for a sweep).
 
 mod model;
+mod motion;
 mod simulate;
 mod sweep;
 
@@ -18,17 +20,19 @@ create_exception!(
     "An error of flexrock, with the message the command line prints."
 );
 
-pub(crate) fn err(e: flexrock::Error) -> PyErr {
+pub(crate) fn err(e: flexrock_core::Error) -> PyErr {
     FlexrockError::new_err(e.to_string())
 }
 
 #[pymodule]
-#[pyo3(name = "flexrock")]
+#[pyo3(name = "_native")]
 fn flexrock_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("FlexrockError", m.py().get_type::<FlexrockError>())?;
-    m.add("__version__", flexrock::run::VERSION)?;
+    m.add("__version__", flexrock_core::simulate::VERSION)?;
     m.add_class::<model::Model>()?;
     m.add_class::<simulate::SimResult>()?;
+    m.add_class::<motion::GroundMotion>()?;
+    m.add_function(wrap_pyfunction!(motion::read_record, m)?)?;
     m.add_function(wrap_pyfunction!(simulate::props, m)?)?;
     m.add_function(wrap_pyfunction!(simulate::simulate, m)?)?;
     m.add_function(wrap_pyfunction!(sweep::sweep, m)?)?;

@@ -6,8 +6,8 @@ use pyo3::exceptions::PyImportError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 
-use flexrock::model::{Overrides, Setting};
-use flexrock::output::HISTORY_COLUMNS;
+use flexrock_core::model::{Overrides, Setting};
+use flexrock_core::tables::HISTORY_COLUMNS;
 
 use crate::model::Model;
 use crate::{err, FlexrockError};
@@ -97,19 +97,19 @@ fn json<'py, T: serde::Serialize>(py: Python<'py>, value: &T) -> PyResult<Bound<
 /// The body as understood and its derived constants: the JSON of `flexrock props --json`.
 #[pyfunction]
 pub(crate) fn props<'py>(py: Python<'py>, model: &Model) -> PyResult<Bound<'py, PyAny>> {
-    json(py, &flexrock::run::properties(&model.model))
+    json(py, &flexrock_core::properties(&model.model))
 }
 
 /// An error about a value given as a Python argument, named by the argument: `rtol (sets
 /// solver.rtol) = -1: ...`; other errors as they are.
-fn err_naming(e: flexrock::Error, arguments: &[(&str, &str)]) -> PyErr {
+fn err_naming(e: flexrock_core::Error, arguments: &[(&str, &str)]) -> PyErr {
     match e {
-        flexrock::Error::InvalidParameter { key, value, rule } => {
+        flexrock_core::Error::InvalidParameter { key, value, rule } => {
             let key = match arguments.iter().find(|(k, _)| *k == key) {
                 Some((_, argument)) => format!("{argument} (sets {key})"),
                 None => key,
             };
-            err(flexrock::Error::InvalidParameter { key, value, rule })
+            err(flexrock_core::Error::InvalidParameter { key, value, rule })
         }
         other => err(other),
     }
@@ -164,9 +164,9 @@ pub(crate) fn simulate(
         None
     };
     let m = rebuilt.as_ref().unwrap_or(&model.model);
-    let solution = py.detach(|| flexrock::run::simulate(m)).map_err(err)?;
+    let solution = py.detach(|| flexrock_core::simulate(m)).map_err(err)?;
     let samples = &solution.samples;
-    let column = |f: fn(&flexrock::solution::Sample) -> f64| -> Py<PyAny> {
+    let column = |f: fn(&flexrock_core::solution::Sample) -> f64| -> Py<PyAny> {
         PyArray1::from_vec(py, samples.iter().map(f).collect())
             .into_any()
             .unbind()
@@ -189,7 +189,7 @@ pub(crate) fn simulate(
     }
     let episodes = PyList::empty(py);
     for e in &solution.episodes {
-        use flexrock::output::{episode_fields, EpisodeField, EPISODE_COLUMNS};
+        use flexrock_core::tables::{episode_fields, EpisodeField, EPISODE_COLUMNS};
         let d = PyDict::new(py);
         for (column, field) in EPISODE_COLUMNS.iter().zip(episode_fields(e, m.body.height)) {
             match field {
@@ -200,7 +200,7 @@ pub(crate) fn simulate(
         }
         episodes.append(d)?;
     }
-    let summary = json(py, &flexrock::run::summary(m, &solution))?.unbind();
+    let summary = json(py, &flexrock_core::summary::summary(m, &solution))?.unbind();
     Ok(SimResult {
         t: column(|s| s.t),
         q: column(|s| s.q),

@@ -1,25 +1,55 @@
-//! `sweep`: a parametric study in memory, its columns by name.
+//! `sweep`: a parametric study computed in memory by the core, returned as typed columns.
 
-use numpy::PyArray1;
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
+use pyo3::types::{PyDict, PyList};
 
-use crate::err;
+use flexrock_core::sweep::{Axis, Cell, Interval, Request, Row, Status, Sweep};
+
 use crate::model::{toml_value, Model};
+use crate::FlexrockError;
 
-/// A sweep value as the axis text `flexrock sweep --vary KEY=A,B` would hold.
+/// A sweep value as the axis text `KEY=A,B` would hold.
 fn axis_text(value: &Bound<'_, PyAny>) -> PyResult<String> {
     Ok(match toml_value(value)? {
-        toml::Value::Float(x) => flexrock::output::shortest(x),
+        toml::Value::Float(x) => flexrock_core::format::shortest(x),
         toml::Value::String(s) => s,
         other => other.to_string(),
     })
 }
 
+/// An error about the request, named by the Python argument that gave the value: `axes["KEY"]`,
+/// `find_min`, `scan`, `tol`.
+fn request_error(e: flexrock_core::Error) -> PyErr {
+    use flexrock_core::Error;
+    let renamed = match e {
+        Error::InvalidParameter { key, value, rule } => {
+            let key = match key.split_once(' ') {
+                Some(("vary", k)) => format!("axes[{k:?}]"),
+                Some(("find_min", _)) => "find_min".to_string(),
+                None if key == "vary" => "axes".to_string(),
+                _ => key,
+            };
+            Error::InvalidParameter { key, value, rule }
+        }
+        other => other,
+    };
+    FlexrockError::new_err(renamed.to_string())
+}
+
+fn cell<'py>(py: Python<'py>, cell: &Cell) -> PyResult<Bound<'py, PyAny>> {
+    Ok(match cell {
+        Cell::Bool(Some(b)) => b.into_pyobject(py)?.to_owned().into_any(),
+        Cell::Int(Some(n)) => n.into_pyobject(py)?.into_any(),
+        Cell::Float(Some(x)) => x.into_pyobject(py)?.into_any(),
+        Cell::Text(Some(t)) => t.into_pyobject(py)?.into_any(),
+        _ => py.None().into_bound(py),
+    })
+}
+
 /// A parametric study: every combination of the axes' values (the last axis varies fastest),
-/// in parallel. Returns sweep.csv's columns by name: numbers as float64 arrays (NaN where the
-/// CSV field is empty), `point` as int64, text columns (status, reason, overturned, ...) as
-/// lists of str.
+/// computed in parallel in memory. Returns the typed columns of sweep.csv:
+/// `{"columns": [...], "kinds": ["int"|"float"|"bool"|"str", ...], "values": [[...], ...],
+/// "axes": [(key, [values]), ...]}`, None where sweep.csv's field is empty.
 #[pyfunction]
 #[pyo3(signature = (model, axes, find_min=None, scan=None, tol=None))]
 pub(crate) fn sweep<'py>(
@@ -30,7 +60,6 @@ pub(crate) fn sweep<'py>(
     scan: Option<usize>,
     tol: Option<f64>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    use flexrock::sweep::{store, Axis, Interval, Request, Sweep};
     let mut request = Request {
         settings: model.settings.clone(),
         scan,
@@ -46,74 +75,58 @@ pub(crate) fn sweep<'py>(
             .collect::<PyResult<Vec<String>>>()?;
         request.axes.push(Axis::new(&key, texts));
     }
-    // The library's sweep reads a model file: a model given as text goes to a temporary one.
-    let scratch;
-    let path = match (&model.path, &model.text) {
-        (Some(path), _) => path.clone(),
+    // Paths the user typed (record files of an axis, a model given as text) are relative to the
+    // current directory; a model file's own record paths are relative to the file.
+    let here = std::env::current_dir()?;
+    let sweep = match (&model.path, &model.text) {
+        (Some(path), _) => Sweep::new(path, request, &here),
         (None, text) => {
-            scratch = tempfile::tempdir()?;
-            let path = scratch.path().join("model.toml");
-            let text = text.as_deref().unwrap_or_default();
-            std::fs::write(
-                &path,
-                record_paths_from_here(text).unwrap_or_else(|| text.to_owned()),
-            )?;
-            path
+            Sweep::from_text(text.as_deref().unwrap_or_default(), &here, request, &here)
         }
-    };
-    let sweep = Sweep::new(&path, request).map_err(err)?;
-    let columns = sweep.plan.columns();
-    let rows = py.detach(|| store::rows(&sweep, &store::Silent));
-    let out = PyDict::new(py);
-    for (c, name) in columns.iter().enumerate() {
-        let fields: Vec<&str> = rows.iter().map(|r| r[c].as_str()).collect();
-        if name == "point" {
-            let points: Vec<i64> = fields.iter().map(|f| f.parse().unwrap_or(-1)).collect();
-            out.set_item(name, PyArray1::from_vec(py, points))?;
-            continue;
-        }
-        let numbers: Option<Vec<f64>> = fields
-            .iter()
-            .map(|f| {
-                if f.is_empty() {
-                    Some(f64::NAN)
-                } else {
-                    f.parse::<f64>().ok()
-                }
-            })
-            .collect();
-        // A column is numeric when every non-empty field is a number (and one is not empty).
-        match numbers {
-            Some(v) if fields.iter().any(|f| !f.is_empty()) || !is_text_column(name) => {
-                out.set_item(name, PyArray1::from_vec(py, v))?
+    }
+    .map_err(request_error)?;
+    let plan = &sweep.plan;
+    let find = plan.find_min.is_some();
+    let rows = py.detach(|| sweep.rows(0..sweep.points(), &|| {}));
+    let mut columns: Vec<String> = vec!["point".into()];
+    let mut kinds: Vec<&str> = vec!["int"];
+    for axis in &plan.axes {
+        columns.push(axis.key.clone());
+        kinds.push(if axis.is_numeric() { "float" } else { "str" });
+    }
+    let first = columns.len();
+    columns.extend(Row::columns(find).into_iter().map(String::from));
+    // The kinds of the result columns, from a row without values.
+    let empty = Row::failure(Status::Invalid, String::new()).cells(find);
+    kinds.extend(empty.iter().map(|c| c.kind().name()));
+    let values: Vec<Bound<'py, PyList>> = (0..columns.len()).map(|_| PyList::empty(py)).collect();
+    for (index, row) in rows.iter().enumerate() {
+        values[0].append(index)?;
+        for ((a, axis), &i) in plan.axes.iter().enumerate().zip(&plan.coordinates(index)) {
+            match axis.number(i) {
+                Some(x) => values[1 + a].append(x)?,
+                None => values[1 + a].append(&axis.values[i])?,
             }
-            _ => out.set_item(name, fields)?,
+        }
+        for (c, cell_value) in row.cells(find).iter().enumerate() {
+            values[first + c].append(self::cell(py, cell_value)?)?;
         }
     }
-    Ok(out)
-}
-
-/// A model text whose relative `excitation.path` is made absolute from the current directory,
-/// as `simulate` reads it (the sweep reads the text from a temporary directory, so a relative
-/// record path would be looked for there). `None` when there is nothing to change (or the text
-/// does not parse: the sweep then reports that itself).
-fn record_paths_from_here(text: &str) -> Option<String> {
-    let mut table: toml::Table = text.parse().ok()?;
-    let excitation = table.get_mut("excitation")?.as_table_mut()?;
-    let path = std::path::Path::new(excitation.get("path")?.as_str()?);
-    if path.is_absolute() {
-        return None;
+    let axes_out = PyList::empty(py);
+    for axis in &plan.axes {
+        let list = PyList::empty(py);
+        for i in 0..axis.len() {
+            match axis.number(i) {
+                Some(x) => list.append(x)?,
+                None => list.append(&axis.values[i])?,
+            }
+        }
+        axes_out.append((axis.key.clone(), list))?;
     }
-    let absolute = std::env::current_dir().ok()?.join(path);
-    excitation.insert(
-        "path".to_owned(),
-        toml::Value::String(absolute.to_str()?.to_owned()),
-    );
-    Some(table.to_string())
-}
-
-/// Columns of sweep.csv that hold text (so that an all-empty one stays a list of str).
-fn is_text_column(name: &str) -> bool {
-    matches!(name, "status" | "reason" | "overturned" | "final_mode")
-        || name.starts_with("excitation.path")
+    let out = PyDict::new(py);
+    out.set_item("columns", columns)?;
+    out.set_item("kinds", kinds)?;
+    out.set_item("values", values)?;
+    out.set_item("axes", axes_out)?;
+    Ok(out)
 }

@@ -128,23 +128,32 @@ def test_props_are_the_json_of_props():
     assert props["body"]["height"] > 0
 
 
+def same_table(got, rows):
+    """A typed sweep table equals sweep.csv's text, field by field."""
+    assert got.columns == list(rows[0])
+    assert len(got) == len(rows)
+    for name in got.columns:
+        column = got[name]
+        for i, row in enumerate(rows):
+            text = row[name]
+            value = column[i]
+            if text == "":
+                assert value is None or value is np.ma.masked or np.isnan(value), name
+            elif column.dtype == np.bool_:
+                assert bool(value) == (text == "true"), name
+            elif column.dtype == object:
+                assert value == text, name
+            else:
+                assert value == float(text), name
+
+
 def test_sweep_equals_the_command_line(tmp_path):
     run_cli("sweep", MODEL, "--out", tmp_path, "--quiet", "--vary", "excitation.amplitude=2,4.5",
             "--vary", "excitation.period=0.5,1,1.5")
     rows = read_csv(tmp_path / "sweep.csv")
     got = flexrock.sweep(flexrock.Model.from_file(MODEL),
                          {"excitation.amplitude": [2, 4.5], "excitation.period": [0.5, 1.0, 1.5]})
-    assert list(got) == list(rows[0])
-    for name, column in got.items():
-        assert len(column) == len(rows)
-        for value, row in zip(column, rows):
-            text = row[name]
-            if isinstance(value, str):
-                assert value == text, name
-            elif text == "":
-                assert np.isnan(value), name
-            else:
-                assert value == float(text), name
+    same_table(got, rows)
 
 
 def test_sweep_of_a_model_text_with_a_minimum_search(tmp_path):
@@ -154,15 +163,7 @@ def test_sweep_of_a_model_text_with_a_minimum_search(tmp_path):
     got = flexrock.sweep(flexrock.Model.from_toml(MODEL.read_text()),
                          {"excitation.period": [0.5, 1.0]},
                          find_min=("excitation.amplitude", 1.0, 20.0), scan=8)
-    assert list(got) == list(rows[0])
-    for name, column in got.items():
-        for value, row in zip(column, rows):
-            if isinstance(value, str):
-                assert value == row[name], name
-            elif row[name] == "":
-                assert np.isnan(value), name
-            else:
-                assert value == float(row[name]), name
+    same_table(got, rows)
 
 
 def test_to_pandas():

@@ -17,7 +17,7 @@ use crate::model::{FemSetup, Model, ModelFile};
 use crate::output::{self, Table};
 use crate::plot::{self, Legend, Panel, Series};
 use crate::run::VERSION;
-use flexrock_core::{pushover_check, table};
+use flexrock_core::{columns, pushover_check};
 
 pub use flexrock_core::pushover_check::{
     analyse, rows, sdof_force, summarise, CurveSummary, PushoverAnalysis, PushoverRow, BASES,
@@ -26,12 +26,12 @@ pub use flexrock_core::pushover_check::{
 
 /// Column names of pushover.csv (a contract): the names of
 /// [`flexrock_core::pushover_check::PUSHOVER_COLUMNS`].
-pub const PUSHOVER_COLUMNS: [&str; 12] = table::names(&pushover_check::PUSHOVER_COLUMNS);
+pub const PUSHOVER_COLUMNS: [&str; 12] = columns::names(&pushover_check::PUSHOVER_COLUMNS);
 
 pub(crate) fn curves_csv(model: &Model, a: &PushoverAnalysis) -> Vec<u8> {
     let mut table = Table::new(&PUSHOVER_COLUMNS);
     for row in rows(model, a) {
-        table.row(table::fields(&pushover_check::PUSHOVER_COLUMNS, &row));
+        table.row(columns::fields(&pushover_check::PUSHOVER_COLUMNS, &row));
     }
     table.into_bytes()
 }

@@ -16,7 +16,7 @@ use crate::output::{self, count, readable, Table};
 use crate::plot::{self, Panel, Series};
 use crate::run::VERSION;
 use crate::solution::Solution;
-use flexrock_core::{fem_check, table};
+use flexrock_core::{columns, fem_check};
 
 use flexrock_core::fem_check::{analyse as analyse_run, compare as compare_solutions};
 pub use flexrock_core::fem_check::{
@@ -27,11 +27,11 @@ pub use flexrock_core::fem_check::{
 
 /// Column names of fem_history.csv (a contract): the names of
 /// [`flexrock_core::fem_check::HISTORY_COLUMNS`].
-pub const HISTORY_COLUMNS: [&str; 12] = table::names(&fem_check::HISTORY_COLUMNS);
+pub const HISTORY_COLUMNS: [&str; 12] = columns::names(&fem_check::HISTORY_COLUMNS);
 
 /// Column names of fem_events.csv (a contract): the names of
 /// [`flexrock_core::fem_check::EVENT_COLUMNS`].
-pub const EVENT_COLUMNS: [&str; 7] = table::names(&fem_check::EVENT_COLUMNS);
+pub const EVENT_COLUMNS: [&str; 7] = columns::names(&fem_check::EVENT_COLUMNS);
 
 /// Magnification of the deformed shapes (the paper's Fig. 9).
 pub const SHAPE_MAGNIFICATION: f64 = 5.0;
@@ -83,7 +83,7 @@ pub fn analyse(model: &Model, setup: &FemSetup) -> Result<FemAnalysis> {
 pub(crate) fn history_csv(model: &Model, steps: &[FemStep]) -> Vec<u8> {
     let mut table = Table::new(&HISTORY_COLUMNS);
     for row in history_rows(model, steps) {
-        table.row(table::fields(&fem_check::HISTORY_COLUMNS, &row));
+        table.row(columns::fields(&fem_check::HISTORY_COLUMNS, &row));
     }
     table.into_bytes()
 }
@@ -91,7 +91,7 @@ pub(crate) fn history_csv(model: &Model, steps: &[FemStep]) -> Vec<u8> {
 pub(crate) fn events_csv(result: &FemResult) -> Vec<u8> {
     let mut table = Table::new(&EVENT_COLUMNS);
     for row in event_rows(result) {
-        table.row(table::fields(&fem_check::EVENT_COLUMNS, &row));
+        table.row(columns::fields(&fem_check::EVENT_COLUMNS, &row));
     }
     table.into_bytes()
 }
@@ -374,9 +374,9 @@ pub fn fem(
 }
 
 pub(crate) fn comparison_csv(c: &FemComparison) -> Vec<u8> {
-    let mut table = Table::new(&table::names(&COMPARISON_COLUMNS));
+    let mut table = Table::new(&columns::names(&COMPARISON_COLUMNS));
     for r in &c.rows {
-        table.row(table::fields(&COMPARISON_COLUMNS, r));
+        table.row(columns::fields(&COMPARISON_COLUMNS, r));
     }
     table.into_bytes()
 }

@@ -5,9 +5,24 @@
 mod physics;
 pub use physics::*;
 
+/// The `flexrock` binary as a command to complete (arguments, environment, directory, pipes).
+pub fn flexrock_command() -> std::process::Command {
+    std::process::Command::new(env!("CARGO_BIN_EXE_flexrock"))
+}
+
 /// Runs the `flexrock` binary.
 pub fn flexrock(args: &[&str]) -> std::process::Output {
-    std::process::Command::new(env!("CARGO_BIN_EXE_flexrock"))
+    flexrock_command()
+        .args(args)
+        .output()
+        .expect("the binary runs")
+}
+
+/// Runs the `flexrock` binary in the directory `cwd`: relative paths as a user types them. The
+/// tests' own working directory is shared by every test of the binary and never changed.
+pub fn flexrock_in(cwd: &std::path::Path, args: &[&str]) -> std::process::Output {
+    flexrock_command()
+        .current_dir(cwd)
         .args(args)
         .output()
         .expect("the binary runs")

@@ -11,7 +11,7 @@ use crate::excitation::{
     floor_limit_rule, within_floor_limit, FloorMotion, Free, Harmonic, PaperSine, PulseShape,
     RecordedMotion, Ricker, SinePulse, MIN_EXCITATION_PERIOD,
 };
-use crate::record::{read_record, Record, RecordFormat};
+use crate::record::{read_record_named, Record, RecordFormat};
 
 /// A record is known by its path, format and given sampling interval (as bits).
 type RecordKey = (PathBuf, Option<RecordFormat>, Option<u64>);
@@ -25,9 +25,18 @@ pub struct RecordCache {
 }
 
 impl RecordCache {
+    /// Puts `record` in the cache as if read from the file `path` without a format or a dt
+    /// given: a model whose `excitation.path` names `path` (joined to its base directory) and
+    /// no `excitation.format` or `excitation.dt` takes the record from here, and reads no file.
+    pub fn insert(&self, path: &Path, record: Record) {
+        self.lock()
+            .insert((path.to_path_buf(), None, None), Arc::new(record));
+    }
+
     fn read(
         &self,
         path: &Path,
+        name: &str,
         format: Option<RecordFormat>,
         dt: Option<f64>,
     ) -> std::result::Result<Arc<Record>, crate::record::RecordError> {
@@ -36,7 +45,7 @@ impl RecordCache {
             return Ok(Arc::clone(record));
         }
         // Read outside the lock; two threads may read one file at once, and agree.
-        let record = Arc::new(read_record(path, format, dt)?);
+        let record = Arc::new(read_record_named(path, name, format, dt)?);
         self.lock().insert(key, Arc::clone(&record));
         Ok(record)
     }
@@ -379,24 +388,17 @@ fn recorded_motion(
     if let Some(dt) = s.dt {
         positive("excitation.dt", dt)?;
     }
+    // Messages name the file by the full path it was looked for at, so that they say which
+    // directory a relative path was read from.
+    let here = std::env::current_dir().unwrap_or_default();
+    let name = super::setting::normalised(&here.join(&path))
+        .display()
+        .to_string();
     let record = records
-        .read(&path, format, s.dt)
+        .read(&path, &name, format, s.dt)
         .map_err(|e| Error::Record {
             key: "excitation.path".to_string(),
-            source: match e {
-                // Name the file by the full path it was looked for at, so that the message says
-                // which directory a relative path was read from.
-                crate::record::RecordError::Read { error, .. } => {
-                    let here = std::env::current_dir().unwrap_or_default();
-                    crate::record::RecordError::Read {
-                        file: super::setting::normalised(&here.join(&path))
-                            .display()
-                            .to_string(),
-                        error,
-                    }
-                }
-                other => other,
-            },
+            source: e,
         })?;
     let is_at2 = matches!(format, Some(RecordFormat::PeerAt2))
         || (format.is_none() && RecordFormat::from_extension(&path) == Some(RecordFormat::PeerAt2));

@@ -9,8 +9,10 @@ mod excitation_section;
 mod fem_section;
 mod setting;
 mod solver_section;
+mod table;
 
 pub use setting::{check_key, value_text, Setting};
+pub use table::{default_value, effective_table, schema_keys, value_in_effect};
 
 use excitation_section::floor_from_section;
 pub use excitation_section::RecordCache;
@@ -261,7 +263,10 @@ pub fn read_model_table(path: &Path) -> Result<(String, toml::Table)> {
     Ok((text, table))
 }
 
-fn parse_table(text: &str, source: &Path) -> Result<toml::Table> {
+/// What names a model given as text (not read from a file) in messages.
+pub const MODEL_TEXT: &str = "(model text)";
+
+pub(crate) fn parse_table(text: &str, source: &Path) -> Result<toml::Table> {
     toml::from_str(text).map_err(|e| Error::ParseModel {
         path: source.to_path_buf(),
         message: e.to_string().trim_end().to_string(),
@@ -423,6 +428,8 @@ impl Model {
                     rule: format!("{rule}{hint}"),
                 }
             }
+            // A record named from outside the file is not the file's either.
+            e @ Error::Record { .. } if overrides.sets("excitation.path") => e,
             other => Error::InModel {
                 path: path.to_path_buf(),
                 source: Box::new(other),
@@ -435,7 +442,7 @@ impl Model {
     /// Parses and validates the text of a model file; record paths are relative to the
     /// current directory.
     pub fn from_toml_str(text: &str, overrides: &Overrides) -> Result<Model> {
-        let file = parse_model_text(text, &overrides.settings, Path::new("(model text)"))?;
+        let file = parse_model_text(text, &overrides.settings, Path::new(MODEL_TEXT))?;
         Model::from_file(file, overrides, Path::new("."))
     }
 

@@ -13,6 +13,7 @@
 mod at2;
 mod csv;
 mod error;
+mod samples;
 #[cfg(test)]
 mod tests;
 
@@ -21,6 +22,7 @@ use std::path::Path;
 pub use at2::parse_at2;
 pub use csv::parse_csv;
 pub use error::{Location, RecordError};
+pub use samples::{check_sample_dt, dt_from_times, record_from_samples, MAX_SAMPLES};
 
 /// An accelerogram sampled at a uniform interval.
 #[derive(Debug, Clone, PartialEq)]
@@ -274,7 +276,29 @@ pub fn read_record(
     format: Option<RecordFormat>,
     dt: Option<f64>,
 ) -> Result<Record, RecordError> {
-    let source = path.display().to_string();
+    read_record_named(path, &path.display().to_string(), format, dt)
+}
+
+/// [`read_record`], with the file named `name` in every error (a full path, say, where `path`
+/// is relative to another directory); the record's source is `path` as given.
+pub fn read_record_named(
+    path: &Path,
+    name: &str,
+    format: Option<RecordFormat>,
+    dt: Option<f64>,
+) -> Result<Record, RecordError> {
+    let mut record = read_named(path, name, format, dt)?;
+    record.source = path.display().to_string();
+    Ok(record)
+}
+
+fn read_named(
+    path: &Path,
+    name: &str,
+    format: Option<RecordFormat>,
+    dt: Option<f64>,
+) -> Result<Record, RecordError> {
+    let source = name.to_string();
     let format = match format.or_else(|| RecordFormat::from_extension(path)) {
         Some(format) => format,
         None => {

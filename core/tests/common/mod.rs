@@ -27,7 +27,26 @@ pub fn solve(text: &str) -> Solution {
 }
 
 /// A fresh, empty directory under cargo's temporary directory for integration tests.
+///
+/// The tests of a binary run as threads of one process, so a name belongs to the first test
+/// (thread) that asks for it: another test asking for the same name panics instead of emptying
+/// the directory under the first one's feet. The same test may ask again for a fresh directory.
 pub fn scratch_dir(name: &str) -> std::path::PathBuf {
+    use std::collections::HashMap;
+    use std::sync::{Mutex, OnceLock};
+    use std::thread::ThreadId;
+    static OWNERS: OnceLock<Mutex<HashMap<String, ThreadId>>> = OnceLock::new();
+    let me = std::thread::current();
+    let mut owners = OWNERS
+        .get_or_init(Mutex::default)
+        .lock()
+        .unwrap_or_else(|poisoned| poisoned.into_inner());
+    let owner = *owners.entry(name.to_string()).or_insert(me.id());
+    drop(owners);
+    assert!(
+        owner == me.id(),
+        "scratch directory {name} is already used by another test of this binary; give it a name of its own"
+    );
     let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).expect("scratch dir");

@@ -32,7 +32,6 @@ mod verify;
 
 use std::path::{Path, PathBuf};
 
-use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use super::{figure, Plan, Sweep};
@@ -386,27 +385,25 @@ fn open_chunks(dir: &Path, plan: &Plan, shard: Option<Shard>, force: bool) -> Re
     Ok(chunks.path)
 }
 
-/// The rows of sweep.csv for every point, in point order, computed in parallel in memory (no
-/// file is read or written): the fields of each row as the file has them, under the header
-/// [`Plan::columns`]. What the Python bindings return; [`run`] writes the same rows.
+/// The rows of sweep.csv for every point, in point order, computed in memory (no file is read
+/// or written): the fields of each row as the file has them, under the header
+/// [`Plan::columns`]; [`run`] writes the same rows.
 pub fn rows(sweep: &Sweep, progress: &dyn Progress) -> Vec<Vec<String>> {
     progress.start(sweep.points(), 0);
     rows_of(sweep, 0..sweep.points(), progress)
 }
 
-/// The rows of the points `points`, in point order.
+/// The fields of the rows of the points `points`, in point order, as sweep.csv holds them.
 fn rows_of(
     sweep: &Sweep,
     points: std::ops::Range<usize>,
     progress: &dyn Progress,
 ) -> Vec<Vec<String>> {
-    points
-        .into_par_iter()
-        .map(|i| {
-            let row = sweep.evaluate(i);
-            progress.advance(1);
-            row_fields(&sweep.plan, i, &row)
-        })
+    let first = points.start;
+    let rows = sweep.rows(points, &|| progress.advance(1));
+    rows.iter()
+        .enumerate()
+        .map(|(i, row)| row_fields(&sweep.plan, first + i, row))
         .collect()
 }
 

@@ -4,20 +4,10 @@
 //! sweep.json. A chunk of another sweep, a chunk copied over another, swapped or edited lines,
 //! CRLF line ends: each fails one of these checks, and is never taken for rows of this sweep.
 
-use sha2::{Digest, Sha256};
-
 use crate::output;
 use crate::sweep::Plan;
 
-/// SHA-256 of `bytes`, as 64 lower-case hex digits.
-pub fn sha256_hex(bytes: &[u8]) -> String {
-    let digest = Sha256::digest(bytes);
-    let mut text = String::with_capacity(64);
-    for byte in digest {
-        text.push_str(&format!("{byte:02x}"));
-    }
-    text
-}
+pub use flexrock_core::sweep::sha256_hex;
 
 /// The first line of a chunk file: the seal of its rows.
 const CHUNK_SEAL_PREFIX: &str = "# flexrock sweep chunk, sha256 ";

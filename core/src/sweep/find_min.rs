@@ -7,11 +7,10 @@
 //! bisects the first transition from standing to overturned to the tolerance `tol`. Bands narrower
 //! than a grid step can be missed; the scan step is (HI - LO)/(scan - 1).
 
-use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use super::row::MinimumOutcome;
-use crate::output::shortest;
+use crate::format::shortest;
 
 /// Default number of scanned values.
 pub const DEFAULT_SCAN: usize = 100;
@@ -71,10 +70,9 @@ pub fn search<E: Send>(
     let values: Vec<f64> = (0..find.scan).map(|i| find.scanned(i)).collect();
     // Collected in order, so that the error reported is the lowest value's, whatever the
     // threads did.
-    let results: Vec<Result<Trial, (f64, E)>> = values
-        .par_iter()
-        .map(|&v| run(v).map_err(|e| (v, e)))
-        .collect();
+    let results: Vec<Result<Trial, (f64, E)>> = super::in_order(0..values.len(), |i| {
+        run(values[i]).map_err(|e| (values[i], e))
+    });
     let trials = results.into_iter().collect::<Result<Vec<Trial>, _>>()?;
     let mut outcome = MinimumOutcome {
         simulations: trials.len(),

@@ -52,13 +52,13 @@ impl Axis {
     /// Parses `KEY=SPEC` as an axis beside others that have `others` points between them: the
     /// axis may have at most [`MAX_POINTS`] / `others` values, checked before they are made.
     pub fn parse_beside(text: &str, base_dir: &Path, others: usize) -> Result<Axis> {
-        let (key, spec) = split(text, "--vary")?;
+        let (key, spec) = split(text, "vary")?;
         let room = Room {
             values: MAX_AXIS_VALUES.min(MAX_POINTS / others.max(1)),
             others,
         };
         let values = expand(key, spec, base_dir, room)
-            .map_err(|rule| Error::invalid(&format!("--vary {key}"), spec, &rule))?;
+            .map_err(|rule| Error::invalid(&format!("vary {key}"), spec, &rule))?;
         Ok(Axis::new(key, values))
     }
 
@@ -110,7 +110,7 @@ impl Axis {
     }
 }
 
-/// The interval of `--find-min KEY=LO:HI`.
+/// The interval of `find_min = "KEY=LO:HI"` (`--find-min`).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Interval {
     /// Lower end.
@@ -119,10 +119,10 @@ pub struct Interval {
     pub hi: f64,
 }
 
-/// Parses `KEY=LO:HI` of `--find-min`.
+/// Parses `KEY=LO:HI` of `find_min` (`--find-min`).
 pub fn parse_interval(text: &str) -> Result<(String, Interval)> {
-    let (key, spec) = split(text, "--find-min")?;
-    let flag = format!("--find-min {key}");
+    let (key, spec) = split(text, "find_min")?;
+    let flag = format!("find_min {key}");
     let parts: Vec<&str> = spec.split(':').collect();
     let [lo, hi] = parts.as_slice() else {
         return Err(Error::invalid(&flag, spec, "must be LO:HI, e.g. 0.5:15"));
@@ -235,7 +235,7 @@ fn count(text: &str, room: Room) -> std::result::Result<usize, String> {
 }
 
 fn shortest(values: impl Iterator<Item = f64>) -> Vec<String> {
-    values.map(crate::output::shortest).collect()
+    values.map(crate::format::shortest).collect()
 }
 
 /// The values of a SPEC, as text.
@@ -319,9 +319,9 @@ fn expand(
             items
                 .into_iter()
                 .map(|v| match (toml_value(&v), v.parse::<f64>()) {
-                    (toml::Value::Float(x), _) => Ok(crate::output::shortest(finite(x, &v)?)),
+                    (toml::Value::Float(x), _) => Ok(crate::format::shortest(finite(x, &v)?)),
                     // Beyond TOML's range (1e309) but a number still.
-                    (_, Ok(x)) => finite(x, &v).map(crate::output::shortest),
+                    (_, Ok(x)) => finite(x, &v).map(crate::format::shortest),
                     (other, Err(_)) => Ok(value_text(&other)),
                 })
                 .collect::<std::result::Result<_, String>>()?
@@ -422,7 +422,7 @@ mod tests {
             let e = Axis::parse(&format!("excitation.amplitude={bad}"), Path::new("."))
                 .expect_err(bad)
                 .to_string();
-            assert!(e.starts_with("--vary excitation.amplitude"), "{bad}: {e}");
+            assert!(e.starts_with("vary excitation.amplitude"), "{bad}: {e}");
         }
         assert!(Axis::parse("amplitude=1", Path::new(".")).is_err());
         assert!(Axis::parse("excitation.amplitude", Path::new(".")).is_err());

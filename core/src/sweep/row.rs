@@ -1,12 +1,105 @@
 //! One row of sweep.csv: what a point's run (or minimum search) gave, and the dimensionless
-//! numbers the rocking literature plots. The column names are a contract (README, "sweep.csv").
+//! numbers the rocking literature plots, typed ([`Cell`]). The column names are a contract (the
+//! book's output reference, "sweep.csv"). Each part of a row names its cells in one place
+//! (`named`), from which both the header and the fields are made.
 //!
 //! No wall-clock time appears in a row, so that a sweep writes the same file every time.
 
 use crate::automaton::EventKind;
+use crate::format::shortest;
 use crate::model::Model;
-use crate::output::shortest;
 use crate::solution::Solution;
+
+/// One field of a row, typed; `None` where the field is empty (no value is known).
+#[derive(Debug, Clone, PartialEq)]
+pub enum Cell {
+    /// true or false.
+    Bool(Option<bool>),
+    /// A count.
+    Int(Option<usize>),
+    /// A number.
+    Float(Option<f64>),
+    /// Text (a status, a reason, a list of bands, a record file).
+    Text(Option<String>),
+}
+
+/// The type of a column: that of its cells.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Kind {
+    /// [`Cell::Bool`].
+    Bool,
+    /// [`Cell::Int`].
+    Int,
+    /// [`Cell::Float`].
+    Float,
+    /// [`Cell::Text`].
+    Text,
+}
+
+impl Kind {
+    /// The kind's name: `bool`, `int`, `float` or `str`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Kind::Bool => "bool",
+            Kind::Int => "int",
+            Kind::Float => "float",
+            Kind::Text => "str",
+        }
+    }
+}
+
+impl Cell {
+    /// The cell's kind.
+    pub fn kind(&self) -> Kind {
+        match self {
+            Cell::Bool(_) => Kind::Bool,
+            Cell::Int(_) => Kind::Int,
+            Cell::Float(_) => Kind::Float,
+            Cell::Text(_) => Kind::Text,
+        }
+    }
+
+    /// An empty cell of kind `kind`.
+    pub fn empty(kind: Kind) -> Cell {
+        match kind {
+            Kind::Bool => Cell::Bool(None),
+            Kind::Int => Cell::Int(None),
+            Kind::Float => Cell::Float(None),
+            Kind::Text => Cell::Text(None),
+        }
+    }
+
+    /// Text as a cell: empty text is an empty cell.
+    pub fn text(text: &str) -> Cell {
+        Cell::Text((!text.is_empty()).then(|| text.to_string()))
+    }
+
+    /// The field as sweep.csv holds it: `true`/`false`, a decimal count, a number in its
+    /// shortest form that reads back to the same bits, the text; empty for `None`.
+    pub fn field(&self) -> String {
+        match self {
+            Cell::Bool(b) => b.map(|b| b.to_string()).unwrap_or_default(),
+            Cell::Int(n) => n.map(|n| n.to_string()).unwrap_or_default(),
+            Cell::Float(x) => x.map(shortest).unwrap_or_default(),
+            Cell::Text(t) => t.clone().unwrap_or_default(),
+        }
+    }
+}
+
+/// The names of `cells`.
+fn names<const N: usize>(cells: [(&'static str, Cell); N]) -> Vec<&'static str> {
+    cells.iter().map(|(name, _)| *name).collect()
+}
+
+/// Empty cells of the kinds of `cells`.
+fn emptied<const N: usize>(cells: [(&'static str, Cell); N]) -> Vec<Cell> {
+    cells.iter().map(|(_, c)| Cell::empty(c.kind())).collect()
+}
+
+/// The cells of `cells`, without their names.
+fn values<const N: usize>(cells: [(&'static str, Cell); N]) -> Vec<Cell> {
+    cells.into_iter().map(|(_, c)| c).collect()
+}
 
 /// How a point ended.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -33,7 +126,7 @@ impl Status {
 /// The body and excitation numbers of a point, dimensionless where the literature plots them.
 /// A number is None (an empty field) where it is not known: the excitation has no period, or
 /// a minimum search found no overturning value and the number depends on the searched key.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Scales {
     /// alpha = atan(B/H), rad.
     pub alpha: Option<f64>,
@@ -100,39 +193,29 @@ impl Scales {
         }
     }
 
-    /// Column names of [`Scales::fields`].
-    pub const COLUMNS: [&'static str; 8] = [
-        "alpha",
-        "p",
-        "T",
-        "s_n",
-        "amplitude_over_g_tan_alpha",
-        "amplitude_over_uplift_acceleration",
-        "omega_p_over_p",
-        "T_over_Tp",
-    ];
-
-    /// The fields, in the order of [`Scales::COLUMNS`].
-    pub fn fields(&self) -> [String; 8] {
+    /// The cells, by column name.
+    pub fn named(&self) -> [(&'static str, Cell); 8] {
         [
-            optional(self.alpha),
-            optional(self.p),
-            optional(self.period),
-            optional(self.uplift_displacement),
-            optional(self.amplitude_over_g_tan_alpha),
-            optional(self.amplitude_over_uplift_acceleration),
-            optional(self.omega_p_over_p),
-            optional(self.period_over_excitation_period),
+            ("alpha", Cell::Float(self.alpha)),
+            ("p", Cell::Float(self.p)),
+            ("T", Cell::Float(self.period)),
+            ("s_n", Cell::Float(self.uplift_displacement)),
+            (
+                "amplitude_over_g_tan_alpha",
+                Cell::Float(self.amplitude_over_g_tan_alpha),
+            ),
+            (
+                "amplitude_over_uplift_acceleration",
+                Cell::Float(self.amplitude_over_uplift_acceleration),
+            ),
+            ("omega_p_over_p", Cell::Float(self.omega_p_over_p)),
+            ("T_over_Tp", Cell::Float(self.period_over_excitation_period)),
         ]
     }
 }
 
-fn optional(x: Option<f64>) -> String {
-    x.map(shortest).unwrap_or_default()
-}
-
 /// What one run of a point gave.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone, Copy, Default)]
 pub struct RunOutcome {
     /// The body overturned within the duration.
     pub overturned: bool,
@@ -179,35 +262,29 @@ impl RunOutcome {
         }
     }
 
-    /// Column names of [`RunOutcome::fields`].
-    pub const COLUMNS: [&'static str; 11] = [
-        "overturned",
-        "t_overturn",
-        "n_uplift",
-        "n_landing",
-        "max_abs_q_over_B",
-        "max_abs_r_over_B",
-        "max_abs_s_over_s_n",
-        "ended_while_rocking",
-        "energy_residual_share",
-        "steps",
-        "rhs_evaluations",
-    ];
-
-    /// The fields, in the order of [`RunOutcome::COLUMNS`].
-    pub fn fields(&self) -> [String; 11] {
+    /// The cells, by column name.
+    pub fn named(&self) -> [(&'static str, Cell); 11] {
         [
-            self.overturned.to_string(),
-            optional(self.t_overturn),
-            self.n_uplift.to_string(),
-            self.n_landing.to_string(),
-            shortest(self.max_abs_q_over_b),
-            shortest(self.max_abs_r_over_b),
-            shortest(self.max_abs_s_over_s_n),
-            self.ended_while_rocking.to_string(),
-            shortest(self.energy_residual_share),
-            self.steps.to_string(),
-            self.rhs_evaluations.to_string(),
+            ("overturned", Cell::Bool(Some(self.overturned))),
+            ("t_overturn", Cell::Float(self.t_overturn)),
+            ("n_uplift", Cell::Int(Some(self.n_uplift))),
+            ("n_landing", Cell::Int(Some(self.n_landing))),
+            ("max_abs_q_over_B", Cell::Float(Some(self.max_abs_q_over_b))),
+            ("max_abs_r_over_B", Cell::Float(Some(self.max_abs_r_over_b))),
+            (
+                "max_abs_s_over_s_n",
+                Cell::Float(Some(self.max_abs_s_over_s_n)),
+            ),
+            (
+                "ended_while_rocking",
+                Cell::Bool(Some(self.ended_while_rocking)),
+            ),
+            (
+                "energy_residual_share",
+                Cell::Float(Some(self.energy_residual_share)),
+            ),
+            ("steps", Cell::Int(Some(self.steps))),
+            ("rhs_evaluations", Cell::Int(Some(self.rhs_evaluations))),
         ]
     }
 }
@@ -237,29 +314,17 @@ pub struct MinimumOutcome {
 }
 
 impl MinimumOutcome {
-    /// Column names of [`MinimumOutcome::fields`].
-    pub const COLUMNS: [&'static str; 8] = [
-        "min_overturning",
-        "safe_below",
-        "overturning_bands",
-        "n_bands",
-        "t_overturn",
-        "simulations",
-        "steps",
-        "rhs_evaluations",
-    ];
-
-    /// The fields, in the order of [`MinimumOutcome::COLUMNS`].
-    pub fn fields(&self) -> [String; 8] {
+    /// The cells, by column name.
+    pub fn named(&self) -> [(&'static str, Cell); 8] {
         [
-            optional(self.min_overturning),
-            optional(self.safe_below),
-            self.bands.clone(),
-            self.n_bands.to_string(),
-            optional(self.t_overturn),
-            self.simulations.to_string(),
-            self.steps.to_string(),
-            self.rhs_evaluations.to_string(),
+            ("min_overturning", Cell::Float(self.min_overturning)),
+            ("safe_below", Cell::Float(self.safe_below)),
+            ("overturning_bands", Cell::text(&self.bands)),
+            ("n_bands", Cell::Int(Some(self.n_bands))),
+            ("t_overturn", Cell::Float(self.t_overturn)),
+            ("simulations", Cell::Int(Some(self.simulations))),
+            ("steps", Cell::Int(Some(self.steps))),
+            ("rhs_evaluations", Cell::Int(Some(self.rhs_evaluations))),
         ]
     }
 }
@@ -280,21 +345,22 @@ pub struct RigidMinima {
 }
 
 impl RigidMinima {
-    /// Column names of [`RigidMinima::fields`].
-    pub const COLUMNS: [&'static str; 4] = [
-        "rigid_min_overturning",
-        "rigid_amplitude_over_g_tan_alpha",
-        "rigid_limit_min_overturning",
-        "rigid_limit_amplitude_over_g_tan_alpha",
-    ];
-
-    /// The fields, in the order of [`RigidMinima::COLUMNS`].
-    pub fn fields(&self) -> [String; 4] {
+    /// The cells, by column name.
+    pub fn named(&self) -> [(&'static str, Cell); 4] {
         [
-            optional(self.housner),
-            optional(self.housner_over_g_tan_alpha),
-            optional(self.elastic_limit),
-            optional(self.elastic_limit_over_g_tan_alpha),
+            ("rigid_min_overturning", Cell::Float(self.housner)),
+            (
+                "rigid_amplitude_over_g_tan_alpha",
+                Cell::Float(self.housner_over_g_tan_alpha),
+            ),
+            (
+                "rigid_limit_min_overturning",
+                Cell::Float(self.elastic_limit),
+            ),
+            (
+                "rigid_limit_amplitude_over_g_tan_alpha",
+                Cell::Float(self.elastic_limit_over_g_tan_alpha),
+            ),
         ]
     }
 }
@@ -336,37 +402,85 @@ impl Row {
     pub fn columns(find_min: bool) -> Vec<&'static str> {
         let mut columns = vec!["status", "reason"];
         if find_min {
-            columns.extend(MinimumOutcome::COLUMNS);
-            columns.extend(RigidMinima::COLUMNS);
+            columns.extend(names(MinimumOutcome::default().named()));
+            columns.extend(names(RigidMinima::default().named()));
         } else {
-            columns.extend(RunOutcome::COLUMNS);
+            columns.extend(names(RunOutcome::default().named()));
         }
-        columns.extend(Scales::COLUMNS);
+        columns.extend(names(Scales::default().named()));
         columns
     }
 
-    /// The result fields, in the order of [`Row::columns`]; empty where there is no value.
-    pub fn fields(&self, find_min: bool) -> Vec<String> {
-        let mut fields = vec![self.status.name().to_string(), self.reason.clone()];
+    /// The result cells, in the order of [`Row::columns`]; empty where there is no value.
+    pub fn cells(&self, find_min: bool) -> Vec<Cell> {
+        let mut cells = vec![
+            Cell::Text(Some(self.status.name().to_string())),
+            Cell::text(&self.reason),
+        ];
         match &self.outcome {
-            Some(Outcome::Run(run)) => fields.extend(run.fields()),
+            Some(Outcome::Run(run)) => cells.extend(values(run.named())),
             Some(Outcome::Minimum(min, rigid)) => {
-                fields.extend(min.fields());
-                fields.extend(rigid.fields());
+                cells.extend(values(min.named()));
+                cells.extend(values(rigid.named()));
             }
-            None if find_min => fields.extend(std::iter::repeat_n(
-                String::new(),
-                MinimumOutcome::COLUMNS.len() + RigidMinima::COLUMNS.len(),
-            )),
-            None => fields.extend(std::iter::repeat_n(
-                String::new(),
-                RunOutcome::COLUMNS.len(),
-            )),
+            None if find_min => {
+                cells.extend(emptied(MinimumOutcome::default().named()));
+                cells.extend(emptied(RigidMinima::default().named()));
+            }
+            None => cells.extend(emptied(RunOutcome::default().named())),
         }
         match &self.scales {
-            Some(scales) => fields.extend(scales.fields()),
-            None => fields.extend(std::iter::repeat_n(String::new(), Scales::COLUMNS.len())),
+            Some(scales) => cells.extend(values(scales.named())),
+            None => cells.extend(emptied(Scales::default().named())),
         }
-        fields
+        cells
+    }
+
+    /// The result fields as sweep.csv holds them, in the order of [`Row::columns`].
+    pub fn fields(&self, find_min: bool) -> Vec<String> {
+        self.cells(find_min).iter().map(Cell::field).collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_row_has_a_cell_for_every_column_and_a_column_keeps_its_kind() {
+        let run = Row {
+            status: Status::Ok,
+            reason: String::new(),
+            outcome: Some(Outcome::Run(RunOutcome {
+                overturned: true,
+                t_overturn: Some(2.5),
+                n_uplift: 3,
+                ..RunOutcome::default()
+            })),
+            scales: Some(Scales::default()),
+        };
+        let failed = Row::failure(Status::Failed, "a reason".into());
+        for find_min in [false, true] {
+            let columns = Row::columns(find_min);
+            let mut seen = std::collections::BTreeSet::new();
+            assert!(columns.iter().all(|c| seen.insert(*c)), "{columns:?}");
+            let empty = failed.cells(find_min);
+            assert_eq!(empty.len(), columns.len());
+            assert_eq!(empty[1], Cell::Text(Some("a reason".into())));
+            assert!(empty[2..].iter().all(|c| c.field().is_empty()));
+            if !find_min {
+                let full = run.cells(false);
+                assert_eq!(full.len(), columns.len());
+                let kinds = |cells: &[Cell]| cells.iter().map(Cell::kind).collect::<Vec<_>>();
+                assert_eq!(kinds(&full), kinds(&empty));
+                let at =
+                    |name: &str| full[columns.iter().position(|c| *c == name).unwrap()].clone();
+                assert_eq!(at("overturned"), Cell::Bool(Some(true)));
+                assert_eq!(at("n_uplift"), Cell::Int(Some(3)));
+                assert_eq!(at("t_overturn").field(), "2.5");
+                assert_eq!(at("reason"), Cell::Text(None));
+                assert_eq!(at("omega_p_over_p"), Cell::Float(None));
+            }
+        }
     }
 }

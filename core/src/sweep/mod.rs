@@ -1,0 +1,645 @@
+//! Parametric studies: one model, axes over any of its numeric keys (and over record files),
+//! one [`Row`] per point.
+//!
+//! - [`axis`]: the axes and their values (`KEY=LO:HI:STEP`, `log:LO:HI:N`, lists, file patterns);
+//! - [`find_min`]: the smallest overturning value of a key at every point (scan, then bisect);
+//! - [`row`]: what a point gives, typed, and the column names of sweep.csv.
+//!
+//! Every point is the base model with the point's keys set ([`crate::model::Setting`]), read
+//! and checked by the same rules as a model file: a point that breaks one is a row with its
+//! reason, not the end of the sweep. Points run in parallel (with the `parallel` feature, on by
+//! default); each is computed alone, so that the rows are the same whatever the number of
+//! threads. Writing the rows to disk (chunks, resuming, shards) is the command line's business.
+//!
+//! Values a request holds are named by the sweep file's keys in messages (`vary KEY`,
+//! `find_min KEY`, `scan`, `tol`, `chunk_size`); the command line names them by its flags.
+
+pub mod axis;
+pub mod find_min;
+pub mod row;
+
+use std::path::{Path, PathBuf};
+
+use serde::{Deserialize, Serialize};
+
+pub use axis::{Axis, Interval};
+pub use find_min::FindMin;
+pub use row::{Cell, Outcome, Row, Status};
+use row::{RigidMinima, RunOutcome, Scales};
+
+use crate::error::{Error, Result};
+use crate::model::{read_schema, Model, Overrides, RecordCache, Setting};
+use crate::rigid::RigidBlock;
+
+/// Simulations per chunk, roughly: a chunk is the most a kill can lose.
+pub const SIMULATIONS_PER_CHUNK: usize = 1024;
+
+/// What a sweep is, as stored with its results: enough to tell whether a directory holds this
+/// sweep (to resume it, or to merge its shards) and to say how the results were made.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Plan {
+    /// Version of flexrock that made the results.
+    pub flexrock_version: String,
+    /// The model file as named on the command line.
+    pub model_file: String,
+    /// Its text, so that a changed file is not mistaken for the same sweep.
+    pub model_text: String,
+    /// `--set` keys, as `key=value`.
+    pub settings: Vec<String>,
+    /// The axes, the last varying fastest.
+    pub axes: Vec<Axis>,
+    /// The minimum search, if the sweep makes one at each point.
+    pub find_min: Option<FindMin>,
+    /// Points per chunk file.
+    pub chunk_size: usize,
+    /// The record files the sweep reads, each with the SHA-256 of its bytes, so that a record
+    /// replaced between a kill and the resume (or a relative path that names another file from
+    /// another directory) makes another sweep, never a mixed one.
+    pub records: Vec<RecordInput>,
+}
+
+/// A record file a sweep reads: where it is named, and the digest of its contents.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+pub struct RecordInput {
+    /// Where the sweep names it: `model` for the model file's (and `--set`'s) `excitation.path`,
+    /// else the value of the `excitation.path` axis as typed.
+    pub named_by: String,
+    /// SHA-256 of the file's bytes, in hex; or why the file could not be read (then every point
+    /// that reads it is an invalid row).
+    pub sha256: String,
+}
+
+impl Plan {
+    /// Number of points: the product of the axes' lengths (1 without axes).
+    pub fn points(&self) -> usize {
+        self.axes.iter().map(Axis::len).product()
+    }
+
+    /// The column names of sweep.csv.
+    pub fn columns(&self) -> Vec<String> {
+        let mut columns = vec!["point".to_string()];
+        columns.extend(self.axes.iter().map(|a| a.key.clone()));
+        columns.extend(
+            Row::columns(self.find_min.is_some())
+                .into_iter()
+                .map(str::to_string),
+        );
+        columns
+    }
+
+    /// The index of each axis at point `index` (the last axis varies fastest).
+    pub fn coordinates(&self, mut index: usize) -> Vec<usize> {
+        let mut coordinates = vec![0; self.axes.len()];
+        for (slot, axis) in coordinates.iter_mut().zip(&self.axes).rev() {
+            *slot = index % axis.len();
+            index /= axis.len();
+        }
+        coordinates
+    }
+
+    /// True when `other` computes the same points: everything but the model file's name as
+    /// typed (its text is compared), so that a sweep resumed from another directory, or a shard
+    /// started there, is recognised.
+    pub fn same_sweep(&self, other: &Plan) -> bool {
+        Plan {
+            model_file: other.model_file.clone(),
+            ..self.clone()
+        } == *other
+    }
+
+    /// The SHA-256 (hex) of everything that decides the sweep's rows: the plan but the model
+    /// file's name as typed. Chunks are sealed with it, so that a chunk of another sweep is
+    /// never taken for one of this sweep.
+    pub fn identity(&self) -> String {
+        let plan = Plan {
+            model_file: String::new(),
+            ..self.clone()
+        };
+        sha256_hex(&serde_json::to_vec(&plan).unwrap_or_default())
+    }
+
+    /// The plan as read back from a file (a sweep.json): its axes' values made settings again,
+    /// which are not stored.
+    pub fn restored(mut self) -> Plan {
+        self.axes = self.axes.into_iter().map(Axis::restored).collect();
+        self
+    }
+}
+
+/// What a user asks for.
+#[derive(Debug, Clone, Default)]
+pub struct Request {
+    /// `--set` keys, applied to every point before its axis values.
+    pub settings: Vec<Setting>,
+    /// `--vary` axes.
+    pub axes: Vec<Axis>,
+    /// `--find-min KEY=LO:HI`.
+    pub find_min: Option<(String, Interval)>,
+    /// Scanned values of the minimum search [default: [`find_min::DEFAULT_SCAN`]].
+    pub scan: Option<usize>,
+    /// Bisection tolerance [default: [`find_min::DEFAULT_TOL_SHARE`] of HI - LO].
+    pub tol: Option<f64>,
+    /// Points per chunk [default: about [`SIMULATIONS_PER_CHUNK`] simulations].
+    pub chunk_size: Option<usize>,
+}
+
+/// A sweep file: the axes, settings and search of a sweep, written as on the command line.
+///
+/// ```toml
+/// vary = ["excitation.amplitude=0.5:15:0.5", "excitation.period=log:0.2:3:40"]
+/// set = ["solver.method=tsit45", "solver.rtol=1e-8"]
+/// find_min = "excitation.amplitude=0.5:15"   # optional
+/// scan = 100                                  # optional
+/// tol = 1e-3                                  # optional
+/// ```
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SweepFile {
+    /// As `--vary`.
+    #[serde(default)]
+    pub vary: Vec<String>,
+    /// As `--set`.
+    #[serde(default)]
+    pub set: Vec<String>,
+    /// As `--find-min`.
+    pub find_min: Option<String>,
+    /// As `--scan`.
+    pub scan: Option<usize>,
+    /// As `--tol`.
+    pub tol: Option<f64>,
+    /// As `--chunk-size`.
+    pub chunk_size: Option<usize>,
+}
+
+impl Request {
+    /// Adds the axis `KEY=SPEC` (file patterns relative to `base_dir`), checking that the sweep
+    /// stays within [`axis::MAX_POINTS`] before the axis's values are made.
+    pub fn vary(&mut self, text: &str, base_dir: &Path) -> Result<()> {
+        let others = (self.axes.iter()).fold(1usize, |n, a| n.saturating_mul(a.len()));
+        self.axes.push(Axis::parse_beside(text, base_dir, others)?);
+        Ok(())
+    }
+
+    /// Adds a sweep file to the request; file patterns and record paths in it are relative to
+    /// the file (its `set` record paths are written again relative to the model file `model`,
+    /// which reads them). Relative `path` and `model` are relative to the directory `here`.
+    pub fn add_file(&mut self, path: &Path, model: &Path, here: &Path) -> Result<()> {
+        // Read as a model file is (a regular file of limited size), so that /dev/zero is refused.
+        let text = crate::model::read_model_text(path).map_err(|e| match e {
+            Error::ReadModel { path, source } => Error::SweepFile {
+                path,
+                message: format!("cannot read the sweep file: {source}"),
+            },
+            other => other,
+        })?;
+        let file: SweepFile = toml::from_str(&text).map_err(|e| Error::ParseModel {
+            path: path.to_path_buf(),
+            message: e.to_string().trim_end().to_string(),
+        })?;
+        let base = path.parent().unwrap_or(Path::new("."));
+        let in_file = |e: Error| Error::InModel {
+            path: path.to_path_buf(),
+            source: Box::new(e),
+        };
+        let model_dir = here.join(model.parent().unwrap_or(Path::new("")));
+        for text in &file.set {
+            let setting = Setting::parse(text).map_err(in_file)?;
+            self.settings
+                .push(setting.rebased(&here.join(base), &model_dir));
+        }
+        for text in &file.vary {
+            self.vary(text, base).map_err(in_file)?;
+        }
+        if let Some(text) = &file.find_min {
+            self.find_min = Some(axis::parse_interval(text).map_err(in_file)?);
+        }
+        self.scan = self.scan.or(file.scan);
+        self.tol = self.tol.or(file.tol);
+        self.chunk_size = self.chunk_size.or(file.chunk_size);
+        Ok(())
+    }
+}
+
+/// A sweep ready to run: the plan, and the base model's table.
+pub struct Sweep {
+    /// What is computed.
+    pub plan: Plan,
+    table: toml::Table,
+    /// The model file, or what names a model given as text, in messages.
+    source: PathBuf,
+    /// The model's record paths are relative to this directory.
+    base_dir: PathBuf,
+    settings: Vec<Setting>,
+    /// Record files of an `excitation.path` axis are relative to this directory (where the user
+    /// typed the pattern), not to the model file.
+    paths_base: PathBuf,
+    records: RecordCache,
+}
+
+impl Sweep {
+    /// Checks a request against the model file: keys known to the schema, axes distinct,
+    /// the minimum searched over a key that is not an axis. Values are checked per point.
+    /// Record paths of the model file are relative to the file; the values of an
+    /// `excitation.path` axis, typed by the user, are relative to the directory `here`.
+    pub fn new(model_path: &Path, request: Request, here: &Path) -> Result<Sweep> {
+        let (model_text, table) = crate::model::read_model_table(model_path)?;
+        let base_dir = model_path.parent().unwrap_or(Path::new("."));
+        Sweep::build(
+            model_path.display().to_string(),
+            model_text,
+            table,
+            (model_path, base_dir),
+            request,
+            here,
+        )
+    }
+
+    /// [`Sweep::new`] for a model given as the text of a model file: its record paths are
+    /// relative to `base_dir`, and messages name it `(model text)`.
+    pub fn from_text(text: &str, base_dir: &Path, request: Request, here: &Path) -> Result<Sweep> {
+        let source = Path::new(crate::model::MODEL_TEXT);
+        let table = crate::model::parse_table(text, source)?;
+        Sweep::build(
+            crate::model::MODEL_TEXT.to_string(),
+            text.to_string(),
+            table,
+            (source, base_dir),
+            request,
+            here,
+        )
+    }
+
+    fn build(
+        model_file: String,
+        model_text: String,
+        table: toml::Table,
+        (source, base_dir): (&Path, &Path),
+        request: Request,
+        here: &Path,
+    ) -> Result<Sweep> {
+        let model_path = source;
+        let find_min = match &request.find_min {
+            None => None,
+            Some((key, interval)) => {
+                let scan = request.scan.unwrap_or(find_min::DEFAULT_SCAN);
+                if !(2..=axis::MAX_AXIS_VALUES).contains(&scan) {
+                    return Err(Error::invalid(
+                        "scan",
+                        scan,
+                        &format!("must lie in 2..={}", axis::MAX_AXIS_VALUES),
+                    ));
+                }
+                let tol = request
+                    .tol
+                    .unwrap_or(find_min::DEFAULT_TOL_SHARE * (interval.hi - interval.lo));
+                if !(tol > 0.0 && tol.is_finite()) {
+                    return Err(Error::invalid("tol", tol, "must be a positive number"));
+                }
+                Some(FindMin {
+                    key: key.clone(),
+                    lo: interval.lo,
+                    hi: interval.hi,
+                    scan,
+                    tol,
+                })
+            }
+        };
+        if request.axes.is_empty() && find_min.is_none() {
+            return Err(Error::invalid(
+                "vary",
+                "(none)",
+                "a sweep needs at least one --vary axis or --find-min",
+            ));
+        }
+        let mut keys: Vec<&str> = request.axes.iter().map(|a| a.key.as_str()).collect();
+        if let Some(f) = &find_min {
+            keys.push(&f.key);
+        }
+        for (i, key) in keys.iter().enumerate() {
+            if keys[..i].contains(key) {
+                return Err(Error::invalid(
+                    &format!("vary {key}"),
+                    key,
+                    "each key may be varied (or searched) once",
+                ));
+            }
+        }
+        let points = request
+            .axes
+            .iter()
+            .try_fold(1usize, |n, a| n.checked_mul(a.len()))
+            .filter(|&n| n <= axis::MAX_POINTS)
+            .ok_or_else(|| {
+                Error::invalid(
+                    "vary",
+                    request
+                        .axes
+                        .iter()
+                        .map(|a| a.len().to_string())
+                        .collect::<Vec<_>>()
+                        .join(" x "),
+                    &format!("a sweep may have at most {} points", axis::MAX_POINTS),
+                )
+            })?;
+        // Every key must exist in the schema: try the first value of each (a value's own rules
+        // are the point's business).
+        let mut probe: Vec<Setting> = request.settings.clone();
+        probe.extend(request.axes.iter().map(|a| a.setting(0)));
+        if let Some(f) = &find_min {
+            probe.push(Setting::number(&f.key, f.lo));
+        }
+        for (i, setting) in probe.iter().enumerate() {
+            if let Err(e) = read_schema(&table, &probe[..=i], model_path) {
+                let is_axis = i >= request.settings.len();
+                return Err(if is_axis {
+                    Error::invalid(
+                        &setting.key,
+                        setting.value_text(),
+                        &format!("cannot be swept: {e}"),
+                    )
+                } else {
+                    e
+                });
+            }
+        }
+        let simulations_per_point = find_min.as_ref().map_or(1, |f| f.scan + 16);
+        let chunk_size = request
+            .chunk_size
+            .unwrap_or((SIMULATIONS_PER_CHUNK / simulations_per_point).max(1));
+        if chunk_size == 0 {
+            return Err(Error::invalid("chunk_size", 0, "must be at least 1"));
+        }
+        let plan = Plan {
+            flexrock_version: crate::simulate::VERSION.to_string(),
+            model_file,
+            model_text,
+            settings: request
+                .settings
+                .iter()
+                .map(|s| format!("{}={}", s.key, s.value_text()))
+                .collect(),
+            axes: request.axes,
+            find_min,
+            chunk_size: chunk_size.min(points.max(1)),
+            records: Vec::new(),
+        };
+        let mut sweep = Sweep {
+            plan,
+            table,
+            source: source.to_path_buf(),
+            base_dir: base_dir.to_path_buf(),
+            settings: request.settings,
+            paths_base: here.to_path_buf(),
+            records: RecordCache::default(),
+        };
+        sweep.plan.records = sweep.record_inputs();
+        Ok(sweep)
+    }
+
+    /// The record files the sweep reads and their digests: the model's own `excitation.path`
+    /// (with the `--set` keys), and every value of an `excitation.path` axis. Each file is then
+    /// read into the record cache at once, so that the rows are computed from the contents just
+    /// digested (not from a file replaced later in the run).
+    fn record_inputs(&self) -> Vec<RecordInput> {
+        let mut cases: Vec<(String, Vec<Setting>)> =
+            vec![("model".to_string(), self.settings.clone())];
+        for axis in self.plan.axes.iter().filter(|a| a.key == "excitation.path") {
+            for i in 0..axis.len() {
+                let mut settings = self.settings.clone();
+                settings.push(self.absolute_path_setting(axis.setting(i)));
+                cases.push((axis.values[i].clone(), settings));
+            }
+        }
+        let mut inputs = Vec::new();
+        for (named_by, settings) in cases {
+            let Ok(file) = read_schema(&self.table, &settings, &self.source) else {
+                continue;
+            };
+            let Some(path) = file.excitation.path.as_deref() else {
+                continue;
+            };
+            if file.excitation.kind != "record" {
+                continue;
+            }
+            let sha256 = match read_record_bytes(&self.base_dir.join(path)) {
+                Ok(bytes) => sha256_hex(&bytes),
+                Err(e) => format!("unreadable: {e}"),
+            };
+            // Into the cache now; a point whose record is bad reports it in its own row.
+            let _ = self.model(&settings);
+            inputs.push(RecordInput { named_by, sha256 });
+        }
+        inputs
+    }
+
+    /// Number of points.
+    pub fn points(&self) -> usize {
+        self.plan.points()
+    }
+
+    /// The settings of point `index`: the `--set` keys, then the axes' values.
+    fn settings_at(&self, index: usize) -> Vec<Setting> {
+        let mut settings = self.settings.clone();
+        for (axis, &i) in self.plan.axes.iter().zip(&self.plan.coordinates(index)) {
+            settings.push(self.absolute_path_setting(axis.setting(i)));
+        }
+        settings
+    }
+
+    /// A value of an `excitation.path` axis made absolute: record files of an axis are relative
+    /// to the directory the sweep was started from. Other settings are returned unchanged.
+    fn absolute_path_setting(&self, mut setting: Setting) -> Setting {
+        if setting.key == "excitation.path" {
+            if let toml::Value::String(path) = &setting.value {
+                let absolute = self.paths_base.join(path);
+                setting.value = toml::Value::String(absolute.to_string_lossy().into_owned());
+            }
+        }
+        setting
+    }
+
+    fn model(&self, settings: &[Setting]) -> Result<Model> {
+        let file = read_schema(&self.table, settings, &self.source)?;
+        let overrides = Overrides::default();
+        Model::from_file_cached(file, &overrides, &self.base_dir, &self.records)
+    }
+
+    /// The rows of the points `points`, in point order (in parallel with the `parallel`
+    /// feature); `done` is called as each point finishes, from the thread that computed it.
+    pub fn rows(&self, points: std::ops::Range<usize>, done: &(dyn Fn() + Sync)) -> Vec<Row> {
+        in_order(points, |i| {
+            let row = self.evaluate(i);
+            done();
+            row
+        })
+    }
+
+    /// The row of point `index`.
+    pub fn evaluate(&self, index: usize) -> Row {
+        let settings = self.settings_at(index);
+        match &self.plan.find_min {
+            None => self.run_point(&settings),
+            Some(find) => self.search_point(&settings, find),
+        }
+    }
+
+    fn run_point(&self, settings: &[Setting]) -> Row {
+        let model = match self.model(settings) {
+            Ok(model) => model,
+            Err(e) => return Row::failure(Status::Invalid, reason(&e)),
+        };
+        let scales = Some(Scales::of(&model));
+        match crate::simulate::simulate_peaks(&model) {
+            Ok(solution) => Row {
+                status: Status::Ok,
+                reason: String::new(),
+                outcome: Some(Outcome::Run(RunOutcome::of(&model, &solution))),
+                scales,
+            },
+            Err(e) => Row {
+                scales,
+                ..Row::failure(Status::Failed, reason(&e))
+            },
+        }
+    }
+
+    fn search_point(&self, settings: &[Setting], find: &FindMin) -> Row {
+        let at = |value: f64| {
+            let mut settings = settings.to_vec();
+            settings.push(Setting::number(&find.key, value));
+            settings
+        };
+        let trial = |value: f64| -> std::result::Result<find_min::Trial, (Status, Error)> {
+            let model = self.model(&at(value)).map_err(|e| (Status::Invalid, e))?;
+            let solution =
+                crate::simulate::simulate_peaks(&model).map_err(|e| (Status::Failed, e))?;
+            Ok(find_min::Trial {
+                overturned: solution.overturned,
+                t_overturn: solution.t_overturn,
+                steps: solution.stats.steps,
+                rhs_evaluations: solution.stats.rhs_evaluations,
+            })
+        };
+        let scales_at = |value: f64| self.model(&at(value)).ok().map(|m| Scales::of(&m));
+        match find_min::search(find, trial) {
+            Ok(outcome) => {
+                // The dimensionless numbers of the smallest overturning value; when nothing
+                // overturned, only those the searched key does not change (equal at LO and HI),
+                // so that no column shows a number derived from the search's bound.
+                let scales = match outcome.min_overturning {
+                    Some(value) => scales_at(value),
+                    None => match (scales_at(find.lo), scales_at(find.hi)) {
+                        (Some(lo), Some(hi)) => Some(lo.common(&hi)),
+                        _ => None,
+                    },
+                };
+                let rigid_minimum = |block: fn(
+                    f64,
+                    f64,
+                    f64,
+                ) -> std::result::Result<
+                    RigidBlock,
+                    crate::solver::SolverError,
+                >| {
+                    let trial = |value: f64| -> Result<find_min::Trial> {
+                        let model = self.model(&at(value))?;
+                        let b = &model.body;
+                        let block = block(b.height, b.width, b.gravity)?;
+                        let out = crate::rigid::simulate_block(
+                            &block,
+                            model.floor.as_ref(),
+                            model.duration,
+                        )?;
+                        Ok(find_min::Trial {
+                            overturned: out.overturned,
+                            t_overturn: out.t_overturn,
+                            steps: 0,
+                            rhs_evaluations: 0,
+                        })
+                    };
+                    let min = find_min::search(find, trial)
+                        .ok()
+                        .and_then(|o| o.min_overturning);
+                    let scaled = min
+                        .and_then(scales_at)
+                        .and_then(|s| s.amplitude_over_g_tan_alpha);
+                    (min, scaled)
+                };
+                let (housner, housner_over_g_tan_alpha) = rigid_minimum(RigidBlock::housner);
+                let (elastic_limit, elastic_limit_over_g_tan_alpha) =
+                    rigid_minimum(RigidBlock::elastic_limit);
+                let rigid = RigidMinima {
+                    housner,
+                    housner_over_g_tan_alpha,
+                    elastic_limit,
+                    elastic_limit_over_g_tan_alpha,
+                };
+                Row {
+                    status: Status::Ok,
+                    reason: String::new(),
+                    outcome: Some(Outcome::Minimum(outcome, rigid)),
+                    scales,
+                }
+            }
+            Err((value, (status, e))) => Row::failure(
+                status,
+                format!(
+                    "at {} = {}: {}",
+                    find.key,
+                    crate::format::shortest(value),
+                    reason(&e)
+                ),
+            ),
+        }
+    }
+}
+
+/// `f` of every index of `indices`, in order; computed in parallel with the `parallel` feature.
+#[cfg(feature = "parallel")]
+pub(crate) fn in_order<R: Send>(
+    indices: std::ops::Range<usize>,
+    f: impl Fn(usize) -> R + Sync + Send,
+) -> Vec<R> {
+    use rayon::prelude::*;
+    indices.into_par_iter().map(f).collect()
+}
+
+/// `f` of every index of `indices`, in order.
+#[cfg(not(feature = "parallel"))]
+pub(crate) fn in_order<R: Send>(
+    indices: std::ops::Range<usize>,
+    f: impl Fn(usize) -> R + Sync + Send,
+) -> Vec<R> {
+    indices.map(f).collect()
+}
+
+/// SHA-256 of `bytes`, as 64 lower-case hex digits: the digest of a record file a sweep reads,
+/// and of its plan.
+pub fn sha256_hex(bytes: &[u8]) -> String {
+    use sha2::{Digest as _, Sha256};
+    let digest = Sha256::digest(bytes);
+    let mut text = String::with_capacity(64);
+    for byte in digest {
+        text.push_str(&format!("{byte:02x}"));
+    }
+    text
+}
+
+/// The bytes of a record file, read as the record reader reads it (a regular file of bounded
+/// size), for its digest.
+fn read_record_bytes(path: &Path) -> std::io::Result<Vec<u8>> {
+    use std::io::Read as _;
+    let file = std::fs::File::open(path)?;
+    if !file.metadata()?.is_file() {
+        return Err(std::io::Error::other("not a regular file"));
+    }
+    let limit = crate::record::MAX_RECORD_BYTES + 1;
+    let mut bytes = Vec::new();
+    file.take(limit).read_to_end(&mut bytes)?;
+    Ok(bytes)
+}
+
+/// An error as one line of a CSV field.
+fn reason(e: &Error) -> String {
+    e.to_string().replace(['\n', '\r'], " ")
+}

@@ -1,0 +1,18 @@
+//! The core's integration tests: one test binary, one build and link of the crate. Each file of
+//! core/tests/ is a module named for its concern; `cargo test --release --test core_integration
+//! rigid::` runs one (book/src/developer/tests.md). The tests run as threads of one process:
+//! none changes the environment or the working directory, and each writes only into its own
+//! `common::scratch_dir`.
+
+mod common;
+
+mod constants;
+mod dynamics;
+mod hardening;
+mod independent;
+mod layers;
+mod model_chapter;
+mod model_robustness;
+mod random_models;
+mod recorded_motion;
+mod rigid;

@@ -1,0 +1,341 @@
+"""flexrock: a slender elastic body rocking on a rigid floor (Ichinose 1986), in Python.
+
+The package runs the same solver as the ``flexrock`` command line, in your process, and returns
+numpy arrays; its numbers equal the command line's to the last digit. A model is a model file
+(TOML) or a dict of its tables; a ground motion may be a model-file excitation, a record file
+or numpy arrays; a sweep's table goes to numpy, pandas or xarray.
+
+Examples
+--------
+>>> import numpy as np
+>>> import flexrock
+>>> model = flexrock.Model.from_file("models/ichinose1986.toml")    # or Model.from_dict({...})
+>>> model.set("excitation.amplitude", 3.0)                          # m/s^2
+>>> result = flexrock.simulate(model)                               # numpy arrays: result.t, .q
+>>> gm = flexrock.GroundMotion(0.5 * np.sin(np.linspace(0, 20, 1001)), dt=0.01, units="g")
+>>> shaken = flexrock.simulate(model.with_ground_motion(gm))
+>>> grid = flexrock.sweep(model, {"excitation.period": [0.5, 1.0], "excitation.amplitude": [2, 4]})
+>>> frame = grid.to_pandas()                                        # one row per point
+>>> data = grid.to_xarray()                                         # one dimension per axis
+
+Errors are `FlexrockError` (a ValueError) whose message names the model key or the Python
+argument, the value and the rule.
+"""
+
+from __future__ import annotations
+
+from typing import Mapping, Optional, Sequence, Tuple, Union
+
+from . import _native
+from ._native import FlexrockError, GroundMotion, Model, Result, __version__
+from ._sweep import SweepResult
+
+__all__ = [
+    "FlexrockError",
+    "GroundMotion",
+    "Model",
+    "Result",
+    "SweepResult",
+    "__version__",
+    "props",
+    "read_record",
+    "simulate",
+    "sweep",
+]
+
+Value = Union[bool, int, float, str]
+
+FlexrockError.__doc__ = """An error of flexrock: a bad model key, value, argument or file.
+
+A `ValueError`. The message names the model-file key (``excitation.amplitude``) or the Python
+argument (``acceleration[17]``, ``rtol (sets solver.rtol)``), the value and the rule it breaks,
+and where there is one, the closest known name (``did you mean ...``).
+
+Examples
+--------
+>>> try:
+...     model.set("excitation.amplitud", 3.0)
+... except flexrock.FlexrockError as e:
+...     print(e)
+"""
+
+Model.__doc__ = """A model: a model file (or its text, or a dict of its tables) and the keys set on it.
+
+Build one with `Model.from_file`, `Model.from_toml` or `Model.from_dict`; every constructor and
+`set` validates the model by the rules of the model file.
+
+Parameters
+----------
+(none: use the static constructors)
+    ``Model.from_file(path)``: a model file; its record paths are relative to its directory.
+    ``Model.from_toml(text)``: the text of a model file; record paths relative to the current
+    directory. ``Model.from_dict(d)``: the file's tables as a nested dict,
+    ``{"body": {...}, "excitation": {...}, "solver": {...}}``; record paths relative to the
+    current directory.
+
+Methods
+-------
+set(key, value)
+    Sets a model-file key (``"excitation.amplitude"``, ``"solver.method"``); a record path is
+    relative to the current directory. Raises FlexrockError naming the key on a bad key or value,
+    and leaves the model as it was.
+get(key)
+    The value in effect: set with `set`, else the file's, else the default the core uses where it
+    has one, else None. An unknown key raises FlexrockError naming it ("did you mean ...").
+to_dict(), to_toml()
+    The model file with the settings applied (record paths relative to the current directory):
+    ``Model.from_dict(m.to_dict())`` and ``Model.from_toml(m.to_toml())`` solve to the same
+    numbers, bit for bit. Raise FlexrockError for a model with a ground motion from arrays.
+with_ground_motion(ground_motion)
+    A new model whose ``[excitation]`` is the `GroundMotion` (``kind = "record"``); the
+    model's other tables and settings stay, its ``excitation.*`` settings are dropped. The record
+    keys ``excitation.scale``, ``start``, ``end`` and ``tail`` may then be set as for a record
+    file; ``simulation.duration``, when the model gives one, still applies (else the record's
+    length plus the tail).
+
+Returns
+-------
+Model
+    The constructors return a validated model; ``with_ground_motion`` a new one.
+
+Raises
+------
+FlexrockError
+    A model that breaks a rule of the model file (the message names the key).
+
+Examples
+--------
+>>> model = flexrock.Model.from_dict({
+...     "body": {"height": 4.0, "width": 0.7, "density": 600.0, "youngs_modulus": 5e6},
+...     "excitation": {"kind": "paper-sine", "amplitude": 2.5, "period": 1.0, "ramp": 1.0},
+...     "simulation": {"duration": 6.0}})
+>>> model.set("excitation.amplitude", 3.0)
+>>> model.get("excitation.amplitude"), model.get("body.gravity")
+(3.0, 9.81)
+>>> text = model.to_toml()
+"""
+
+GroundMotion.__doc__ = """A floor acceleration record sampled at a uniform interval, from arrays.
+
+Checked by the rules and limits of a record file; a model solved under it
+(`Model.with_ground_motion`) uses the core's recorded motion, linear between samples, so its
+numbers equal those of a record file with the same samples.
+
+Parameters
+----------
+acceleration : array_like of float, 1-D
+    The samples, first at t = 0, in `units`: finite, at least 2.
+dt : float, optional
+    Sampling interval, s: at least 1e-5 s. Give `dt` or `time`.
+time : array_like of float, optional (keyword)
+    The sample times, s: from 0, uniformly spaced to 1e-6 relative (as a CSV record's time
+    column); dt is their mean step.
+units : {"g", "m/s2", "cm/s2"} (keyword, required)
+    The units of `acceleration`, as ``excitation.units`` names them (g is standard gravity,
+    9.80665 m/s^2).
+source : str, optional (keyword)
+    A name for tables and messages (default "arrays").
+
+Returns
+-------
+GroundMotion
+    Attributes ``dt`` (s), ``acceleration`` (m/s^2, numpy), ``time`` (s, numpy), ``units``,
+    ``source``, ``duration`` (s), and ``len()``.
+
+Raises
+------
+FlexrockError
+    A value that breaks a rule, named by its argument: ``acceleration[17] = NaN: ...``,
+    ``dt = -1: must be > 0 s``, ``time[3] = 0.035: the times must be uniformly spaced ...``.
+    A peak beyond 20 g is refused when a model takes the motion.
+
+Examples
+--------
+>>> t = np.arange(0, 10, 0.01)
+>>> gm = flexrock.GroundMotion(0.3 * np.sin(2 * np.pi * t), dt=0.01, units="g")
+>>> shaken = flexrock.simulate(model.with_ground_motion(gm))
+"""
+
+Result.__doc__ = """The solution of `simulate`.
+
+Attributes
+----------
+t, q, qdot, s, r, floor_acc, F, energy_residual, work_input, work_damping : numpy.ndarray
+    The columns of history.csv (s, m, m/s, m, m, m/s^2, N, J, J, J).
+mode : numpy.ndarray of str
+    The mode at each sample.
+events : list of dict
+    The event log (events.csv's columns).
+episodes : list of dict
+    The rocking episodes (episodes.csv's columns; None where empty).
+summary : dict
+    The keys of summary.json.
+
+Methods
+-------
+to_pandas()
+    The history as a pandas DataFrame (ImportError without pandas).
+
+Examples
+--------
+>>> result = flexrock.simulate(model)
+>>> result.q.max(), result.summary["n_uplift"]
+"""
+
+
+def props(model: Model) -> dict:
+    """The body as understood and its derived constants.
+
+    Parameters
+    ----------
+    model : Model
+        The model.
+
+    Returns
+    -------
+    dict
+        The JSON the command line's props command writes: ``body``, ``constants`` (period, s_n, ...).
+
+    Examples
+    --------
+    >>> flexrock.props(flexrock.Model.from_file("models/ichinose1986.toml"))["constants"]["period"]
+    1.55...
+    """
+    return _native.props(model)
+
+
+def simulate(
+    model: Model,
+    method: Optional[str] = None,
+    rtol: Optional[float] = None,
+    atol: Optional[float] = None,
+    duration: Optional[float] = None,
+    output_dt: Optional[float] = None,
+) -> Result:
+    """Solves a model: the time history, the events, the rocking episodes and the summary.
+
+    Parameters
+    ----------
+    model : Model
+        The model (with its settings, and its ground motion if given as arrays).
+    method : str, optional
+        The solver, for this run (replaces the model's ``solver.method``): "bdf", "tsit45",
+        "newmark", ...
+    rtol, atol : float, optional
+        Tolerances of an adaptive solver (``solver.rtol``, ``solver.atol``, m).
+    duration : float, optional
+        Simulated time, s (``simulation.duration``).
+    output_dt : float, optional
+        Spacing of the sampled history, s (``solver.output_dt``).
+
+    Returns
+    -------
+    Result
+        numpy arrays ``t``, ``q``, ``qdot``, ``s``, ``r``, ``mode``, ``floor_acc``, ``F`` and the
+        energy books (the columns of history.csv); ``events``, ``episodes`` (lists of dicts) and
+        ``summary`` (the dict of summary.json); ``to_pandas()``.
+
+    Raises
+    ------
+    FlexrockError
+        On a bad argument (the message names it and the key it sets:
+        ``rtol (sets solver.rtol) = -1: ...``) or a model that cannot be solved.
+
+    Examples
+    --------
+    >>> result = flexrock.simulate(model, method="tsit45", rtol=1e-8)
+    >>> result.summary["n_uplift"]
+    """
+    return _native.simulate(
+        model, method=method, rtol=rtol, atol=atol, duration=duration, output_dt=output_dt
+    )
+
+
+def read_record(
+    path,
+    format: Optional[str] = None,
+    dt: Optional[float] = None,
+    units: Optional[str] = None,
+) -> GroundMotion:
+    """Reads a ground-motion record file into a `GroundMotion`.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The record file, relative to the current directory.
+    format : {"peer-at2", "csv"}, optional
+        The file's layout; by default from the extension (.AT2, .csv).
+    dt : float, optional
+        Sampling interval, s: required for a one-column CSV file; otherwise it must agree with
+        the file's.
+    units : {"g", "m/s2", "cm/s2"}, optional
+        The units of the file's values; "g" by default for AT2 files, required for CSV.
+
+    Returns
+    -------
+    GroundMotion
+        ``dt``, ``acceleration`` (m/s^2, numpy), ``units`` and ``source`` (the path).
+
+    Raises
+    ------
+    FlexrockError
+        A file that cannot be read or breaks the rules of its format (the message names the
+        file and line), or a bad ``format`` or ``units``.
+
+    Examples
+    --------
+    >>> gm = flexrock.read_record("validation/records/elCentro.AT2")
+    >>> gm.dt, len(gm), gm.units
+    (0.02, 1559, 'g')
+    """
+    return _native.read_record(path, format=format, dt=dt, units=units)
+
+
+def sweep(
+    model: Model,
+    axes: Mapping[str, Sequence[Value]],
+    find_min: Optional[Tuple[str, float, float]] = None,
+    scan: Optional[int] = None,
+    tol: Optional[float] = None,
+) -> SweepResult:
+    """A parametric study: every combination of the axes' values, on every core.
+
+    Parameters
+    ----------
+    model : Model
+        The model (its settings apply at every point). A model with a ground motion given as
+        arrays cannot be swept yet: write the samples to a record file.
+    axes : mapping of str to sequence
+        Model-file keys and their values, e.g. ``{"excitation.period": [0.5, 1.0]}``; the last
+        axis varies fastest.
+    find_min : (key, lo, hi), optional
+        At each point, search [lo, hi] for the smallest value of ``key`` that overturns the body
+        (column ``min_overturning``; NaN where nothing in the interval overturns).
+    scan : int, optional
+        Values scanned before the bisection of ``find_min``.
+    tol : float, optional
+        Tolerance of the bisection of ``find_min``, in the key's unit.
+
+    Returns
+    -------
+    SweepResult
+        Typed columns by name (``result["overturned"]`` is a bool array), ``shape`` (the axes'
+        lengths), ``to_pandas()``, ``to_xarray()`` and ``to_dict()``.
+
+    Raises
+    ------
+    FlexrockError
+        A bad key or value (the message names it).
+
+    Examples
+    --------
+    >>> grid = flexrock.sweep(model, {"excitation.period": [0.5, 1.0],
+    ...                               "excitation.amplitude": [2.0, 4.0]})
+    >>> grid.to_xarray()["max_abs_q_over_B"].sel({"excitation.period": 1.0})
+    """
+    if model.ground_motion is not None:
+        raise FlexrockError(
+            "sweep: the model's ground motion was given as arrays; a sweep reads its record from "
+            "a file: write the samples to a CSV record file and set excitation.path to it"
+        )
+    return SweepResult(_native.sweep(model, dict(axes), find_min=find_min, scan=scan, tol=tol))

@@ -1,0 +1,299 @@
+"""The Python API beyond the command line's: models as dicts, values in effect, ground motions
+from arrays, typed sweep tables, the package's layout and documentation."""
+
+import inspect
+import re
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import flexrock
+
+ROOT = Path(__file__).resolve().parents[2]
+MODEL = ROOT / "models" / "ichinose1986.toml"
+RECORD_MODEL = ROOT / "models" / "elcentro1940.toml"
+AT2 = ROOT / "validation" / "records" / "elCentro.AT2"
+STANDARD_GRAVITY = 9.80665
+
+
+def same_results(a, b):
+    for name in ["t", "q", "qdot", "s", "r", "floor_acc", "F", "energy_residual"]:
+        assert np.array_equal(getattr(a, name), getattr(b, name)), name
+    assert list(a.mode) == list(b.mode)
+    assert a.events == b.events
+    for key in ["max_q", "min_q", "n_uplift", "n_landing", "overturned", "final_time"]:
+        assert a.summary[key] == b.summary[key], key
+
+
+def read_at2(path):
+    """An AT2 file read here, independently of the core: NPTS and DT from line 4, then values."""
+    lines = Path(path).read_text().splitlines()
+    header = lines[3].upper()
+    npts = int(re.search(r"NPTS\s*=\s*(\d+)", header).group(1))
+    dt = float(re.search(r"DT\s*=\s*([0-9.Ee+-]+)", header).group(1))
+    values = [float(v) for line in lines[4:] for v in line.split()]
+    assert len(values) == npts
+    return dt, np.array(values)
+
+
+# Layout and documentation.
+
+def test_the_compiled_module_is_private_and_the_package_documented():
+    assert flexrock._native.__name__ == "flexrock._native"
+    assert flexrock.__doc__ and "from_dict" in flexrock.__doc__ and "to_xarray" in flexrock.__doc__
+    for name in flexrock.__all__:
+        obj = getattr(flexrock, name)
+        if name.startswith("__"):
+            continue
+        doc = inspect.getdoc(obj) or ""
+        assert len(doc.splitlines()) > 3, name
+        for section in ["Parameters", "Returns", "Examples"]:
+            if inspect.isfunction(obj) or obj in (flexrock.Model, flexrock.GroundMotion):
+                assert section in doc, (name, section)
+    assert (Path(flexrock.__file__).parent / "py.typed").is_file()
+    assert (Path(flexrock.__file__).parent / "_native.pyi").is_file()
+
+
+def test_no_command_line_flag_in_the_documentation():
+    for name in flexrock.__all__:
+        obj = getattr(flexrock, name)
+        docs = [inspect.getdoc(obj) or ""]
+        docs += [inspect.getdoc(m) or "" for _, m in inspect.getmembers(obj) if callable(m)]
+        for doc in docs:
+            assert not re.search(r"(?<![\w-])--[a-z]", doc), (name, doc)
+
+
+# Model as a dict, values in effect, the file written back.
+
+def tables(path):
+    tomllib = pytest.importorskip("tomllib")
+    return tomllib.loads(Path(path).read_text())
+
+
+def test_a_model_from_a_dict_equals_the_file():
+    same_results(flexrock.simulate(flexrock.Model.from_dict(tables(MODEL))),
+                 flexrock.simulate(flexrock.Model.from_file(MODEL)))
+    with pytest.raises(flexrock.FlexrockError, match="amplitud"):
+        d = tables(MODEL)
+        d["excitation"]["amplitud"] = 1.0
+        flexrock.Model.from_dict(d)
+    with pytest.raises(flexrock.FlexrockError, match=r"\[.body.\]\[.height.\]"):
+        d = tables(MODEL)
+        d["body"]["height"] = [1, 2]
+        flexrock.Model.from_dict(d)
+
+
+def test_get_gives_the_value_in_effect():
+    file = tables(MODEL)
+    model = flexrock.Model.from_file(MODEL)
+    assert model.get("excitation.amplitude") == file["excitation"]["amplitude"]
+    model.set("excitation.amplitude", 3.25)
+    assert model.get("excitation.amplitude") == 3.25
+    # Omitted keys: the core's defaults (the book's model-file reference), else None.
+    defaults = [("body.gravity", 9.81), ("body.depth", 1.0), ("body.damping_ratio", 0.05),
+                ("body.self_weight", "paper"), ("body.constants", "exact"), ("solver.method", "bdf"),
+                ("solver.rtol", 1e-10), ("solver.atol", 1e-12), ("solver.output_dt", 0.005),
+                ("simulation.q0", 0.0)]
+    omitted = 0
+    for key, default in defaults:
+        section, name = key.split(".")
+        given = file.get(section, {}).get(name)
+        omitted += given is None
+        assert model.get(key) == (default if given is None else given), key
+    assert omitted >= 1
+    assert model.get("body.mass") is None
+    with pytest.raises(flexrock.FlexrockError) as error:
+        model.get("excitation.amplitud")
+    assert "excitation.amplitud" in str(error.value)
+    assert "did you mean excitation.amplitude" in str(error.value)
+    with pytest.raises(flexrock.FlexrockError, match="section.name"):
+        model.get("amplitude")
+
+
+@pytest.mark.parametrize("path", [MODEL, RECORD_MODEL, ROOT / "models" / "pulse-map.toml"])
+def test_to_toml_and_to_dict_give_the_same_model_back(path, monkeypatch):
+    monkeypatch.chdir(ROOT)
+    model = flexrock.Model.from_file(path)
+    if path == MODEL:
+        model.set("excitation.amplitude", 4)
+        model.set("solver.method", "tsit45")
+    else:
+        model.set("simulation.duration", 3.0)
+    expected = flexrock.simulate(model)
+    text = model.to_toml()
+    assert "excitation" in text
+    same_results(flexrock.simulate(flexrock.Model.from_toml(text)), expected)
+    same_results(flexrock.simulate(flexrock.Model.from_dict(model.to_dict())), expected)
+    d = model.to_dict()
+    if path == MODEL:
+        assert d["excitation"]["amplitude"] == 4 and d["solver"]["method"] == "tsit45"
+    if path == RECORD_MODEL:
+        # Record paths relative to the current directory, as from_toml and from_dict read them.
+        assert (ROOT / d["excitation"]["path"]).resolve() == AT2.resolve()
+
+
+# Ground motion from arrays.
+
+def test_a_ground_motion_from_a_record_files_samples_is_that_file():
+    dt, values = read_at2(AT2)
+    file_model = flexrock.Model.from_file(RECORD_MODEL)
+    gm = flexrock.GroundMotion(values, dt=dt, units="g")
+    assert gm.dt == 0.02 and len(gm) == 1559 and gm.units == "g"
+    assert np.array_equal(gm.acceleration, values * STANDARD_GRAVITY)
+    model = file_model.with_ground_motion(gm)
+    assert model.get("excitation.kind") == "record"
+    model.set("excitation.tail", tables(RECORD_MODEL)["excitation"]["tail"])
+    same_results(flexrock.simulate(model), flexrock.simulate(file_model))
+    # The same samples as times and m/s^2.
+    again = flexrock.GroundMotion(gm.acceleration, time=np.arange(len(values)) * dt, units="m/s2")
+    assert again.dt == dt
+    assert np.array_equal(again.acceleration, gm.acceleration)
+    # The file's own motion is untouched.
+    assert file_model.ground_motion is None and model.ground_motion.source == "arrays"
+
+
+def test_read_record_reads_what_the_model_file_reads(tmp_path):
+    gm = flexrock.read_record(AT2)
+    dt, values = read_at2(AT2)
+    assert (gm.dt, gm.units, gm.source) == (dt, "g", str(AT2))
+    assert np.array_equal(gm.acceleration, values * STANDARD_GRAVITY)
+    file_model = flexrock.Model.from_file(RECORD_MODEL)
+    model = file_model.with_ground_motion(gm)
+    model.set("excitation.tail", 5.0)
+    same_results(flexrock.simulate(model), flexrock.simulate(file_model))
+    csv = tmp_path / "one.csv"
+    csv.write_text("0.0\n0.5\n-0.25\n")
+    with pytest.raises(flexrock.FlexrockError, match="^units = None: required for CSV"):
+        flexrock.read_record(csv, dt=0.01)
+    one = flexrock.read_record(csv, dt=0.01, units="cm/s2")
+    assert list(one.acceleration) == [0.0, 0.005, -0.0025] and one.dt == 0.01
+    with pytest.raises(flexrock.FlexrockError, match="nonexistent"):
+        flexrock.read_record("nonexistent.AT2")
+
+
+def test_a_sine_ground_motion_gives_the_floor_acceleration_it_was_given():
+    # Between samples the floor acceleration is linear: at the samples it is the samples.
+    dt = 0.01
+    t = np.arange(301) * dt
+    a = 2.0 * np.sin(2 * np.pi * t)
+    model = flexrock.Model.from_file(MODEL).with_ground_motion(
+        flexrock.GroundMotion(a, dt=dt, units="m/s2"))
+    result = flexrock.simulate(model, duration=3.0, output_dt=dt)
+    assert np.allclose(result.floor_acc, np.interp(result.t, t, a), rtol=0, atol=1e-12)
+    on_grid = np.abs(result.t / dt - np.round(result.t / dt)) < 1e-9
+    assert on_grid.sum() == len(t)
+    assert np.allclose(result.floor_acc[on_grid], a, rtol=0, atol=1e-12)
+
+
+@pytest.mark.parametrize("kwargs, message", [
+    (dict(acceleration=[0.0, 1.0, float("nan")], dt=0.01, units="g"), r"^acceleration\[2\] = NaN: "),
+    (dict(acceleration=[0.0, 1.0], dt=-1.0, units="g"), r"^dt = -1: must be > 0"),
+    (dict(acceleration=[0.0, 1.0], dt=1e-7, units="g"), r"^dt = 1e-7: .*1e-5 s"),
+    (dict(acceleration=[0.0], dt=0.01, units="g"), r"^acceleration = 1 sample: .*at least 2"),
+    (dict(acceleration=[0.0, 1.0], dt=0.01, units="m/s^2"), r'^units = "m/s\^2": must be "g", "m/s2"'),
+    (dict(acceleration=[0.0, 1.0, 2.0], time=[0.0, 0.1, 0.3], units="g"), r"^time\[1\] = 0.1: .*uniformly"),
+    (dict(acceleration=[0.0, 1.0], time=[0.5, 0.6], units="g"), r"^time\[0\] = 0.5: a record starts at t = 0"),
+    (dict(acceleration=[0.0, 1.0], time=[0.0, 0.1, 0.2], units="g"), r"^time has 3 values and acceleration 2"),
+    (dict(acceleration=[[0.0, 1.0]], dt=0.1, units="g"), r"^acceleration: must be 1-D"),
+    (dict(acceleration=[0.0, 1.0], units="g"), r"either as dt .* or as time"),
+])
+def test_ground_motion_errors_name_the_argument(kwargs, message):
+    with pytest.raises(flexrock.FlexrockError, match=message) as error:
+        flexrock.GroundMotion(**kwargs)
+    assert "--" not in str(error.value)
+
+
+def test_a_ground_motion_beyond_the_floor_limit_is_refused_by_the_model():
+    gm = flexrock.GroundMotion([0.0, 30.0, 0.0], dt=0.01, units="g")
+    with pytest.raises(flexrock.FlexrockError, match="20 g"):
+        flexrock.Model.from_file(MODEL).with_ground_motion(gm)
+    model = flexrock.Model.from_file(MODEL).with_ground_motion(
+        flexrock.GroundMotion([0.0, 1.0, 0.0], dt=0.01, units="g"))
+    with pytest.raises(flexrock.FlexrockError, match="arrays"):
+        model.to_toml()
+    with pytest.raises(flexrock.FlexrockError, match="arrays"):
+        flexrock.sweep(model, {"excitation.scale": [1.0, 2.0]})
+
+
+# Typed sweep tables.
+
+TABLE = {
+    "columns": ["point", "excitation.period", "excitation.path", "status", "overturned",
+                "n_uplift", "t_overturn"],
+    "kinds": ["int", "float", "str", "str", "bool", "int", "float"],
+    "values": [
+        [0, 1, 2, 3, 4, 5],
+        [0.5, 0.5, 0.5, 1.0, 1.0, 1.0],
+        ["a.AT2", "b.AT2", "c.AT2", "a.AT2", "b.AT2", "c.AT2"],
+        ["ok", "ok", "ok", "ok", "ok", "failed"],
+        [False, True, False, False, True, None],
+        [0, 3, 1, 2, 4, None],
+        [None, 1.5, None, None, 2.25, None],
+    ],
+    "axes": [("excitation.period", [0.5, 1.0]), ("excitation.path", ["a.AT2", "b.AT2", "c.AT2"])],
+}
+
+
+def test_a_sweep_result_types_its_columns():
+    result = flexrock.SweepResult(TABLE)
+    assert result.columns == TABLE["columns"]
+    assert len(result) == 6 and result.shape == (2, 3)
+    assert result["point"].dtype == np.int64 and list(result["point"]) == [0, 1, 2, 3, 4, 5]
+    assert result["excitation.period"].dtype == np.float64
+    assert result["status"].dtype == object and result["status"][5] == "failed"
+    t = result["t_overturn"]
+    assert t.dtype == np.float64 and np.isnan(t[0]) and t[1] == 1.5
+    over = result["overturned"]
+    assert isinstance(over, np.ma.MaskedArray) and over.dtype == np.bool_
+    assert list(over.mask) == [False] * 5 + [True] and over[1] and not over[0]
+    n = result["n_uplift"]
+    assert isinstance(n, np.ma.MaskedArray) and n.dtype == np.int64 and n.sum() == 10
+    full = flexrock.SweepResult({**TABLE, "values": TABLE["values"][:4] + [
+        [False, True, False, False, True, True], [0, 3, 1, 2, 4, 5], TABLE["values"][6]]})
+    assert not isinstance(full["overturned"], np.ma.MaskedArray)
+    assert full["overturned"].dtype == np.bool_ and full["overturned"].sum() == 3
+    with pytest.raises(KeyError, match="n_uplift"):
+        result["n_uplif"]
+    flat = result.to_dict()
+    assert list(flat) == TABLE["columns"] and flat["point"].dtype == np.int64
+
+
+def test_a_sweep_result_to_pandas_uses_nullable_dtypes():
+    pd = pytest.importorskip("pandas")
+    frame = flexrock.SweepResult(TABLE).to_pandas()
+    assert list(frame.columns) == TABLE["columns"]
+    assert str(frame["overturned"].dtype) == "boolean" and frame["overturned"].isna().sum() == 1
+    assert str(frame["n_uplift"].dtype) == "Int64" and frame["n_uplift"].sum() == 10
+    assert frame["point"].dtype == np.int64
+    assert str(frame["status"].dtype) == "string"
+    assert frame["t_overturn"].dtype == np.float64 and frame["t_overturn"].isna().sum() == 4
+    assert isinstance(frame, pd.DataFrame)
+
+
+def test_a_sweep_result_to_xarray_is_the_grid():
+    pytest.importorskip("xarray")
+    data = flexrock.SweepResult(TABLE).to_xarray()
+    assert dict(data.sizes) == {"excitation.period": 2, "excitation.path": 3}
+    assert list(data["excitation.period"].values) == [0.5, 1.0]
+    assert list(data["excitation.path"].values) == ["a.AT2", "b.AT2", "c.AT2"]
+    # Last axis fastest: point 4 is period 1.0, path b.AT2.
+    cell = data.sel({"excitation.period": 1.0, "excitation.path": "b.AT2"})
+    assert int(cell["point"]) == 4 and float(cell["t_overturn"]) == 2.25
+    assert np.isnan(float(data["n_uplift"].sel({"excitation.period": 1.0, "excitation.path": "c.AT2"})))
+
+
+def test_a_sweep_equals_the_command_lines_table_typed(tmp_path):
+    from test_flexrock import read_csv, run_cli
+    run_cli("sweep", MODEL, "--out", tmp_path, "--quiet", "--vary", "excitation.amplitude=2,4.5",
+            "--vary", "excitation.period=0.5,1,1.5")
+    rows = read_csv(tmp_path / "sweep.csv")
+    got = flexrock.sweep(flexrock.Model.from_file(MODEL),
+                         {"excitation.amplitude": [2, 4.5], "excitation.period": [0.5, 1.0, 1.5]})
+    assert isinstance(got, flexrock.SweepResult)
+    assert got.columns == list(rows[0]) and got.shape == (2, 3)
+    assert got["overturned"].dtype == np.bool_
+    assert list(got["overturned"]) == [r["overturned"] == "true" for r in rows]
+    assert got["n_uplift"].dtype == np.int64
+    assert list(got["n_uplift"]) == [int(r["n_uplift"]) for r in rows]
+    assert list(got["max_abs_q_over_B"]) == [float(r["max_abs_q_over_B"]) for r in rows]
