@@ -8,7 +8,7 @@
 //! 1. **A model**: [`Model::load`] reads a model file (the book's model-file reference lists its
 //!    keys), [`Model::from_toml_str`] its text; [`Overrides`] set keys from outside the file,
 //!    each checked by the file's rules. Errors name the key, the value and the rule.
-//! 2. **A solution**: [`simulate`] solves it with the solver the file names and returns a
+//! 2. **A solution**: [`simulate()`] solves it with the solver the file names and returns a
 //!    [`Solution`]: the sampled history, every event (uplift, landing, overturning) located to
 //!    the solver's tolerance, the rocking episodes, peaks and energy books;
 //!    [`summary::summary`] is the run's summary.json.

@@ -234,7 +234,7 @@ pub struct RunOutcome {
     /// The run ended with the body rocking.
     pub ended_while_rocking: bool,
     /// The largest energy residual over the energy scale (see [`Solution::energy_residual_share`]);
-    /// beyond [`crate::run::ENERGY_RESIDUAL_WARNING_SHARE`] the run is no more accurate than that.
+    /// beyond [`crate::simulate::ENERGY_RESIDUAL_WARNING_SHARE`] the run is no more accurate than that.
     pub energy_residual_share: f64,
     /// Accepted steps.
     pub steps: usize,
