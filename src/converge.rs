@@ -1,48 +1,29 @@
 //! `flexrock converge`: how Newmark converges as dt shrinks, and what each adaptive method costs
-//! for a given accuracy, all measured against one tight adaptive reference.
-//!
-//! Cases run one after another (not in parallel) so that their wall times do not disturb each
-//! other on a small machine.
+//! for a given accuracy, all measured against one tight adaptive reference. The study is
+//! [`flexrock_core::converge`] (re-exported here); this module checks the flags, writes
+//! convergence.csv, convergence.json and the figures, and prints the table.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use serde::{Deserialize, Serialize};
+use serde::Serialize;
 
-use crate::compare::{compare, max_event_shift};
 use crate::error::Result;
 use crate::model::Model;
-use crate::output::{self, count, number, readable, scientific, Table};
+use crate::output::{self, count, readable, scientific, Table};
 use crate::plot::{self, Legend, Panel, Series};
-use crate::run::{simulate_with, VERSION};
+use crate::run::VERSION;
 use crate::solution::SolverStats;
-use crate::solver::adaptive::AdaptiveMethod;
-use crate::solver::newmark::NewmarkVariant;
 use crate::solver::SolverSettings;
+use flexrock_core::columns;
 
-/// Column names of convergence.csv (a contract).
-pub const CONVERGENCE_COLUMNS: [&str; 13] = [
-    "method",
-    "dt",
-    "rtol",
-    "max_q_error",
-    "max_event_time_error",
-    "peak_error",
-    "event_count_difference",
-    "unmatched_events",
-    "steps",
-    "rhs_evaluations",
-    "wall_time_s",
-    "max_energy_residual",
-    "status",
-];
+pub use flexrock_core::converge::{
+    converge, methods, slopes, Case, Configuration, Convergence, Slope, SlopeKind, CASE_COLUMNS,
+    DEFAULT_DTS, DEFAULT_RTOLS, METRICS,
+};
 
-/// Newmark time steps of `flexrock converge` (`--dt`), s.
-pub const DEFAULT_DTS: [f64; 8] = [
-    0.04, 0.02, 0.01, 0.005, 0.0025, 0.00125, 0.000625, 0.0003125,
-];
-/// Relative tolerances of the adaptive methods of `flexrock converge` (`--rtol`).
-pub const DEFAULT_RTOLS: [f64; 9] = [1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11];
+/// Column names of convergence.csv (a contract): the names of [`CASE_COLUMNS`].
+pub const CONVERGENCE_COLUMNS: [&str; 13] = columns::names(&CASE_COLUMNS);
 
 /// Options of `flexrock converge`.
 #[derive(Debug, Clone)]
@@ -66,89 +47,6 @@ impl Default for ConvergeOptions {
             wall_times: output::WallTimes::Inline,
         }
     }
-}
-
-/// One solver configuration measured against the reference.
-///
-/// Read back by `flexrock report`: NaN metrics are written as null and read back as NaN, and
-/// `dt`, `rtol` must be present (null for the other kind of method).
-#[derive(Debug, Clone, Serialize, Deserialize)]
-pub struct Case {
-    /// The solver, e.g. "newmark-compensate" or "bdf".
-    pub method: String,
-    /// Newmark time step, s (Newmark cases).
-    #[serde(deserialize_with = "crate::report::required")]
-    pub dt: Option<f64>,
-    /// Relative tolerance (adaptive cases).
-    #[serde(deserialize_with = "crate::report::required")]
-    pub rtol: Option<f64>,
-    /// Largest |q - q_reference| on the common output grid, m.
-    #[serde(deserialize_with = "crate::report::nan_if_null")]
-    pub max_q_error: f64,
-    /// Largest |t - t_reference| over matched events, s.
-    #[serde(deserialize_with = "crate::report::nan_if_null")]
-    pub max_event_time_error: f64,
-    /// Larger of the errors of max q and min q, m.
-    #[serde(deserialize_with = "crate::report::nan_if_null")]
-    pub peak_error: f64,
-    /// Number of events minus the reference's.
-    pub event_count_difference: i64,
-    /// Events of either solution without a partner in the other.
-    pub unmatched_events: usize,
-    /// Accepted steps.
-    pub steps: usize,
-    /// Evaluations of the right-hand side.
-    pub rhs_evaluations: usize,
-    /// Wall-clock time of the solve, s.
-    #[serde(deserialize_with = "crate::report::nan_if_null")]
-    pub wall_time_s: f64,
-    /// Largest energy residual over the samples, J.
-    #[serde(deserialize_with = "crate::report::nan_if_null")]
-    pub max_energy_residual: f64,
-    /// "ok", or why the case has no result.
-    pub status: String,
-}
-
-/// What a fitted slope is: an order where the error is fitted against the step, an efficiency
-/// slope where it is fitted against the work. The two are different quantities (an adaptive
-/// method's step is not set, so it has no order in this sense), and are named apart.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum SlopeKind {
-    /// The slope of log(error) against log(dt): the observed order of a fixed-step method.
-    Order,
-    /// The slope of log(error) against log(right-hand-side evaluations): how fast the error
-    /// falls with the work of an adaptive method (-p for a method of order p on a smooth
-    /// problem, steeper where the step sequence adapts).
-    EfficiencySlope,
-}
-
-impl SlopeKind {
-    /// The name in printed tables.
-    pub fn name(self) -> &'static str {
-        match self {
-            SlopeKind::Order => "order",
-            SlopeKind::EfficiencySlope => "efficiency slope",
-        }
-    }
-}
-
-/// A least-squares slope of log(error) against log(dt) or log(work).
-#[derive(Debug, Clone, Serialize, Deserialize)]
-pub struct Slope {
-    /// The solver, e.g. "newmark-compensate" or "bdf".
-    pub method: String,
-    /// "max_q_error", "max_event_time_error" or "peak_error".
-    pub metric: String,
-    /// An order (against dt) or an efficiency slope (against work).
-    pub kind: SlopeKind,
-    /// "dt" or "rhs_evaluations".
-    pub against: String,
-    /// The fitted slope.
-    #[serde(deserialize_with = "crate::report::nan_if_null")]
-    pub slope: f64,
-    /// Cases in the fit (those with every event matched and a positive error).
-    pub points: usize,
 }
 
 /// convergence.json.
@@ -182,79 +80,6 @@ pub struct ConvergeReport {
     pub files: Vec<PathBuf>,
 }
 
-const METRICS: [&str; 3] = ["max_q_error", "max_event_time_error", "peak_error"];
-
-fn metric(case: &Case, name: &str) -> f64 {
-    match name {
-        "max_q_error" => case.max_q_error,
-        "max_event_time_error" => case.max_event_time_error,
-        _ => case.peak_error,
-    }
-}
-
-/// Slope of the least-squares line through (log x, log y).
-fn log_log_slope(points: &[(f64, f64)]) -> f64 {
-    let n = points.len() as f64;
-    let (mx, my) = points.iter().fold((0.0, 0.0), |(a, b), (x, y)| {
-        (a + x.ln() / n, b + y.ln() / n)
-    });
-    let (sxy, sxx) = points.iter().fold((0.0, 0.0), |(a, b), (x, y)| {
-        let dx = x.ln() - mx;
-        (a + dx * (y.ln() - my), b + dx * dx)
-    });
-    sxy / sxx
-}
-
-fn slopes(cases: &[Case]) -> Vec<Slope> {
-    let mut methods: Vec<&str> = Vec::new();
-    for c in cases {
-        if !methods.contains(&c.method.as_str()) {
-            methods.push(&c.method);
-        }
-    }
-    let mut fitted = Vec::new();
-    for method in methods {
-        for name in METRICS {
-            let good: Vec<&Case> = cases
-                .iter()
-                .filter(|c| c.method == method && c.status == "ok" && c.unmatched_events == 0)
-                .filter(|c| metric(c, name) > 0.0 && metric(c, name).is_finite())
-                .collect();
-            if good.len() < 2 {
-                continue;
-            }
-            let (kind, against, points): (SlopeKind, &str, Vec<(f64, f64)>) = match good[0].dt {
-                Some(_) => (
-                    SlopeKind::Order,
-                    "dt",
-                    good.iter()
-                        .map(|c| (c.dt.unwrap_or(f64::NAN), metric(c, name)))
-                        .collect(),
-                ),
-                None => (
-                    SlopeKind::EfficiencySlope,
-                    "rhs_evaluations",
-                    good.iter()
-                        .map(|c| (c.rhs_evaluations as f64, metric(c, name)))
-                        .collect(),
-                ),
-            };
-            fitted.push(Slope {
-                method: method.to_string(),
-                metric: name.to_string(),
-                kind,
-                against: against.to_string(),
-                slope: log_log_slope(&points),
-                points: points.len(),
-            });
-        }
-    }
-    fitted
-}
-
-/// One case to run: method label, dt, rtol, and its settings.
-type Configuration = (String, Option<f64>, Option<f64>, SolverSettings);
-
 /// The reference's settings and every case's, checked by the rules `run` and `compare` apply
 /// (`Model::reference_settings`, `Model::newmark_settings`) before anything is computed. An
 /// error names the flag (`--dt`, `--rtol`, `--reference-rtol`), the value and the rule.
@@ -282,37 +107,12 @@ pub fn configurations(
             .reference_settings(options.reference_rtol)
             .map_err(flag("--reference-rtol"))?,
     );
-    let mut configurations: Vec<Configuration> = Vec::new();
-    for variant in [NewmarkVariant::Compensate, NewmarkVariant::Substep] {
-        for &dt in &options.dts {
-            let settings = model
-                .newmark_settings(Some(dt), Some(variant.name()))
-                .map_err(|e| e.renamed("solver.dt", "--dt"))?;
-            configurations.push((
-                format!("newmark-{}", variant.name()),
-                Some(dt),
-                None,
-                SolverSettings::Newmark(settings),
-            ));
-        }
-    }
-    for method in [
-        AdaptiveMethod::Bdf,
-        AdaptiveMethod::Esdirk34,
-        AdaptiveMethod::TrBdf2,
-        AdaptiveMethod::Tsit45,
-    ] {
-        for &rtol in &options.rtols {
-            let mut settings = model.reference_settings(rtol).map_err(flag("--rtol"))?;
-            settings.method = method;
-            configurations.push((
-                method.name().to_string(),
-                None,
-                Some(rtol),
-                SolverSettings::Adaptive(settings),
-            ));
-        }
-    }
+    let mut configurations = flexrock_core::converge::newmark_configurations(model, &options.dts)
+        .map_err(|e| e.renamed("solver.dt", "--dt"))?;
+    configurations.extend(
+        flexrock_core::converge::adaptive_configurations(model, &options.rtols)
+            .map_err(flag("--rtol"))?,
+    );
     // Every value is valid on its own; errors are measured against the reference: one no tighter than a case measures the
     // reference's own error, and the orders printed would mean nothing.
     let tightest = options.rtols.iter().copied().fold(f64::INFINITY, f64::min);
@@ -339,47 +139,26 @@ pub fn run_converge(
     out_dir: &Path,
 ) -> Result<ConvergeReport> {
     let (reference_settings, configurations) = configurations(model, options)?;
-    let mut reference = simulate_with(model, &reference_settings)?;
+    let Convergence {
+        mut reference,
+        reference_settings,
+        output_dt,
+        mut cases,
+        slopes,
+    } = converge(model, reference_settings, &configurations)?;
     let mut timings = output::Timings::new(options.wall_times);
     timings.take(
         "convergence.json/reference_statistics/wall_time_s",
         &mut reference.stats.wall_time_s,
     );
-    let output_dt = model.solver.output_dt();
-    let max_shift = max_event_shift(model);
-
-    let mut cases = Vec::new();
-    for (method, dt, rtol, settings) in configurations {
-        let failed = |status: String| Case::failed(&method, dt, rtol, status);
-        let mut solution = match simulate_with(model, &settings) {
-            Ok(s) => s,
-            Err(e) => {
-                cases.push(failed(e.to_string()));
-                continue;
-            }
-        };
-        timings.take(
-            &format!("convergence.json/cases/{}/wall_time_s", cases.len()),
-            &mut solution.stats.wall_time_s,
-        );
-        let c = compare(&reference, &solution, output_dt, max_shift);
-        cases.push(Case {
-            method: method.clone(),
-            dt,
-            rtol,
-            max_q_error: c.grid.max_abs_q_difference,
-            max_event_time_error: c.events.max_abs_time_difference,
-            peak_error: c.peaks.peak_error,
-            event_count_difference: solution.events.len() as i64 - reference.events.len() as i64,
-            unmatched_events: c.events.n_missed + c.events.n_spurious,
-            steps: solution.stats.steps,
-            rhs_evaluations: solution.stats.rhs_evaluations,
-            wall_time_s: solution.stats.wall_time_s,
-            max_energy_residual: solution.max_energy_residual,
-            status: "ok".to_string(),
-        });
+    for (i, case) in cases.iter_mut().enumerate() {
+        if case.is_ok() {
+            timings.take(
+                &format!("convergence.json/cases/{i}/wall_time_s"),
+                &mut case.wall_time_s,
+            );
+        }
     }
-    let slopes = slopes(&cases);
     let summary = ConvergeSummary {
         provenance: crate::run::Provenance::of(model),
         reference_method: reference_settings.label(),
@@ -402,72 +181,18 @@ pub fn run_converge(
     Ok(ConvergeReport { summary, files })
 }
 
-impl Case {
-    /// A case whose run failed with `status`: nothing measured (NaN errors, no counts).
-    fn failed(method: &str, dt: Option<f64>, rtol: Option<f64>, status: String) -> Case {
-        Case {
-            method: method.to_string(),
-            dt,
-            rtol,
-            max_q_error: f64::NAN,
-            max_event_time_error: f64::NAN,
-            peak_error: f64::NAN,
-            event_count_difference: 0,
-            unmatched_events: 0,
-            steps: 0,
-            rhs_evaluations: 0,
-            wall_time_s: 0.0,
-            max_energy_residual: f64::NAN,
-            status,
-        }
-    }
-}
-
 fn cases_table(cases: &[Case]) -> Vec<u8> {
     let mut table = Table::new(&CONVERGENCE_COLUMNS);
-    let optional = |x: Option<f64>| x.map(number).unwrap_or_default();
     for c in cases {
-        if c.status != "ok" {
-            // A case that failed measured nothing: its error, count and cost fields are empty,
-            // not NaN or zeros that read as values.
-            let mut row = vec![c.method.clone(), optional(c.dt), optional(c.rtol)];
-            row.resize(CONVERGENCE_COLUMNS.len() - 1, String::new());
-            row.push(c.status.clone());
-            table.row(row);
-            continue;
-        }
-        table.row([
-            c.method.clone(),
-            optional(c.dt),
-            optional(c.rtol),
-            number(c.max_q_error),
-            number(c.max_event_time_error),
-            number(c.peak_error),
-            c.event_count_difference.to_string(),
-            c.unmatched_events.to_string(),
-            c.steps.to_string(),
-            c.rhs_evaluations.to_string(),
-            // Empty where the time was taken out to timings.json.
-            optional(Some(c.wall_time_s).filter(|t| t.is_finite())),
-            number(c.max_energy_residual),
-            c.status.clone(),
-        ]);
+        table.row(columns::fields(&CASE_COLUMNS, c));
     }
     table.into_bytes()
 }
 
 /// Error against dt (Newmark, with slope-1 and slope-2 guides) and error against work (all).
 fn figures(summary: &ConvergeSummary) -> Result<(String, String)> {
-    let ok = |c: &&Case| c.status == "ok";
-    let methods: Vec<String> = {
-        let mut m: Vec<String> = Vec::new();
-        for c in &summary.cases {
-            if !m.contains(&c.method) {
-                m.push(c.method.clone());
-            }
-        }
-        m
-    };
+    let ok = |c: &&Case| c.is_ok();
+    let methods = methods(&summary.cases);
     // (column, panel title, axis label with unit)
     let titles = [
         (
@@ -491,12 +216,12 @@ fn figures(summary: &ConvergeSummary) -> Result<(String, String)> {
             let cases: Vec<&Case> = summary
                 .cases
                 .iter()
-                .filter(|c| &c.method == method)
+                .filter(|c| c.method == *method)
                 .filter(ok)
                 .collect();
             let work: Vec<(f64, f64)> = cases
                 .iter()
-                .map(|c| (c.rhs_evaluations as f64, metric(c, name)))
+                .map(|c| (c.rhs_evaluations as f64, c.metric(name)))
                 .collect();
             work_series.push(
                 Series::line(method, work, i + 1)
@@ -506,7 +231,7 @@ fn figures(summary: &ConvergeSummary) -> Result<(String, String)> {
             if cases.first().is_some_and(|c| c.dt.is_some()) {
                 let points: Vec<(f64, f64)> = cases
                     .iter()
-                    .map(|c| (c.dt.unwrap_or(f64::NAN), metric(c, name)))
+                    .map(|c| (c.dt.unwrap_or(f64::NAN), c.metric(name)))
                     .collect();
                 dt_series.push(
                     Series::line(method, points, i + 1)
@@ -519,9 +244,9 @@ fn figures(summary: &ConvergeSummary) -> Result<(String, String)> {
         if let Some(anchor) = summary
             .cases
             .iter()
-            .find(|c| c.dt.is_some() && c.status == "ok" && metric(c, name) > 0.0)
+            .find(|c| c.dt.is_some() && c.is_ok() && c.metric(name) > 0.0)
         {
-            let (x0, y0) = (anchor.dt.unwrap_or(1.0), metric(anchor, name));
+            let (x0, y0) = (anchor.dt.unwrap_or(1.0), anchor.metric(name));
             let x1 = summary.cases.iter().filter_map(|c| c.dt).fold(x0, f64::min);
             for (order, color) in [(1.0, 5), (2.0, 6)] {
                 // Guides, not data: thin and dashed.
@@ -592,7 +317,7 @@ pub fn converge_text(report: &ConvergeReport) -> String {
     );
     let optional = |x: Option<f64>, f: &dyn Fn(f64) -> String| x.map_or("-".to_string(), f);
     for c in &s.cases {
-        if c.status != "ok" {
+        if !c.is_ok() {
             let _ = writeln!(
                 t,
                 "  {:<19} {:>10} {:>7}  failed: {}",
@@ -645,36 +370,4 @@ pub fn converge_text(report: &ConvergeReport) -> String {
         let _ = writeln!(t, "wrote {}", f.display());
     }
     t
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// A failed case's row holds its method, settings and status, and nothing measured.
-    #[test]
-    fn a_failed_case_has_empty_measurements() {
-        let case = Case::failed(
-            "newmark-compensate",
-            Some(0.5),
-            None,
-            "the newmark solver failed at t = 1 s: too many events".to_string(),
-        );
-        let text = String::from_utf8(cases_table(&[case])).unwrap();
-        let mut reader = csv::Reader::from_reader(text.as_bytes());
-        let row = reader.records().next().unwrap().unwrap();
-        assert_eq!(row.len(), CONVERGENCE_COLUMNS.len());
-        assert_eq!(&row[0], "newmark-compensate");
-        assert_eq!(&row[1], "0.5");
-        assert_eq!(&row[2], "");
-        for (k, field) in row
-            .iter()
-            .enumerate()
-            .take(CONVERGENCE_COLUMNS.len() - 1)
-            .skip(3)
-        {
-            assert_eq!(field, "", "{} of a failed case", CONVERGENCE_COLUMNS[k]);
-        }
-        assert!(row[CONVERGENCE_COLUMNS.len() - 1].starts_with("the newmark solver failed"));
-    }
 }

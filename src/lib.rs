@@ -14,12 +14,13 @@
 //!
 //! Here, the command-line layer:
 //! - [`fem`]: the plane-stress finite element check of the paper's Section 3 (the numerics of
-//!   [`flexrock_core::fem`] and the commands [`fem::run`], [`fem::pushover_run`] that write
-//!   their files);
+//!   [`flexrock_core::fem`], and the commands [`fem::run`], [`fem::pushover_run`] that write
+//!   the files of [`flexrock_core::fem_check`] and [`flexrock_core::pushover_check`]);
 //! - [`output`]: CSV/JSON writers; [`run`]: the `props` and `run` commands;
 //! - [`run_dir`]: a run's output directory read back (typed), and its event table;
 //!   [`run_plot`]: the figures of a run;
-//! - [`compare`], [`converge`]: Newmark against the adaptive reference; [`plot`]: SVG figures
+//! - [`compare`], [`converge`]: Newmark against the adaptive reference (the files and tables of
+//!   [`flexrock_core::compare`] and [`flexrock_core::converge`]); [`plot`]: SVG figures
 //!   from series; [`report`]: the validation report assembled from their files;
 //!   [`record_tools`]: the record commands;
 //! - [`sweep`]: parametric studies (axes, minimum overturning searches, chunks, shards, maps).

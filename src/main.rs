@@ -900,7 +900,7 @@ fn fem(
     };
     Ok(Output {
         stdout: fem::report_text(&report).into_bytes(),
-        warnings: report.analysis.warnings.clone(),
+        warnings: report.warnings.clone(),
     })
 }
 

@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 use crate::error::{Error, Result};
 use crate::solution::{Episode, Event, Sample};
 
-pub use flexrock_core::tables::{
+pub use flexrock_core::run_tables::{
     episode_fields, EpisodeField, EPISODE_COLUMNS, EVENT_COLUMNS, HISTORY_COLUMNS,
 };
 

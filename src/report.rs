@@ -14,7 +14,7 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use serde::de::DeserializeOwned;
-use serde::{Deserialize, Deserializer};
+use serde::Deserialize;
 
 use crate::converge::{Case, Slope};
 use crate::error::{Error, Result};
@@ -39,18 +39,8 @@ pub struct ReportInputs {
     pub command: String,
 }
 
-/// A number that the writer may have stored as null (serde_json writes NaN as null): null reads
-/// back as NaN. The key itself must be there.
-pub(crate) fn nan_if_null<'de, D: Deserializer<'de>>(d: D) -> std::result::Result<f64, D::Error> {
-    Ok(Option::<f64>::deserialize(d)?.unwrap_or(f64::NAN))
-}
-
-/// An optional value whose key must be there (serde would otherwise read a missing key as None).
-pub(crate) fn required<'de, D: Deserializer<'de>, T: Deserialize<'de>>(
-    d: D,
-) -> std::result::Result<T, D::Error> {
-    T::deserialize(d)
-}
+/// Readers of values written as null (NaN) and of optional values whose key must be there.
+pub(crate) use flexrock_core::columns::{nan_if_null, required};
 
 /// A peak of q, as compare.json writes it.
 #[derive(Debug, Clone, Deserialize)]

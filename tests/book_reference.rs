@@ -325,6 +325,7 @@ fn known_values() -> BTreeMap<&'static str, f64> {
         ("MAX_RECORD_BYTES", record::MAX_RECORD_BYTES as f64),
         ("MIN_DT", record::MIN_DT),
         ("MIN_SAMPLES", record::MIN_SAMPLES as f64),
+        ("MAX_RECORD_SAMPLES", record::MAX_RECORD_SAMPLES as f64),
         ("MAX_ELEMENTS_PER_SIDE", fem::MAX_ELEMENTS_PER_SIDE as f64),
         ("MAX_BAND_ENTRIES", fem::MAX_BAND_ENTRIES),
         ("FACTOR_CACHE_BYTES", fem::FACTOR_CACHE_BYTES),

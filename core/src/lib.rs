@@ -61,9 +61,16 @@
 //! - [`rigid`]: the slender rigid block of the rigid limit (Housner's block), which the elastic
 //!   body must tend to as E grows; [`findings`]: the paper's qualitative findings in numbers;
 //! - `flexural_shape` (private): the self-weighted cantilever mode psi of the consistent variant;
-//! - [`tables`]: the columns of a run's tables; [`summary`]: summary.json of a run;
+//! - [`run_tables`]: the columns of a run's tables; [`summary`]: summary.json of a run;
 //! - [`sweep`]: parametric studies and minimum overturning searches;
-//! - [`error`]: the one error type; [`format`](mod@format): numbers and file kinds for messages.
+//! - [`error`]: the one error type; [`format`](mod@format): numbers and file kinds for messages;
+//!   [`columns`]: a table's columns as one list of (name, field), for the analyses' typed rows;
+//! - the analyses above [`simulate`](mod@simulate): [`compare`](mod@compare) (two solutions of
+//!   one model measured against each other: matched events, peaks, q(t) on the output grid),
+//!   [`converge`](mod@converge) (the convergence study: cases, orders and efficiency slopes),
+//!   [`fem_check`] (a finite element run, its uplift episodes and peaks, and its comparison with
+//!   the one-degree-of-freedom model) and [`pushover_check`] (the static pushover curves against
+//!   the model's restoring force).
 //!
 //! # Example
 //!
@@ -101,34 +108,43 @@
 
 pub mod automaton;
 pub mod body;
+pub mod columns;
+pub mod compare;
 pub mod constants;
+pub mod converge;
 pub mod error;
 pub mod excitation;
 pub mod fem;
+pub mod fem_check;
 pub mod findings;
 mod flexural_shape;
 pub mod format;
 mod invalid;
 mod limits;
 pub mod model;
+pub mod pushover_check;
 pub mod record;
 pub mod rigid;
+pub mod run_tables;
 pub mod simulate;
 pub mod solution;
 pub mod solver;
 mod suggest;
 pub mod summary;
 pub mod sweep;
-pub mod tables;
 mod units;
 
 pub use automaton::Automaton;
 pub use body::Body;
+pub use compare::{match_events, Comparison, EventPair};
 pub use constants::Constants;
+pub use converge::{Case, Convergence, Slope, SlopeKind};
 pub use error::{Error, Result};
 pub use excitation::FloorMotion;
+pub use fem_check::{FemAnalysis, FemComparison};
 pub use invalid::InvalidParameter;
 pub use model::{Model, Overrides};
+pub use pushover_check::PushoverAnalysis;
 pub use simulate::{properties, simulate, simulate_peaks, simulate_with, Properties, Provenance};
 pub use solution::Solution;
 pub use solver::SolverSettings;

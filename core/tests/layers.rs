@@ -1,16 +1,18 @@
 //! The core's modules form layers with no circle: units and formatting at the bottom, then the
 //! physics (body, flexural shape, constants, automaton, excitations, records), then the numerics
-//! (solution, solvers, rigid block, finite elements), then the model file and simulation. Every
-//! `crate::` path in a module's code (its tests aside) must name a module listed before it.
+//! (solution, solvers, rigid block, finite elements), then the model file and simulation, then
+//! the analyses (comparisons, convergence studies, the finite element checks). Every `crate::`
+//! path in a module's code (its tests aside) must name a module listed before it.
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 /// The modules from the bottom up. A module may use only the modules before it.
-const LAYERS: [&str; 22] = [
+const LAYERS: [&str; 27] = [
     // units and formatting
     "units",
     "format",
+    "columns",
     "suggest",
     "limits",
     "invalid",
@@ -23,7 +25,7 @@ const LAYERS: [&str; 22] = [
     "record",
     // numerics
     "solution",
-    "tables",
+    "run_tables",
     "solver",
     "rigid",
     "fem",
@@ -35,6 +37,10 @@ const LAYERS: [&str; 22] = [
     "summary",
     // analysis
     "sweep",
+    "compare",
+    "converge",
+    "fem_check",
+    "pushover_check",
 ];
 
 /// The files of module `name` under `src`: `name.rs`, or every file under `name/`.

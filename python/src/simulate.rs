@@ -7,7 +7,7 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 
 use flexrock_core::model::{Overrides, Setting};
-use flexrock_core::tables::HISTORY_COLUMNS;
+use flexrock_core::run_tables::HISTORY_COLUMNS;
 
 use crate::model::Model;
 use crate::{err, FlexrockError};
@@ -189,7 +189,7 @@ pub(crate) fn simulate(
     }
     let episodes = PyList::empty(py);
     for e in &solution.episodes {
-        use flexrock_core::tables::{episode_fields, EpisodeField, EPISODE_COLUMNS};
+        use flexrock_core::run_tables::{episode_fields, EpisodeField, EPISODE_COLUMNS};
         let d = PyDict::new(py);
         for (column, field) in EPISODE_COLUMNS.iter().zip(episode_fields(e, m.body.height)) {
             match field {

@@ -1,158 +1,37 @@
 //! The `flexrock fem --pushover` command: static pushover curves of the model's body on its
 //! mesh, for both ways the base can meet the floor (flexible and rigid plate), against the
-//! SDOF model's restoring force F(q) (book/src/model.md §3, restoring force).
+//! SDOF model's restoring force F(q) (book/src/model.md §3, restoring force). The curves and
+//! their summaries are [`flexrock_core::pushover_check`] (re-exported here); this module writes
+//! pushover.csv, pushover.json and pushover.svg and prints the summary.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
-use std::time::Instant;
 
 use serde::Serialize;
 
 use super::run::ELEMENT;
-use super::{pushover, BaseSupport, FemBody, Pushover};
+use super::FemBody;
 use crate::automaton::Automaton;
 use crate::error::Result;
 use crate::model::{FemSetup, Model, ModelFile};
-use crate::output::{self, number, Table};
+use crate::output::{self, Table};
 use crate::plot::{self, Legend, Panel, Series};
 use crate::run::VERSION;
+use flexrock_core::{columns, pushover_check};
 
-/// Column names of pushover.csv (a contract).
-pub const PUSHOVER_COLUMNS: [&str; 12] = [
-    "base",
-    "q",
-    "base_shear",
-    "load_factor",
-    "flexural",
-    "rocking",
-    "shearing",
-    "contact_nodes",
-    "heel_lifted",
-    "uplift",
-    "approximate_contact",
-    "sdof_force",
-];
+pub use flexrock_core::pushover_check::{
+    analyse, rows, sdof_force, summarise, CurveSummary, PushoverAnalysis, PushoverRow, BASES,
+    SWEEP_POINTS,
+};
 
-/// The sweep prescribes q = k B / SWEEP_POINTS, k = 1..=SWEEP_POINTS.
-pub const SWEEP_POINTS: usize = 400;
-
-/// The two bases, in the order of the files.
-const BASES: [BaseSupport; 2] = [BaseSupport::Flexible, BaseSupport::RigidPlate];
-
-/// What one curve shows.
-#[derive(Debug, Clone, Serialize)]
-pub struct CurveSummary {
-    /// The base support of the curve.
-    pub base: BaseSupport,
-    /// Secant stiffness at the first point, N/m.
-    pub initial_stiffness: f64,
-    /// The same over the SDOF model's Ke.
-    pub initial_stiffness_over_ke: f64,
-    /// First swept q at which a corner of the base is off the floor, m.
-    pub heel_lift_q: Option<f64>,
-    /// First swept q at which the body stands on one corner, m.
-    pub uplift_q: Option<f64>,
-    /// Largest base shear of the curve, N.
-    pub peak_base_shear: f64,
-    /// The q of that largest base shear, m.
-    pub peak_q: f64,
-    /// Where the sweep ended because the body turned freely about a corner, m.
-    pub free_rotation_at: Option<f64>,
-}
-
-/// The curves and their summaries.
-pub struct PushoverAnalysis {
-    /// The validated finite element analysis.
-    pub setup: FemSetup,
-    /// The curve of each base support, in the order of the files.
-    pub curves: Vec<(BaseSupport, Pushover)>,
-    /// What each curve shows, in the same order.
-    pub summaries: Vec<CurveSummary>,
-    /// SDOF Ke (N/m), s_n (m) and width B (m).
-    pub generalised_stiffness: f64,
-    /// s_n of the SDOF model, m.
-    pub uplift_displacement: f64,
-    /// B, m.
-    pub width: f64,
-    /// Wall-clock time of both sweeps, s.
-    pub wall_time_s: f64,
-}
-
-/// Sweeps q from B/SWEEP_POINTS to B for the flexible base and the rigid plate.
-pub fn analyse(model: &Model, setup: &FemSetup) -> Result<PushoverAnalysis> {
-    let started = Instant::now();
-    let s = &setup.settings;
-    let width = setup.body.width;
-    let qs: Vec<f64> = (1..=SWEEP_POINTS)
-        .map(|k| width * k as f64 / SWEEP_POINTS as f64)
-        .collect();
-    let ke = model.constants.generalised_stiffness;
-    let mut curves = Vec::new();
-    let mut summaries = Vec::new();
-    for base in BASES {
-        let body = FemBody {
-            base,
-            ..setup.body.clone()
-        };
-        let curve = pushover(&body, s.nx, s.ny, s.p_delta, &qs)?;
-        summaries.push(summarise(base, &curve, ke));
-        curves.push((base, curve));
-    }
-    Ok(PushoverAnalysis {
-        setup: setup.clone(),
-        curves,
-        summaries,
-        generalised_stiffness: ke,
-        uplift_displacement: model.constants.uplift_displacement,
-        width,
-        wall_time_s: started.elapsed().as_secs_f64(),
-    })
-}
-
-fn summarise(base: BaseSupport, curve: &Pushover, ke: f64) -> CurveSummary {
-    let first = curve.points.first();
-    let initial_stiffness = first.map_or(f64::NAN, |p| p.base_shear / p.q);
-    let peak = curve
-        .points
-        .iter()
-        .max_by(|a, b| a.base_shear.total_cmp(&b.base_shear));
-    CurveSummary {
-        base,
-        initial_stiffness,
-        initial_stiffness_over_ke: initial_stiffness / ke,
-        heel_lift_q: curve.points.iter().find(|p| p.heel_lifted).map(|p| p.q),
-        uplift_q: curve.points.iter().find(|p| p.uplift).map(|p| p.q),
-        peak_base_shear: peak.map_or(f64::NAN, |p| p.base_shear),
-        peak_q: peak.map_or(f64::NAN, |p| p.q),
-        free_rotation_at: curve.free_rotation_at,
-    }
-}
-
-/// F(q) of the SDOF model on the branch q belongs to (q >= 0).
-fn sdof_force(automaton: &Automaton, q: f64) -> f64 {
-    automaton.restoring_force(automaton.initial_mode(q), q)
-}
+/// Column names of pushover.csv (a contract): the names of
+/// [`flexrock_core::pushover_check::PUSHOVER_COLUMNS`].
+pub const PUSHOVER_COLUMNS: [&str; 12] = columns::names(&pushover_check::PUSHOVER_COLUMNS);
 
 pub(crate) fn curves_csv(model: &Model, a: &PushoverAnalysis) -> Vec<u8> {
-    let automaton = Automaton::new(&model.constants);
     let mut table = Table::new(&PUSHOVER_COLUMNS);
-    for (base, curve) in &a.curves {
-        for p in &curve.points {
-            table.row([
-                base.name().to_string(),
-                number(p.q),
-                number(p.base_shear),
-                number(p.load_factor),
-                number(p.flexural),
-                number(p.rocking),
-                number(p.shearing),
-                p.contact_nodes.to_string(),
-                p.heel_lifted.to_string(),
-                p.uplift.to_string(),
-                p.approximate_contact.to_string(),
-                number(sdof_force(&automaton, p.q)),
-            ]);
-        }
+    for row in rows(model, a) {
+        table.row(columns::fields(&pushover_check::PUSHOVER_COLUMNS, &row));
     }
     table.into_bytes()
 }

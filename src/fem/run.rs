@@ -1,162 +1,74 @@
-//! The `flexrock fem` command as library functions: the finite element run and its files,
-//! the comparison with the one-degree-of-freedom model, and the fixed-base modes.
+//! The `flexrock fem` command as library functions: the finite element run's files
+//! (fem_history.csv, fem_events.csv, fem_summary.json, the figures), its comparison with the
+//! one-degree-of-freedom model written out, the printed summaries, and the fixed-base modes'
+//! table. The analysis (uplift episodes, peaks, line fits, the comparison's numbers) is
+//! [`flexrock_core::fem_check`], re-exported here.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
-use std::time::Instant;
 
 use serde::Serialize;
 
-use super::{
-    critical_time_step, fixed_base_periods, simulate_fem, ContactEvent, ContactState, FemResult,
-    FemStep, TimeScheme,
-};
-use crate::automaton::EventKind;
+use super::{FemResult, FemStep};
 use crate::error::{Error, Result};
 use crate::model::{FemSetup, Model, ModelFile};
-use crate::output::{self, count, number, readable, Table};
+use crate::output::{self, count, readable, Table};
 use crate::plot::{self, Panel, Series};
 use crate::run::VERSION;
 use crate::solution::Solution;
+use flexrock_core::{columns, fem_check};
 
-/// Column names of fem_history.csv (a contract).
-pub const HISTORY_COLUMNS: [&str; 12] = [
-    "t",
-    "floor_acc",
-    "q",
-    "flexural",
-    "rocking",
-    "slipping",
-    "shearing",
-    "top_velocity",
-    "momentum_left_toe",
-    "momentum_right_toe",
-    "lowest_base_uy",
-    "base_states",
-];
+use flexrock_core::fem_check::{analyse as analyse_run, compare as compare_solutions};
+pub use flexrock_core::fem_check::{
+    event_rows, history_rows, modes, peaks, uplift_episodes, EventRow, FemAnalysis, FemComparison,
+    FemComparisonRow, FemPeaks, FemWarning, HistoryRow, Modes, UpliftEpisode, COMPARISON_COLUMNS,
+    ELEMENT, MODE_COUNT, UPLIFT_ROCKING_FRACTION,
+};
 
-/// Column names of fem_events.csv (a contract).
-pub const EVENT_COLUMNS: [&str; 7] = ["t", "node", "x", "from", "to", "rx", "ry"];
+/// Column names of fem_history.csv (a contract): the names of
+/// [`flexrock_core::fem_check::HISTORY_COLUMNS`].
+pub const HISTORY_COLUMNS: [&str; 12] = columns::names(&fem_check::HISTORY_COLUMNS);
+
+/// Column names of fem_events.csv (a contract): the names of
+/// [`flexrock_core::fem_check::EVENT_COLUMNS`].
+pub const EVENT_COLUMNS: [&str; 7] = columns::names(&fem_check::EVENT_COLUMNS);
 
 /// Magnification of the deformed shapes (the paper's Fig. 9).
 pub const SHAPE_MAGNIFICATION: f64 = 5.0;
 
-/// A finished finite element run and what was derived from it.
-pub struct FemAnalysis {
-    /// The validated finite element analysis.
-    pub setup: FemSetup,
-    /// The time history, contact events and snapshots.
-    pub result: FemResult,
-    /// Stability limit of the linear acceleration method on this mesh, s.
-    pub linear_acceleration_limit: f64,
-    /// Messages the user must see (also written to fem_summary.json).
-    pub warnings: Vec<String>,
-    /// Wall-clock time of the run, s.
-    pub wall_time_s: f64,
-    /// The stretches of steps with one base corner off the floor.
-    pub uplifts: Vec<UpliftEpisode>,
-}
-
-/// A stretch of steps during which exactly one base corner is off the floor (see
-/// [`uplift_episodes`]).
-#[derive(Debug, Clone, Serialize)]
-pub struct UpliftEpisode {
-    /// First step with the corner off the floor, s.
-    pub t_start: f64,
-    /// First step with both corners back on the floor (or the end of the run), s.
-    pub t_end: f64,
-    /// "rock-right" (pivot on the right toe, left corner lifted) or "rock-left".
-    pub side: &'static str,
-    /// Largest |rocking part| during the episode, m.
-    pub max_rocking: f64,
-}
-
-fn state_name(s: ContactState) -> &'static str {
-    match s {
-        ContactState::Free => "free",
-        ContactState::Slip => "slip",
-        ContactState::Fixed => "fixed",
+/// A warning of a run as the user reads it (printed, and written to fem_summary.json).
+pub fn warning_text(warning: &FemWarning) -> String {
+    match *warning {
+        FemWarning::DtBeyondStabilityLimit {
+            dt,
+            limit,
+            scheme,
+            nx,
+            ny,
+            highest_frequency,
+        } => format!(
+            "fem.dt = {} s exceeds the stability limit {} s of the {} method on this {} x {} mesh \
+             (highest frequency {:.1} rad/s, shortest period {} s): the highest mode grows between \
+             contact changes and the base chatters; use scheme \"average-acceleration\" or \
+             \"wilson-theta\" (--scheme), or dt <= {} s",
+            dt,
+            short_seconds(limit),
+            scheme,
+            nx,
+            ny,
+            highest_frequency,
+            short_seconds(2.0 * std::f64::consts::PI / highest_frequency),
+            short_seconds(limit)
+        ),
+        FemWarning::Overturned { t } => format!(
+            "the body overturned (|q| > B) at t = {} s; the run stops there",
+            readable(t)
+        ),
     }
 }
 
-fn state_letter(s: ContactState) -> char {
-    match s {
-        ContactState::Free => 'F',
-        ContactState::Slip => 'S',
-        ContactState::Fixed => 'X',
-    }
-}
-
-/// Which side the body rocks on at a step: Some("rock-right") when the left corner is off the
-/// floor and the right corner on it, Some("rock-left") for the mirror, None otherwise.
-fn rocking_side(step: &FemStep) -> Option<&'static str> {
-    let on = |s: &ContactState| *s != ContactState::Free;
-    match (step.base_states.first(), step.base_states.last()) {
-        (Some(l), Some(r)) if !on(l) && on(r) => Some("rock-right"),
-        (Some(l), Some(r)) if on(l) && !on(r) => Some("rock-left"),
-        _ => None,
-    }
-}
-
-/// Rocking part (fraction of the width B) an episode must reach to count as an uplift: smaller
-/// ones are the heel opening of the continuum's base, not rocking on a toe.
-pub const UPLIFT_ROCKING_FRACTION: f64 = 0.01;
-
-/// The uplift episodes of a run, in time order. Episodes on the same side separated by at most
-/// two steps are one episode (a corner node chattering on and off the floor), and episodes whose
-/// rocking part stays below [`UPLIFT_ROCKING_FRACTION`] x `width` are left out.
-pub fn uplift_episodes(steps: &[FemStep], width: f64) -> Vec<UpliftEpisode> {
-    let dt = match steps {
-        [a, b, ..] => b.t - a.t,
-        _ => 0.0,
-    };
-    let mut merged: Vec<UpliftEpisode> = Vec::new();
-    for e in corner_episodes(steps) {
-        match merged.last_mut() {
-            Some(last) if last.side == e.side && e.t_start - last.t_end <= 2.5 * dt => {
-                last.t_end = e.t_end;
-                last.max_rocking = last.max_rocking.max(e.max_rocking);
-            }
-            _ => merged.push(e),
-        }
-    }
-    merged.retain(|e| e.max_rocking >= UPLIFT_ROCKING_FRACTION * width);
-    merged
-}
-
-/// Every stretch of steps with exactly one corner off the floor.
-fn corner_episodes(steps: &[FemStep]) -> Vec<UpliftEpisode> {
-    let mut episodes: Vec<UpliftEpisode> = Vec::new();
-    let mut current: Option<UpliftEpisode> = None;
-    for step in steps {
-        let side = rocking_side(step);
-        if let Some(e) = current.as_mut() {
-            if side == Some(e.side) {
-                e.max_rocking = e.max_rocking.max(step.rocking.abs());
-                continue;
-            }
-            e.t_end = step.t;
-            episodes.extend(current.take());
-        }
-        if let Some(side) = side {
-            current = Some(UpliftEpisode {
-                t_start: step.t,
-                t_end: step.t,
-                side,
-                max_rocking: step.rocking.abs(),
-            });
-        }
-    }
-    if let (Some(mut e), Some(last)) = (current, steps.last()) {
-        e.t_end = last.t;
-        episodes.push(e);
-    }
-    episodes
-}
-
-/// Runs the finite element analysis of a model: the floor acceleration comes from the model's
-/// excitation, so every excitation kind works. The FEM starts at rest in the gravity state;
-/// `simulation.q0` is applied as a rigid tilt about the toe (q = q0, all of it rocking).
+/// Runs the finite element analysis of a model ([`flexrock_core::fem_check::analyse`]); the
+/// command refuses an initial velocity, since the run starts at rest.
 pub fn analyse(model: &Model, setup: &FemSetup) -> Result<FemAnalysis> {
     if model.initial.qdot != 0.0 {
         return Err(Error::invalid(
@@ -165,132 +77,23 @@ pub fn analyse(model: &Model, setup: &FemSetup) -> Result<FemAnalysis> {
             "the finite element analysis starts at rest: qdot0 must be 0 for `flexrock fem`",
         ));
     }
-    let mut setup = setup.clone();
-    setup.settings.initial_rotation = model.initial.q / setup.body.height;
-    let floor = |t: f64| model.floor.acceleration(t);
-    let started = Instant::now();
-    let result = simulate_fem(&setup.body, &setup.settings, &floor)?;
-    let wall_time_s = started.elapsed().as_secs_f64();
-    let linear_acceleration_limit =
-        crate::solver::newmark::linear_acceleration_omega_dt() / result.highest_frequency;
-    let mut warnings = Vec::new();
-    if let Some(limit) = result.critical_time_step {
-        if setup.settings.dt > limit {
-            warnings.push(format!(
-                "fem.dt = {} s exceeds the stability limit {} s of the {} method on this {} x {} mesh \
-                 (highest frequency {:.1} rad/s, shortest period {} s): the highest mode grows between \
-                 contact changes and the base chatters; use scheme \"average-acceleration\" or \
-                 \"wilson-theta\" (--scheme), or dt <= {} s",
-                setup.settings.dt,
-                short_seconds(limit),
-                setup.scheme_name,
-                setup.settings.nx,
-                setup.settings.ny,
-                result.highest_frequency,
-                short_seconds(2.0 * std::f64::consts::PI / result.highest_frequency),
-                short_seconds(limit)
-            ));
-        }
-    }
-    if let Some(t) = result.overturned_at {
-        warnings.push(format!(
-            "the body overturned (|q| > B) at t = {} s; the run stops there",
-            readable(t)
-        ));
-    }
-    let uplifts = uplift_episodes(&result.steps, setup.body.width);
-    Ok(FemAnalysis {
-        setup,
-        result,
-        linear_acceleration_limit,
-        warnings,
-        wall_time_s,
-        uplifts,
-    })
+    analyse_run(model, setup)
 }
 
 pub(crate) fn history_csv(model: &Model, steps: &[FemStep]) -> Vec<u8> {
     let mut table = Table::new(&HISTORY_COLUMNS);
-    for s in steps {
-        table.row([
-            number(s.t),
-            number(model.floor.acceleration(s.t)),
-            number(s.q),
-            number(s.flexural),
-            number(s.rocking),
-            number(s.slipping),
-            number(s.shearing),
-            number(s.top_velocity),
-            number(s.momentum_left_toe),
-            number(s.momentum_right_toe),
-            number(s.lowest_base_uy),
-            s.base_states
-                .iter()
-                .map(|s| state_letter(*s))
-                .collect::<String>(),
-        ]);
+    for row in history_rows(model, steps) {
+        table.row(columns::fields(&fem_check::HISTORY_COLUMNS, &row));
     }
     table.into_bytes()
 }
 
 pub(crate) fn events_csv(result: &FemResult) -> Vec<u8> {
     let mut table = Table::new(&EVENT_COLUMNS);
-    for ContactEvent {
-        t,
-        node,
-        from,
-        to,
-        rx,
-        ry,
-    } in &result.events
-    {
-        // Base node i is node i of the mesh (row 0).
-        let x = result
-            .node_coordinates
-            .get(*node)
-            .map_or(f64::NAN, |c| c[0]);
-        table.row([
-            number(*t),
-            node.to_string(),
-            number(x),
-            state_name(*from).to_string(),
-            state_name(*to).to_string(),
-            number(*rx),
-            number(*ry),
-        ]);
+    for row in event_rows(result) {
+        table.row(columns::fields(&fem_check::EVENT_COLUMNS, &row));
     }
     table.into_bytes()
-}
-
-/// Peak values of a run.
-#[derive(Debug, Clone, Serialize)]
-pub(crate) struct FemPeaks {
-    pub max_q: f64,
-    pub t_max_q: f64,
-    pub min_q: f64,
-    pub t_min_q: f64,
-    pub max_abs_flexural: f64,
-    pub max_abs_rocking: f64,
-    pub max_abs_slipping: f64,
-    pub max_abs_shearing: f64,
-    pub max_abs_top_velocity: f64,
-}
-
-pub(crate) fn peaks(steps: &[FemStep]) -> FemPeaks {
-    let max_abs = |f: fn(&FemStep) -> f64| steps.iter().map(|s| f(s).abs()).fold(0.0, f64::max);
-    let max = steps.iter().max_by(|a, b| a.q.total_cmp(&b.q));
-    let min = steps.iter().min_by(|a, b| a.q.total_cmp(&b.q));
-    FemPeaks {
-        max_q: max.map_or(0.0, |s| s.q),
-        t_max_q: max.map_or(0.0, |s| s.t),
-        min_q: min.map_or(0.0, |s| s.q),
-        t_min_q: min.map_or(0.0, |s| s.t),
-        max_abs_flexural: max_abs(|s| s.flexural),
-        max_abs_rocking: max_abs(|s| s.rocking),
-        max_abs_slipping: max_abs(|s| s.slipping),
-        max_abs_shearing: max_abs(|s| s.shearing),
-        max_abs_top_velocity: max_abs(|s| s.top_velocity),
-    }
 }
 
 /// fem_summary.json.
@@ -315,7 +118,7 @@ pub(crate) struct FemSummary<'a> {
     pub linear_acceleration_stability_limit: f64,
     pub scheme_stability_limit: Option<f64>,
     pub dt_beyond_stability_limit: bool,
-    pub warnings: &'a [String],
+    pub warnings: Vec<String>,
     pub static_reactions: &'a [[f64; 2]],
     pub steps: usize,
     pub contact_changes: usize,
@@ -326,9 +129,6 @@ pub(crate) struct FemSummary<'a> {
     pub excitation: serde_json::Value,
     pub inputs: &'a ModelFile,
 }
-
-/// The element, in one line, for summaries and reports.
-pub const ELEMENT: &str = "QM6 4-node incompatible-mode quadrilateral, plane stress, lumped mass";
 
 pub(crate) fn summary<'a>(model: &'a Model, a: &'a FemAnalysis) -> FemSummary<'a> {
     let b = &a.setup.body;
@@ -353,7 +153,7 @@ pub(crate) fn summary<'a>(model: &'a Model, a: &'a FemAnalysis) -> FemSummary<'a
         dt_beyond_stability_limit: r
             .critical_time_step
             .is_some_and(|limit| a.setup.settings.dt > limit),
-        warnings: &a.warnings,
+        warnings: a.warnings.iter().map(warning_text).collect(),
         static_reactions: &r.static_reactions,
         steps: r.steps.len(),
         contact_changes: r.events.len(),
@@ -533,6 +333,8 @@ fn run_files(model: &Model, a: &FemAnalysis) -> Result<Vec<(&'static str, Vec<u8
 pub struct FemReport {
     /// The run and what was derived from it.
     pub analysis: FemAnalysis,
+    /// The run's warnings as the user reads them ([`warning_text`]).
+    pub warnings: Vec<String>,
     /// The one-mode model side by side with the run, when compared.
     pub comparison: Option<FemComparison>,
     /// The files written.
@@ -564,169 +366,17 @@ pub fn fem(
     files.extend(timings.file());
     let files = output::write_atomically(out_dir, &files)?;
     Ok(FemReport {
+        warnings: analysis.warnings.iter().map(warning_text).collect(),
         analysis,
         comparison: None,
         files,
     })
 }
 
-/// One row of the comparison table.
-#[derive(Debug, Clone, Serialize)]
-pub struct FemComparisonRow {
-    /// What the row measures.
-    pub quantity: String,
-    /// Its value in the SDOF model.
-    pub sdof: f64,
-    /// Its value in the finite element run.
-    pub fem: f64,
-    /// The row counts something (printed without decimals).
-    #[serde(skip)]
-    pub is_count: bool,
-}
-
-/// The SDOF model and the FEM side by side.
-#[derive(Debug, Clone, Serialize)]
-pub struct FemComparison {
-    /// The quantities side by side.
-    pub rows: Vec<FemComparisonRow>,
-    /// Uplift times of the SDOF model, s.
-    pub sdof_uplift_times: Vec<f64>,
-    /// Starts of the finite element run's uplift episodes, s.
-    pub fem_uplift_times: Vec<f64>,
-}
-
-/// Least-squares line y = a + b x through the points; None for fewer than 2 distinct x.
-fn fit_line(points: &[(f64, f64)]) -> Option<(f64, f64)> {
-    let n = points.len() as f64;
-    if points.len() < 2 {
-        return None;
-    }
-    let (sx, sy) = points
-        .iter()
-        .fold((0.0, 0.0), |(a, b), p| (a + p.0, b + p.1));
-    let (mx, my) = (sx / n, sy / n);
-    let sxx: f64 = points.iter().map(|p| (p.0 - mx).powi(2)).sum();
-    let sxy: f64 = points.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
-    (sxx > 0.0).then(|| (my - sxy / sxx * mx, sxy / sxx))
-}
-
-/// Rocking part below which a state counts as upright when fitting the rocking branch, as a
-/// fraction of the width (the FEM's base opens gradually; small r is the opening, not rocking).
-const ROCKING_FIT_THRESHOLD: f64 = 0.03;
-
-/// Folds (r, y) onto r > 0 (mirror the left rocking branch) and keeps |r| above the threshold.
-fn rocking_branch(points: impl Iterator<Item = (f64, f64)>, width: f64) -> Vec<(f64, f64)> {
-    points
-        .filter(|(r, _)| r.abs() > ROCKING_FIT_THRESHOLD * width)
-        .map(|(r, y)| (r.abs(), y * r.signum()))
-        .collect()
-}
-
-pub(crate) fn compare_solutions(model: &Model, sdof: &Solution, a: &FemAnalysis) -> FemComparison {
-    let steps = &a.result.steps;
-    let p = peaks(steps);
-    let width = model.body.width;
-    let sdof_uplift_times: Vec<f64> = sdof
-        .events
-        .iter()
-        .filter(|e| e.kind == EventKind::Uplift)
-        .map(|e| e.t)
-        .collect();
-    let fem_uplift_times: Vec<f64> = a.uplifts.iter().map(|e| e.t_start).collect();
-    let sdof_max_abs = |f: fn(&crate::solution::Sample) -> f64| {
-        sdof.samples.iter().map(|s| f(s).abs()).fold(0.0, f64::max)
-    };
-    // q-r: intercept on the q axis (where rocking starts) and slope dq/dr of the rocking branch.
-    let q_r_sdof = fit_line(&rocking_branch(
-        sdof.samples.iter().map(|s| (s.r, s.q)),
-        width,
-    ));
-    let q_r_fem = fit_line(&rocking_branch(
-        steps.iter().map(|s| (s.rocking, s.q)),
-        width,
-    ));
-    let s_r_sdof = fit_line(&rocking_branch(
-        sdof.samples.iter().map(|s| (s.r, s.s)),
-        width,
-    ));
-    let s_r_fem = fit_line(&rocking_branch(
-        steps.iter().map(|s| (s.rocking, s.flexural)),
-        width,
-    ));
-    let nan = (f64::NAN, f64::NAN);
-    let row = |quantity: &str, sdof: f64, fem: f64| FemComparisonRow {
-        quantity: quantity.to_string(),
-        sdof,
-        fem,
-        is_count: false,
-    };
-    let rows = vec![
-        row("max q (m)", sdof.max_q.value, p.max_q),
-        row("t of max q (s)", sdof.max_q.t, p.t_max_q),
-        row("min q (m)", sdof.min_q.value, p.min_q),
-        row("t of min q (s)", sdof.min_q.t, p.t_min_q),
-        FemComparisonRow {
-            is_count: true,
-            ..row(
-                "uplifts",
-                sdof_uplift_times.len() as f64,
-                fem_uplift_times.len() as f64,
-            )
-        },
-        row(
-            "first uplift t (s)",
-            sdof_uplift_times.first().copied().unwrap_or(f64::NAN),
-            fem_uplift_times.first().copied().unwrap_or(f64::NAN),
-        ),
-        row(
-            "max |s| flexural (m)",
-            sdof_max_abs(|s| s.s),
-            p.max_abs_flexural,
-        ),
-        row(
-            "max |r| rocking (m)",
-            sdof_max_abs(|s| s.r),
-            p.max_abs_rocking,
-        ),
-        row("max |slipping| (m)", 0.0, p.max_abs_slipping),
-        row("max |shearing| (m)", 0.0, p.max_abs_shearing),
-        row(
-            "max |top velocity| (m/s)",
-            sdof_max_abs(|s| s.qdot),
-            p.max_abs_top_velocity,
-        ),
-        row(
-            "q-r rocking branch: q at r = 0 (m)",
-            q_r_sdof.unwrap_or(nan).0,
-            q_r_fem.unwrap_or(nan).0,
-        ),
-        row(
-            "q-r rocking branch: dq/dr",
-            q_r_sdof.unwrap_or(nan).1,
-            q_r_fem.unwrap_or(nan).1,
-        ),
-        row(
-            "s-r rocking branch: s at r = 0 (m)",
-            s_r_sdof.unwrap_or(nan).0,
-            s_r_fem.unwrap_or(nan).0,
-        ),
-        row(
-            "s-r rocking branch: ds/dr",
-            s_r_sdof.unwrap_or(nan).1,
-            s_r_fem.unwrap_or(nan).1,
-        ),
-    ];
-    FemComparison {
-        rows,
-        sdof_uplift_times,
-        fem_uplift_times,
-    }
-}
-
 pub(crate) fn comparison_csv(c: &FemComparison) -> Vec<u8> {
-    let mut table = Table::new(&["quantity", "sdof", "fem"]);
+    let mut table = Table::new(&columns::names(&COMPARISON_COLUMNS));
     for r in &c.rows {
-        table.row([r.quantity.clone(), number(r.sdof), number(r.fem)]);
+        table.row(columns::fields(&COMPARISON_COLUMNS, r));
     }
     table.into_bytes()
 }
@@ -828,6 +478,7 @@ pub fn compare(
     files.extend(timings.file());
     let files = output::write_atomically(out_dir, &files)?;
     Ok(FemReport {
+        warnings: analysis.warnings.iter().map(warning_text).collect(),
         analysis,
         comparison: Some(comparison),
         files,
@@ -880,48 +531,6 @@ pub fn report_text(report: &FemReport) -> String {
         let _ = writeln!(t, "  wrote {}", f.display());
     }
     t
-}
-
-/// Fixed-base natural periods of the mesh against the SDOF period.
-#[derive(Debug, Clone, Serialize)]
-pub struct Modes {
-    /// Elements across the width.
-    pub nx: usize,
-    /// Elements up the height.
-    pub ny: usize,
-    /// The lowest periods without the self-weight's P-Delta, s.
-    pub periods_elastic: Vec<f64>,
-    /// The lowest periods with it, s.
-    pub periods_p_delta: Vec<f64>,
-    #[serde(rename = "sdof_T")]
-    /// Pre-uplift period T of the SDOF model, s.
-    pub sdof_period: f64,
-    /// Highest circular frequency ω_max of the mesh, rad/s.
-    pub highest_frequency: f64,
-    /// Stability limit of the linear acceleration method on this mesh, s.
-    pub linear_acceleration_stability_limit: f64,
-}
-
-/// Number of modes `--modes` reports.
-const MODE_COUNT: usize = 3;
-
-/// The lowest fixed-base periods of the mesh, with and without P-Delta (`flexrock fem --modes`).
-pub fn modes(model: &Model, setup: &FemSetup) -> Result<Modes> {
-    let (b, s) = (&setup.body, &setup.settings);
-    let omega = super::highest_frequency(b, s.nx, s.ny)?;
-    Ok(Modes {
-        nx: s.nx,
-        ny: s.ny,
-        periods_elastic: fixed_base_periods(b, s.nx, s.ny, false, MODE_COUNT)?,
-        periods_p_delta: fixed_base_periods(b, s.nx, s.ny, true, MODE_COUNT)?,
-        sdof_period: model.constants.period,
-        highest_frequency: omega,
-        linear_acceleration_stability_limit: critical_time_step(
-            TimeScheme::linear_acceleration(),
-            omega,
-        )
-        .unwrap_or(f64::INFINITY),
-    })
 }
 
 /// The text `flexrock fem --modes` prints.

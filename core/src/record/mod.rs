@@ -22,7 +22,7 @@ use std::path::Path;
 pub use at2::parse_at2;
 pub use csv::parse_csv;
 pub use error::{Location, RecordError};
-pub use samples::{check_sample_dt, dt_from_times, record_from_samples, MAX_SAMPLES};
+pub use samples::{check_sample_dt, dt_from_times, record_from_samples, MAX_RECORD_SAMPLES};
 
 /// An accelerogram sampled at a uniform interval.
 #[derive(Debug, Clone, PartialEq)]

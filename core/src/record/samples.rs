@@ -8,7 +8,7 @@ use crate::invalid::InvalidParameter;
 
 /// Most samples a record in memory may have: as many as the largest record file can hold
 /// ([`MAX_RECORD_BYTES`], at two bytes, a digit and a line end, a sample).
-pub const MAX_SAMPLES: usize = (MAX_RECORD_BYTES / 2) as usize;
+pub const MAX_RECORD_SAMPLES: usize = (MAX_RECORD_BYTES / 2) as usize;
 
 /// Checks a sampling interval named `name` (s) by a record file's rules: finite, > 0 and at
 /// least [`MIN_DT`].
@@ -32,7 +32,7 @@ pub fn check_sample_dt(name: &str, dt: f64) -> Result<f64, InvalidParameter> {
 /// A record of the samples `values` (named `values_name`) at the interval `dt` (named
 /// `dt_name`), from `source` (for messages and tables). As in a record file: dt by
 /// [`check_sample_dt`], every value finite, at least [`MIN_SAMPLES`] and at most
-/// [`MAX_SAMPLES`] of them.
+/// [`MAX_RECORD_SAMPLES`] of them.
 pub fn record_from_samples(
     source: &str,
     dt_name: &str,
@@ -50,12 +50,12 @@ pub fn record_from_samples(
              acceleration between them",
         ));
     }
-    if values.len() > MAX_SAMPLES {
+    if values.len() > MAX_RECORD_SAMPLES {
         return Err(InvalidParameter::new(
             values_name,
             count(),
             &format!(
-                "more than the limit for a record, {MAX_SAMPLES} samples (as many as the largest \
+                "more than the limit for a record, {MAX_RECORD_SAMPLES} samples (as many as the largest \
                  record file holds)"
             ),
         ));
