@@ -1,0 +1,411 @@
+//! The command line's arguments: every command and flag, as clap types (the help texts are
+//! their doc comments). `main.rs` runs what they ask for.
+
+use std::path::PathBuf;
+use std::sync::LazyLock;
+
+use clap::{Parser, Subcommand};
+use flexrock::model::{Overrides, Setting};
+
+#[derive(Parser)]
+#[command(
+    name = "flexrock",
+    version,
+    about = "Slender elastic body rocking on a rigid floor (Ichinose 1986): event-driven reference solutions"
+)]
+pub(crate) struct Cli {
+    #[command(subcommand)]
+    pub(crate) command: Command,
+}
+
+#[derive(Subcommand)]
+pub(crate) enum Command {
+    /// Print the body's derived constants.
+    Props {
+        /// Model file (TOML).
+        model: PathBuf,
+        /// Print JSON instead of a table.
+        #[arg(long)]
+        json: bool,
+        #[command(flatten)]
+        set: SetArgs,
+    },
+    /// Simulate a model and write history.csv, events.csv, episodes.csv and summary.json.
+    Run {
+        /// Model file (TOML).
+        model: PathBuf,
+        /// Output directory [default: out/<model file stem>].
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Relative tolerance (overrides solver.rtol).
+        #[arg(long)]
+        rtol: Option<f64>,
+        /// Absolute tolerance (overrides solver.atol).
+        #[arg(long)]
+        atol: Option<f64>,
+        /// Integration method: bdf (implicit, the default), esdirk34, tr-bdf2 (implicit), tsit45
+        /// (explicit) or newmark (fixed step) (overrides solver.method; switching between newmark
+        /// and the adaptive methods sets aside the file's keys of the other).
+        #[arg(long)]
+        method: Option<String>,
+        /// Newmark time step, s (overrides solver.dt; needs method newmark).
+        #[arg(long)]
+        dt: Option<f64>,
+        /// Newmark variant at events: compensate or substep (overrides solver.newmark_variant).
+        #[arg(long)]
+        variant: Option<String>,
+        /// Simulated time, s (overrides simulation.duration).
+        #[arg(long)]
+        duration: Option<f64>,
+        #[command(flatten)]
+        set: SetArgs,
+        /// Also draw the figures of `flexrock plot` (plot_motion.svg, plot_force.svg,
+        /// plot_energy.svg), written with the run's files as one set.
+        #[arg(long)]
+        plot: bool,
+        #[command(flatten)]
+        timings: TimingsArg,
+    },
+    /// Draw the figures of a run directory (history.csv, events.csv, summary.json of
+    /// `flexrock run`) into it: plot_motion (floor acceleration, q, s and r, dq/dt against t,
+    /// with the events marked on every panel), plot_force (F(q), q against r, s against r) and
+    /// plot_energy (energy balance and residual), as SVG, PNG or both.
+    Plot(PlotArgs),
+    /// Print the event log of a run directory (its events.csv) as a table, or with --csv or
+    /// --json its rocking episodes (episodes.csv): one row per episode with its side, start,
+    /// end, duration, peak |q| and rotation, floor acceleration at uplift and q' before and
+    /// after each impact.
+    Events {
+        /// Output directory of `flexrock run`.
+        dir: PathBuf,
+        /// Print the rocking episodes as CSV (the run's episodes.csv).
+        #[arg(long, conflicts_with = "json")]
+        csv: bool,
+        /// Print the rocking episodes as JSON: an array of objects by column name.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Parametric study: run the model at every point of a grid of model-file keys (or search
+    /// the smallest overturning value at each), one row per point in sweep.csv, with sweep.json
+    /// and a figure (SVG): a map over two numeric axes, a spectrum of a minimum search, or for
+    /// records (excitation.path) against excitation.scale or excitation.amplitude an
+    /// incremental dynamic analysis (ida.svg). Re-running the same command resumes an interrupted sweep.
+    Sweep(SweepArgs),
+    /// Print a shell completion script for flexrock (bash, zsh, fish, elvish or powershell),
+    /// e.g. `flexrock completions bash > ~/.local/share/bash-completion/completions/flexrock`.
+    Completions {
+        /// The shell.
+        shell: clap_complete::Shell,
+    },
+    /// Print flexrock's manual page (roff), e.g. `flexrock man > flexrock.1; man ./flexrock.1`.
+    Man,
+    /// Look at a ground-motion record before using it.
+    Record {
+        #[command(subcommand)]
+        command: RecordCommand,
+    },
+    /// Compare Newmark at the paper's dt with a tight adaptive reference; write compare.csv,
+    /// compare_history.csv, compare.json, compare.svg and compare_relations.svg.
+    Compare {
+        /// Model file (TOML).
+        model: PathBuf,
+        /// Output directory [default: out/<model file stem>-compare].
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Newmark time step, s [default: the file's solver.dt, else 0.02].
+        #[arg(long)]
+        dt: Option<f64>,
+        /// Newmark variant at events: compensate or substep [default: the file's, else compensate].
+        #[arg(long)]
+        variant: Option<String>,
+        /// Relative tolerance of the adaptive reference.
+        #[arg(long, default_value = REFERENCE_RTOL_TEXT.as_str())]
+        reference_rtol: f64,
+        /// Simulated time, s (overrides simulation.duration).
+        #[arg(long)]
+        duration: Option<f64>,
+        #[command(flatten)]
+        set: SetArgs,
+        #[command(flatten)]
+        timings: TimingsArg,
+    },
+    /// Convergence study: Newmark at each dt and each adaptive method at each tolerance against
+    /// a reference; write convergence.csv, convergence.json and two SVG figures.
+    Converge {
+        /// Model file (TOML).
+        model: PathBuf,
+        /// Output directory [default: out/<model file stem>-converge].
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Newmark time steps, s, separated by commas.
+        #[arg(long, value_delimiter = ',', default_value = DTS_TEXT.as_str())]
+        dt: Vec<f64>,
+        /// Relative tolerances of the adaptive methods, separated by commas.
+        #[arg(long, value_delimiter = ',', default_value = RTOLS_TEXT.as_str())]
+        rtol: Vec<f64>,
+        /// Relative tolerance of the reference.
+        #[arg(long, default_value = REFERENCE_RTOL_TEXT.as_str())]
+        reference_rtol: f64,
+        /// Simulated time, s (overrides simulation.duration).
+        #[arg(long)]
+        duration: Option<f64>,
+        #[command(flatten)]
+        set: SetArgs,
+        #[command(flatten)]
+        timings: TimingsArg,
+    },
+    /// Assemble the validation report (markdown) from the output directories of compare (both
+    /// variants), converge and a run of the rigid-limit model.
+    Report {
+        #[arg(long)]
+        compare_compensate: PathBuf,
+        #[arg(long)]
+        compare_substep: PathBuf,
+        #[arg(long)]
+        converge: PathBuf,
+        #[arg(long)]
+        rigid: PathBuf,
+        /// Directory of the figures, as the report links them (relative to the report).
+        #[arg(long, default_value = "figures")]
+        figures: String,
+        /// The regenerating command, quoted in the report.
+        #[arg(long, default_value = "validation/regenerate.sh")]
+        command: String,
+        /// The report file to write.
+        #[arg(long)]
+        out: PathBuf,
+    },
+    /// Plane-stress finite element analysis of the body (the paper's Section 3): writes
+    /// fem_history.csv, fem_events.csv, fem_summary.json and SVG figures.
+    Fem {
+        /// Model file (TOML); its optional [fem] section holds the settings.
+        model: PathBuf,
+        /// Output directory [default: out/<model file stem>-fem, or out/<model file stem>-pushover
+        /// with --pushover].
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Elements across the width (overrides fem.nx).
+        #[arg(long)]
+        nx: Option<usize>,
+        /// Elements up the height (overrides fem.ny).
+        #[arg(long)]
+        ny: Option<usize>,
+        /// linear-acceleration, average-acceleration or wilson-theta (overrides fem.scheme).
+        #[arg(long)]
+        scheme: Option<String>,
+        /// Time step, s (overrides fem.dt).
+        #[arg(long)]
+        dt: Option<f64>,
+        /// Also solve the SDOF model and compare the two (table, compare.csv, figures).
+        #[arg(long, conflicts_with_all = ["modes", "pushover"])]
+        compare: bool,
+        /// Only print the fixed-base natural periods of the mesh against the SDOF period T.
+        #[arg(long, conflicts_with = "pushover")]
+        modes: bool,
+        /// Instead of the dynamic run, push the body over statically (lateral loads m U(y), q up
+        /// to B) on the flexible base and on a rigid base plate, against the SDOF model's F(q):
+        /// writes pushover.csv, pushover.json and pushover.svg. Use a refined mesh (--nx 8 --ny 40).
+        #[arg(long)]
+        pushover: bool,
+        #[command(flatten)]
+        set: SetArgs,
+        #[command(flatten)]
+        timings: TimingsArg,
+    },
+}
+
+/// `--timings-apart` of the commands that time their solves.
+#[derive(clap::Args)]
+pub(crate) struct TimingsArg {
+    /// Write the wall-clock times to timings.json in the output directory instead of into the
+    /// summaries (which then hold null, or an empty cell) and the printed text, so that every
+    /// other file is the same from run to run.
+    #[arg(long)]
+    pub(crate) timings_apart: bool,
+}
+
+impl TimingsArg {
+    pub(crate) fn wall_times(&self) -> flexrock::output::WallTimes {
+        if self.timings_apart {
+            flexrock::output::WallTimes::Apart
+        } else {
+            flexrock::output::WallTimes::Inline
+        }
+    }
+}
+
+/// The arguments of `flexrock plot`.
+#[derive(clap::Args, Debug)]
+pub(crate) struct PlotArgs {
+    /// Output directory of `flexrock run`.
+    pub(crate) dir: PathBuf,
+    /// Image format: svg (plot_motion.svg, ...), png (plot_motion.png, ..., drawn with the
+    /// embedded DejaVu Sans font, no system fonts needed) or both.
+    #[arg(long, value_enum, default_value_t = PlotFormat::Svg)]
+    pub(crate) format: PlotFormat,
+    /// Width of every figure, pixels (200 to 6000) [default: 1150 for plot_motion and
+    /// plot_energy, 1920 for plot_force].
+    #[arg(long, value_name = "PX")]
+    pub(crate) width: Option<u32>,
+    /// Height of every figure, pixels (200 to 6000) [default: 1320 for plot_motion, 560 for
+    /// plot_force, 760 for plot_energy].
+    #[arg(long, value_name = "PX")]
+    pub(crate) height: Option<u32>,
+    /// Draw only from this time on, s (0 or more, finite, less than --to) [default: the start
+    /// of the run]. The energy curves keep their values accumulated since t = 0.
+    #[arg(long, value_name = "T0", allow_negative_numbers = true)]
+    pub(crate) from: Option<f64>,
+    /// Draw only up to this time, s (finite, more than --from) [default: the end of the run].
+    #[arg(long, value_name = "T1", allow_negative_numbers = true)]
+    pub(crate) to: Option<f64>,
+}
+
+/// The image formats of `flexrock plot`.
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum PlotFormat {
+    /// SVG.
+    Svg,
+    /// PNG (8-bit RGB).
+    Png,
+    /// SVG and PNG.
+    Both,
+}
+
+#[derive(clap::Args)]
+#[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true)]
+pub(crate) struct SweepArgs {
+    #[command(subcommand)]
+    pub(crate) command: Option<SweepCommand>,
+    /// Model file (TOML): the base of every point.
+    #[arg(required = true)]
+    pub(crate) model: Option<PathBuf>,
+    /// Output directory [default: out/<model file stem>-sweep].
+    #[arg(long)]
+    pub(crate) out: Option<PathBuf>,
+    /// An axis, KEY=VALUES (repeatable): LO:HI:STEP, lin:LO:HI:N, log:LO:HI:N, a comma list, or
+    /// for excitation.path a file pattern such as 'records/*.AT2'. The last axis varies fastest.
+    #[arg(long, value_name = "KEY=VALUES")]
+    pub(crate) vary: Vec<String>,
+    /// Instead of one run per point, the smallest value of KEY in [LO, HI] that overturns the
+    /// body: a scan of --scan values, then bisection of the first transition to --tol.
+    #[arg(long, value_name = "KEY=LO:HI")]
+    pub(crate) find_min: Option<String>,
+    /// Values scanned by --find-min [default: 100].
+    #[arg(long)]
+    pub(crate) scan: Option<usize>,
+    /// Width of the final bracket of --find-min, in KEY's units [default: (HI - LO)/1e4].
+    #[arg(long)]
+    pub(crate) tol: Option<f64>,
+    /// A sweep file (TOML: vary, set, find_min, scan, tol); flags add to it.
+    #[arg(long)]
+    pub(crate) sweep_file: Option<PathBuf>,
+    /// Compute only shard K of N (disjoint slices of whole chunks), into OUT/shard-K-of-N; set
+    /// from SLURM_ARRAY_TASK_ID and SLURM_ARRAY_TASK_COUNT in a Slurm job array.
+    #[arg(long, value_name = "K/N")]
+    pub(crate) shard: Option<String>,
+    /// Points per chunk (what a kill can lose) [default: about 1024 simulations' worth].
+    #[arg(long)]
+    pub(crate) chunk_size: Option<usize>,
+    /// Threads [default: every core].
+    #[arg(long)]
+    pub(crate) threads: Option<usize>,
+    /// Replace the results of another sweep (or a damaged result of this one) in the output
+    /// directory instead of refusing them; only the files a sweep writes are removed.
+    #[arg(long)]
+    pub(crate) force: bool,
+    /// No progress bar.
+    #[arg(long)]
+    pub(crate) quiet: bool,
+    #[command(flatten)]
+    pub(crate) set: SetArgs,
+}
+
+#[derive(Subcommand)]
+pub(crate) enum SweepCommand {
+    /// Join the outputs of shards (directories of shards, or directories holding
+    /// shard-K-of-N directories) into one, exactly as one process writes it; refuses gaps,
+    /// overlaps and shards of different sweeps.
+    Merge {
+        #[arg(required = true)]
+        dirs: Vec<PathBuf>,
+        /// Output directory.
+        #[arg(long)]
+        out: PathBuf,
+    },
+}
+
+/// `--set KEY=VALUE`, any number of times: a model-file key set from the command line.
+#[derive(clap::Args)]
+pub(crate) struct SetArgs {
+    /// Set a model-file key, e.g. --set excitation.amplitude=4.5 (repeatable; checked by the
+    /// rules of the file; applied before the other flags).
+    #[arg(long = "set", value_name = "KEY=VALUE", value_parser = Setting::parse)]
+    pub(crate) settings: Vec<Setting>,
+}
+
+impl SetArgs {
+    /// The `--set` keys for the model file `model`: a record path typed here is relative to the
+    /// current directory, and is written again relative to the model file, which reads it.
+    pub(crate) fn settings_for(self, model: &std::path::Path) -> Vec<Setting> {
+        let here = std::env::current_dir().unwrap_or_default();
+        let model_dir = here.join(model.parent().unwrap_or(std::path::Path::new("")));
+        self.settings
+            .into_iter()
+            .map(|s| s.rebased(&here, &model_dir))
+            .collect()
+    }
+
+    pub(crate) fn overrides(self, model: &std::path::Path) -> Overrides {
+        Overrides {
+            settings: self.settings_for(model),
+            ..Overrides::default()
+        }
+    }
+}
+
+#[derive(Subcommand)]
+pub(crate) enum RecordCommand {
+    /// Print what the reader understood: header, points, dt, duration, PGA and its time.
+    Info {
+        file: PathBuf,
+        #[command(flatten)]
+        options: RecordOptions,
+    },
+    /// Convert to CSV with columns t,acc_m_s2 (to standard output, or --out FILE).
+    Csv {
+        file: PathBuf,
+        #[command(flatten)]
+        options: RecordOptions,
+        /// Write to this file (atomically) instead of standard output.
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
+}
+
+#[derive(clap::Args)]
+pub(crate) struct RecordOptions {
+    /// peer-at2 or csv [default: from the extension].
+    #[arg(long)]
+    pub(crate) format: Option<String>,
+    /// Units of the values: g, m/s2 or cm/s2 [default: g for AT2; for CSV the unit its header
+    /// names (acc_m_s2, as `record csv` writes), else required].
+    #[arg(long)]
+    pub(crate) units: Option<String>,
+    /// Sampling interval of a one-column CSV file, s.
+    #[arg(long)]
+    pub(crate) dt: Option<f64>,
+}
+
+/// The default lists of `converge` and the reference tolerance, as a user types them; the
+/// numbers themselves live in the library.
+pub(crate) static DTS_TEXT: LazyLock<String> = LazyLock::new(|| {
+    flexrock::output::list(&flexrock::converge::DEFAULT_DTS, flexrock::output::shortest)
+});
+pub(crate) static RTOLS_TEXT: LazyLock<String> = LazyLock::new(|| {
+    flexrock::output::list(
+        &flexrock::converge::DEFAULT_RTOLS,
+        flexrock::output::scientific,
+    )
+});
+pub(crate) static REFERENCE_RTOL_TEXT: LazyLock<String> =
+    LazyLock::new(|| flexrock::output::scientific(flexrock::compare::DEFAULT_REFERENCE_RTOL));
