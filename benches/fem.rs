@@ -3,8 +3,8 @@
 use std::path::Path;
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use flexrock::fem::{pushover, simulate_fem, BaseSupport, FemBody, TimeScheme};
-use flexrock::model::{Model, Overrides};
+use flexrock_core::fem::{pushover, simulate_fem, BaseSupport, FemBody, TimeScheme};
+use flexrock_core::model::{Model, Overrides};
 
 fn fem_runs(c: &mut Criterion) {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("models/ichinose1986.toml");

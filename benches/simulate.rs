@@ -3,9 +3,9 @@
 use std::path::Path;
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use flexrock::body::{Body, SelfWeight};
-use flexrock::constants::Constants;
-use flexrock::model::{Model, Overrides};
+use flexrock_core::body::{Body, SelfWeight};
+use flexrock_core::constants::Constants;
+use flexrock_core::model::{Model, Overrides};
 
 fn load(file: &str, overrides: Overrides) -> Model {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(file);
@@ -27,7 +27,11 @@ fn reference_case(c: &mut Criterion) {
         let model = load("models/ichinose1986.toml", tolerances(rtol, atol));
         c.bench_function(
             &format!("ichinose1986 6 s bdf rtol={rtol:e} atol={atol:e}"),
-            |b| b.iter(|| flexrock::run::simulate(std::hint::black_box(&model)).expect("solves")),
+            |b| {
+                b.iter(|| {
+                    flexrock::commands::run::simulate(std::hint::black_box(&model)).expect("solves")
+                })
+            },
         );
     }
 }
@@ -45,7 +49,9 @@ fn el_centro(c: &mut Criterion) {
             },
         );
         c.bench_function(&format!("elcentro1940 31.16 s {method} rtol=1e-8"), |b| {
-            b.iter(|| flexrock::run::simulate(std::hint::black_box(&model)).expect("solves"))
+            b.iter(|| {
+                flexrock::commands::run::simulate(std::hint::black_box(&model)).expect("solves")
+            })
         });
     }
 }
@@ -62,7 +68,11 @@ fn reference_case_methods(c: &mut Criterion) {
         );
         c.bench_function(
             &format!("ichinose1986 6 s {method} rtol=1e-8 atol=1e-10"),
-            |b| b.iter(|| flexrock::run::simulate(std::hint::black_box(&model)).expect("solves")),
+            |b| {
+                b.iter(|| {
+                    flexrock::commands::run::simulate(std::hint::black_box(&model)).expect("solves")
+                })
+            },
         );
     }
 }

@@ -5,8 +5,9 @@
 use std::path::Path;
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use flexrock::model::{Model, Overrides, Setting};
-use flexrock::sweep::{store, Axis, Request, Sweep};
+use flexrock::commands::sweep::store;
+use flexrock_core::model::{Model, Overrides, Setting};
+use flexrock_core::sweep::{Axis, Request, Sweep};
 
 fn model_file() -> std::path::PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("models/pulse-map.toml")
@@ -28,10 +29,17 @@ fn pulse(settings: &[(&str, f64)]) -> Model {
 fn one_point(c: &mut Criterion) {
     for amplitude in [1.0, 3.0, 4.0] {
         let model = pulse(&[("excitation.amplitude", amplitude)]);
-        let events = flexrock::run::simulate_peaks(&model).unwrap().events.len();
+        let events = flexrock::commands::run::simulate_peaks(&model)
+            .unwrap()
+            .events
+            .len();
         c.bench_function(
             &format!("sweep point pulse 0.8 s A={amplitude} tail 5 s bdf ({events} events)"),
-            |b| b.iter(|| flexrock::run::simulate_peaks(std::hint::black_box(&model)).unwrap()),
+            |b| {
+                b.iter(|| {
+                    flexrock::commands::run::simulate_peaks(std::hint::black_box(&model)).unwrap()
+                })
+            },
         );
     }
 }
@@ -40,10 +48,17 @@ fn one_point(c: &mut Criterion) {
 fn duration(c: &mut Criterion) {
     for tail in [20.0, 80.0] {
         let model = pulse(&[("excitation.amplitude", 3.0), ("excitation.tail", tail)]);
-        let events = flexrock::run::simulate_peaks(&model).unwrap().events.len();
+        let events = flexrock::commands::run::simulate_peaks(&model)
+            .unwrap()
+            .events
+            .len();
         c.bench_function(
             &format!("sweep point pulse 0.8 s A=3 tail {tail} s bdf ({events} events)"),
-            |b| b.iter(|| flexrock::run::simulate_peaks(std::hint::black_box(&model)).unwrap()),
+            |b| {
+                b.iter(|| {
+                    flexrock::commands::run::simulate_peaks(std::hint::black_box(&model)).unwrap()
+                })
+            },
         );
     }
 }

@@ -5,7 +5,7 @@ use std::path::PathBuf;
 use std::sync::LazyLock;
 
 use clap::{Parser, Subcommand};
-use flexrock::model::{Overrides, Setting};
+use flexrock_core::model::{Overrides, Setting};
 
 #[derive(Parser)]
 #[command(
@@ -225,11 +225,11 @@ pub(crate) struct TimingsArg {
 }
 
 impl TimingsArg {
-    pub(crate) fn wall_times(&self) -> flexrock::output::WallTimes {
+    pub(crate) fn wall_times(&self) -> flexrock::writers::WallTimes {
         if self.timings_apart {
-            flexrock::output::WallTimes::Apart
+            flexrock::writers::WallTimes::Apart
         } else {
-            flexrock::output::WallTimes::Inline
+            flexrock::writers::WallTimes::Inline
         }
     }
 }
@@ -399,13 +399,17 @@ pub(crate) struct RecordOptions {
 /// The default lists of `converge` and the reference tolerance, as a user types them; the
 /// numbers themselves live in the library.
 pub(crate) static DTS_TEXT: LazyLock<String> = LazyLock::new(|| {
-    flexrock::output::list(&flexrock::converge::DEFAULT_DTS, flexrock::output::shortest)
-});
-pub(crate) static RTOLS_TEXT: LazyLock<String> = LazyLock::new(|| {
-    flexrock::output::list(
-        &flexrock::converge::DEFAULT_RTOLS,
-        flexrock::output::scientific,
+    flexrock::writers::list(
+        &flexrock::commands::converge::DEFAULT_DTS,
+        flexrock::writers::shortest,
     )
 });
-pub(crate) static REFERENCE_RTOL_TEXT: LazyLock<String> =
-    LazyLock::new(|| flexrock::output::scientific(flexrock::compare::DEFAULT_REFERENCE_RTOL));
+pub(crate) static RTOLS_TEXT: LazyLock<String> = LazyLock::new(|| {
+    flexrock::writers::list(
+        &flexrock::commands::converge::DEFAULT_RTOLS,
+        flexrock::writers::scientific,
+    )
+});
+pub(crate) static REFERENCE_RTOL_TEXT: LazyLock<String> = LazyLock::new(|| {
+    flexrock::writers::scientific(flexrock::commands::compare::DEFAULT_REFERENCE_RTOL)
+});

@@ -2,8 +2,8 @@
 //! (`solver.rtol`, `fem.nx`); a value given by a flag is named in what the command line prints by
 //! the flag that gave it (`--rtol (sets solver.rtol)`, `--nx`, `--set excitation.period`).
 
-use crate::error::Error;
-use crate::model::{FemOverrides, Overrides};
+use flexrock_core::error::Error;
+use flexrock_core::model::{FemOverrides, Overrides};
 
 /// The flag that set the model-file key `key`, as a message names it, if a flag did.
 fn flag_for(key: &str, overrides: &Overrides, fem: &FemOverrides) -> Option<String> {
@@ -45,7 +45,7 @@ pub fn named_by_flags(error: Error, overrides: &Overrides, fem: &FemOverrides) -
                 .split(", ")
                 .map(|k| flag_for(k, overrides, fem).unwrap_or_else(|| k.to_string()))
                 .collect();
-            let rule = match rule.strip_suffix(crate::model::DT_WITHOUT_NEWMARK) {
+            let rule = match rule.strip_suffix(flexrock_core::model::DT_WITHOUT_NEWMARK) {
                 Some(rule) if overrides.dt.is_some() => {
                     format!("{rule} (--dt needs --method newmark)")
                 }
@@ -110,7 +110,7 @@ pub fn sweep_named_by_flags(error: Error) -> Error {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::model::Setting;
+    use flexrock_core::model::Setting;
 
     #[test]
     fn keys_set_by_flags_are_named_by_the_flags_and_no_others() {
@@ -153,7 +153,10 @@ mod tests {
             dt: Some(0.01),
             ..Overrides::default()
         };
-        let rule = format!("not a parameter of bdf{}", crate::model::DT_WITHOUT_NEWMARK);
+        let rule = format!(
+            "not a parameter of bdf{}",
+            flexrock_core::model::DT_WITHOUT_NEWMARK
+        );
         match named_by_flags(Error::invalid("solver.dt", 0.01, &rule), &dt, &fem) {
             Error::InvalidParameter { key, rule, .. } => {
                 assert_eq!(key, "--dt (sets solver.dt)");

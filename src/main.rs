@@ -13,13 +13,13 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::Parser as _;
-use flexrock::model::{FemOverrides, FemSetup, Model, Overrides};
-use flexrock::record_tools;
+use flexrock::commands::record as record_command;
+use flexrock_core::model::{FemOverrides, FemSetup, Model, Overrides};
 
 /// A progress bar on standard error, drawn only on a terminal.
 struct ProgressBar(indicatif::ProgressBar);
 
-impl flexrock::sweep::store::Progress for ProgressBar {
+impl flexrock::commands::sweep::store::Progress for ProgressBar {
     fn start(&self, total: usize, done: usize) {
         self.0.set_length(total as u64);
         self.0.set_position(done as u64);
@@ -31,12 +31,13 @@ impl flexrock::sweep::store::Progress for ProgressBar {
 }
 
 fn sweep(args: SweepArgs) -> flexrock::Result<Output> {
-    use flexrock::sweep::{axis, store, Request, Sweep};
+    use flexrock::commands::sweep::store;
+    use flexrock_core::sweep::{axis, Request, Sweep};
     if let Some(SweepCommand::Merge { dirs, out }) = args.command {
         let report = store::merge(&dirs, &out)?;
         return Ok(Output {
-            stdout: flexrock::sweep::report_text(&report, None).into_bytes(),
-            warnings: flexrock::sweep::warnings(&report),
+            stdout: flexrock::commands::sweep::report_text(&report, None).into_bytes(),
+            warnings: flexrock::commands::sweep::warnings(&report),
         });
     }
     let Some(path) = args.model else {
@@ -110,9 +111,12 @@ fn sweep(args: SweepArgs) -> flexrock::Result<Output> {
     let report = store::run(&sweep, &target, &ProgressBar(bar.clone()))?;
     bar.finish_and_clear();
     Ok(Output {
-        stdout: flexrock::sweep::report_text(&report, Some(started.elapsed().as_secs_f64()))
-            .into_bytes(),
-        warnings: flexrock::sweep::warnings(&report),
+        stdout: flexrock::commands::sweep::report_text(
+            &report,
+            Some(started.elapsed().as_secs_f64()),
+        )
+        .into_bytes(),
+        warnings: flexrock::commands::sweep::warnings(&report),
     })
 }
 
@@ -250,14 +254,14 @@ fn execute(command: Command) -> flexrock::Result<Output> {
             timings,
         } => {
             let model = load_with_duration(&path, duration, set)?;
-            let options = flexrock::compare::CompareOptions {
+            let options = flexrock::commands::compare::CompareOptions {
                 reference_rtol,
                 dt,
                 variant,
                 wall_times: timings.wall_times(),
             };
             let out = out.unwrap_or_else(|| default_out_dir(&path, "-compare"));
-            flexrock::output::check_creatable(&out)?;
+            flexrock::writers::check_creatable(&out)?;
             compare(&model, &options, out)
         }
         Command::Converge {
@@ -271,14 +275,14 @@ fn execute(command: Command) -> flexrock::Result<Output> {
             timings,
         } => {
             let model = load_with_duration(&path, duration, set)?;
-            let options = flexrock::converge::ConvergeOptions {
+            let options = flexrock::commands::converge::ConvergeOptions {
                 dts: dt,
                 rtols: rtol,
                 reference_rtol,
                 wall_times: timings.wall_times(),
             };
             let out = out.unwrap_or_else(|| default_out_dir(&path, "-converge"));
-            flexrock::output::check_creatable(&out)?;
+            flexrock::writers::check_creatable(&out)?;
             converge(&model, &options, out)
         }
         Command::Report {
@@ -290,7 +294,7 @@ fn execute(command: Command) -> flexrock::Result<Output> {
             command,
             out,
         } => {
-            let inputs = flexrock::report::ReportInputs {
+            let inputs = flexrock::commands::report::ReportInputs {
                 compare_compensate,
                 compare_substep,
                 converge,
@@ -323,11 +327,11 @@ fn execute(command: Command) -> flexrock::Result<Output> {
                 fem_modes(&model, &setup)
             } else if pushover {
                 let out = out.unwrap_or_else(|| default_out_dir(&path, "-pushover"));
-                flexrock::output::check_creatable(&out)?;
+                flexrock::writers::check_creatable(&out)?;
                 fem_pushover(&model, &setup, out, timings.wall_times())
             } else {
                 let out = out.unwrap_or_else(|| default_out_dir(&path, "-fem"));
-                flexrock::output::check_creatable(&out)?;
+                flexrock::writers::check_creatable(&out)?;
                 fem(&model, &setup, out, compare, timings.wall_times())
             }
         }
@@ -339,11 +343,11 @@ fn props(path: &std::path::Path, json: bool, set: SetArgs) -> flexrock::Result<O
     let model = load(path, &set.overrides(path))?;
     Ok(if json {
         Output {
-            stdout: flexrock::output::json_bytes(&flexrock::run::properties(&model)),
+            stdout: flexrock::writers::json_bytes(&flexrock::commands::run::properties(&model)),
             warnings: Vec::new(),
         }
     } else {
-        Output::text(flexrock::run::properties_table(&model))
+        Output::text(flexrock::commands::run::properties_table(&model))
     })
 }
 
@@ -353,34 +357,34 @@ fn run(
     out: Option<PathBuf>,
     overrides: &Overrides,
     plot: bool,
-    wall_times: flexrock::output::WallTimes,
+    wall_times: flexrock::writers::WallTimes,
 ) -> flexrock::Result<Output> {
     let model = load(path, overrides)?;
     let out = out.unwrap_or_else(|| default_out_dir(path, ""));
-    flexrock::output::check_creatable(&out)?;
-    let report = flexrock::run::run_to_dir_with(&model, &out, plot, wall_times)?;
+    flexrock::writers::check_creatable(&out)?;
+    let report = flexrock::commands::run::run_to_dir_with(&model, &out, plot, wall_times)?;
     Ok(Output {
-        stdout: flexrock::run::run_report_text(&model, &report).into_bytes(),
+        stdout: flexrock::commands::run::run_report_text(&model, &report).into_bytes(),
         warnings: report.warnings.clone(),
     })
 }
 
 /// `flexrock plot`: the figures of a run directory.
 fn plot(args: PlotArgs) -> flexrock::Result<Output> {
-    use flexrock::plot::Format;
+    use flexrock::figures::plot::Format;
     let formats = match args.format {
         PlotFormat::Svg => vec![Format::Svg],
         PlotFormat::Png => vec![Format::Png],
         PlotFormat::Both => vec![Format::Svg, Format::Png],
     };
-    let options = flexrock::run_plot::PlotOptions {
+    let options = flexrock::figures::run::PlotOptions {
         formats,
         width: args.width,
         height: args.height,
         from: args.from,
         to: args.to,
     };
-    let written = flexrock::run_plot::plot_dir_with(&args.dir, &options)?;
+    let written = flexrock::figures::run::plot_dir_with(&args.dir, &options)?;
     Ok(Output::text(
         written
             .iter()
@@ -391,7 +395,7 @@ fn plot(args: PlotArgs) -> flexrock::Result<Output> {
 
 /// `flexrock events`: the event table of a run directory, or its episodes as CSV or JSON.
 fn events(dir: &std::path::Path, csv: bool, json: bool) -> flexrock::Result<Output> {
-    use flexrock::run_dir::{episodes_json, read_episodes_csv, EPISODES_FILE};
+    use flexrock::writers::run_dir::{episodes_json, read_episodes_csv, EPISODES_FILE};
     if csv || json {
         let bytes = read_episodes_csv(dir)?;
         if csv {
@@ -402,14 +406,14 @@ fn events(dir: &std::path::Path, csv: bool, json: bool) -> flexrock::Result<Outp
         }
         let value = episodes_json(&bytes, &dir.join(EPISODES_FILE))?;
         return Ok(Output {
-            stdout: flexrock::output::json_bytes(&value),
+            stdout: flexrock::writers::json_bytes(&value),
             warnings: Vec::new(),
         });
     }
-    let events = flexrock::run_dir::read_events(dir)?;
-    Ok(Output::text(flexrock::run_dir::events_table(
+    let events = flexrock::writers::run_dir::read_events(dir)?;
+    Ok(Output::text(flexrock::writers::run_dir::events_table(
         &events,
-        &dir.join(flexrock::run_dir::EVENTS_FILE),
+        &dir.join(flexrock::writers::run_dir::EVENTS_FILE),
     )))
 }
 
@@ -418,14 +422,14 @@ fn record(command: RecordCommand) -> flexrock::Result<Output> {
     Ok(match command {
         RecordCommand::Info { file, options } => {
             let record = load_record(&file, &options)?;
-            Output::text(record_tools::info_text(&record))
+            Output::text(record_command::info_text(&record))
         }
         RecordCommand::Csv { file, options, out } => {
             let record = load_record(&file, &options)?;
-            let bytes = record_tools::csv_bytes(&record);
+            let bytes = record_command::csv_bytes(&record);
             match out {
                 Some(path) => {
-                    flexrock::output::write_file_atomically(&path, &bytes)?;
+                    flexrock::writers::write_file_atomically(&path, &bytes)?;
                     Output::default()
                 }
                 None => Output {
@@ -440,11 +444,11 @@ fn record(command: RecordCommand) -> flexrock::Result<Output> {
 /// `flexrock compare`: Newmark against the adaptive reference, files into `out`.
 fn compare(
     model: &Model,
-    options: &flexrock::compare::CompareOptions,
+    options: &flexrock::commands::compare::CompareOptions,
     out: PathBuf,
 ) -> flexrock::Result<Output> {
-    let report = flexrock::compare::run_compare(model, options, &out)?;
-    Ok(Output::text(flexrock::compare::compare_text(
+    let report = flexrock::commands::compare::run_compare(model, options, &out)?;
+    Ok(Output::text(flexrock::commands::compare::compare_text(
         model, &report,
     )))
 }
@@ -452,25 +456,27 @@ fn compare(
 /// `flexrock converge`: the convergence study, files into `out`.
 fn converge(
     model: &Model,
-    options: &flexrock::converge::ConvergeOptions,
+    options: &flexrock::commands::converge::ConvergeOptions,
     out: PathBuf,
 ) -> flexrock::Result<Output> {
-    let report = flexrock::converge::run_converge(model, options, &out)?;
-    Ok(Output::text(flexrock::converge::converge_text(&report)))
+    let report = flexrock::commands::converge::run_converge(model, options, &out)?;
+    Ok(Output::text(flexrock::commands::converge::converge_text(
+        &report,
+    )))
 }
 
 /// `flexrock report`: the validation report from the output directories in `inputs`.
 fn report(
-    inputs: &flexrock::report::ReportInputs,
+    inputs: &flexrock::commands::report::ReportInputs,
     out: &std::path::Path,
 ) -> flexrock::Result<Output> {
-    let written = flexrock::report::write_report(inputs, out)?;
+    let written = flexrock::commands::report::write_report(inputs, out)?;
     Ok(Output::text(format!("wrote {}\n", written.display())))
 }
 
 /// `flexrock fem --modes`: the fixed-base periods of the mesh.
 fn fem_modes(model: &Model, setup: &FemSetup) -> flexrock::Result<Output> {
-    use flexrock::fem::run as fem;
+    use flexrock::commands::fem;
     Ok(Output::text(fem::modes_text(&fem::modes(model, setup)?)))
 }
 
@@ -479,10 +485,10 @@ fn fem_pushover(
     model: &Model,
     setup: &FemSetup,
     out: PathBuf,
-    wall_times: flexrock::output::WallTimes,
+    wall_times: flexrock::writers::WallTimes,
 ) -> flexrock::Result<Output> {
-    let report = flexrock::fem::pushover_run::run(model, setup, &out, wall_times)?;
-    Ok(Output::text(flexrock::fem::pushover_run::report_text(
+    let report = flexrock::commands::pushover::run(model, setup, &out, wall_times)?;
+    Ok(Output::text(flexrock::commands::pushover::report_text(
         &report,
     )))
 }
@@ -494,9 +500,9 @@ fn fem(
     setup: &FemSetup,
     out: PathBuf,
     compare: bool,
-    wall_times: flexrock::output::WallTimes,
+    wall_times: flexrock::writers::WallTimes,
 ) -> flexrock::Result<Output> {
-    use flexrock::fem::run as fem;
+    use flexrock::commands::fem;
     let report = if compare {
         fem::compare(model, setup, &out, wall_times)?
     } else {
@@ -512,8 +518,8 @@ fn fem(
 fn load_record(
     file: &std::path::Path,
     options: &RecordOptions,
-) -> flexrock::Result<record_tools::LoadedRecord> {
-    record_tools::load(
+) -> flexrock::Result<record_command::LoadedRecord> {
+    record_command::load(
         file,
         options.format.as_deref(),
         options.dt,

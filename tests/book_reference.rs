@@ -88,28 +88,31 @@ fn strings(list: &[&str]) -> Vec<String> {
 
 #[test]
 fn the_output_tables_list_exactly_the_columns_the_writers_write() {
-    use flexrock::sweep::row::{MinimumOutcome, RigidMinima, Row, RunOutcome, Scales};
+    use flexrock_core::sweep::row::{MinimumOutcome, RigidMinima, Row, RunOutcome, Scales};
     let text = page("outputs.md");
     let tables: [(&str, &[&str]); 8] = [
-        ("columns: history.csv", &flexrock::output::HISTORY_COLUMNS),
-        ("columns: events.csv", &flexrock::output::EVENT_COLUMNS),
-        ("columns: episodes.csv", &flexrock::output::EPISODE_COLUMNS),
-        ("columns: compare.csv", &flexrock::compare::COMPARE_COLUMNS),
+        ("columns: history.csv", &flexrock::writers::HISTORY_COLUMNS),
+        ("columns: events.csv", &flexrock::writers::EVENT_COLUMNS),
+        ("columns: episodes.csv", &flexrock::writers::EPISODE_COLUMNS),
+        (
+            "columns: compare.csv",
+            &flexrock::commands::compare::COMPARE_COLUMNS,
+        ),
         (
             "columns: compare_history.csv",
-            &flexrock::compare::COMPARE_HISTORY_COLUMNS,
+            &flexrock::commands::compare::COMPARE_HISTORY_COLUMNS,
         ),
         (
             "columns: convergence.csv",
-            &flexrock::converge::CONVERGENCE_COLUMNS,
+            &flexrock::commands::converge::CONVERGENCE_COLUMNS,
         ),
         (
             "columns: fem_history.csv",
-            &flexrock::fem::run::HISTORY_COLUMNS,
+            &flexrock::commands::fem::HISTORY_COLUMNS,
         ),
         (
             "columns: fem_events.csv",
-            &flexrock::fem::run::EVENT_COLUMNS,
+            &flexrock::commands::fem::EVENT_COLUMNS,
         ),
     ];
     for (marker, columns) in tables {
@@ -121,7 +124,7 @@ fn the_output_tables_list_exactly_the_columns_the_writers_write() {
     }
     assert_eq!(
         listed(&text, "columns: pushover.csv"),
-        strings(&flexrock::fem::pushover_run::PUSHOVER_COLUMNS)
+        strings(&flexrock::commands::pushover::PUSHOVER_COLUMNS)
     );
     // sweep.csv: the point, the axes (one unnamed row), status and reason, then one of two
     // groups, then the scales; the groups must be what a row writes, in that order.
@@ -175,7 +178,7 @@ fn summary_json_has_exactly_the_documented_keys() {
 
 #[test]
 fn the_model_file_tables_list_every_key_of_the_schema() {
-    use flexrock::model::{
+    use flexrock_core::model::{
         BodySection, ExcitationSection, FemSection, ModelFile, SimulationSection, SolverSection,
     };
     // Every field given, so that every key is written. A field added to a section without a
@@ -271,7 +274,7 @@ fn the_model_file_tables_list_every_key_of_the_schema() {
 fn the_excitation_kinds_table_lists_every_kind_the_model_file_takes() {
     // The kinds, from the rule a wrong kind is refused with.
     let text = common::reference_body("[excitation]\nkind = \"nothing\"\n");
-    let Err(e) = flexrock::model::Model::from_toml_str(&text, &Default::default()) else {
+    let Err(e) = flexrock_core::model::Model::from_toml_str(&text, &Default::default()) else {
         panic!("an unknown kind is refused");
     };
     let message = e.to_string();
@@ -302,8 +305,10 @@ fn value_of(cell: &str) -> Option<f64> {
 /// The limit constants the code has, by name, with their values: each public one read from the
 /// library (so that its value is the compiled one), the rest found below by scanning the source.
 fn known_values() -> BTreeMap<&'static str, f64> {
-    use flexrock::sweep::axis;
-    use flexrock::{constants, excitation, fem, model, record, run, run_dir, solution, solver};
+    use flexrock::commands::run;
+    use flexrock::writers::run_dir;
+    use flexrock_core::sweep::axis;
+    use flexrock_core::{constants, excitation, fem, model, record, solution, solver};
     BTreeMap::from([
         ("MAX_MODEL_FILE_BYTES", model::MAX_MODEL_FILE_BYTES as f64),
         ("MIN_RTOL", model::MIN_RTOL),

@@ -366,11 +366,11 @@ fn converge_refuses_bad_lists_before_computing() {
     }
     // An empty list, through the library (the command line cannot give one).
     let m = common::model(&std::fs::read_to_string(&model).unwrap());
-    let empty = flexrock::converge::ConvergeOptions {
+    let empty = flexrock::commands::converge::ConvergeOptions {
         dts: Vec::new(),
         ..Default::default()
     };
-    let error = flexrock::converge::run_converge(&m, &empty, &out)
+    let error = flexrock::commands::converge::run_converge(&m, &empty, &out)
         .err()
         .unwrap();
     assert!(error.is_input_error());
@@ -579,12 +579,12 @@ fn every_method_is_accepted_and_documented() {
     };
     for method in METHODS {
         assert!(
-            flexrock::model::Model::from_toml_str(&text(method), &Default::default()).is_ok(),
+            flexrock_core::model::Model::from_toml_str(&text(method), &Default::default()).is_ok(),
             "{method} is not accepted"
         );
     }
     // The validator's list of names is the same list.
-    let error = flexrock::model::Model::from_toml_str(&text("rk4"), &Default::default())
+    let error = flexrock_core::model::Model::from_toml_str(&text("rk4"), &Default::default())
         .err()
         .unwrap()
         .to_string();
@@ -637,7 +637,7 @@ fn pushover_writes_where_the_readme_says() {
 #[test]
 fn converge_shows_its_defaults_as_they_are_typed() {
     let help = String::from_utf8_lossy(&flexrock(&["converge", "--help"]).stdout).into_owned();
-    let defaults: String = flexrock::converge::DEFAULT_DTS
+    let defaults: String = flexrock::commands::converge::DEFAULT_DTS
         .iter()
         .map(|x| x.to_string())
         .collect::<Vec<_>>()

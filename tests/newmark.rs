@@ -7,9 +7,9 @@ use crate::common::{flexrock, reference_model};
 
 use std::path::Path;
 
-use flexrock::compare::compare;
-use flexrock::model::{Model, Overrides};
-use flexrock::solver::SolverSettings;
+use flexrock::commands::compare::compare;
+use flexrock_core::model::{Model, Overrides};
+use flexrock_core::solver::SolverSettings;
 
 /// Max |q - closed form| over the step ends of a Newmark run on a harmonic too weak to uplift.
 fn closed_form_error(beta: f64, dt: f64) -> f64 {
@@ -19,7 +19,7 @@ fn closed_form_error(beta: f64, dt: f64) -> f64 {
          newmark_beta = {beta}\noutput_dt = 0.04\n"
     ));
     let model = common::model(&text);
-    let sol = flexrock::run::simulate(&model).unwrap();
+    let sol = flexrock::commands::run::simulate(&model).unwrap();
     assert!(sol.events.is_empty(), "too weak to uplift");
 
     // q'' + 2 h w q' + w^2 q = -beta1 A sin(W t), q(0) = q'(0) = 0: closed form.
@@ -56,7 +56,7 @@ fn event_errors(variant: &str, dts: &[f64]) -> Vec<(f64, f64, f64)> {
         ..Overrides::default()
     };
     let model = Model::load(&reference_model(), &overrides).unwrap();
-    let reference = flexrock::run::simulate_with(
+    let reference = flexrock::commands::run::simulate_with(
         &model,
         &SolverSettings::Adaptive(model.reference_settings(1e-11).unwrap()),
     )
@@ -66,7 +66,8 @@ fn event_errors(variant: &str, dts: &[f64]) -> Vec<(f64, f64, f64)> {
         .map(|&dt| {
             let settings = model.newmark_settings(Some(dt), Some(variant)).unwrap();
             let sol =
-                flexrock::run::simulate_with(&model, &SolverSettings::Newmark(settings)).unwrap();
+                flexrock::commands::run::simulate_with(&model, &SolverSettings::Newmark(settings))
+                    .unwrap();
             let c = compare(&reference, &sol, model.solver.output_dt(), 0.3);
             assert_eq!(
                 c.events.n_missed + c.events.n_spurious,
@@ -319,19 +320,21 @@ fn converge_writes_its_files_with_stable_columns() {
 }
 
 /// The sine-pulse model under sub-stepping Newmark at dt = 0.02 s with the pulse amplitude `a`.
-fn substep_pulse(amplitude: f64) -> flexrock::error::Result<flexrock::solution::Solution> {
+fn substep_pulse(
+    amplitude: f64,
+) -> flexrock_core::error::Result<flexrock_core::solution::Solution> {
     let overrides = Overrides {
         method: Some("newmark".into()),
         dt: Some(0.02),
         newmark_variant: Some("substep".into()),
-        settings: vec![flexrock::model::Setting::number(
+        settings: vec![flexrock_core::model::Setting::number(
             "excitation.amplitude",
             amplitude,
         )],
         ..Overrides::default()
     };
     let model = Model::load(&common::repo("models/sine-pulse.toml"), &overrides)?;
-    flexrock::run::simulate(&model)
+    flexrock::commands::run::simulate(&model)
 }
 
 #[test]

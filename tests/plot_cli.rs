@@ -6,8 +6,8 @@ use crate::common;
 use std::path::{Path, PathBuf};
 
 use crate::common::{file_names, flexrock, scratch_dir};
-use flexrock::run_dir::RunData;
-use flexrock::run_plot::FIGURES;
+use flexrock::figures::run::FIGURES;
+use flexrock::writers::run_dir::RunData;
 
 fn stderr_of(o: &std::process::Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
@@ -125,8 +125,8 @@ fn the_path_over_f_of_q_goes_beyond_uplift_and_the_curve_is_the_model_s() {
     let ke = c["generalised_stiffness"].as_f64().unwrap();
 
     let data = RunData::read(&run).unwrap();
-    let automaton = flexrock::automaton::Automaton::new(&data.summary.constants);
-    let panels = flexrock::run_plot::force_panels(&data, &automaton);
+    let automaton = flexrock_core::automaton::Automaton::new(&data.summary.constants);
+    let panels = flexrock::figures::run::force_panels(&data, &automaton);
     let force = &panels[0];
     let path = force.series.iter().find(|s| s.name == "this run").unwrap();
     // The paper's example rocks (11 uplifts): its path leaves the linear branch.
@@ -165,7 +165,7 @@ fn the_velocity_panel_marks_every_event_and_the_energy_books_close() {
     let run = run_reference(&dir, "run", &[]);
     let summary = summary_json(&run);
     let data = RunData::read(&run).unwrap();
-    let panels = flexrock::run_plot::motion_panels(&data);
+    let panels = flexrock::figures::run::motion_panels(&data);
     let velocity = &panels[3];
     let marked = |kind: &str| {
         velocity
@@ -186,9 +186,9 @@ fn the_velocity_panel_marks_every_event_and_the_energy_books_close() {
 
     // E(t) - E(0) = input work - damping work - lost at events + residual, on every row: the
     // figure's energies, work columns and event losses are the solver's books.
-    let automaton = flexrock::automaton::Automaton::new(&data.summary.constants);
-    let lost = flexrock::run_plot::energy_lost_at_events(&data, &automaton);
-    let energy = |r: &flexrock::run_dir::HistoryRow| {
+    let automaton = flexrock_core::automaton::Automaton::new(&data.summary.constants);
+    let lost = flexrock::figures::run::energy_lost_at_events(&data, &automaton);
+    let energy = |r: &flexrock::writers::run_dir::HistoryRow| {
         automaton.kinetic_energy(r.qdot) + automaton.potential_energy(r.mode, r.q)
     };
     let e0 = energy(&data.history[0]);

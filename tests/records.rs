@@ -7,8 +7,8 @@ use crate::common::{flexrock, repo};
 
 use std::path::{Path, PathBuf};
 
-use flexrock::excitation::{FloorMotion, PulseShape, Ricker, SinePulse};
-use flexrock::model::{Model, Overrides};
+use flexrock_core::excitation::{FloorMotion, PulseShape, Ricker, SinePulse};
+use flexrock_core::model::{Model, Overrides};
 
 /// A model in `dir` whose excitation is the given record section.
 fn record_model(dir: &Path, excitation: &str, simulation: &str) -> PathBuf {
@@ -103,8 +103,8 @@ fn csv_round_trip_gives_the_same_solution() {
         &Overrides::default(),
     )
     .unwrap();
-    let a = flexrock::run::simulate(&from_at2).unwrap();
-    let b = flexrock::run::simulate(&from_csv).unwrap();
+    let a = flexrock::commands::run::simulate(&from_at2).unwrap();
+    let b = flexrock::commands::run::simulate(&from_csv).unwrap();
     assert!(!a.events.is_empty());
     assert_eq!(a.events.len(), b.events.len());
     for (x, y) in a.events.iter().zip(&b.events) {
@@ -259,7 +259,7 @@ fn pulse_definitions() {
 fn shipped_scenarios_run() {
     for model in ["models/elcentro1940.toml", "models/sine-pulse.toml"] {
         let m = Model::load(&repo(model), &Overrides::default()).unwrap();
-        let sol = flexrock::run::simulate(&m).unwrap();
+        let sol = flexrock::commands::run::simulate(&m).unwrap();
         assert!(!sol.events.is_empty(), "{model} rocks");
         assert!(!sol.overturned, "{model}");
     }

@@ -7,7 +7,7 @@ use crate::common;
 use std::path::Path;
 
 use crate::common::{repo, scratch_dir};
-use flexrock::report::{report_text, write_report, ReportInputs};
+use flexrock::commands::report::{report_text, write_report, ReportInputs};
 
 fn inputs(results: &Path) -> ReportInputs {
     ReportInputs {
@@ -190,7 +190,7 @@ fn the_numbers_come_from_the_files_not_from_the_text() {
 
 #[test]
 fn a_case_reads_back_what_converge_writes_nan_included() {
-    let case = flexrock::converge::Case {
+    let case = flexrock::commands::converge::Case {
         method: "newmark-substep".to_string(),
         dt: Some(0.02),
         rtol: None,
@@ -207,13 +207,13 @@ fn a_case_reads_back_what_converge_writes_nan_included() {
     };
     let json = serde_json::to_string(&case).unwrap();
     assert!(json.contains("\"max_event_time_error\":null"), "{json}");
-    let back: flexrock::converge::Case = serde_json::from_str(&json).unwrap();
+    let back: flexrock::commands::converge::Case = serde_json::from_str(&json).unwrap();
     assert!(back.max_event_time_error.is_nan());
     assert_eq!(back.rtol, None);
     assert_eq!(serde_json::to_string(&back).unwrap(), json);
     // A missing dt is an error, not None.
     let without_dt = json.replace("\"dt\":0.02,", "");
-    let e = serde_json::from_str::<flexrock::converge::Case>(&without_dt).unwrap_err();
+    let e = serde_json::from_str::<flexrock::commands::converge::Case>(&without_dt).unwrap_err();
     assert!(e.to_string().contains("`dt`"), "{e}");
 }
 

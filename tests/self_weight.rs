@@ -5,10 +5,10 @@
 
 use crate::common;
 
-use flexrock::automaton::{Automaton, Mode};
-use flexrock::body::SelfWeight;
-use flexrock::constants::Constants;
-use flexrock::model::Model;
+use flexrock_core::automaton::{Automaton, Mode};
+use flexrock_core::body::SelfWeight;
+use flexrock_core::constants::Constants;
+use flexrock_core::model::Model;
 
 fn body(youngs_modulus: f64, self_weight: &str) -> Model {
     common::model(&format!(
@@ -186,7 +186,7 @@ fn a_consistent_run_keeps_its_energy_books() {
          [simulation]\nduration = 6.0\n[solver]\nmethod = \"bdf\"\nrtol = 1e-10\natol = 1e-12\n",
     );
     let solution = common::solve(&text);
-    assert!(solution.count(flexrock::automaton::EventKind::Uplift) >= 1);
+    assert!(solution.count(flexrock_core::automaton::EventKind::Uplift) >= 1);
     assert!(
         solution.energy_residual_share() < 1e-6,
         "{}",
@@ -242,7 +242,7 @@ fn the_self_weight_key_is_checked() {
         let text = base.replace("5e6", &format!("{youngs_modulus:e}"))
             + "self_weight = \"consistent\"\n"
             + tail;
-        if let Ok(m) = flexrock::model::Model::from_toml_str(&text, &Default::default()) {
+        if let Ok(m) = flexrock_core::model::Model::from_toml_str(&text, &Default::default()) {
             assert!(m.constants.rocking_stiffness < 0.0);
             assert!(m.constants.topple_displacement > m.constants.uplift_displacement);
         }

@@ -8,7 +8,7 @@ use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
 use crate::common::{flexrock, flexrock_in, repo, scratch_dir};
-use flexrock::model::{Model, Overrides, Setting};
+use flexrock_core::model::{Model, Overrides, Setting};
 
 /// sweep.csv as rows of column name -> text.
 fn rows(dir: &Path) -> Vec<HashMap<String, String>> {
@@ -110,13 +110,13 @@ fn every_row_is_the_run_of_its_point_and_the_dimensionless_numbers_are_the_close
         let model = model_with(&[("excitation.amplitude", a), ("excitation.period", tp)]);
         // Duration from the tail: one pulse plus 5 s.
         assert_eq!(model.duration, tp.parse::<f64>().unwrap() + 5.0);
-        let solution = flexrock::run::simulate(&model).unwrap();
+        let solution = flexrock::commands::run::simulate(&model).unwrap();
         let max_q = solution.max_q.value.abs().max(solution.min_q.value.abs());
         assert_eq!(row["overturned"], solution.overturned.to_string());
         assert_eq!(
             row["n_uplift"],
             solution
-                .count(flexrock::automaton::EventKind::Uplift)
+                .count(flexrock_core::automaton::EventKind::Uplift)
                 .to_string()
         );
         assert_eq!(row["steps"], solution.stats.steps.to_string());
@@ -563,7 +563,9 @@ fn the_minimum_search_brackets_a_transition_and_reports_the_safe_band_above_it()
             ("excitation.period", "0.7"),
             ("excitation.amplitude", &a.to_string()),
         ]);
-        flexrock::run::simulate(&model).unwrap().overturned
+        flexrock::commands::run::simulate(&model)
+            .unwrap()
+            .overturned
     };
     assert!(overturns(min) && !overturns(safe));
     // Every scanned value below the bracket stands: the bracket is the first transition.
@@ -704,7 +706,7 @@ fn records_and_scales_make_an_incremental_dynamic_analysis() {
                 ..Overrides::default()
             };
             let model = Model::load(&repo("models/elcentro1940.toml"), &overrides).unwrap();
-            let solution = flexrock::run::simulate(&model).unwrap();
+            let solution = flexrock::commands::run::simulate(&model).unwrap();
             assert_eq!(row["overturned"], solution.overturned.to_string());
             assert_eq!(row["steps"], solution.stats.steps.to_string());
         }
@@ -812,7 +814,8 @@ fn a_sweep_file_is_the_flags_written_down() {
 
 #[test]
 fn the_rows_in_memory_are_the_rows_of_sweep_csv() {
-    use flexrock::sweep::{store, Axis, Request, Sweep};
+    use flexrock::commands::sweep::store;
+    use flexrock_core::sweep::{Axis, Request, Sweep};
     let dir = scratch_dir("sweep-in-memory");
     status_ok(&mut grid_sweep(&dir, &[]));
     let request = Request {
@@ -824,7 +827,7 @@ fn the_rows_in_memory_are_the_rows_of_sweep_csv() {
     };
     let sweep = Sweep::new(&pulse_model(), request, Path::new(".")).unwrap();
     let rows = store::rows(&sweep, &store::Silent);
-    let mut table = flexrock::output::Table::new(
+    let mut table = flexrock::writers::Table::new(
         &sweep
             .plan
             .columns()

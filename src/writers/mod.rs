@@ -1,11 +1,13 @@
 //! Output files: CSV tables and JSON summaries, written atomically. Writers see only the
-//! solver-agnostic [`Solution`](crate::solution::Solution) types, never a solver.
+//! solver-agnostic [`Solution`](flexrock_core::solution::Solution) types, never a solver.
+
+pub mod run_dir;
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
-use crate::error::{Error, Result};
-use crate::solution::{Episode, Event, Sample};
+use flexrock_core::error::{Error, Result};
+use flexrock_core::solution::{Episode, Event, Sample};
 
 pub use flexrock_core::run_tables::{
     episode_fields, EpisodeField, EPISODE_COLUMNS, EVENT_COLUMNS, HISTORY_COLUMNS,

@@ -4,8 +4,8 @@
 //! sweep.json. A chunk of another sweep, a chunk copied over another, swapped or edited lines,
 //! CRLF line ends: each fails one of these checks, and is never taken for rows of this sweep.
 
-use crate::output;
-use crate::sweep::Plan;
+use crate::writers;
+use flexrock_core::sweep::Plan;
 
 pub use flexrock_core::sweep::sha256_hex;
 
@@ -68,7 +68,7 @@ pub(super) fn check_rows(
         .has_headers(false)
         .flexible(true)
         .from_reader(rows);
-    let mut rewritten = output::Table::without_header();
+    let mut rewritten = writers::Table::without_header();
     let mut count = 0usize;
     let status = columns.iter().position(|c| c == "status");
     for (line, record) in reader.records().enumerate() {
@@ -147,7 +147,7 @@ pub(super) fn table_rows<'a>(
 ) -> Result<&'a [u8], String> {
     let columns = plan.columns();
     let header =
-        output::Table::new(&columns.iter().map(String::as_str).collect::<Vec<_>>()).into_bytes();
+        writers::Table::new(&columns.iter().map(String::as_str).collect::<Vec<_>>()).into_bytes();
     let rows = table
         .strip_prefix(header.as_slice())
         .ok_or("does not start with the header of this sweep's columns")?;

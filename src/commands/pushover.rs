@@ -9,14 +9,14 @@ use std::path::{Path, PathBuf};
 
 use serde::Serialize;
 
-use super::run::ELEMENT;
-use super::FemBody;
-use crate::automaton::Automaton;
-use crate::error::Result;
-use crate::model::{FemSetup, Model, ModelFile};
-use crate::output::{self, Table};
-use crate::plot::{self, Legend, Panel, Series};
-use crate::run::VERSION;
+use crate::commands::fem::ELEMENT;
+use crate::commands::run::VERSION;
+use crate::figures::plot::{self, Legend, Panel, Series};
+use crate::writers::{self, Table};
+use flexrock_core::automaton::Automaton;
+use flexrock_core::error::Result;
+use flexrock_core::fem::FemBody;
+use flexrock_core::model::{FemSetup, Model, ModelFile};
 use flexrock_core::{columns, pushover_check};
 
 pub use flexrock_core::pushover_check::{
@@ -41,7 +41,7 @@ pub(crate) fn curves_csv(model: &Model, a: &PushoverAnalysis) -> Vec<u8> {
 pub(crate) struct PushoverSummary<'a> {
     /// Which flexrock wrote the file, from which model file.
     #[serde(flatten)]
-    pub provenance: crate::run::Provenance,
+    pub provenance: crate::commands::run::Provenance,
     pub element: &'static str,
     pub body: &'a FemBody,
     pub nx: usize,
@@ -59,7 +59,7 @@ pub(crate) struct PushoverSummary<'a> {
 
 pub(crate) fn summary<'a>(model: &'a Model, a: &'a PushoverAnalysis) -> PushoverSummary<'a> {
     PushoverSummary {
-        provenance: crate::run::Provenance::of(model),
+        provenance: crate::commands::run::Provenance::of(model),
         element: ELEMENT,
         body: &a.setup.body,
         nx: a.setup.settings.nx,
@@ -124,27 +124,27 @@ pub struct PushoverReport {
 }
 
 /// Runs both sweeps and writes pushover.csv, pushover.json and pushover.svg (all or none); with
-/// [`output::WallTimes::Apart`] the wall time goes to timings.json.
+/// [`writers::WallTimes::Apart`] the wall time goes to timings.json.
 pub fn run(
     model: &Model,
     setup: &FemSetup,
     out_dir: &Path,
-    wall_times: output::WallTimes,
+    wall_times: writers::WallTimes,
 ) -> Result<PushoverReport> {
     let mut analysis = analyse(model, setup)?;
-    let mut timings = output::Timings::new(wall_times);
+    let mut timings = writers::Timings::new(wall_times);
     timings.take("pushover.json/wall_time_s", &mut analysis.wall_time_s);
     let svg = plot::figure("pushover.svg", &[figure(model, &analysis)], 1, (900, 550))?;
     let mut files = vec![
         ("pushover.csv", curves_csv(model, &analysis)),
         (
             "pushover.json",
-            output::json_bytes(&summary(model, &analysis)),
+            writers::json_bytes(&summary(model, &analysis)),
         ),
         ("pushover.svg", svg.into_bytes()),
     ];
     files.extend(timings.file());
-    let files = output::write_atomically(out_dir, &files)?;
+    let files = writers::write_atomically(out_dir, &files)?;
     Ok(PushoverReport { analysis, files })
 }
 

@@ -34,9 +34,10 @@ use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
-use super::{figure, Plan, Sweep};
-use crate::error::{Error, Result};
-use crate::output;
+use super::{Plan, Sweep};
+use crate::figures::sweep as figure;
+use crate::writers;
+use flexrock_core::error::{Error, Result};
 
 pub use merge::merge;
 use shard::chunk_points;
@@ -55,7 +56,7 @@ pub struct Counts {
     pub failed: usize,
     /// Points that overturned.
     pub overturned: usize,
-    /// Runs whose energy residual exceeds [`crate::run::ENERGY_RESIDUAL_WARNING_SHARE`] of their
+    /// Runs whose energy residual exceeds [`crate::commands::run::ENERGY_RESIDUAL_WARNING_SHARE`] of their
     /// energy scale: no more accurate than that (a sweep with a minimum search has none).
     pub inaccurate: usize,
 }
@@ -225,12 +226,12 @@ pub fn run(sweep: &Sweep, target: &Target, progress: &dyn Progress) -> Result<Sw
             continue;
         }
         let points = chunk_points(plan, c, range.end);
-        let mut table = output::Table::without_header();
+        let mut table = writers::Table::without_header();
         for fields in rows_of(sweep, points.clone(), progress) {
             table.row(fields);
         }
         let rows = table.into_bytes();
-        output::write_file_atomically(
+        writers::write_file_atomically(
             &chunk_path(&chunks, c),
             &verify::chunk_bytes(&identity, &points, &rows),
         )?;
@@ -304,7 +305,7 @@ fn finished(
     if let Ok(Some(chunks)) = dir::chunks(dir, false) {
         warnings.extend(dir::remove_chunks(&chunks.path));
     }
-    output::remove_stale_temporaries(dir, &RESULT_FILES);
+    writers::remove_stale_temporaries(dir, &RESULT_FILES);
     let missing = summary.files.iter().any(|f| !dir.join(f).is_file());
     let (summary, files) = if missing {
         finish(dir, plan, shard, range, &body)?
@@ -379,7 +380,7 @@ fn open_chunks(dir: &Path, plan: &Plan, shard: Option<Shard>, force: bool) -> Re
                     source: e,
                 })?;
             }
-            output::write_file_atomically(&plan_path, &output::json_bytes(&running))?;
+            writers::write_file_atomically(&plan_path, &writers::json_bytes(&running))?;
         }
     }
     Ok(chunks.path)
@@ -411,7 +412,7 @@ fn chunk_path(dir: &Path, chunk: usize) -> PathBuf {
     dir.join(format!("{chunk:09}.csv"))
 }
 
-fn row_fields(plan: &Plan, index: usize, row: &super::Row) -> Vec<String> {
+fn row_fields(plan: &Plan, index: usize, row: &flexrock_core::sweep::Row) -> Vec<String> {
     let mut fields = vec![index.to_string()];
     for (axis, &i) in plan.axes.iter().zip(&plan.coordinates(index)) {
         fields.push(axis.values[i].clone());
@@ -473,7 +474,7 @@ fn finish(
     })?;
     let columns = plan.columns();
     let mut table_bytes =
-        output::Table::new(&columns.iter().map(String::as_str).collect::<Vec<_>>()).into_bytes();
+        writers::Table::new(&columns.iter().map(String::as_str).collect::<Vec<_>>()).into_bytes();
     table_bytes.extend_from_slice(body);
     let table = figure::SweepTable::parse(&table_bytes, &table_path)?;
     let counts = table.counts(plan.find_min.is_some())?;
@@ -488,7 +489,7 @@ fn finish(
     let mut names: Vec<String> = files.iter().map(|(n, _)| n.clone()).collect();
     names.push(SUMMARY_FILE.to_string());
     let summary = SweepSummary {
-        flexrock_version: crate::run::VERSION.to_string(),
+        flexrock_version: crate::commands::run::VERSION.to_string(),
         plan: plan.clone(),
         shard,
         points: range,
@@ -502,9 +503,9 @@ fn finish(
         .flatten()
         .map(|s| s.files)
         .unwrap_or_default();
-    files.push((SUMMARY_FILE.to_string(), output::json_bytes(&summary)));
+    files.push((SUMMARY_FILE.to_string(), writers::json_bytes(&summary)));
     let set: Vec<(&str, Vec<u8>)> = files.iter().map(|(n, b)| (n.as_str(), b.clone())).collect();
-    let written = output::write_atomically(dir, &set)?;
+    let written = writers::write_atomically(dir, &set)?;
     for name in RESULT_FILES {
         let stale = earlier.iter().any(|f| f == name) && !summary.files.iter().any(|f| f == name);
         let path = dir.join(name);

@@ -10,7 +10,7 @@ use std::path::{Path, PathBuf};
 use super::{
     dir, point_range, read_summary, read_table, PointRange, SweepReport, SweepSummary, SUMMARY_FILE,
 };
-use crate::error::{Error, Result};
+use flexrock_core::error::{Error, Result};
 
 /// Joins the results of shards into `out`: each of `dirs` is a shard's directory, or a
 /// directory holding `shard-K-of-N` directories (whose shards are used, whatever result of an
@@ -160,7 +160,7 @@ fn check_part(dir: &Path, summary: &SweepSummary) -> Result<()> {
         .axes
         .iter()
         .try_fold(1usize, |n, a| n.checked_mul(a.len()))
-        .filter(|&n| n <= crate::sweep::axis::MAX_POINTS)
+        .filter(|&n| n <= flexrock_core::sweep::axis::MAX_POINTS)
         .ok_or_else(|| refuse("its axes have more points than a sweep may".to_string()))?;
     let expected = match summary.shard {
         Some(shard) => {

@@ -14,12 +14,12 @@
 
 use std::path::{Path, PathBuf};
 
-use crate::automaton::{Automaton, EventKind};
-use crate::error::Error;
-use crate::error::Result;
-use crate::output;
-use crate::plot::{self, Format, Legend, Marker, Panel, Series, VerticalLine};
-use crate::run_dir::{HistoryRow, RunData};
+use crate::figures::plot::{self, Format, Legend, Marker, Panel, Series, VerticalLine};
+use crate::writers;
+use crate::writers::run_dir::{HistoryRow, RunData};
+use flexrock_core::automaton::{Automaton, EventKind};
+use flexrock_core::error::Error;
+use flexrock_core::error::Result;
 
 /// The figure files, in the order they are written.
 pub const FIGURES: [&str; 3] = ["plot_motion.svg", "plot_force.svg", "plot_energy.svg"];
@@ -124,7 +124,7 @@ pub fn plot_dir_with(dir: &Path, options: &PlotOptions) -> Result<Vec<PathBuf>> 
     let data = RunData::read(dir)?;
     let files = figures_with(&data, options)?;
     let set: Vec<(&str, Vec<u8>)> = files.iter().map(|(n, b)| (n.as_str(), b.clone())).collect();
-    output::write_atomically(dir, &set)
+    writers::write_atomically(dir, &set)
 }
 
 /// The SVG files of a run, named as in [`FIGURES`]. Each figure is drawn and its series dropped
@@ -164,7 +164,7 @@ pub fn figures_with(data: &RunData, options: &PlotOptions) -> Result<Vec<(String
                     value: value.to_string(),
                     rule: format!(
                         "the window holds fewer than two rows of the history (the run spans 0 to {} s)",
-                        output::significant(end, 6)
+                        writers::significant(end, 6)
                     ),
                 });
             }
@@ -285,8 +285,8 @@ pub fn motion_panels(data: &RunData) -> Vec<Panel> {
     let h = &data.history;
     let c = &data.summary.constants;
     let (s_n, b) = (c.uplift_displacement, c.width);
-    let s_n_label = format!("±s_n = {} m", output::significant(s_n, 4));
-    let b_label = format!("±B = {} m", output::significant(b, 4));
+    let s_n_label = format!("±s_n = {} m", writers::significant(s_n, 4));
+    let b_label = format!("±B = {} m", writers::significant(b, 4));
     let events = event_lines(data);
 
     let mut floor = Panel::new("Floor acceleration", "t (s)", "a (m/s²)").with(curve(
@@ -432,7 +432,7 @@ pub fn energy_panels(data: &RunData, automaton: &Automaton) -> Vec<Panel> {
         1.0
     };
     let mut residual = Panel::new("Energy residual", "t (s)", "ΔE / E_s").with(curve(
-        &format!("ΔE / E_s, E_s = {} J", output::significant(scale, 4)),
+        &format!("ΔE / E_s, E_s = {} J", writers::significant(scale, 4)),
         series(h, |r| (r.t, r.energy_residual / scale)),
         0,
     ));

@@ -3,14 +3,14 @@
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use crate::automaton::EventKind;
-use crate::body::SelfWeight;
-use crate::error::Result;
-use crate::excitation::FloorMotion;
-use crate::model::Model;
-use crate::model::STANDARD_GRAVITY;
-use crate::output;
-use crate::solution::Solution;
+use crate::writers;
+use flexrock_core::automaton::EventKind;
+use flexrock_core::body::SelfWeight;
+use flexrock_core::error::Result;
+use flexrock_core::excitation::FloorMotion;
+use flexrock_core::model::Model;
+use flexrock_core::model::STANDARD_GRAVITY;
+use flexrock_core::solution::Solution;
 
 pub use flexrock_core::simulate::{
     properties, simulate, simulate_peaks, simulate_with, warnings, Properties, Provenance,
@@ -155,40 +155,44 @@ pub struct RunReport {
 
 /// Solves a model and writes history.csv, events.csv, episodes.csv and summary.json into
 /// `out_dir`, and with
-/// `plots` also the figures of [`crate::run_plot`], drawn from the three files as they are about
-/// to be written and written with them as one atomic set. With [`output::WallTimes::Apart`] the
+/// `plots` also the figures of [`crate::figures::run`], drawn from the three files as they are about
+/// to be written and written with them as one atomic set. With [`writers::WallTimes::Apart`] the
 /// solve's wall time goes to timings.json, written with them.
 pub fn run_to_dir_with(
     model: &Model,
     out_dir: &Path,
     plots: bool,
-    wall_times: output::WallTimes,
+    wall_times: writers::WallTimes,
 ) -> Result<RunReport> {
     let mut solution = simulate(model)?;
-    let mut timings = output::Timings::new(wall_times);
+    let mut timings = writers::Timings::new(wall_times);
     timings.take(
         "summary.json/statistics/wall_time_s",
         &mut solution.stats.wall_time_s,
     );
     let mut files = vec![
-        ("history.csv", output::history_csv(&solution.samples)),
-        ("events.csv", output::events_csv(&solution.events)),
+        ("history.csv", writers::history_csv(&solution.samples)),
+        ("events.csv", writers::events_csv(&solution.events)),
         (
             "episodes.csv",
-            output::episodes_csv(&solution.episodes, model.body.height),
+            writers::episodes_csv(&solution.episodes, model.body.height),
         ),
         (
             "summary.json",
-            output::json_bytes(&summary(model, &solution)),
+            writers::json_bytes(&summary(model, &solution)),
         ),
     ];
     if plots {
-        let data =
-            crate::run_dir::RunData::from_bytes(out_dir, &files[0].1, &files[1].1, &files[3].1)?;
-        files.extend(crate::run_plot::figures(&data)?);
+        let data = crate::writers::run_dir::RunData::from_bytes(
+            out_dir,
+            &files[0].1,
+            &files[1].1,
+            &files[3].1,
+        )?;
+        files.extend(crate::figures::run::figures(&data)?);
     }
     files.extend(timings.file());
-    let files = output::write_atomically(out_dir, &files)?;
+    let files = writers::write_atomically(out_dir, &files)?;
     let warnings = warnings(model, &solution);
     Ok(RunReport {
         solution,
@@ -207,7 +211,7 @@ fn excitation_text(floor: &dyn FloorMotion) -> String {
                 serde_json::Value::Number(_) if key == "pga" || key == "t_pga" => {}
                 serde_json::Value::Number(n) => parts.push(format!(
                     "{key} = {}",
-                    n.as_f64().map_or_else(|| n.to_string(), output::readable)
+                    n.as_f64().map_or_else(|| n.to_string(), writers::readable)
                 )),
                 serde_json::Value::String(text) if key != "kind" => {
                     parts.push(format!("{key} = {text}"))
@@ -242,8 +246,8 @@ pub fn run_report_text(model: &Model, report: &RunReport) -> String {
     let _ = writeln!(
         t,
         "  {}, {}, {}",
-        output::count(s.count(EventKind::Uplift), "uplift", "uplifts"),
-        output::count(s.count(EventKind::Landing), "landing", "landings"),
+        writers::count(s.count(EventKind::Uplift), "uplift", "uplifts"),
+        writers::count(s.count(EventKind::Landing), "landing", "landings"),
         match s.t_overturn {
             Some(to) => format!("overturned at t = {to:.9} s"),
             None if s.ended_while_rocking() => {
@@ -257,7 +261,8 @@ pub fn run_report_text(model: &Model, report: &RunReport) -> String {
         "  {} steps, {} right-hand-side evaluations{}; max energy residual {:.3e} J",
         s.stats.steps,
         s.stats.rhs_evaluations,
-        output::milliseconds(s.stats.wall_time_s, 3).map_or_else(String::new, |t| format!(", {t}")),
+        writers::milliseconds(s.stats.wall_time_s, 3)
+            .map_or_else(String::new, |t| format!(", {t}")),
         s.max_energy_residual
     );
     for f in &report.files {

@@ -12,10 +12,10 @@ use std::path::Path;
 
 use serde::de::DeserializeOwned;
 
-use crate::constants::Constants;
-use crate::error::{Error, Result};
-use crate::output::{EPISODE_COLUMNS, EVENT_COLUMNS, HISTORY_COLUMNS};
-use crate::solution::{Event, Sample};
+use crate::writers::{EPISODE_COLUMNS, EVENT_COLUMNS, HISTORY_COLUMNS};
+use flexrock_core::constants::Constants;
+use flexrock_core::error::{Error, Result};
+use flexrock_core::solution::{Event, Sample};
 
 /// The sampled history of a run.
 pub const HISTORY_FILE: &str = "history.csv";
@@ -243,7 +243,7 @@ fn bounded(path: &Path, limit: u64) -> Result<Bounded<std::io::Take<std::fs::Fil
             path,
             format!(
                 "is {}; expected a regular file, {what}",
-                crate::output::file_kind(metadata.file_type())
+                crate::writers::file_kind(metadata.file_type())
             ),
         ));
     }
@@ -437,7 +437,7 @@ fn parse_summary(bytes: &[u8], path: &Path) -> Result<RunSummaryFile> {
                 path,
                 format!(
                     "key `{name}` = {}: expected a positive number",
-                    crate::output::shortest(value)
+                    crate::writers::shortest(value)
                 ),
             ));
         }
@@ -448,8 +448,8 @@ fn parse_summary(bytes: &[u8], path: &Path) -> Result<RunSummaryFile> {
             format!(
                 "key `constants.uplift_displacement` = {} is not below `constants.width` = {}: \
                  no body of the model has that",
-                crate::output::shortest(c.uplift_displacement),
-                crate::output::shortest(c.width)
+                crate::writers::shortest(c.uplift_displacement),
+                crate::writers::shortest(c.width)
             ),
         ));
     }
@@ -462,7 +462,7 @@ fn parse_summary(bytes: &[u8], path: &Path) -> Result<RunSummaryFile> {
                 path,
                 format!(
                     "key `{name}` = {}: expected a number of joules, zero or more",
-                    crate::output::shortest(value)
+                    crate::writers::shortest(value)
                 ),
             ));
         }

@@ -15,10 +15,10 @@ use std::path::Path;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
-use super::store::Counts;
-use super::Plan;
-use crate::error::{Error, Result};
-use crate::plot::{Legend, Marker, Panel, Series};
+use crate::commands::sweep::store::Counts;
+use crate::figures::plot::{Legend, Marker, Panel, Series};
+use flexrock_core::error::{Error, Result};
+use flexrock_core::sweep::Plan;
 
 /// sweep.csv read back: its columns and rows of text.
 pub struct SweepTable {
@@ -88,7 +88,7 @@ impl SweepTable {
         for (r, row) in self.rows.iter().enumerate() {
             if share
                 .and_then(|c| self.number(r, c))
-                .is_some_and(|s| s > crate::run::ENERGY_RESIDUAL_WARNING_SHARE)
+                .is_some_and(|s| s > crate::commands::run::ENERGY_RESIDUAL_WARNING_SHARE)
             {
                 counts.inaccurate += 1;
             }
@@ -229,7 +229,7 @@ fn ida(plan: &Plan, table: &SweepTable, x: usize) -> Result<Vec<u8>> {
     }
     panel.dashed_lines = vec![(1.0, "|q| = B".to_string())];
     panel.legend = Legend::Outside;
-    crate::plot::figure(IDA_FILE, &[panel], 1, (1100, 600)).map(String::into_bytes)
+    crate::figures::plot::figure(IDA_FILE, &[panel], 1, (1100, 600)).map(String::into_bytes)
 }
 
 /// The dimensionless column that stands for an axis, and its label.
@@ -434,7 +434,7 @@ fn map(plan: &Plan, table: &SweepTable, x: usize, y: usize) -> Result<Option<Vec
     let titles = ["Peak response", "Peak response, dimensionless"];
     let mut svg = String::new();
     {
-        crate::plot::register_fonts();
+        crate::figures::plot::register_fonts();
         let root = SVGBackend::with_string(&mut svg, (width, panel.1)).into_drawing_area();
         root.fill(&WHITE).map_err(plot_error)?;
         let (maps, bar) = root.split_horizontally(panel.0 * views.len() as u32);
@@ -452,7 +452,7 @@ fn map(plan: &Plan, table: &SweepTable, x: usize, y: usize) -> Result<Option<Vec
 
 type Area<'a> = DrawingArea<SVGBackend<'a>, plotters::coord::Shift>;
 
-/// Font sizes, as in the figures of crate::plot.
+/// Font sizes, as in the figures of crate::figures::plot.
 const TITLE_FONT: u32 = 26;
 const AXIS_FONT: u32 = 22;
 const TICK_FONT: u32 = 20;
@@ -698,7 +698,7 @@ fn spectrum(plan: &Plan, table: &SweepTable, x: usize) -> Result<Vec<u8>> {
     let housner = "rigid block (Housner)";
     let limit = format!(
         "rigid limit ({:.3} g B/H)",
-        crate::constants::ModeShapeIntegrals::exact().rigid_limit_uplift_factor()
+        flexrock_core::constants::ModeShapeIntegrals::exact().rigid_limit_uplift_factor()
     );
     // The two rigid curves nearly coincide: Housner's wide and solid underneath, the rigid
     // limit dashed on top of it, so that both show.
@@ -729,7 +729,7 @@ fn spectrum(plan: &Plan, table: &SweepTable, x: usize) -> Result<Vec<u8>> {
         right.legend = Legend::Outside;
         panels.push(right);
     }
-    crate::plot::figure("spectrum.svg", &panels, 1, (1000, 480)).map(String::into_bytes)
+    crate::figures::plot::figure("spectrum.svg", &panels, 1, (1000, 480)).map(String::into_bytes)
 }
 
 #[cfg(test)]
@@ -738,7 +738,7 @@ mod tests {
 
     #[test]
     fn edges_are_finite_and_growing_for_extreme_but_allowed_values() {
-        let m = crate::sweep::axis::MAX_MAGNITUDE;
+        let m = flexrock_core::sweep::axis::MAX_MAGNITUDE;
         for centres in [
             vec![-m, m],
             vec![m / 2.0, m],

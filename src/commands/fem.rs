@@ -9,13 +9,13 @@ use std::path::{Path, PathBuf};
 
 use serde::Serialize;
 
-use super::{FemResult, FemStep};
-use crate::error::{Error, Result};
-use crate::model::{FemSetup, Model, ModelFile};
-use crate::output::{self, count, readable, Table};
-use crate::plot::{self, Panel, Series};
-use crate::run::VERSION;
-use crate::solution::Solution;
+use crate::commands::run::VERSION;
+use crate::figures::plot::{self, Panel, Series};
+use crate::writers::{self, count, readable, Table};
+use flexrock_core::error::{Error, Result};
+use flexrock_core::fem::{FemResult, FemStep};
+use flexrock_core::model::{FemSetup, Model, ModelFile};
+use flexrock_core::solution::Solution;
 use flexrock_core::{columns, fem_check};
 
 use flexrock_core::fem_check::{analyse as analyse_run, compare as compare_solutions};
@@ -101,10 +101,10 @@ pub(crate) fn events_csv(result: &FemResult) -> Vec<u8> {
 pub(crate) struct FemSummary<'a> {
     /// Which flexrock wrote the file, from which model file.
     #[serde(flatten)]
-    pub provenance: crate::run::Provenance,
+    pub provenance: crate::commands::run::Provenance,
     pub element: &'static str,
-    pub body: &'a super::FemBody,
-    pub settings: &'a super::FemSettings,
+    pub body: &'a flexrock_core::fem::FemBody,
+    pub settings: &'a flexrock_core::fem::FemSettings,
     pub scheme: &'static str,
     pub mass: f64,
     pub flexural_rigidity: f64,
@@ -135,7 +135,7 @@ pub(crate) fn summary<'a>(model: &'a Model, a: &'a FemAnalysis) -> FemSummary<'a
     let c = &model.constants;
     let r = &a.result;
     FemSummary {
-        provenance: crate::run::Provenance::of(model),
+        provenance: crate::commands::run::Provenance::of(model),
         element: ELEMENT,
         body: b,
         settings: &a.setup.settings,
@@ -323,7 +323,7 @@ fn run_files(model: &Model, a: &FemAnalysis) -> Result<Vec<(&'static str, Vec<u8
     let mut files = vec![
         ("fem_history.csv", history_csv(model, &a.result.steps)),
         ("fem_events.csv", events_csv(&a.result)),
-        ("fem_summary.json", output::json_bytes(&summary(model, a))),
+        ("fem_summary.json", writers::json_bytes(&summary(model, a))),
     ];
     files.extend(render(figures(model, a))?);
     Ok(files)
@@ -345,26 +345,26 @@ pub struct FemReport {
 fn analyse_timed(
     model: &Model,
     setup: &FemSetup,
-    wall_times: output::WallTimes,
-) -> Result<(FemAnalysis, output::Timings)> {
+    wall_times: writers::WallTimes,
+) -> Result<(FemAnalysis, writers::Timings)> {
     let mut analysis = analyse(model, setup)?;
-    let mut timings = output::Timings::new(wall_times);
+    let mut timings = writers::Timings::new(wall_times);
     timings.take("fem_summary.json/wall_time_s", &mut analysis.wall_time_s);
     Ok((analysis, timings))
 }
 
 /// Runs the finite element analysis and writes its files into `out_dir` (all or none); with
-/// [`output::WallTimes::Apart`] its wall time goes to timings.json.
+/// [`writers::WallTimes::Apart`] its wall time goes to timings.json.
 pub fn fem(
     model: &Model,
     setup: &FemSetup,
     out_dir: &Path,
-    wall_times: output::WallTimes,
+    wall_times: writers::WallTimes,
 ) -> Result<FemReport> {
     let (analysis, timings) = analyse_timed(model, setup, wall_times)?;
     let mut files = run_files(model, &analysis)?;
     files.extend(timings.file());
-    let files = output::write_atomically(out_dir, &files)?;
+    let files = writers::write_atomically(out_dir, &files)?;
     Ok(FemReport {
         warnings: analysis.warnings.iter().map(warning_text).collect(),
         analysis,
@@ -409,7 +409,7 @@ fn comparison_figures(
     a: &FemAnalysis,
 ) -> Vec<(&'static str, Panel)> {
     let steps = &a.result.steps;
-    let sdof_series = |f: fn(&crate::solution::Sample) -> (f64, f64)| {
+    let sdof_series = |f: fn(&flexrock_core::solution::Sample) -> (f64, f64)| {
         Series::line("SDOF", sdof.samples.iter().map(f).collect(), 1)
     };
     let mut q = Panel::new("Top displacement: SDOF and FEM", "t (s)", "q (m)")
@@ -459,24 +459,24 @@ fn comparison_figures(
 }
 
 /// `flexrock fem --compare`: the FEM run, the SDOF solution of the same model
-/// ([`crate::run::simulate`]) and both side by side, all written into `out_dir` (all or none);
-/// with [`output::WallTimes::Apart`] the FEM's wall time goes to timings.json.
+/// ([`crate::commands::run::simulate`]) and both side by side, all written into `out_dir` (all or none);
+/// with [`writers::WallTimes::Apart`] the FEM's wall time goes to timings.json.
 pub fn compare(
     model: &Model,
     setup: &FemSetup,
     out_dir: &Path,
-    wall_times: output::WallTimes,
+    wall_times: writers::WallTimes,
 ) -> Result<FemReport> {
     let (analysis, timings) = analyse_timed(model, setup, wall_times)?;
-    let sdof = crate::run::simulate(model)?;
+    let sdof = crate::commands::run::simulate(model)?;
     let comparison = compare_solutions(model, &sdof, &analysis);
     let mut files = run_files(model, &analysis)?;
     files.push(("compare.csv", comparison_csv(&comparison)));
-    files.push(("compare.json", output::json_bytes(&comparison)));
-    files.push(("sdof_history.csv", output::history_csv(&sdof.samples)));
+    files.push(("compare.json", writers::json_bytes(&comparison)));
+    files.push(("sdof_history.csv", writers::history_csv(&sdof.samples)));
     files.extend(render(comparison_figures(model, &sdof, &analysis))?);
     files.extend(timings.file());
-    let files = output::write_atomically(out_dir, &files)?;
+    let files = writers::write_atomically(out_dir, &files)?;
     Ok(FemReport {
         warnings: analysis.warnings.iter().map(warning_text).collect(),
         analysis,
@@ -522,7 +522,7 @@ pub fn report_text(report: &FemReport) -> String {
         ),
         count(a.uplifts.len(), "uplift episode", "uplift episodes"),
         count(a.result.steps.len(), "step", "steps"),
-        output::milliseconds(a.wall_time_s, 1).map_or_else(String::new, |t| format!(" in {t}"))
+        writers::milliseconds(a.wall_time_s, 1).map_or_else(String::new, |t| format!(" in {t}"))
     );
     if let Some(c) = &report.comparison {
         t.push_str(&comparison_text(c));

@@ -8,14 +8,14 @@ use std::path::{Path, PathBuf};
 
 use serde::Serialize;
 
-use crate::error::Result;
-use crate::model::Model;
-use crate::output::{self, count, readable, scientific, Table};
-use crate::plot::{self, Legend, Panel, Series};
-use crate::run::VERSION;
-use crate::solution::SolverStats;
-use crate::solver::SolverSettings;
+use crate::commands::run::VERSION;
+use crate::figures::plot::{self, Legend, Panel, Series};
+use crate::writers::{self, count, readable, scientific, Table};
 use flexrock_core::columns;
+use flexrock_core::error::Result;
+use flexrock_core::model::Model;
+use flexrock_core::solution::SolverStats;
+use flexrock_core::solver::SolverSettings;
 
 pub use flexrock_core::converge::{
     converge, methods, slopes, Case, Configuration, Convergence, Slope, SlopeKind, CASE_COLUMNS,
@@ -35,7 +35,7 @@ pub struct ConvergeOptions {
     /// Relative tolerance of the adaptive reference.
     pub reference_rtol: f64,
     /// Where the solves' wall times go (convergence.json and .csv, or timings.json).
-    pub wall_times: output::WallTimes,
+    pub wall_times: writers::WallTimes,
 }
 
 impl Default for ConvergeOptions {
@@ -43,8 +43,8 @@ impl Default for ConvergeOptions {
         ConvergeOptions {
             dts: DEFAULT_DTS.to_vec(),
             rtols: DEFAULT_RTOLS.to_vec(),
-            reference_rtol: crate::compare::DEFAULT_REFERENCE_RTOL,
-            wall_times: output::WallTimes::Inline,
+            reference_rtol: crate::commands::compare::DEFAULT_REFERENCE_RTOL,
+            wall_times: writers::WallTimes::Inline,
         }
     }
 }
@@ -54,7 +54,7 @@ impl Default for ConvergeOptions {
 pub struct ConvergeSummary {
     /// Which flexrock wrote the file, from which model file.
     #[serde(flatten)]
-    pub provenance: crate::run::Provenance,
+    pub provenance: crate::commands::run::Provenance,
     /// The reference's method.
     pub reference_method: String,
     /// The reference's relative tolerance.
@@ -123,7 +123,7 @@ pub fn configurations(
             &format!(
                 "the reference must be tighter than every case: give a --reference-rtol below \
                  the smallest --rtol ({}), e.g. 1e-12",
-                crate::output::shortest(tightest)
+                crate::writers::shortest(tightest)
             ),
         ));
     }
@@ -146,7 +146,7 @@ pub fn run_converge(
         mut cases,
         slopes,
     } = converge(model, reference_settings, &configurations)?;
-    let mut timings = output::Timings::new(options.wall_times);
+    let mut timings = writers::Timings::new(options.wall_times);
     timings.take(
         "convergence.json/reference_statistics/wall_time_s",
         &mut reference.stats.wall_time_s,
@@ -160,7 +160,7 @@ pub fn run_converge(
         }
     }
     let summary = ConvergeSummary {
-        provenance: crate::run::Provenance::of(model),
+        provenance: crate::commands::run::Provenance::of(model),
         reference_method: reference_settings.label(),
         reference_rtol: options.reference_rtol,
         reference_statistics: reference.stats.clone(),
@@ -172,12 +172,12 @@ pub fn run_converge(
     let (by_dt, by_work) = figures(&summary)?;
     let mut files = vec![
         ("convergence.csv", cases_table(&summary.cases)),
-        ("convergence.json", output::json_bytes(&summary)),
+        ("convergence.json", writers::json_bytes(&summary)),
         ("convergence_dt.svg", by_dt.into_bytes()),
         ("convergence_work.svg", by_work.into_bytes()),
     ];
     files.extend(timings.file());
-    let files = output::write_atomically(out_dir, &files)?;
+    let files = writers::write_atomically(out_dir, &files)?;
     Ok(ConvergeReport { summary, files })
 }
 

@@ -16,11 +16,11 @@ use std::path::{Path, PathBuf};
 use serde::de::DeserializeOwned;
 use serde::Deserialize;
 
-use crate::converge::{Case, Slope};
-use crate::error::{Error, Result};
-use crate::output;
-use crate::run::VERSION;
-use crate::solver::newmark::critical_omega_dt;
+use crate::commands::converge::{Case, Slope};
+use crate::commands::run::VERSION;
+use crate::writers;
+use flexrock_core::error::{Error, Result};
+use flexrock_core::solver::newmark::critical_omega_dt;
 
 /// Where the inputs of the report are.
 #[derive(Debug, Clone)]
@@ -369,7 +369,7 @@ pub fn write_report(inputs: &ReportInputs, out: &Path) -> Result<PathBuf> {
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_else(|| "REPORT.md".to_string());
-    let mut files = output::write_atomically(dir, &[(&name, t.into_bytes())])?;
+    let mut files = writers::write_atomically(dir, &[(&name, t.into_bytes())])?;
     Ok(files.remove(0))
 }
 
@@ -582,7 +582,9 @@ fn write_rigid_limit(t: &mut String, r: &Read) {
     let _ = writeln!(t, "## 3. Rigid limit against Housner\n");
     let body = &rigid.inputs.body;
     let (h, b) = (body.height, body.width);
-    let g = body.gravity.unwrap_or(crate::model::DEFAULT_GRAVITY);
+    let g = body
+        .gravity
+        .unwrap_or(flexrock_core::model::DEFAULT_GRAVITY);
     let q0 = rigid.initial_state.q;
     let p = (3.0 * g / (2.0 * h)).sqrt();
     let housner_landing = (1.0 / (1.0 - q0 / b)).acosh() / p;

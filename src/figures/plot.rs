@@ -6,7 +6,7 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
-use crate::error::{Error, Result};
+use flexrock_core::error::{Error, Result};
 
 /// One line of a panel.
 #[derive(Debug, Clone)]
@@ -185,7 +185,7 @@ const PALETTE: [RGBColor; 8] = [
 
 /// The embedded font (DejaVu Sans, assets/fonts/LICENSE-DejaVu.txt): PNG text is drawn with it
 /// and every figure's text is measured with it, so no system font is needed.
-static FONT: &[u8] = include_bytes!("../assets/fonts/DejaVuSans.ttf");
+static FONT: &[u8] = include_bytes!("../../assets/fonts/DejaVuSans.ttf");
 
 /// Registers the embedded font as "sans-serif" (once); every drawing calls this first.
 pub fn register_fonts() {

@@ -3,10 +3,10 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
-use crate::error::{Error, Result};
-use crate::model::STANDARD_GRAVITY;
-use crate::output::{number, readable, Table};
-use crate::record::{read_record, Record, RecordFormat};
+use crate::writers::{number, readable, Table};
+use flexrock_core::error::{Error, Result};
+use flexrock_core::model::STANDARD_GRAVITY;
+use flexrock_core::record::{read_record, Record, RecordFormat};
 
 /// The acceleration column of the CSV files `flexrock record csv` writes.
 pub const CSV_ACCELERATION_COLUMN: &str = "acc_m_s2";
@@ -96,7 +96,7 @@ fn header_units(record: &Record) -> Option<(&'static str, &'static str)> {
 
 /// The unit's canonical name and its factor to m/s^2.
 pub fn unit_factor(units: &str) -> Result<(&'static str, f64)> {
-    Ok(crate::record::acceleration_unit("--units", units)?)
+    Ok(flexrock_core::record::acceleration_unit("--units", units)?)
 }
 
 /// What the reader understood, for `flexrock record info`.

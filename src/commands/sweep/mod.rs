@@ -2,18 +2,14 @@
 //! `flexrock sweep`: the core's parametric studies ([`flexrock_core::sweep`]) on disk.
 //!
 //! - [`store`]: chunks on disk, resuming, shards and their merge;
-//! - [`figure`]: the map and the spectrum, drawn from sweep.csv alone.
+//! - the map and the spectrum, drawn from sweep.csv alone, are in [`crate::figures::sweep`].
 //!
 //! Rows are written in point order, so that the output is the same whatever the number of
 //! threads.
 
-pub mod figure;
 pub mod store;
 
-pub use flexrock_core::sweep::{
-    axis, find_min, row, Axis, FindMin, Interval, Plan, RecordInput, Request, Row, Sweep,
-    SweepFile, SIMULATIONS_PER_CHUNK,
-};
+use flexrock_core::sweep::{Plan, Sweep};
 
 /// What a reader of a sweep must know (printed on standard error): what the store met (chunks
 /// computed again, a directory it could not lock), and points whose runs are no more accurate
@@ -29,7 +25,7 @@ pub fn warnings(report: &store::SweepReport) -> Vec<String> {
          (column energy_residual_share): their results are no more accurate than that; tighten \
          solver.rtol (--set solver.rtol=...)",
         report.summary.points.end - report.summary.points.first,
-        100.0 * crate::run::ENERGY_RESIDUAL_WARNING_SHARE
+        100.0 * crate::commands::run::ENERGY_RESIDUAL_WARNING_SHARE
     ));
     warnings
 }
@@ -50,7 +46,7 @@ pub fn report_text(report: &store::SweepReport, seconds: Option<f64>) -> String 
     let _ = writeln!(
         t,
         "flexrock {}: sweep of {} points{slice} in {}",
-        crate::run::VERSION,
+        crate::commands::run::VERSION,
         s.points.total,
         report.dir.display()
     );

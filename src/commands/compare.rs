@@ -8,16 +8,16 @@ use std::path::{Path, PathBuf};
 
 use serde::Serialize;
 
-use crate::automaton::EventKind;
-use crate::error::Result;
-use crate::findings::{self, Findings};
-use crate::model::Model;
-use crate::output::{self, count, readable, Table};
-use crate::plot::{self, Legend, Panel, Series};
-use crate::run::{simulate_with, VERSION};
-use crate::solution::{Extremum, Sample, Solution, SolverStats};
-use crate::solver::SolverSettings;
+use crate::commands::run::{simulate_with, VERSION};
+use crate::figures::plot::{self, Legend, Panel, Series};
+use crate::writers::{self, count, readable, Table};
+use flexrock_core::automaton::EventKind;
 use flexrock_core::columns;
+use flexrock_core::error::Result;
+use flexrock_core::findings::{self, Findings};
+use flexrock_core::model::Model;
+use flexrock_core::solution::{Extremum, Sample, Solution, SolverStats};
+use flexrock_core::solver::SolverSettings;
 
 pub use flexrock_core::compare::{
     compare, grid_rows, match_events, max_event_shift, on_grid, Comparison, EventAgreement,
@@ -41,7 +41,7 @@ pub struct CompareOptions {
     /// Newmark variant (default: the file's, else "compensate").
     pub variant: Option<String>,
     /// Where the two solves' wall times go (compare.json, or timings.json).
-    pub wall_times: output::WallTimes,
+    pub wall_times: writers::WallTimes,
 }
 
 impl Default for CompareOptions {
@@ -50,7 +50,7 @@ impl Default for CompareOptions {
             reference_rtol: DEFAULT_REFERENCE_RTOL,
             dt: None,
             variant: None,
-            wall_times: output::WallTimes::Inline,
+            wall_times: writers::WallTimes::Inline,
         }
     }
 }
@@ -87,7 +87,10 @@ fn solution_summary<'a>(
         min_q: s.min_q,
         max_energy_residual: s.max_energy_residual,
         statistics: &s.stats,
-        findings: findings::measure(s, &crate::automaton::Automaton::new(&model.constants)),
+        findings: findings::measure(
+            s,
+            &flexrock_core::automaton::Automaton::new(&model.constants),
+        ),
     }
 }
 
@@ -96,7 +99,7 @@ fn solution_summary<'a>(
 pub(crate) struct CompareSummary<'a> {
     /// Which flexrock wrote the file, from which model file.
     #[serde(flatten)]
-    pub provenance: crate::run::Provenance,
+    pub provenance: crate::commands::run::Provenance,
     #[serde(rename = "T")]
     pub period: f64,
     pub s_n: f64,
@@ -164,7 +167,7 @@ pub fn run_compare(
     let (reference_settings, newmark_settings) = compare_settings(model, options)?;
     let mut reference = simulate_with(model, &reference_settings)?;
     let mut newmark = simulate_with(model, &newmark_settings)?;
-    let mut timings = output::Timings::new(options.wall_times);
+    let mut timings = writers::Timings::new(options.wall_times);
     timings.take(
         "compare.json/reference/statistics/wall_time_s",
         &mut reference.stats.wall_time_s,
@@ -178,7 +181,7 @@ pub fn run_compare(
     let comparison = compare(&reference, &newmark, output_dt, max_shift);
 
     let summary = CompareSummary {
-        provenance: crate::run::Provenance::of(model),
+        provenance: crate::commands::run::Provenance::of(model),
         period: model.constants.period,
         s_n: model.constants.uplift_displacement,
         duration: model.duration,
@@ -195,12 +198,12 @@ pub fn run_compare(
             "compare_history.csv",
             history_table(&reference, &newmark, output_dt),
         ),
-        ("compare.json", output::json_bytes(&summary)),
+        ("compare.json", writers::json_bytes(&summary)),
         ("compare.svg", figure.into_bytes()),
         ("compare_relations.svg", relations.into_bytes()),
     ];
     files.extend(timings.file());
-    let files = output::write_atomically(out_dir, &files)?;
+    let files = writers::write_atomically(out_dir, &files)?;
     Ok(CompareReport {
         reference,
         newmark,
@@ -403,7 +406,7 @@ pub fn compare_text(model: &Model, report: &CompareReport) -> String {
             "rhs evaluation",
             "rhs evaluations"
         ),
-        output::milliseconds(report.reference.stats.wall_time_s, 1)
+        writers::milliseconds(report.reference.stats.wall_time_s, 1)
             .map_or_else(String::new, |t| format!(", {t}")),
         count(report.newmark.stats.steps, "step", "steps"),
         count(
@@ -411,7 +414,7 @@ pub fn compare_text(model: &Model, report: &CompareReport) -> String {
             "rhs evaluation",
             "rhs evaluations"
         ),
-        output::milliseconds(report.newmark.stats.wall_time_s, 1)
+        writers::milliseconds(report.newmark.stats.wall_time_s, 1)
             .map_or_else(String::new, |t| format!(", {t}"))
     );
     for f in &report.files {

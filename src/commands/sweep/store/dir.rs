@@ -6,8 +6,8 @@
 use std::fs::File;
 use std::path::{Path, PathBuf};
 
-use crate::error::{Error, Result};
-use crate::output;
+use crate::writers;
+use flexrock_core::error::{Error, Result};
 
 /// The name of the chunks directory inside a sweep's directory.
 pub(super) const CHUNKS_DIR: &str = "chunks";
@@ -23,7 +23,7 @@ pub(super) struct Lock {
 /// anything is computed) and takes its lock. A directory whose file system cannot lock is
 /// written without one, with a warning pushed on `warnings`.
 pub(super) fn lock(dir: &Path, warnings: &mut Vec<String>) -> Result<Lock> {
-    output::check_creatable(dir)?;
+    writers::check_creatable(dir)?;
     std::fs::create_dir_all(dir).map_err(|e| Error::Write {
         path: dir.to_path_buf(),
         source: e,
@@ -64,7 +64,7 @@ pub(super) struct Chunks {
 /// the temporary entries of its atomic writes.
 fn is_chunks_entry(name: &str) -> bool {
     name == PLAN_FILE
-        || name.starts_with(output::TEMPORARY_PREFIX)
+        || name.starts_with(writers::TEMPORARY_PREFIX)
         || name
             .strip_suffix(".csv")
             .is_some_and(|n| n.len() == 9 && n.bytes().all(|b| b.is_ascii_digit()))
@@ -97,7 +97,7 @@ pub(super) fn chunks(dir: &Path, create: bool) -> Result<Option<Chunks>> {
             source: e,
         }),
         Ok(m) if m.file_type().is_symlink() => Err(refuse("is a symbolic link".to_string())),
-        Ok(m) if !m.is_dir() => Err(refuse(format!("is {}", output::file_kind(m.file_type())))),
+        Ok(m) if !m.is_dir() => Err(refuse(format!("is {}", writers::file_kind(m.file_type())))),
         Ok(_) => {
             let entries = std::fs::read_dir(&path).map_err(|e| Error::Write {
                 path: path.clone(),
@@ -108,7 +108,7 @@ pub(super) fn chunks(dir: &Path, create: bool) -> Result<Option<Chunks>> {
                 let name = entry.file_name().to_string_lossy().into_owned();
                 let kind = entry.file_type().ok();
                 let ours = is_chunks_entry(&name)
-                    && (name.starts_with(output::TEMPORARY_PREFIX)
+                    && (name.starts_with(writers::TEMPORARY_PREFIX)
                         || kind.is_some_and(|k| k.is_file()));
                 if !ours {
                     foreign.push(name);
@@ -143,7 +143,7 @@ pub(super) fn remove_chunks(chunks: &Path) -> Option<String> {
             continue;
         }
         let is_dir = entry.file_type().is_ok_and(|k| k.is_dir());
-        let _ = if is_dir && name.starts_with(output::TEMPORARY_PREFIX) {
+        let _ = if is_dir && name.starts_with(writers::TEMPORARY_PREFIX) {
             std::fs::remove_dir_all(entry.path())
         } else if !is_dir {
             std::fs::remove_file(entry.path())
