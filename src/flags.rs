@@ -38,7 +38,18 @@ fn flag_for(key: &str, overrides: &Overrides, fem: &FemOverrides) -> Option<Stri
 
 /// `error` with every key a flag set named by that flag (a key list such as `fem.nx, fem.ny`
 /// part by part); other errors are returned unchanged.
-pub fn named_by_flags(error: Error, overrides: &Overrides, fem: &FemOverrides) -> Error {
+pub fn named_by_flags(
+    error: impl Into<crate::Error>,
+    overrides: &Overrides,
+    fem: &FemOverrides,
+) -> crate::Error {
+    match error.into() {
+        crate::Error::Core(e) => crate::Error::Core(core_named_by_flags(e, overrides, fem)),
+        other => other,
+    }
+}
+
+fn core_named_by_flags(error: Error, overrides: &Overrides, fem: &FemOverrides) -> Error {
     match error {
         Error::InvalidParameter { key, value, rule } => {
             let named: Vec<String> = key
@@ -59,7 +70,7 @@ pub fn named_by_flags(error: Error, overrides: &Overrides, fem: &FemOverrides) -
         }
         Error::InModel { path, source } => Error::InModel {
             path,
-            source: Box::new(named_by_flags(*source, overrides, fem)),
+            source: Box::new(core_named_by_flags(*source, overrides, fem)),
         },
         Error::Record { key, source } => Error::Record {
             key: flag_for(&key, overrides, fem).unwrap_or(key),
@@ -92,7 +103,14 @@ fn sweep_flag_for(key: &str) -> Option<String> {
 
 /// `error` with a sweep request's values named by their flags (`--vary KEY`, `--scan`, ...)
 /// rather than the sweep file's keys; other errors are returned unchanged.
-pub fn sweep_named_by_flags(error: Error) -> Error {
+pub fn sweep_named_by_flags(error: impl Into<crate::Error>) -> crate::Error {
+    match error.into() {
+        crate::Error::Core(e) => crate::Error::Core(core_sweep_named_by_flags(e)),
+        other => other,
+    }
+}
+
+fn core_sweep_named_by_flags(error: Error) -> Error {
     match error {
         Error::InvalidParameter { key, value, rule } => Error::InvalidParameter {
             key: sweep_flag_for(&key).unwrap_or(key),
@@ -101,7 +119,7 @@ pub fn sweep_named_by_flags(error: Error) -> Error {
         },
         Error::InModel { path, source } => Error::InModel {
             path,
-            source: Box::new(sweep_named_by_flags(*source)),
+            source: Box::new(core_sweep_named_by_flags(*source)),
         },
         other => other,
     }
@@ -128,7 +146,7 @@ mod tests {
             &overrides,
             &fem,
         ) {
-            Error::InvalidParameter { key, .. } => key,
+            crate::Error::Core(Error::InvalidParameter { key, .. }) => key,
             other => panic!("{other:?}"),
         };
         assert_eq!(named("solver.rtol"), "--rtol (sets solver.rtol)");
@@ -137,7 +155,7 @@ mod tests {
         assert_eq!(named("fem.nx, fem.ny"), "--nx, fem.ny");
         assert_eq!(named("body.width"), "body.width");
         let sweep_named = |key: &str| match sweep_named_by_flags(Error::invalid(key, 1.0, "r")) {
-            Error::InvalidParameter { key, .. } => key,
+            crate::Error::Core(Error::InvalidParameter { key, .. }) => key,
             other => panic!("{other:?}"),
         };
         assert_eq!(
@@ -158,7 +176,7 @@ mod tests {
             flexrock_core::model::DT_WITHOUT_NEWMARK
         );
         match named_by_flags(Error::invalid("solver.dt", 0.01, &rule), &dt, &fem) {
-            Error::InvalidParameter { key, rule, .. } => {
+            crate::Error::Core(Error::InvalidParameter { key, rule, .. }) => {
                 assert_eq!(key, "--dt (sets solver.dt)");
                 assert_eq!(rule, "not a parameter of bdf (--dt needs --method newmark)");
             }

@@ -15,8 +15,9 @@
 pub use flexrock_core;
 
 pub mod commands;
+pub mod error;
 pub mod figures;
 pub mod flags;
 pub mod writers;
 
-pub use flexrock_core::{Error, Result};
+pub use error::{Error, Result};

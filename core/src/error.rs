@@ -4,7 +4,8 @@ use std::path::PathBuf;
 
 use crate::invalid::InvalidParameter;
 
-/// Everything that can go wrong in flexrock, from reading a model file to writing results.
+/// Everything that can go wrong in the core, from reading a model file to a sweep (the command
+/// line adds what can go wrong with its files and figures).
 #[derive(Debug, thiserror::Error)]
 pub enum Error {
     /// A parameter breaks a rule of the model (`key` is the model-file key, e.g. `body.width`).
@@ -68,40 +69,10 @@ pub enum Error {
         message: String,
     },
 
-    /// A figure could not be drawn.
-    #[error("cannot draw the figure {name}: {message}")]
-    Plot {
-        /// The figure's name.
-        name: String,
-        /// The plotting library's message.
-        message: String,
-    },
-
-    /// An input file of a command (a result written earlier) could not be read or understood.
-    #[error("{path}: {message}")]
-    ReadResult {
-        /// The input file.
-        path: PathBuf,
-        /// What is wrong with it.
-        message: String,
-    },
-
-    /// A file of a run's output directory (`flexrock plot`, `flexrock events`) is missing, too
-    /// large, or not what `flexrock run` writes: the message names the column or key and what
-    /// was expected.
-    #[error("{path}: {message}")]
-    RunFile {
-        /// The file of the run directory.
-        path: PathBuf,
-        /// What is wrong with it.
-        message: String,
-    },
-
-    /// A sweep's output directory given to `flexrock sweep merge` (or found when resuming) is not
-    /// what a sweep writes, or does not fit with the others: another sweep, a gap, an overlap.
+    /// A sweep file (the axes, settings and search of a sweep) could not be read.
     #[error("{path}: {message}")]
     SweepFile {
-        /// The sweep's output directory or file.
+        /// The sweep file.
         path: PathBuf,
         /// What is wrong with it.
         message: String,
@@ -110,46 +81,6 @@ pub enum Error {
     /// The finite element analysis could not be set up or did not finish.
     #[error("finite element analysis: {0}")]
     Fem(#[from] crate::fem::FemError),
-
-    /// An output file could not be written.
-    #[error("cannot write {path}: {source}")]
-    Write {
-        /// The file that could not be written.
-        path: PathBuf,
-        /// Why.
-        #[source]
-        source: std::io::Error,
-    },
-
-    /// An output path names something flexrock must not replace (a directory, a device, a FIFO,
-    /// a socket, or a symbolic link to one), or an output directory that is not a directory.
-    #[error("{path}: {found}; {rule}")]
-    OutputTarget {
-        /// The output path.
-        path: PathBuf,
-        /// What is there, e.g. "a FIFO (named pipe)".
-        found: String,
-        /// What flexrock needs there instead.
-        rule: String,
-    },
-
-    /// A set of output files could not be put in place, and the previous files could not all be
-    /// put back either: the message says where they are.
-    #[error(
-        "cannot write {path}: {source}; putting the previous files back failed too \
-         ({restore_error}): they are kept in {kept}"
-    )]
-    Rollback {
-        /// The file that could not be written.
-        path: PathBuf,
-        /// Why it could not be written.
-        #[source]
-        source: std::io::Error,
-        /// Why the previous files could not be put back.
-        restore_error: std::io::Error,
-        /// The directory that keeps the previous files.
-        kept: PathBuf,
-    },
 }
 
 pub use crate::format::Quoted;
@@ -192,9 +123,7 @@ impl Error {
                 | Error::ParseModel { .. }
                 | Error::InModel { .. }
                 | Error::Record { .. }
-                | Error::RunFile { .. }
                 | Error::SweepFile { .. }
-                | Error::OutputTarget { .. }
                 | Error::Fem(crate::fem::FemError::InvalidParameter { .. })
         )
     }

@@ -9,11 +9,11 @@ use std::path::{Path, PathBuf};
 use serde::Serialize;
 
 use crate::commands::run::{simulate_with, VERSION};
+use crate::error::Result;
 use crate::figures::plot::{self, Legend, Panel, Series};
 use crate::writers::{self, count, readable, Table};
 use flexrock_core::automaton::EventKind;
 use flexrock_core::columns;
-use flexrock_core::error::Result;
 use flexrock_core::findings::{self, Findings};
 use flexrock_core::model::Model;
 use flexrock_core::solution::{Extremum, Sample, Solution, SolverStats};

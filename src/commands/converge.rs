@@ -9,10 +9,10 @@ use std::path::{Path, PathBuf};
 use serde::Serialize;
 
 use crate::commands::run::VERSION;
+use crate::error::Result;
 use crate::figures::plot::{self, Legend, Panel, Series};
 use crate::writers::{self, count, readable, scientific, Table};
 use flexrock_core::columns;
-use flexrock_core::error::Result;
 use flexrock_core::model::Model;
 use flexrock_core::solution::SolverStats;
 use flexrock_core::solver::SolverSettings;
@@ -88,7 +88,7 @@ pub fn configurations(
     options: &ConvergeOptions,
 ) -> Result<(SolverSettings, Vec<Configuration>)> {
     let flag = |flag: &'static str| {
-        move |e: crate::Error| e.renamed("rtol", flag).renamed("solver.rtol", flag)
+        move |e: flexrock_core::Error| e.renamed("rtol", flag).renamed("solver.rtol", flag)
     };
     for (name, empty) in [
         ("--dt", options.dts.is_empty()),

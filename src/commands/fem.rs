@@ -10,9 +10,9 @@ use std::path::{Path, PathBuf};
 use serde::Serialize;
 
 use crate::commands::run::VERSION;
+use crate::error::{Error, Result};
 use crate::figures::plot::{self, Panel, Series};
 use crate::writers::{self, count, readable, Table};
-use flexrock_core::error::{Error, Result};
 use flexrock_core::fem::{FemResult, FemStep};
 use flexrock_core::model::{FemSetup, Model, ModelFile};
 use flexrock_core::solution::Solution;
@@ -77,7 +77,7 @@ pub fn analyse(model: &Model, setup: &FemSetup) -> Result<FemAnalysis> {
             "the finite element analysis starts at rest: qdot0 must be 0 for `flexrock fem`",
         ));
     }
-    analyse_run(model, setup)
+    Ok(analyse_run(model, setup)?)
 }
 
 pub(crate) fn history_csv(model: &Model, steps: &[FemStep]) -> Vec<u8> {

@@ -11,10 +11,10 @@ use serde::Serialize;
 
 use crate::commands::fem::ELEMENT;
 use crate::commands::run::VERSION;
+use crate::error::Result;
 use crate::figures::plot::{self, Legend, Panel, Series};
 use crate::writers::{self, Table};
 use flexrock_core::automaton::Automaton;
-use flexrock_core::error::Result;
 use flexrock_core::fem::FemBody;
 use flexrock_core::model::{FemSetup, Model, ModelFile};
 use flexrock_core::{columns, pushover_check};

@@ -3,8 +3,8 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
+use crate::error::{Error, Result};
 use crate::writers::{number, readable, Table};
-use flexrock_core::error::{Error, Result};
 use flexrock_core::model::STANDARD_GRAVITY;
 use flexrock_core::record::{read_record, Record, RecordFormat};
 
@@ -44,7 +44,7 @@ pub fn load(
     if let Some(u) = units {
         unit_factor(u)?;
     }
-    let record = read_record(path, format, dt).map_err(|source| Error::Record {
+    let record = read_record(path, format, dt).map_err(|source| flexrock_core::Error::Record {
         key: "record".to_string(),
         source,
     })?;

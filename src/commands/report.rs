@@ -18,8 +18,8 @@ use serde::Deserialize;
 
 use crate::commands::converge::{Case, Slope};
 use crate::commands::run::VERSION;
+use crate::error::{Error, Result};
 use crate::writers;
-use flexrock_core::error::{Error, Result};
 use flexrock_core::solver::newmark::critical_omega_dt;
 
 /// Where the inputs of the report are.

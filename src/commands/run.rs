@@ -3,10 +3,10 @@
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
+use crate::error::Result;
 use crate::writers;
 use flexrock_core::automaton::EventKind;
 use flexrock_core::body::SelfWeight;
-use flexrock_core::error::Result;
 use flexrock_core::excitation::FloorMotion;
 use flexrock_core::model::Model;
 use flexrock_core::model::STANDARD_GRAVITY;

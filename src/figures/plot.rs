@@ -6,7 +6,7 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
-use flexrock_core::error::{Error, Result};
+use crate::error::{Error, Result};
 
 /// One line of a panel.
 #[derive(Debug, Clone)]

@@ -14,12 +14,12 @@
 
 use std::path::{Path, PathBuf};
 
+use crate::error::Error;
+use crate::error::Result;
 use crate::figures::plot::{self, Format, Legend, Marker, Panel, Series, VerticalLine};
 use crate::writers;
 use crate::writers::run_dir::{HistoryRow, RunData};
 use flexrock_core::automaton::{Automaton, EventKind};
-use flexrock_core::error::Error;
-use flexrock_core::error::Result;
 
 /// The figure files, in the order they are written.
 pub const FIGURES: [&str; 3] = ["plot_motion.svg", "plot_force.svg", "plot_energy.svg"];
@@ -61,10 +61,12 @@ impl PlotOptions {
     /// Checks the options: sizes within [`SIZE_LIMITS`], times finite, not negative, and from
     /// before to. The error names the flag, its value and the rule.
     pub fn check(&self) -> Result<()> {
-        let bad = |flag: &str, value: String, rule: String| Error::InvalidParameter {
-            key: flag.to_string(),
-            value,
-            rule,
+        let bad = |flag: &str, value: String, rule: String| {
+            Error::from(flexrock_core::Error::InvalidParameter {
+                key: flag.to_string(),
+                value,
+                rule,
+            })
         };
         for (flag, size) in [("--width", self.width), ("--height", self.height)] {
             if let Some(px) = size {
@@ -159,14 +161,15 @@ pub fn figures_with(data: &RunData, options: &PlotOptions) -> Result<Vec<(String
                     (Some(from), None) => ("--from", from),
                     (None, None) => ("--from", t0),
                 };
-                return Err(Error::InvalidParameter {
+                return Err(flexrock_core::Error::InvalidParameter {
                     key: flag.to_string(),
                     value: value.to_string(),
                     rule: format!(
                         "the window holds fewer than two rows of the history (the run spans 0 to {} s)",
                         writers::significant(end, 6)
                     ),
-                });
+                }
+                .into());
             }
             windowed = RunData {
                 history,

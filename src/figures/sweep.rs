@@ -16,8 +16,8 @@ use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 use crate::commands::sweep::store::Counts;
+use crate::error::{Error, Result};
 use crate::figures::plot::{Legend, Marker, Panel, Series};
-use flexrock_core::error::{Error, Result};
 use flexrock_core::sweep::Plan;
 
 /// sweep.csv read back: its columns and rows of text.

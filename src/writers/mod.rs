@@ -6,7 +6,7 @@ pub mod run_dir;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
-use flexrock_core::error::{Error, Result};
+use crate::error::{Error, Result};
 use flexrock_core::solution::{Episode, Event, Sample};
 
 pub use flexrock_core::run_tables::{

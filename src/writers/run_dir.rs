@@ -12,9 +12,9 @@ use std::path::Path;
 
 use serde::de::DeserializeOwned;
 
+use crate::error::{Error, Result};
 use crate::writers::{EPISODE_COLUMNS, EVENT_COLUMNS, HISTORY_COLUMNS};
 use flexrock_core::constants::Constants;
-use flexrock_core::error::{Error, Result};
 use flexrock_core::solution::{Event, Sample};
 
 /// The sampled history of a run.

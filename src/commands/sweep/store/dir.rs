@@ -6,8 +6,8 @@
 use std::fs::File;
 use std::path::{Path, PathBuf};
 
+use crate::error::{Error, Result};
 use crate::writers;
-use flexrock_core::error::{Error, Result};
 
 /// The name of the chunks directory inside a sweep's directory.
 pub(super) const CHUNKS_DIR: &str = "chunks";

@@ -10,7 +10,7 @@ use std::path::{Path, PathBuf};
 use super::{
     dir, point_range, read_summary, read_table, PointRange, SweepReport, SweepSummary, SUMMARY_FILE,
 };
-use flexrock_core::error::{Error, Result};
+use crate::error::{Error, Result};
 
 /// Joins the results of shards into `out`: each of `dirs` is a shard's directory, or a
 /// directory holding `shard-K-of-N` directories (whose shards are used, whatever result of an
@@ -27,7 +27,7 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<SweepReport> {
     let mut parts: Vec<(PathBuf, SweepSummary)> = Vec::new();
     for dir in dirs {
         for part in parts_in(dir)? {
-            let summary = read_summary(&part)?.ok_or_else(|| Error::SweepFile {
+            let summary = read_summary(&part)?.ok_or_else(|| Error::SweepStore {
                 path: part.clone(),
                 message: "this shard has not finished (no sweep.json): run it again to complete it"
                     .to_string(),
@@ -39,7 +39,7 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<SweepReport> {
     let (first_dir, first) = parts[0].clone();
     for (dir, summary) in &parts {
         if !summary.plan.same_sweep(&first.plan) {
-            return Err(Error::SweepFile {
+            return Err(Error::SweepStore {
                 path: dir.join(SUMMARY_FILE),
                 message: format!(
                     "is a shard of another sweep than {} (model text, axes, settings, search, \
@@ -57,7 +57,7 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<SweepReport> {
     for (dir, summary) in &parts {
         let r = summary.points;
         if r.first > next {
-            return Err(Error::SweepFile {
+            return Err(Error::SweepStore {
                 path: dir.clone(),
                 message: format!(
                     "points {}..{} are in none of the shards given (a gap before this shard's {}..{})",
@@ -66,7 +66,7 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<SweepReport> {
             });
         }
         if r.first < next {
-            return Err(Error::SweepFile {
+            return Err(Error::SweepStore {
                 path: dir.clone(),
                 message: format!(
                     "points {}..{} of this shard were given already by another (overlap)",
@@ -76,7 +76,7 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<SweepReport> {
             });
         }
         let table = dir.join(super::TABLE_FILE);
-        let rows = read_table(&table, summary).map_err(|problem| Error::SweepFile {
+        let rows = read_table(&table, summary).map_err(|problem| Error::SweepStore {
             path: table.clone(),
             message: problem,
         })?;
@@ -84,7 +84,7 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<SweepReport> {
         next = r.end;
     }
     if next < total {
-        return Err(Error::SweepFile {
+        return Err(Error::SweepStore {
             path: parts[parts.len() - 1].0.clone(),
             message: format!(
                 "points {next}..{total} are in none of the shards given (missing at the end)"
@@ -114,7 +114,7 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<SweepReport> {
 /// The result directories `dir` stands for: its `shard-K-of-N` directories when it has any,
 /// else itself when it holds a sweep.json.
 fn parts_in(dir: &Path) -> Result<Vec<PathBuf>> {
-    let entries = std::fs::read_dir(dir).map_err(|e| Error::SweepFile {
+    let entries = std::fs::read_dir(dir).map_err(|e| Error::SweepStore {
         path: dir.to_path_buf(),
         message: format!("cannot read the directory: {e}"),
     })?;
@@ -135,7 +135,7 @@ fn parts_in(dir: &Path) -> Result<Vec<PathBuf>> {
     if dir.join(SUMMARY_FILE).exists() {
         return Ok(vec![dir.to_path_buf()]);
     }
-    Err(Error::SweepFile {
+    Err(Error::SweepStore {
         path: dir.to_path_buf(),
         message: "holds neither a sweep.json nor shard-K-of-N directories".to_string(),
     })
@@ -145,7 +145,7 @@ fn parts_in(dir: &Path) -> Result<Vec<PathBuf>> {
 /// a point count that overflows, points that are not this shard's slice of its plan, columns
 /// that are not the plan's, or a shard in a directory named for another.
 fn check_part(dir: &Path, summary: &SweepSummary) -> Result<()> {
-    let refuse = |message: String| Error::SweepFile {
+    let refuse = |message: String| Error::SweepStore {
         path: dir.join(SUMMARY_FILE),
         message,
     };

@@ -35,9 +35,9 @@ use std::path::{Path, PathBuf};
 use serde::{Deserialize, Serialize};
 
 use super::{Plan, Sweep};
+use crate::error::{Error, Result};
 use crate::figures::sweep as figure;
 use crate::writers;
-use flexrock_core::error::{Error, Result};
 
 pub use merge::merge;
 use shard::chunk_points;
@@ -439,13 +439,13 @@ fn read_summary(dir: &Path) -> Result<Option<SweepSummary>> {
         Ok(bytes) => bytes,
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(None),
         Err(e) => {
-            return Err(Error::SweepFile {
+            return Err(Error::SweepStore {
                 path,
                 message: format!("cannot read: {e}"),
             })
         }
     };
-    let summary: SweepSummary = serde_json::from_slice(&bytes).map_err(|e| Error::SweepFile {
+    let summary: SweepSummary = serde_json::from_slice(&bytes).map_err(|e| Error::SweepStore {
         path: path.clone(),
         message: format!("not a flexrock sweep.json: {e}"),
     })?;
@@ -467,7 +467,7 @@ fn finish(
 ) -> Result<(SweepSummary, Vec<PathBuf>)> {
     let table_path = dir.join(TABLE_FILE);
     verify::check_rows(plan, &(range.first..range.end), body).map_err(|problem| {
-        Error::SweepFile {
+        Error::SweepStore {
             path: table_path.clone(),
             message: format!("the rows to be written: {problem}"),
         }

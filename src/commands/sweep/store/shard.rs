@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
-use flexrock_core::error::{Error, Result};
+use crate::error::{Error, Result};
 use flexrock_core::sweep::Plan;
 
 /// Which slice of the chunks a process computes: shard `index` of `count` (1-based, as a user
