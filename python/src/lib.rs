@@ -1,9 +1,10 @@
 //! `flexrock._native`, the compiled half of the Python package `flexrock` (python/python/flexrock
 //! re-exports it with its documentation): `Model`, `GroundMotion`, `read_record`, `props`,
-//! `simulate` (a `Result` of numpy arrays) and `sweep` (sweep.csv's columns). Every number comes from the library exactly as the
-//! command line computes it; no file is written (but a temporary copy of a model given as text,
-//! for a sweep).
+//! `simulate` (a `Result` of numpy arrays), `sweep` (sweep.csv's columns, typed) and `compare`,
+//! `converge`, `fem_check`. Every number comes from flexrock-core exactly as the command line
+//! computes it; nothing is written to disk.
 
+mod analysis;
 mod model;
 mod motion;
 mod simulate;
@@ -36,5 +37,8 @@ fn flexrock_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(simulate::props, m)?)?;
     m.add_function(wrap_pyfunction!(simulate::simulate, m)?)?;
     m.add_function(wrap_pyfunction!(sweep::sweep, m)?)?;
+    m.add_function(wrap_pyfunction!(analysis::compare, m)?)?;
+    m.add_function(wrap_pyfunction!(analysis::converge, m)?)?;
+    m.add_function(wrap_pyfunction!(analysis::fem_check, m)?)?;
     Ok(())
 }

@@ -89,7 +89,10 @@ impl SimResult {
     }
 }
 
-fn json<'py, T: serde::Serialize>(py: Python<'py>, value: &T) -> PyResult<Bound<'py, PyAny>> {
+pub(crate) fn json<'py, T: serde::Serialize>(
+    py: Python<'py>,
+    value: &T,
+) -> PyResult<Bound<'py, PyAny>> {
     let text = serde_json::to_string(value).map_err(|e| FlexrockError::new_err(e.to_string()))?;
     py.import("json")?.call_method1("loads", (text,))
 }
@@ -102,7 +105,7 @@ pub(crate) fn props<'py>(py: Python<'py>, model: &Model) -> PyResult<Bound<'py, 
 
 /// An error about a value given as a Python argument, named by the argument: `rtol (sets
 /// solver.rtol) = -1: ...`; other errors as they are.
-fn err_naming(e: flexrock_core::Error, arguments: &[(&str, &str)]) -> PyErr {
+pub(crate) fn err_naming(e: flexrock_core::Error, arguments: &[(&str, &str)]) -> PyErr {
     match e {
         flexrock_core::Error::InvalidParameter { key, value, rule } => {
             let key = match arguments.iter().find(|(k, _)| *k == key) {

@@ -238,3 +238,41 @@ def test_run_settings_as_arguments_named_in_their_errors(tmp_path):
     with pytest.raises(flexrock.FlexrockError) as error:
         model.set("excitation.amplitud", 1.0)
     assert "--set" not in str(error.value) and "excitation.amplitud" in str(error.value)
+
+
+def test_compare_equals_the_command_line(tmp_path):
+    run_cli("compare", MODEL, "--dt", "0.005", "--out", tmp_path)
+    theirs = json.loads((tmp_path / "compare.json").read_text())
+    mine = flexrock.compare(flexrock.Model.from_file(MODEL), dt=0.005)
+    assert mine["comparison"] == theirs["comparison"]
+    history = read_csv(tmp_path / "compare_history.csv")
+    assert len(mine["grid"]) == len(history)
+    for row, theirs_row in zip(mine["grid"], history):
+        for key, text in theirs_row.items():
+            assert row[key] == float(text), key
+
+
+def test_converge_equals_the_command_line(tmp_path):
+    run_cli("converge", MODEL, "--dt", "0.01,0.005", "--rtol", "1e-6,1e-8", "--out", tmp_path)
+    rows = read_csv(tmp_path / "convergence.csv")
+    study = flexrock.converge(flexrock.Model.from_file(MODEL), dts=[0.01, 0.005], rtols=[1e-6, 1e-8])
+    assert len(study["cases"]) == len(rows)
+    for case, row in zip(study["cases"], rows):
+        assert case["method"] == row["method"] and case["status"] == row["status"]
+        for key in ("max_q_error", "max_event_time_error", "peak_error", "steps", "rhs_evaluations"):
+            assert case[key] == float(row[key]), key
+    with pytest.raises(flexrock.FlexrockError, match=r"^rtols \(sets"):
+        flexrock.converge(flexrock.Model.from_file(MODEL), dts=[0.01], rtols=[5.0])
+
+
+def test_fem_check_equals_the_command_line(tmp_path):
+    run_cli("fem", MODEL, "--nx", "2", "--ny", "8", "--dt", "0.005", "--out", tmp_path)
+    history = read_csv(tmp_path / "fem_history.csv")
+    fem = flexrock.fem_check(flexrock.Model.from_file(MODEL), nx=2, ny=8, dt=0.005)
+    assert len(fem["history"]) == len(history)
+    for row, theirs in zip(fem["history"][::50], history[::50]):
+        for key in ("t", "q", "flexural", "rocking"):
+            assert row[key] == float(theirs[key]), key
+    assert fem["peaks"]["max_q"] == max(float(r["q"]) for r in history)
+    with pytest.raises(flexrock.FlexrockError, match=r"^nx \(sets fem.nx\) = 0"):
+        flexrock.fem_check(flexrock.Model.from_file(MODEL), nx=0)

@@ -37,6 +37,9 @@ __all__ = [
     "Result",
     "SweepResult",
     "__version__",
+    "compare",
+    "converge",
+    "fem_check",
     "props",
     "read_record",
     "simulate",
@@ -339,3 +342,138 @@ def sweep(
             "a file: write the samples to a CSV record file and set excitation.path to it"
         )
     return SweepResult(_native.sweep(model, dict(axes), find_min=find_min, scan=scan, tol=tol))
+
+
+def compare(
+    model: Model,
+    dt: Optional[float] = None,
+    variant: Optional[str] = None,
+    reference_rtol: Optional[float] = None,
+) -> dict:
+    """The model solved by the paper's Newmark method and by the adaptive reference, compared.
+
+    The same computation as ``flexrock compare``: events matched one to one (a missed or an
+    extra event is reported, never paired with a neighbour), peaks, and the differences of q on
+    the output grid.
+
+    Parameters
+    ----------
+    model : Model
+        The model; its ``solver.dt`` (if its method is Newmark) is the default step.
+    dt : float, optional
+        Newmark's time step, s.
+    variant : {"compensate", "substep"}, optional
+        How Newmark treats a step that crosses an event.
+    reference_rtol : float, optional
+        Relative tolerance of the adaptive reference (default 1e-12).
+
+    Returns
+    -------
+    dict
+        ``reference`` and ``newmark`` (the two solvers, as labels), ``comparison`` (matched
+        events with their time differences, peaks, grid differences) and ``grid`` (a list of
+        rows: t, q of both, their difference).
+
+    Raises
+    ------
+    FlexrockError
+        A bad argument (the message names it, e.g. ``dt (sets solver.dt) = -1``).
+
+    Examples
+    --------
+    >>> c = flexrock.compare(model, dt=0.005)
+    >>> c["comparison"]["events"]["max_abs_time_difference"]
+    """
+    return _native.compare(model, dt=dt, variant=variant, reference_rtol=reference_rtol)
+
+
+def converge(
+    model: Model,
+    dts: Optional[Sequence[float]] = None,
+    rtols: Optional[Sequence[float]] = None,
+    reference_rtol: Optional[float] = None,
+) -> dict:
+    """A convergence study: Newmark's steps and the adaptive tolerances against one reference.
+
+    The same computation as ``flexrock converge``: each case's errors in event times, peaks and
+    q on the grid, its work (steps, right-hand-side evaluations), and the fitted slopes (Newmark's
+    order against dt; each adaptive method's error against work).
+
+    Parameters
+    ----------
+    model : Model
+        The model.
+    dts : sequence of float, optional
+        Newmark steps, s (default: the command line's list).
+    rtols : sequence of float, optional
+        Tolerances of the adaptive methods (default: 1e-3 to 1e-11).
+    reference_rtol : float, optional
+        Relative tolerance of the reference (default 1e-12).
+
+    Returns
+    -------
+    dict
+        ``reference`` (its solver), ``output_dt``, ``cases`` (one dict per case, with the
+        columns of convergence.csv; None where a failed case has no measurement) and
+        ``slopes``.
+
+    Raises
+    ------
+    FlexrockError
+        A bad argument (the message names it).
+
+    Examples
+    --------
+    >>> study = flexrock.converge(model, dts=[0.01, 0.005], rtols=[1e-6, 1e-8])
+    >>> [s["slope"] for s in study["slopes"]]
+    """
+    return _native.converge(
+        model,
+        dts=None if dts is None else list(dts),
+        rtols=None if rtols is None else list(rtols),
+        reference_rtol=reference_rtol,
+    )
+
+
+def fem_check(
+    model: Model,
+    nx: Optional[int] = None,
+    ny: Optional[int] = None,
+    dt: Optional[float] = None,
+    scheme: Optional[str] = None,
+) -> dict:
+    """The plane-stress finite element model of the body, compared with the one-mode model.
+
+    The same computation as ``flexrock fem``: the body meshed with ``nx`` x ``ny`` elements on a
+    floor it may lift off, under the model's floor motion, from rest.
+
+    Parameters
+    ----------
+    model : Model
+        The model (its ``[fem]`` keys are the defaults of the arguments below).
+    nx, ny : int, optional
+        Elements across the width and up the height.
+    dt : float, optional
+        Time step, s.
+    scheme : str, optional
+        The time-stepping scheme, as the model file's ``fem.scheme`` names it.
+
+    Returns
+    -------
+    dict
+        ``comparison`` (quantities of both models side by side, uplift times), ``peaks``,
+        ``uplifts`` (the finite element run's uplift episodes), ``history`` (rows of
+        fem_history.csv) and ``warnings``.
+
+    Raises
+    ------
+    FlexrockError
+        A bad argument (the message names it), or a mesh beyond the size limits.
+
+    Examples
+    --------
+    >>> fem = flexrock.fem_check(model, nx=4, ny=16)
+    >>> fem["peaks"]["max_q"]
+    """
+    return _native.fem_check(model, nx=nx, ny=ny, dt=dt, scheme=scheme)
+

@@ -95,3 +95,22 @@ def sweep(
     scan: Optional[int] = None,
     tol: Optional[float] = None,
 ) -> Any: ...
+def compare(
+    model: Model,
+    dt: Optional[float] = None,
+    variant: Optional[str] = None,
+    reference_rtol: Optional[float] = None,
+) -> dict[str, Any]: ...
+def converge(
+    model: Model,
+    dts: Optional[list[float]] = None,
+    rtols: Optional[list[float]] = None,
+    reference_rtol: Optional[float] = None,
+) -> dict[str, Any]: ...
+def fem_check(
+    model: Model,
+    nx: Optional[int] = None,
+    ny: Optional[int] = None,
+    dt: Optional[float] = None,
+    scheme: Optional[str] = None,
+) -> dict[str, Any]: ...
