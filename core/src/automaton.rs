@@ -69,7 +69,7 @@ impl EventKind {
 /// A guard: the surface q = `level`, which the body leaves its mode through when q moves in
 /// `direction` (+1 rising, -1 falling).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Guard {
+pub(crate) struct Guard {
     /// The value of q on the guard, m.
     pub level: f64,
     /// The direction q crosses the guard in: +1 rising, -1 falling.
@@ -170,7 +170,7 @@ impl Automaton {
     }
 
     /// The guards of `mode`, in a fixed order (the index is used by solvers to name a guard).
-    pub fn guards(&self, mode: Mode) -> &'static [GuardSlot] {
+    pub(crate) fn guards(&self, mode: Mode) -> &'static [GuardSlot] {
         match mode {
             Mode::PreUplift => &[GuardSlot::UpliftRight, GuardSlot::UpliftLeft],
             Mode::RockRight | Mode::RockLeft => &[GuardSlot::Landing, GuardSlot::Overturn],
@@ -179,7 +179,7 @@ impl Automaton {
     }
 
     /// The guard behind a slot of `mode`.
-    pub fn guard(&self, mode: Mode, slot: GuardSlot) -> Guard {
+    pub(crate) fn guard(&self, mode: Mode, slot: GuardSlot) -> Guard {
         let side = mode.rocking_sign();
         match slot {
             GuardSlot::UpliftRight => Guard {
@@ -211,7 +211,7 @@ impl Automaton {
 
     /// A guard of `mode` that the state (q, q') has crossed, or sits on while moving across it.
     /// A state on a guard but moving back into its mode does not trigger it.
-    pub fn crossed_guard(&self, mode: Mode, q: f64, qdot: f64) -> Option<Guard> {
+    pub(crate) fn crossed_guard(&self, mode: Mode, q: f64, qdot: f64) -> Option<Guard> {
         self.guards(mode)
             .iter()
             .map(|&slot| self.guard(mode, slot))
@@ -384,7 +384,7 @@ impl Automaton {
 
 /// Names of the guards, so that a solver can refer to "the i-th guard of this mode".
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum GuardSlot {
+pub(crate) enum GuardSlot {
     /// Uplift about the right toe: q rises through s_n.
     UpliftRight,
     /// Uplift about the left toe: q falls through -s_n.

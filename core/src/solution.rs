@@ -1,5 +1,5 @@
 //! What a solver returns, whichever solver it is: sampled history, event log, peaks, energy
-//! balance and statistics. [`Recorder`] builds it, so that every solver books results the same way.
+//! balance and statistics. `Recorder` builds it, so that every solver books results the same way.
 
 use serde::{Deserialize, Serialize};
 
@@ -26,7 +26,7 @@ pub struct Sample {
     /// Restoring force (base shear) F(q), N.
     #[serde(rename = "F")]
     pub restoring_force: f64,
-    /// Energy balance error, J: see [`Recorder`].
+    /// Energy balance error, J: see `Recorder`.
     pub energy_residual: f64,
     /// Work done on the SDOF body by the floor since the start, J: the integral of
     /// [`Automaton::input_power`].
@@ -214,7 +214,7 @@ impl Solution {
 /// The solver integrates the two powers; the residual
 /// `E(t) - E(0) - W_input(t) + W_damping(t) - sum of jumps` is zero for the exact solution, so its
 /// size measures the integration error.
-pub struct Recorder<'a> {
+pub(crate) struct Recorder<'a> {
     automaton: &'a Automaton,
     samples: Vec<Sample>,
     events: Vec<Event>,

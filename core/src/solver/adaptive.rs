@@ -20,7 +20,7 @@
 //! starts on a guard and moves back into its mode does not trigger it; a state on a guard moving
 //! across it does, at once. Breakpoints of the floor motion are stop times, so that no step
 //! straddles a kink of a(t), and the solver's clock is put onto every stop it reaches (see
-//! `STOP_TOLERANCE`). [`RunBudget`] caps steps and events, so that every run ends.
+//! `STOP_TOLERANCE`). `RunBudget` caps steps and events, so that every run ends.
 
 use std::cell::Cell;
 use std::time::Instant;

@@ -20,7 +20,7 @@ pub const CASCADE_SPAN: f64 = 1e-9;
 
 /// Counts a run's steps and events against the caps.
 #[derive(Debug)]
-pub struct RunBudget {
+pub(crate) struct RunBudget {
     events: usize,
     /// Times of the last [`CASCADE_EVENTS`] events (a ring).
     recent: [f64; CASCADE_EVENTS],
