@@ -348,10 +348,9 @@ impl SetArgs {
     /// current directory, and is written again relative to the model file, which reads it.
     pub(crate) fn settings_for(self, model: &std::path::Path) -> Vec<Setting> {
         let here = std::env::current_dir().unwrap_or_default();
-        let model_dir = here.join(model.parent().unwrap_or(std::path::Path::new("")));
         self.settings
             .into_iter()
-            .map(|s| s.rebased(&here, &model_dir))
+            .map(|s| s.typed_in(&here, Some(model)))
             .collect()
     }
 

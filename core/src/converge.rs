@@ -11,7 +11,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::columns::{nan_if_null, optional, required, Column};
 use crate::compare::{compare, max_event_shift};
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::format::number;
 use crate::model::Model;
 use crate::simulate::simulate_with;
@@ -276,7 +276,15 @@ pub struct Configuration {
 /// `Model::reference_settings` apply: both Newmark variants at each of `dts`
 /// ([`newmark_configurations`]), then each adaptive method at each of `rtols`
 /// ([`adaptive_configurations`]).
+/// A study without any case is refused: it would measure nothing.
 pub fn configurations(model: &Model, dts: &[f64], rtols: &[f64]) -> Result<Vec<Configuration>> {
+    if dts.is_empty() && rtols.is_empty() {
+        return Err(Error::invalid(
+            "dts, rtols",
+            "(none)",
+            "a convergence study needs at least one Newmark step or adaptive tolerance",
+        ));
+    }
     let mut configurations = newmark_configurations(model, dts)?;
     configurations.extend(adaptive_configurations(model, rtols)?);
     Ok(configurations)

@@ -48,6 +48,40 @@ pub enum FemWarning {
     },
 }
 
+impl FemWarning {
+    /// The warning as the user reads it; `scheme_named` is how the scheme's setting was given
+    /// (`--scheme` on the command line, an argument's name in Python).
+    pub fn text(&self, scheme_named: &str) -> String {
+        match *self {
+            FemWarning::DtBeyondStabilityLimit {
+                dt,
+                limit,
+                scheme,
+                nx,
+                ny,
+                highest_frequency,
+            } => format!(
+                "fem.dt = {} s exceeds the stability limit {} s of the {} method on this {} x {} \
+                 mesh (highest frequency {:.1} rad/s, shortest period {} s): the highest mode grows \
+                 between contact changes and the base chatters; use scheme \
+                 \"average-acceleration\" or \"wilson-theta\" ({scheme_named}), or dt <= {} s",
+                dt,
+                crate::format::short_seconds(limit),
+                scheme,
+                nx,
+                ny,
+                highest_frequency,
+                crate::format::short_seconds(2.0 * std::f64::consts::PI / highest_frequency),
+                crate::format::short_seconds(limit)
+            ),
+            FemWarning::Overturned { t } => format!(
+                "the body overturned (|q| > B) at t = {} s; the run stops there",
+                crate::format::readable(t)
+            ),
+        }
+    }
+}
+
 /// A finished finite element run and what was derived from it.
 pub struct FemAnalysis {
     /// The validated finite element analysis.

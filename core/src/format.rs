@@ -23,6 +23,16 @@ pub fn shortest(x: f64) -> String {
     }
 }
 
+/// A short time step or period in seconds: five decimals, or two significant digits below
+/// 1 ms.
+pub fn short_seconds(t: f64) -> String {
+    if t >= 1e-3 {
+        format!("{t:.5}")
+    } else {
+        format!("{t:.2e}")
+    }
+}
+
 /// A number in exponent form (1e-8, 2.5e-3), as tolerances are written.
 pub fn scientific(x: f64) -> String {
     format!("{x:e}")

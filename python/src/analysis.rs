@@ -139,32 +139,11 @@ pub(crate) fn fem_check<'py>(
     )?;
     out.set_item(
         "warnings",
-        analysis.warnings.iter().map(warning).collect::<Vec<_>>(),
+        analysis
+            .warnings
+            .iter()
+            .map(|w| w.text("the scheme argument"))
+            .collect::<Vec<_>>(),
     )?;
     Ok(out)
-}
-
-/// A warning of the finite element run, named by the Python arguments.
-fn warning(w: &fem::FemWarning) -> String {
-    use flexrock_core::format::shortest;
-    match w {
-        fem::FemWarning::DtBeyondStabilityLimit {
-            dt,
-            limit,
-            scheme,
-            nx,
-            ny,
-            highest_frequency,
-        } => format!(
-            "dt = {} s is beyond the stability limit {} s of the {scheme} scheme on this {nx} x {ny} \
-             mesh (highest circular frequency {} rad/s): the highest mode grows between contact \
-             changes; give a smaller dt or another scheme",
-            shortest(*dt),
-            shortest(*limit),
-            shortest(*highest_frequency)
-        ),
-        fem::FemWarning::Overturned { t } => {
-            format!("the body overturned at t = {} s; the run stops there", shortest(*t))
-        }
-    }
 }

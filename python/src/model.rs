@@ -86,7 +86,7 @@ impl Model {
         let mut table = effective_table(&base, &self.settings, &self.source()).map_err(err)?;
         if let (Some(path), None) = (&self.path, &self.ground_motion) {
             let here = std::env::current_dir()?;
-            let model_dir = here.join(path.parent().unwrap_or(Path::new("")));
+            let model_dir = flexrock_core::model::model_dir(&here, Some(path));
             if let Some(excitation) = table.get_mut("excitation").and_then(|e| e.as_table_mut()) {
                 if let Some(record) = excitation.get("path").cloned() {
                     let rebased = Setting {
@@ -373,15 +373,11 @@ impl Model {
         // A record path typed here is relative to the current directory; the model file reads
         // it relative to its own directory (a model given as text reads from the current one).
         let here = std::env::current_dir()?;
-        let model_dir = match &self.path {
-            Some(path) => here.join(path.parent().unwrap_or(std::path::Path::new(""))),
-            None => here.clone(),
-        };
         let setting = Setting {
             key: key.to_string(),
             value: toml_value(value)?,
         }
-        .rebased(&here, &model_dir);
+        .typed_in(&here, self.path.as_deref());
         let mut settings = self.settings.clone();
         settings.retain(|s| s.key != key);
         settings.push(setting);

@@ -312,3 +312,18 @@ def test_sweep_errors_name_the_argument(kwargs, message):
     model = flexrock.Model.from_file(ROOT / "models" / "sine-pulse.toml")
     with pytest.raises(flexrock.FlexrockError, match=message):
         flexrock.sweep(model, {"excitation.period": [0.8]}, **kwargs)
+
+
+@pytest.mark.parametrize(
+    "axes, message",
+    [
+        ({"excitation.amplitude": []}, r'^axes\["excitation.amplitude"\] = : an axis needs at least one value'),
+        ({"excitation.amplitude": [float("nan")]}, r'^axes\["excitation.amplitude"\] = NaN: NaN is not a finite'),
+        ({"excitation.amplitude": [1, 1.0]}, r"appears twice"),
+        ({}, r"^axes = \(none\): a sweep needs at least one axis or a minimum search"),
+    ],
+)
+def test_sweep_axes_are_checked_like_the_command_lines(axes, message):
+    model = flexrock.Model.from_file(ROOT / "models" / "sine-pulse.toml")
+    with pytest.raises(flexrock.FlexrockError, match=message):
+        flexrock.sweep(model, axes)

@@ -276,3 +276,8 @@ def test_fem_check_equals_the_command_line(tmp_path):
     assert fem["peaks"]["max_q"] == max(float(r["q"]) for r in history)
     with pytest.raises(flexrock.FlexrockError, match=r"^nx \(sets fem.nx\) = 0"):
         flexrock.fem_check(flexrock.Model.from_file(MODEL), nx=0)
+
+
+def test_a_convergence_study_without_cases_is_refused():
+    with pytest.raises(flexrock.FlexrockError, match="needs at least one Newmark step"):
+        flexrock.converge(flexrock.Model.from_file(MODEL), dts=[], rtols=[])

@@ -36,35 +36,10 @@ pub const EVENT_COLUMNS: [&str; 7] = columns::names(&fem_check::EVENT_COLUMNS);
 /// Magnification of the deformed shapes (the paper's Fig. 9).
 pub const SHAPE_MAGNIFICATION: f64 = 5.0;
 
-/// A warning of a run as the user reads it (printed, and written to fem_summary.json).
+/// A warning of a run as the user reads it (printed, and written to fem_summary.json): the
+/// scheme is named by its flag.
 pub fn warning_text(warning: &FemWarning) -> String {
-    match *warning {
-        FemWarning::DtBeyondStabilityLimit {
-            dt,
-            limit,
-            scheme,
-            nx,
-            ny,
-            highest_frequency,
-        } => format!(
-            "fem.dt = {} s exceeds the stability limit {} s of the {} method on this {} x {} mesh \
-             (highest frequency {:.1} rad/s, shortest period {} s): the highest mode grows between \
-             contact changes and the base chatters; use scheme \"average-acceleration\" or \
-             \"wilson-theta\" (--scheme), or dt <= {} s",
-            dt,
-            short_seconds(limit),
-            scheme,
-            nx,
-            ny,
-            highest_frequency,
-            short_seconds(2.0 * std::f64::consts::PI / highest_frequency),
-            short_seconds(limit)
-        ),
-        FemWarning::Overturned { t } => format!(
-            "the body overturned (|q| > B) at t = {} s; the run stops there",
-            readable(t)
-        ),
-    }
+    warning.text("--scheme")
 }
 
 /// Runs the finite element analysis of a model ([`flexrock_core::fem_check::analyse`]); the
@@ -505,7 +480,7 @@ pub fn report_text(report: &FemReport) -> String {
         t,
         "  highest frequency {:.1} rad/s: linear acceleration stable for dt <= {} s",
         a.result.highest_frequency,
-        short_seconds(a.linear_acceleration_limit)
+        flexrock_core::format::short_seconds(a.linear_acceleration_limit)
     );
     let _ = writeln!(
         t,
@@ -560,16 +535,7 @@ pub fn modes_text(m: &Modes) -> String {
         t,
         "  highest frequency {:.1} rad/s; linear acceleration stable for dt <= {} s",
         m.highest_frequency,
-        short_seconds(m.linear_acceleration_stability_limit)
+        flexrock_core::format::short_seconds(m.linear_acceleration_stability_limit)
     );
     t
-}
-
-/// A short time in seconds to three significant figures, without exponent down to 1 ms.
-fn short_seconds(t: f64) -> String {
-    if t >= 1e-3 {
-        format!("{t:.5}")
-    } else {
-        format!("{t:.2e}")
-    }
 }

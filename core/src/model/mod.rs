@@ -11,7 +11,7 @@ mod setting;
 mod solver_section;
 mod table;
 
-pub use setting::{check_key, value_text, Setting};
+pub use setting::{check_key, model_dir, value_text, Setting};
 pub use table::{default_value, effective_table, schema_keys, value_in_effect};
 
 use excitation_section::floor_from_section;

@@ -50,6 +50,13 @@ impl Setting {
         }
     }
 
+    /// [`Setting::rebased`] for a setting typed in the directory `here` (on the command line, in
+    /// Python) for the model file `model` (None for a model given as text, which reads its
+    /// record paths from `here`).
+    pub fn typed_in(self, here: &Path, model: Option<&Path>) -> Setting {
+        self.rebased(here, &model_dir(here, model))
+    }
+
     /// Parses `KEY=VALUE` as a user types it: the value is read as a TOML value (`4.5`, `1e-8`,
     /// `true`, `"bdf"`), and taken as a plain string when it is not one (`bdf`, `records/a.AT2`).
     pub fn parse(text: &str) -> Result<Setting> {
@@ -107,6 +114,15 @@ impl Setting {
 }
 
 /// `path` with `.` dropped and each `..` undoing the directory before it.
+/// The directory the model file `model` (relative to `here`) reads its record paths from:
+/// `here` itself for a model given as text.
+pub fn model_dir(here: &Path, model: Option<&Path>) -> PathBuf {
+    match model {
+        Some(model) => here.join(model.parent().unwrap_or(Path::new(""))),
+        None => here.to_path_buf(),
+    }
+}
+
 pub(crate) fn normalised(path: &Path) -> PathBuf {
     let mut out = PathBuf::new();
     for part in path.components() {

@@ -134,6 +134,39 @@ pub fn parse_interval(text: &str) -> Result<(String, Interval)> {
     Ok((key.to_string(), interval))
 }
 
+/// The rules every axis meets, however it was made: a known key, at least one value and at
+/// most [`MAX_AXIS_VALUES`], numbers finite and at most [`MAX_MAGNITUDE`] in size, no value
+/// twice.
+pub fn check_axis(axis: &Axis) -> Result<()> {
+    let shown = || {
+        let mut text: Vec<&str> = axis.values.iter().take(5).map(String::as_str).collect();
+        if axis.values.len() > 5 {
+            text.push("...");
+        }
+        text.join(",")
+    };
+    let refuse = |rule: &str| Error::invalid(&format!("vary {}", axis.key), shown(), rule);
+    check_key(&axis.key).map_err(|rule| refuse(&rule))?;
+    if axis.values.is_empty() {
+        return Err(refuse("an axis needs at least one value"));
+    }
+    if axis.values.len() > MAX_AXIS_VALUES {
+        return Err(refuse(&format!(
+            "has more than the {MAX_AXIS_VALUES} values an axis may have"
+        )));
+    }
+    for value in &axis.values {
+        if let Ok(x) = value.trim().parse::<f64>() {
+            finite(x, value).map_err(|rule| refuse(&rule))?;
+        }
+    }
+    let mut seen = std::collections::HashSet::new();
+    if let Some(duplicate) = axis.values.iter().find(|v| !seen.insert(v.as_str())) {
+        return Err(refuse(&format!("the value {duplicate} appears twice")));
+    }
+    Ok(())
+}
+
 /// The rules of a minimum search's interval: finite ends, at most [`MAX_MAGNITUDE`] in size,
 /// LO below HI.
 pub fn check_interval(key: &str, interval: &Interval) -> Result<()> {
@@ -419,6 +452,25 @@ mod tests {
         let ratio: f64 = log[1].parse::<f64>().unwrap() / 0.2;
         assert!((ratio - (15f64).powf(1.0 / 39.0)).abs() < 1e-12);
         assert_eq!(values("1.50, 2,3e0"), ["1.5", "2", "3"]);
+    }
+
+    #[test]
+    fn an_axis_made_in_code_meets_the_rules_of_a_parsed_one() {
+        let check = |values: &[&str]| {
+            check_axis(&Axis::new(
+                "excitation.amplitude",
+                values.iter().map(|v| v.to_string()).collect(),
+            ))
+        };
+        assert!(check(&["1", "2"]).is_ok());
+        for bad in [&[][..], &["NaN"], &["1", "inf"], &["1e301"], &["1", "1"]] {
+            let e = check(bad).expect_err("refused").to_string();
+            assert!(
+                e.starts_with("vary excitation.amplitude = "),
+                "{bad:?}: {e}"
+            );
+        }
+        assert!(check_axis(&Axis::new("amplitude", vec!["1".into()])).is_err());
     }
 
     #[test]

@@ -201,7 +201,7 @@ impl Request {
             path: path.to_path_buf(),
             source: Box::new(e),
         };
-        let model_dir = here.join(model.parent().unwrap_or(Path::new("")));
+        let model_dir = crate::model::model_dir(here, Some(model));
         for text in &file.set {
             let setting = Setting::parse(text).map_err(in_file)?;
             self.settings
@@ -310,8 +310,12 @@ impl Sweep {
             return Err(Error::invalid(
                 "vary",
                 "(none)",
-                "a sweep needs at least one --vary axis or --find-min",
+                "a sweep needs at least one axis or a minimum search",
             ));
+        }
+        // Axes made in code (not parsed from `KEY=SPEC`) meet the rules of parsed ones.
+        for axis in &request.axes {
+            axis::check_axis(axis)?;
         }
         let mut keys: Vec<&str> = request.axes.iter().map(|a| a.key.as_str()).collect();
         if let Some(f) = &find_min {
