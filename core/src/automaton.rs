@@ -283,6 +283,27 @@ impl Automaton {
             - self.participation(mode) * floor_acc
     }
 
+    /// Eq. 16 within `mode` as the linear equation it is there, x'' + c x' + k x = -beta a(t)
+    /// with x = q - q_eq: the coefficients the exact solver integrates in closed form. They are
+    /// read off the same branch of F and the same nu, beta and damping as
+    /// [`Automaton::acceleration`]. None for the terminal mode.
+    pub fn linear_form(&self, mode: Mode) -> Option<LinearForm> {
+        if mode == Mode::Overturned {
+            return None;
+        }
+        let (d_q, d_qdot) = self.acceleration_jacobian(mode);
+        Some(LinearForm {
+            stiffness: -d_q,
+            damping: -d_qdot,
+            // F(q) = F' (q - q_eq) on the branch: q_eq is where the branch's force vanishes.
+            equilibrium: match mode {
+                Mode::PreUplift | Mode::Overturned => 0.0,
+                Mode::RockRight | Mode::RockLeft => mode.rocking_sign() * self.topple,
+            },
+            participation: self.participation(mode),
+        })
+    }
+
     /// Partial derivatives of q'' with respect to q and q' (constant within a mode).
     pub fn acceleration_jacobian(&self, mode: Mode) -> (f64, f64) {
         if mode == Mode::Overturned {
@@ -380,6 +401,20 @@ impl Automaton {
     pub fn rocking_part(&self, mode: Mode, q: f64) -> f64 {
         q - self.flexural_part(mode, q)
     }
+}
+
+/// Eq. 16 within one mode: x'' + c x' + k x = -beta a(t), x = q - q_eq
+/// (see [`Automaton::linear_form`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LinearForm {
+    /// k = nu F' / Me, 1/s^2: positive before uplift, negative while rocking.
+    pub stiffness: f64,
+    /// c = (gamma/E) nu F' / Me, 1/s: negative while rocking (the paper's damping term).
+    pub damping: f64,
+    /// q_eq, m: where the branch's restoring force vanishes (0, or +-q_topple while rocking).
+    pub equilibrium: f64,
+    /// beta, the participation factor of the mode.
+    pub participation: f64,
 }
 
 /// Names of the guards, so that a solver can refer to "the i-th guard of this mode".

@@ -10,7 +10,7 @@ use crate::constants::{Constants, SELF_WEIGHT_BUCKLING_PARAMETER, SELF_WEIGHT_WA
 use crate::error::Result;
 use crate::model::Model;
 use crate::solution::Solution;
-use crate::solver::{adaptive, newmark};
+use crate::solver::{adaptive, exact, newmark};
 use crate::solver::{History, SolverSettings};
 
 /// Version of flexrock that made a result.
@@ -42,6 +42,7 @@ fn solve(model: &Model, settings: &SolverSettings, history: History) -> Result<S
         SolverSettings::Newmark(s) => {
             newmark::solve(&automaton, floor, initial, duration, s, history)
         }
+        SolverSettings::Exact(s) => exact::solve(&automaton, floor, initial, duration, s, history),
     };
     Ok(solution?)
 }

@@ -174,6 +174,25 @@ pub struct Solution {
     pub energy_rounding: f64,
     /// What the solution cost.
     pub stats: SolverStats,
+    /// The exact solver's estimate of its own error; None for the other methods.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub rounding: Option<RoundingEstimate>,
+}
+
+/// The exact solver's first-order estimate of its own error (rounding of the terms summed and
+/// the phases formed, and a few ulps of the model's constants), carried through the run.
+#[derive(Debug, Clone, Serialize, PartialEq)]
+pub struct RoundingEstimate {
+    /// For each event, in the order of [`Solution::events`]: the error of its time, s.
+    pub event_time: Vec<f64>,
+    /// Error of the largest q, m.
+    pub max_q: f64,
+    /// Error of the time of the largest q, s.
+    pub t_max_q: f64,
+    /// Error of the smallest q, m.
+    pub min_q: f64,
+    /// Error of the time of the smallest q, s.
+    pub t_min_q: f64,
 }
 
 /// Units in the last place of the body's energy scale below which an energy residual is taken
@@ -444,6 +463,7 @@ impl<'a> Recorder<'a> {
                         .potential_energy(Mode::RockRight, self.automaton.topple_displacement()),
                 ),
             stats,
+            rounding: None,
         }
     }
 }

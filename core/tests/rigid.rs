@@ -3,7 +3,7 @@
 //! constant floor acceleration the motion is x = x_e + (x0 - x_e) cosh(k t) + (v0/k) sinh(k t),
 //! x_e = 3 a/(2 k^2) = a H/g, from which every expected value below is derived.
 
-use flexrock_core::excitation::{FloorMotion, Free, Harmonic, PulseShape, SinePulse};
+use flexrock_core::excitation::{ClosedForm, FloorMotion, Free, Harmonic, PulseShape, SinePulse};
 use flexrock_core::rigid::{
     simulate_block, simulate_from, RigidBlock, RigidEventKind, RigidOutcome, RigidPhase,
     RigidSettings,
@@ -62,6 +62,9 @@ impl FloorMotion for Constant {
     }
     fn parameters(&self) -> serde_json::Value {
         serde_json::json!({ "kind": "constant", "value": self.0 })
+    }
+    fn closed_form(&self, _t: f64) -> ClosedForm {
+        ClosedForm::polynomial(0.0, &[self.0], f64::INFINITY)
     }
 }
 
@@ -385,6 +388,13 @@ impl FloorMotion for Nan {
     }
     fn parameters(&self) -> serde_json::Value {
         serde_json::json!({ "kind": "nan" })
+    }
+    fn closed_form(&self, t: f64) -> ClosedForm {
+        if t < 0.1 {
+            ClosedForm::polynomial(0.0, &[-5.0], 0.1)
+        } else {
+            ClosedForm::polynomial(0.1, &[f64::NAN], f64::INFINITY)
+        }
     }
 }
 

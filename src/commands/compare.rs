@@ -321,10 +321,11 @@ pub fn compare_text(model: &Model, report: &CompareReport) -> String {
                 readable(n.gamma)
             )
         }
-        SolverSettings::Adaptive(_) => String::new(),
+        SolverSettings::Adaptive(_) | SolverSettings::Exact(_) => String::new(),
     };
     let reference_rtol = match report.reference_settings {
         SolverSettings::Adaptive(a) => format!("rtol = {:e}", a.rtol),
+        SolverSettings::Exact(_) => "closed form".to_string(),
         SolverSettings::Newmark(_) => String::new(),
     };
     let _ = writeln!(

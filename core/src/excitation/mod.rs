@@ -67,6 +67,11 @@ pub trait FloorMotion: Send + Sync {
 
     /// The parameters as understood (including derived ones), for result files.
     fn parameters(&self) -> serde_json::Value;
+
+    /// The closed form of a(t) on the stretch of the motion that holds `t` (s, t >= 0), and where
+    /// that stretch ends: the exact solver's view of the motion. It must agree with
+    /// [`FloorMotion::acceleration`] to rounding (or within the stated error bound).
+    fn closed_form(&self, t: f64) -> ClosedForm;
 }
 
 /// No floor motion: free vibration or free rocking from the initial state.
@@ -85,6 +90,9 @@ impl FloorMotion for Free {
     }
     fn kind(&self) -> &'static str {
         "free"
+    }
+    fn closed_form(&self, _t: f64) -> ClosedForm {
+        ClosedForm::exact(f64::INFINITY, Shape::Rest)
     }
     fn parameters(&self) -> serde_json::Value {
         serde_json::json!({ "kind": self.kind() })
@@ -112,6 +120,16 @@ impl FloorMotion for Harmonic {
     }
     fn kind(&self) -> &'static str {
         "harmonic"
+    }
+    fn closed_form(&self, _t: f64) -> ClosedForm {
+        ClosedForm::exact(
+            f64::INFINITY,
+            Shape::Sinusoid {
+                sin_part: self.amplitude,
+                cos_part: 0.0,
+                period: self.period,
+            },
+        )
     }
     fn parameters(&self) -> serde_json::Value {
         serde_json::json!({ "kind": self.kind(), "amplitude": self.amplitude, "period": self.period })
@@ -187,6 +205,21 @@ impl FloorMotion for PaperSine {
     fn kind(&self) -> &'static str {
         "paper-sine"
     }
+    fn closed_form(&self, t: f64) -> ClosedForm {
+        if t < self.ramp {
+            let [c1, c2, c3] = self.ramp_coefficients;
+            ClosedForm::polynomial(0.0, &[0.0, c1, c2, c3], self.ramp)
+        } else {
+            ClosedForm::exact(
+                f64::INFINITY,
+                Shape::Sinusoid {
+                    sin_part: self.amplitude,
+                    cos_part: 0.0,
+                    period: self.period,
+                },
+            )
+        }
+    }
     fn parameters(&self) -> serde_json::Value {
         serde_json::json!({
             "kind": self.kind(),
@@ -222,8 +255,11 @@ fn ramp_cubic(amplitude: f64, period: f64, ramp: f64) -> [f64; 3] {
     [x[0], x[1], x[2]]
 }
 
+mod closed_form;
 mod pulse;
 mod recorded;
+
+pub use closed_form::{ClosedForm, Shape, MAX_DEGREE};
 
 pub use pulse::{PulseShape, Ricker, SinePulse};
 pub use recorded::RecordedMotion;

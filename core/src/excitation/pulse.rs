@@ -4,7 +4,7 @@ use std::f64::consts::PI;
 
 use serde::Serialize;
 
-use super::FloorMotion;
+use super::{ClosedForm, FloorMotion, Shape, MAX_DEGREE};
 
 /// Shape of a [`SinePulse`] over its cycles.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -91,6 +91,24 @@ impl FloorMotion for SinePulse {
     fn kind(&self) -> &'static str {
         "sine-pulse"
     }
+    fn closed_form(&self, t: f64) -> ClosedForm {
+        if t < self.end() {
+            let (sin_part, cos_part) = match self.shape {
+                PulseShape::Antisymmetric => (self.amplitude, 0.0),
+                PulseShape::Symmetric => (0.0, self.amplitude),
+            };
+            ClosedForm::exact(
+                self.end(),
+                Shape::Sinusoid {
+                    sin_part,
+                    cos_part,
+                    period: self.period,
+                },
+            )
+        } else {
+            ClosedForm::exact(f64::INFINITY, Shape::Rest)
+        }
+    }
     fn parameters(&self) -> serde_json::Value {
         serde_json::json!({
             "kind": self.kind(),
@@ -134,6 +152,9 @@ impl FloorMotion for Ricker {
     fn kind(&self) -> &'static str {
         "ricker"
     }
+    fn closed_form(&self, t: f64) -> ClosedForm {
+        self.taylor_piece(t)
+    }
     fn parameters(&self) -> serde_json::Value {
         serde_json::json!({
             "kind": self.kind(),
@@ -141,5 +162,96 @@ impl FloorMotion for Ricker {
             "period": self.period,
             "center": self.center,
         })
+    }
+}
+
+/// Beyond |x| = RICKER_TAIL (x = pi (t - tc) / Tp) the wavelet is taken as rest: there
+/// |a| <= |A| (2 x^2 - 1) exp(-x^2) <= 5.1e-20 |A|, which is the stated error bound.
+const RICKER_TAIL: f64 = 7.0;
+/// Width, in x, of one Taylor piece of the wavelet; the series of degree [`MAX_DEGREE`] about the
+/// middle of the piece then has a remainder below 1.1e-20 |A| (see [`Ricker::taylor_piece`]).
+const RICKER_PIECE: f64 = 0.3;
+/// Cramer's bound: |H_n(x)| exp(-x^2/2) <= K sqrt(2^n n!) for the Hermite polynomials H_n.
+const CRAMER: f64 = 1.086_435;
+
+impl Ricker {
+    /// The time at which x = pi (t - tc) / Tp takes the value `x`, s.
+    fn time_at(&self, x: f64) -> f64 {
+        self.center + x * self.period / PI
+    }
+
+    /// The wavelet on the piece holding `t`: rest in the tails, and in between the Taylor series
+    /// of degree [`MAX_DEGREE`] about the middle of a piece [`RICKER_PIECE`] wide in x.
+    ///
+    /// With g(x) = (1 - 2 x^2) exp(-x^2) = -(1/2) d^2/dx^2 exp(-x^2) and
+    /// d^n/dx^n exp(-x^2) = (-1)^n H_n(x) exp(-x^2), the Taylor coefficients about x0 are
+    /// g^(m)(x0)/m! = -(1/2) (-1)^m (m+1)(m+2) h_(m+2)(x0) exp(-x0^2), h_n = H_n/n!, from
+    /// h_(n+1) = (2 x h_n - 2 h_(n-1))/(n+1). Cramer's inequality bounds every derivative,
+    /// |g^(m)| <= K sqrt(2^(m+2) (m+2)!)/2, so the remainder on |x - x0| <= r is at most
+    /// |A| K sqrt(2^(n+3) (n+3)!) r^(n+1) / (2 (n+1)!) for degree n.
+    pub fn taylor_piece(&self, t: f64) -> ClosedForm {
+        let x = PI * (t - self.center) / self.period;
+        let tail_bound = self.amplitude.abs()
+            * (2.0 * RICKER_TAIL * RICKER_TAIL - 1.0)
+            * (-RICKER_TAIL * RICKER_TAIL).exp();
+        if x < -RICKER_TAIL {
+            return ClosedForm {
+                until: self.time_at(-RICKER_TAIL),
+                shape: Shape::Rest,
+                error_bound: tail_bound,
+            };
+        }
+        if x >= RICKER_TAIL {
+            return ClosedForm {
+                until: f64::INFINITY,
+                shape: Shape::Rest,
+                error_bound: tail_bound,
+            };
+        }
+        let pieces = (2.0 * RICKER_TAIL / RICKER_PIECE).round() as usize;
+        let index = (((x + RICKER_TAIL) / RICKER_PIECE).floor() as usize).min(pieces - 1);
+        let start = -RICKER_TAIL + index as f64 * RICKER_PIECE;
+        let mut until = self.time_at(start + RICKER_PIECE);
+        // The piece must hold t: rounding of the piece's end can put it at or before t.
+        if until <= t {
+            until = self.time_at(start + 2.0 * RICKER_PIECE);
+        }
+        let x0 = start + 0.5 * RICKER_PIECE;
+        let origin = self.time_at(x0);
+        // h_n = H_n(x0)/n! up to n = MAX_DEGREE + 2.
+        let mut h = [0.0; MAX_DEGREE + 3];
+        h[0] = 1.0;
+        h[1] = 2.0 * x0;
+        for n in 1..MAX_DEGREE + 2 {
+            h[n + 1] = (2.0 * x0 * h[n] - 2.0 * h[n - 1]) / (n + 1) as f64;
+        }
+        let gauss = (-x0 * x0).exp();
+        let scale = PI / self.period;
+        let mut coefficients = [0.0; MAX_DEGREE + 1];
+        let mut power = self.amplitude;
+        for (m, c) in coefficients.iter_mut().enumerate() {
+            let sign = if m % 2 == 0 { -0.5 } else { 0.5 };
+            *c = power * sign * ((m + 1) * (m + 2)) as f64 * h[m + 2] * gauss;
+            power *= scale;
+        }
+        // The remainder bound of the series on the piece (r = RICKER_PIECE / 2, and a little
+        // more where rounding put t just outside it).
+        let r = 0.5 * RICKER_PIECE * (1.0 + 1e-9);
+        let n = MAX_DEGREE as i32;
+        let factorial = |k: i32| (1..=k).map(f64::from).product::<f64>();
+        let remainder = self.amplitude.abs()
+            * CRAMER
+            * (2f64.powi(n + 3) * factorial(n + 3)).sqrt()
+            * r.powi(n + 1)
+            / (2.0 * factorial(n + 1));
+        ClosedForm {
+            until,
+            shape: Shape::Polynomial {
+                origin,
+                coefficients,
+                degree: MAX_DEGREE,
+            },
+            error_bound: remainder,
+        }
     }
 }

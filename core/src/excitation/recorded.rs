@@ -2,7 +2,7 @@
 
 use serde::Serialize;
 
-use super::FloorMotion;
+use super::{ClosedForm, FloorMotion, Shape};
 
 /// Floor acceleration given by samples a_k at t_k = k dt (k = 0..n-1, already in m/s^2 and
 /// trimmed), linear between samples and zero after the last one: after the record the floor is
@@ -82,6 +82,27 @@ impl FloorMotion for RecordedMotion {
     }
     fn kind(&self) -> &'static str {
         "record"
+    }
+    fn closed_form(&self, t: f64) -> ClosedForm {
+        let n = self.values.len();
+        if n < 2 || t >= self.end() {
+            return ClosedForm::exact(f64::INFINITY, Shape::Rest);
+        }
+        // The sample interval [t_k, t_(k+1)) that holds t, found from t/dt and corrected for
+        // rounding against the sample times themselves.
+        let mut k = ((t / self.dt).floor().max(0.0) as usize).min(n - 2);
+        while k > 0 && self.sample_times[k] > t {
+            k -= 1;
+        }
+        while k + 2 < n && self.sample_times[k + 1] <= t {
+            k += 1;
+        }
+        let slope = (self.values[k + 1] - self.values[k]) / self.dt;
+        ClosedForm::polynomial(
+            self.sample_times[k],
+            &[self.values[k], slope],
+            self.sample_times[k + 1],
+        )
     }
     fn parameters(&self) -> serde_json::Value {
         let (peak, t_peak) = self.peak();

@@ -562,7 +562,7 @@ impl Model {
         check_rtol("rtol", rtol)?;
         let method = match self.solver {
             SolverSettings::Adaptive(a) => a.method,
-            SolverSettings::Newmark(_) => AdaptiveMethod::Bdf,
+            SolverSettings::Newmark(_) | SolverSettings::Exact(_) => AdaptiveMethod::Bdf,
         };
         Ok(AdaptiveSettings {
             method,

@@ -4,6 +4,7 @@ use super::{SolverSection, DEFAULT_ATOL, DEFAULT_OUTPUT_DT, DEFAULT_RTOL};
 use crate::body::positive;
 use crate::error::{Error, Result};
 use crate::solver::adaptive::{AdaptiveMethod, AdaptiveSettings};
+use crate::solver::exact::ExactSettings;
 use crate::solver::newmark::{critical_omega_dt, NewmarkSettings, NewmarkVariant};
 use crate::solver::SolverSettings;
 
@@ -63,6 +64,9 @@ enum Family {
     Newmark,
 }
 
+/// The exact method's model-file name.
+const EXACT: &str = crate::solver::exact::NAME;
+
 pub(super) fn solver_from_section(
     s: &SolverSection,
     duration: f64,
@@ -71,12 +75,13 @@ pub(super) fn solver_from_section(
 ) -> Result<SolverSettings> {
     let name = s.method.as_deref().unwrap_or("bdf");
     let is_newmark = name == "newmark";
+    let is_exact = name == EXACT;
     let adaptive = AdaptiveMethod::from_name(name);
-    if adaptive.is_none() && !is_newmark {
+    if adaptive.is_none() && !is_newmark && !is_exact {
         return Err(Error::invalid(
             "solver.method",
             format!("\"{name}\""),
-            "must be \"bdf\", \"esdirk34\", \"tr-bdf2\", \"tsit45\" or \"newmark\"",
+            "must be \"exact\", \"bdf\", \"esdirk34\", \"tr-bdf2\", \"tsit45\" or \"newmark\"",
         ));
     }
     // Keys of the other family of methods are mistakes, not silently ignored settings. The
@@ -103,7 +108,8 @@ pub(super) fn solver_from_section(
     for (key, value, family) in &family_keys {
         let belongs_to_newmark = *family == Family::Newmark;
         if let Some(v) = value {
-            if belongs_to_newmark != is_newmark {
+            // The exact method has no tolerance and no step: every such key is a mistake.
+            if is_exact || belongs_to_newmark != is_newmark {
                 return Err(Error::invalid(
                     &format!("solver.{key}"),
                     v,
@@ -120,6 +126,9 @@ pub(super) fn solver_from_section(
             output_dt,
             &format!("gives more than {MAX_SAMPLES:e} history rows over {duration} s; choose a larger spacing"),
         ));
+    }
+    if is_exact {
+        return Ok(SolverSettings::Exact(ExactSettings { output_dt }));
     }
     match adaptive {
         Some(method) => {

@@ -4,6 +4,7 @@
 pub mod adaptive;
 pub mod budget;
 mod error;
+pub mod exact;
 pub mod newmark;
 
 use serde::Serialize;
@@ -100,6 +101,8 @@ pub enum SolverSettings {
     Adaptive(adaptive::AdaptiveSettings),
     /// Newmark's method with a fixed step.
     Newmark(newmark::NewmarkSettings),
+    /// The closed-form solution within each mode.
+    Exact(exact::ExactSettings),
 }
 
 impl SolverSettings {
@@ -108,6 +111,7 @@ impl SolverSettings {
         match self {
             SolverSettings::Adaptive(a) => a.method.name().to_string(),
             SolverSettings::Newmark(n) => n.label(),
+            SolverSettings::Exact(_) => exact::NAME.to_string(),
         }
     }
 
@@ -116,6 +120,7 @@ impl SolverSettings {
         match self {
             SolverSettings::Adaptive(a) => a.output_dt,
             SolverSettings::Newmark(n) => n.output_dt,
+            SolverSettings::Exact(e) => e.output_dt,
         }
     }
 }
@@ -132,7 +137,17 @@ impl Serialize for SolverSettings {
             newmark_variant: &'static str,
             output_dt: f64,
         }
+        #[derive(Serialize)]
+        struct ExactKeys {
+            method: &'static str,
+            output_dt: f64,
+        }
         match self {
+            SolverSettings::Exact(e) => ExactKeys {
+                method: exact::NAME,
+                output_dt: e.output_dt,
+            }
+            .serialize(serializer),
             SolverSettings::Adaptive(a) => a.serialize(serializer),
             SolverSettings::Newmark(n) => NewmarkKeys {
                 method: "newmark",

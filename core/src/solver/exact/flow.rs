@@ -1,0 +1,588 @@
+//! The closed-form solution of eq. 16 within one mode over one stretch of the floor motion.
+//!
+//! Within a mode eq. 16 reads x'' + c x' + k x = f(t), x = q - q_eq, f = -beta a(t), with
+//! constant k and c ([`crate::automaton::LinearForm`]). Two closed forms serve every motion:
+//!
+//! * **Oscillator form** (floor at rest, or a sinusoid): x = x_p + x_h, x_p the steady state of
+//!   the sinusoid, x_h = e^(sigma tau) [C h0 + S (g0 - sigma h0)] the free motion from the
+//!   anchor, sigma = -c/2, omega^2 = k - sigma^2, C = cos(omega tau), S = sin(omega tau)/omega
+//!   (cosh and sinh of mu tau, mu^2 = -omega^2, when omega^2 < 0; 1 and tau when it is 0). This
+//!   is e^(A tau) written out, A the mode's 2x2 matrix: (A - sigma I)^2 = -omega^2 I. It holds
+//!   for any length of time, so free motion and a sine need no steps at all.
+//! * **Series form** (a polynomial floor: a record's linear pieces, the ramp's cubic, the Ricker
+//!   wavelet's Taylor pieces, and a sine at resonance): the Taylor series of x about the anchor,
+//!   whose coefficients follow from the equation, a_(n+2) = (f_n - k a_n - c (n+1) a_(n+1)) /
+//!   ((n+1)(n+2)). It is summed with compensated Horner, and a flow of this form is kept short
+//!   enough (|k|^(1/2) tau, |c| tau <= 1/2) that [`SERIES_TERMS`] terms reach rounding.
+
+use std::f64::consts::PI;
+
+use crate::automaton::LinearForm;
+use crate::excitation::{ClosedForm, Shape, MAX_DEGREE};
+
+/// Terms of the series form: with rho = max(|k|^(1/2), |c|) tau <= 1/2 the first term left
+/// out is below 0.5^30 / 15! of the state, far below rounding.
+const SERIES_TERMS: usize = 30;
+/// Largest rho = max(|k|^(1/2), |c|, forcing rate) tau of a flow of the series form.
+const SERIES_REACH: f64 = 0.5;
+/// Largest growth exponent (|sigma| + mu) tau of a flow of the oscillator form before it is
+/// re-anchored: e^30 keeps every term far from overflow.
+const OSCILLATOR_REACH: f64 = 30.0;
+/// A sinusoid whose steady state amplifies it by more than this (|k - Omega^2 + i c Omega| below
+/// this share of max(|k|, Omega^2)) is integrated in series form instead: at resonance the steady
+/// state and the free motion cancel.
+const RESONANCE_SHARE: f64 = 1e-3;
+
+/// The state and its derivatives at one time: x (from q_eq), x', x'', x'''.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Point {
+    pub t: f64,
+    /// q itself, m.
+    pub q: f64,
+    pub v: f64,
+    pub acc: f64,
+    pub jerk: f64,
+}
+
+/// A state kept to twice the working precision: hi + lo.
+#[derive(Debug, Clone, Copy, Default)]
+pub(super) struct Compensated {
+    pub hi: f64,
+    pub lo: f64,
+}
+
+impl Compensated {
+    pub fn new(value: f64) -> Self {
+        Compensated { hi: value, lo: 0.0 }
+    }
+    /// hi + lo, rounded.
+    pub fn value(self) -> f64 {
+        self.hi + self.lo
+    }
+    fn sum(hi: f64, lo: f64) -> Self {
+        let (s, e) = two_sum(hi, lo);
+        Compensated { hi: s, lo: e }
+    }
+}
+
+/// a + b = s + e exactly (Knuth).
+fn two_sum(a: f64, b: f64) -> (f64, f64) {
+    let s = a + b;
+    let bb = s - a;
+    (s, (a - (s - bb)) + (b - bb))
+}
+
+/// a b = p + e exactly.
+fn two_product(a: f64, b: f64) -> (f64, f64) {
+    let p = a * b;
+    (p, a.mul_add(b, -p))
+}
+
+/// sum c_n u^n by compensated Horner (Graillat, Langlois and Louvet 2005): as if in twice the
+/// working precision.
+fn compensated_horner(coefficients: &[f64], u: f64) -> Compensated {
+    let mut iter = coefficients.iter().rev();
+    let mut s = *iter.next().unwrap_or(&0.0);
+    let mut correction = 0.0;
+    for &c in iter {
+        let (p, pe) = two_product(s, u);
+        let (sum, se) = two_sum(p, c);
+        s = sum;
+        correction = correction * u + (pe + se);
+    }
+    Compensated::sum(s, correction)
+}
+
+/// What drives a flow, and how it is summed.
+#[derive(Debug, Clone)]
+enum Form {
+    Oscillator {
+        sigma: f64,
+        /// omega^2 = k - sigma^2.
+        omega2: f64,
+        /// |omega^2|^(1/2).
+        omega: f64,
+        /// Free motion at the anchor: x_h and x_h'.
+        h0: f64,
+        g0: f64,
+        /// Steady state x_p = xs sin(phi) + xc cos(phi), phi = 2 pi t / period.
+        xs: f64,
+        xc: f64,
+        period: f64,
+        /// Forcing f = fs sin(phi) + fc cos(phi).
+        fs: f64,
+        fc: f64,
+    },
+    Series {
+        /// Taylor coefficients of x about the anchor from its hi part and the forcing.
+        hi: [f64; SERIES_TERMS],
+        /// Those of the free motion from the anchor's lo part.
+        lo: [f64; SERIES_TERMS],
+    },
+}
+
+/// The solution within one mode from an anchor state over `[anchor, until]`.
+#[derive(Debug, Clone)]
+pub(super) struct Flow {
+    pub anchor: f64,
+    pub until: f64,
+    k: f64,
+    c: f64,
+    q_eq: f64,
+    /// Bounds on |f| and |f'| over the flow, m/s^2 and m/s^3.
+    pub force_bound: f64,
+    pub force_rate_bound: f64,
+    /// Bound on |f - (the closed form's f)|, m/s^2 (a truncated series of the motion).
+    pub force_error: f64,
+    form: Form,
+}
+
+impl Flow {
+    /// The flow of `linear` from state (q, q') at `anchor`, under the floor's closed form
+    /// `floor`, ending at `end` at the latest (the end of the stretch or of the run).
+    pub fn new(
+        linear: &LinearForm,
+        floor: &ClosedForm,
+        anchor: f64,
+        q: Compensated,
+        v: Compensated,
+        end: f64,
+    ) -> Self {
+        let (k, c, beta) = (linear.stiffness, linear.damping, linear.participation);
+        let q_eq = linear.equilibrium;
+        // x = q - q_eq, kept compensated.
+        let (x_hi, x_e) = two_sum(q.hi, -q_eq);
+        let x = Compensated::sum(x_hi, x_e + q.lo);
+        let rate = k.abs().sqrt().max(c.abs());
+        let force_error = beta.abs() * floor.error_bound;
+        match floor.shape {
+            Shape::Rest => {
+                Self::oscillator(k, c, q_eq, anchor, x, v, end, 0.0, 0.0, 1.0, force_error)
+            }
+            Shape::Sinusoid {
+                sin_part,
+                cos_part,
+                period,
+            } => {
+                let big_omega = 2.0 * PI / period;
+                let detuning = (k - big_omega * big_omega).hypot(c * big_omega);
+                if detuning > RESONANCE_SHARE * k.abs().max(big_omega * big_omega) {
+                    Self::oscillator(
+                        k,
+                        c,
+                        q_eq,
+                        anchor,
+                        x,
+                        v,
+                        end,
+                        -beta * sin_part,
+                        -beta * cos_part,
+                        period,
+                        force_error,
+                    )
+                } else {
+                    // The sine's Taylor series about the anchor, as a polynomial floor.
+                    let phase = 2.0 * PI * anchor / period;
+                    let (s, co) = phase.sin_cos();
+                    let mut coefficients = [0.0; MAX_DEGREE + 1];
+                    let mut scale = 1.0;
+                    // d^n/dt^n of sin(phi) and cos(phi): rotate by a quarter turn per order.
+                    let (mut ds, mut dc) = (s, co);
+                    for (n, coefficient) in coefficients.iter_mut().enumerate() {
+                        *coefficient = (sin_part * ds + cos_part * dc) * scale;
+                        (ds, dc) = (dc, -ds);
+                        scale *= big_omega / (n + 1) as f64;
+                    }
+                    let reach = SERIES_REACH / rate.max(big_omega);
+                    // Remainder of the sine's series of degree MAX_DEGREE over the flow.
+                    let remainder = (sin_part.abs() + cos_part.abs())
+                        * (big_omega * reach).powi(MAX_DEGREE as i32 + 1)
+                        / (1..=MAX_DEGREE + 1).map(|i| i as f64).product::<f64>();
+                    Self::series(
+                        k,
+                        c,
+                        beta,
+                        q_eq,
+                        anchor,
+                        x,
+                        v,
+                        end.min(anchor + reach),
+                        anchor,
+                        &coefficients,
+                        MAX_DEGREE,
+                        force_error + beta.abs() * remainder,
+                    )
+                }
+            }
+            Shape::Polynomial {
+                origin,
+                coefficients,
+                degree,
+            } => {
+                let reach = SERIES_REACH / rate.max(1e-300);
+                Self::series(
+                    k,
+                    c,
+                    beta,
+                    q_eq,
+                    anchor,
+                    x,
+                    v,
+                    end.min(anchor + reach),
+                    origin,
+                    &coefficients,
+                    degree,
+                    force_error,
+                )
+            }
+        }
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn oscillator(
+        k: f64,
+        c: f64,
+        q_eq: f64,
+        anchor: f64,
+        x: Compensated,
+        v: Compensated,
+        end: f64,
+        fs: f64,
+        fc: f64,
+        period: f64,
+        force_error: f64,
+    ) -> Self {
+        let sigma = -0.5 * c;
+        let omega2 = k - sigma * sigma;
+        let omega = omega2.abs().sqrt();
+        let big_omega = 2.0 * PI / period;
+        // Steady state: (k - W^2) xs - c W xc = fs, (k - W^2) xc + c W xs = fc.
+        let (xs, xc) = if fs == 0.0 && fc == 0.0 {
+            (0.0, 0.0)
+        } else {
+            let d = k - big_omega * big_omega;
+            let e = c * big_omega;
+            let det = d * d + e * e;
+            ((d * fs + e * fc) / det, (d * fc - e * fs) / det)
+        };
+        let (s, co) = (2.0 * PI * anchor / period).sin_cos();
+        let xp = xs * s + xc * co;
+        let vp = big_omega * (xs * co - xc * s);
+        let h0 = (x.hi - xp) + x.lo;
+        let g0 = (v.hi - vp) + v.lo;
+        let growth = sigma.abs() + if omega2 < 0.0 { omega } else { 0.0 };
+        let until = if growth > 0.0 {
+            end.min(anchor + OSCILLATOR_REACH / growth)
+        } else {
+            end
+        };
+        let amplitude = fs.hypot(fc);
+        Flow {
+            anchor,
+            until,
+            k,
+            c,
+            q_eq,
+            force_bound: amplitude + force_error,
+            force_rate_bound: amplitude * big_omega,
+            force_error,
+            form: Form::Oscillator {
+                sigma,
+                omega2,
+                omega,
+                h0,
+                g0,
+                xs,
+                xc,
+                period,
+                fs,
+                fc,
+            },
+        }
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn series(
+        k: f64,
+        c: f64,
+        beta: f64,
+        q_eq: f64,
+        anchor: f64,
+        x: Compensated,
+        v: Compensated,
+        until: f64,
+        origin: f64,
+        floor: &[f64; MAX_DEGREE + 1],
+        degree: usize,
+        force_error: f64,
+    ) -> Self {
+        // The forcing f = -beta a as a polynomial in u = t - anchor (Taylor shift from origin).
+        let shift = anchor - origin;
+        let mut f = [0.0; MAX_DEGREE + 1];
+        f[..=degree].copy_from_slice(&floor[..=degree]);
+        for i in 0..degree {
+            for j in (i..degree).rev() {
+                f[j] += shift * f[j + 1];
+            }
+        }
+        for value in f.iter_mut() {
+            *value *= -beta;
+        }
+        let recurrence = |a0: f64, a1: f64, forced: bool| {
+            let mut a = [0.0; SERIES_TERMS];
+            a[0] = a0;
+            a[1] = a1;
+            for n in 0..SERIES_TERMS - 2 {
+                let forcing = if forced && n <= degree { f[n] } else { 0.0 };
+                a[n + 2] = (forcing - k * a[n] - c * (n + 1) as f64 * a[n + 1])
+                    / ((n + 1) * (n + 2)) as f64;
+            }
+            a
+        };
+        let span = (until - anchor).max(0.0);
+        let force_bound = f[..=degree]
+            .iter()
+            .rev()
+            .fold(0.0, |acc: f64, value| acc * span + value.abs());
+        let force_rate_bound = (1..=degree)
+            .rev()
+            .fold(0.0, |acc: f64, j| acc * span + j as f64 * f[j].abs());
+        Flow {
+            anchor,
+            until,
+            k,
+            c,
+            q_eq,
+            force_bound: force_bound + force_error,
+            force_rate_bound,
+            force_error,
+            form: Form::Series {
+                hi: recurrence(x.hi, v.hi, true),
+                lo: recurrence(x.lo, v.lo, false),
+            },
+        }
+    }
+
+    /// The mode's k.
+    pub fn stiffness(&self) -> f64 {
+        self.k
+    }
+
+    /// The state (q, q') at `t`, compensated: the next flow's anchor.
+    pub fn state(&self, t: f64) -> (Compensated, Compensated) {
+        let u = t - self.anchor;
+        match &self.form {
+            Form::Series { hi, lo } => {
+                let mut dhi = [0.0; SERIES_TERMS - 1];
+                let mut dlo = [0.0; SERIES_TERMS - 1];
+                for n in 1..SERIES_TERMS {
+                    dhi[n - 1] = n as f64 * hi[n];
+                    dlo[n - 1] = n as f64 * lo[n];
+                }
+                let x = compensated_horner(hi, u);
+                let xl = horner(lo, u);
+                let v = compensated_horner(&dhi, u);
+                let vl = horner(&dlo, u);
+                let (q_hi, q_e) = two_sum(x.hi, self.q_eq);
+                (
+                    Compensated::sum(q_hi, q_e + x.lo + xl),
+                    Compensated::sum(v.hi, v.lo + vl),
+                )
+            }
+            Form::Oscillator { .. } => {
+                let p = self.point(t);
+                (Compensated::new(p.q), Compensated::new(p.v))
+            }
+        }
+    }
+
+    /// q, q', q'' and q''' at `t`.
+    pub fn point(&self, t: f64) -> Point {
+        let u = t - self.anchor;
+        let (k, c) = (self.k, self.c);
+        match &self.form {
+            Form::Oscillator {
+                sigma,
+                omega2,
+                omega,
+                h0,
+                g0,
+                xs,
+                xc,
+                period,
+                fs,
+                fc,
+            } => {
+                let (cc, ss) = trig(*omega2, *omega, u);
+                let e = (sigma * u).exp();
+                let xh = e * (cc * h0 + ss * (g0 - sigma * h0));
+                let vh = e * (cc * g0 + ss * (-k * h0 + sigma * g0));
+                let big_omega = 2.0 * PI / period;
+                let (s, co) = if *xs == 0.0 && *xc == 0.0 && *fs == 0.0 && *fc == 0.0 {
+                    (0.0, 0.0)
+                } else {
+                    (2.0 * PI * t / period).sin_cos()
+                };
+                let x = xh + (xs * s + xc * co);
+                let v = vh + big_omega * (xs * co - xc * s);
+                let f = fs * s + fc * co;
+                let df = big_omega * (fs * co - fc * s);
+                let acc = f - k * x - c * v;
+                Point {
+                    t,
+                    q: x + self.q_eq,
+                    v,
+                    acc,
+                    jerk: df - k * v - c * acc,
+                }
+            }
+            Form::Series { hi, lo } => {
+                // x and its first three derivatives by Horner, hi and lo together.
+                let mut d = [0.0; 4];
+                for n in (0..SERIES_TERMS).rev() {
+                    let a = hi[n] + lo[n];
+                    d[3] = d[3] * u + d[2] * 3.0;
+                    d[2] = d[2] * u + d[1] * 2.0;
+                    d[1] = d[1] * u + d[0];
+                    d[0] = d[0] * u + a;
+                }
+                let x = compensated_horner(hi, u).value() + horner(lo, u);
+                Point {
+                    t,
+                    q: x + self.q_eq,
+                    v: d[1],
+                    acc: d[2],
+                    jerk: d[3],
+                }
+            }
+        }
+    }
+
+    /// The fastest rate of the flow, 1/s: of its free motion and of its forcing.
+    pub fn rate(&self) -> f64 {
+        let free = self.k.abs().sqrt().max(self.c.abs());
+        match &self.form {
+            Form::Oscillator { period, .. } => free.max(2.0 * PI / period),
+            Form::Series { .. } => free,
+        }
+    }
+
+    /// The mode's q_eq.
+    pub fn equilibrium(&self) -> f64 {
+        self.q_eq
+    }
+
+    /// Rate at which the free motion can grow, 1/s, in the energy norm sqrt(|k| x^2 + x'^2):
+    /// the largest eigenvalue of the symmetric part of the mode's matrix in that norm.
+    pub fn growth_rate(&self) -> f64 {
+        let (k, c) = (self.k, self.c);
+        if k > 0.0 {
+            (-c).max(0.0)
+        } else {
+            0.5 * (-c + (c * c + 4.0 * k.abs()).sqrt())
+        }
+    }
+
+    /// Bounds on |x''| and |x'''| over `[t0, t0 + h]` from the state at t0: the free motion
+    /// grows at most as e^((|k|^(1/2) + |c|) h) in the energy norm, and the forcing adds at most
+    /// h max|f| to it.
+    pub fn derivative_bounds(&self, p: &Point, h: f64) -> (f64, f64) {
+        let (k, c) = (self.k, self.c);
+        let w = k.abs().sqrt();
+        let x0 = p.q - self.q_eq;
+        let z0 = (w * x0).hypot(p.v);
+        let z = ((w + c.abs()) * h).exp() * (z0 + h * self.force_bound);
+        let m2 = (w + c.abs()) * z + self.force_bound;
+        let m3 = w * w * z + c.abs() * m2 + self.force_rate_bound;
+        (m2 * (1.0 + 1e-9), m3 * (1.0 + 1e-9))
+    }
+
+    /// A bound on |x - x_p| (the free motion) over the rest of an oscillator flow from `t0`
+    /// on, and |x_p|; None for other flows. Before uplift with c >= 0 the free motion's
+    /// amplitude never grows: |x_h| <= e^(sigma u) (h0^2 + ((g0 - sigma h0)/omega)^2)^(1/2).
+    pub fn envelope(&self, t0: f64) -> Option<f64> {
+        match &self.form {
+            Form::Oscillator {
+                sigma,
+                omega2,
+                omega,
+                h0,
+                g0,
+                xs,
+                xc,
+                ..
+            } if *omega2 > 0.0 && *sigma <= 0.0 => {
+                let u = (t0 - self.anchor).max(0.0);
+                let r = h0.hypot((g0 - sigma * h0) / omega);
+                Some((sigma * u).exp() * r * (1.0 + 1e-12) + xs.hypot(*xc))
+            }
+            _ => None,
+        }
+    }
+
+    /// An estimate of the rounding error of the state at `t` (in |x| + |x'| / |k|^(1/2)):
+    /// unit roundoff times the size of the terms summed and of the phases formed.
+    pub fn rounding(&self, t: f64) -> f64 {
+        let u = t - self.anchor;
+        let w = self.k.abs().sqrt().max(1e-300);
+        let size = match &self.form {
+            Form::Oscillator {
+                sigma,
+                omega2,
+                omega,
+                h0,
+                g0,
+                xs,
+                xc,
+                period,
+                ..
+            } => {
+                let (cc, ss) = trig(*omega2, *omega, u);
+                let e = (sigma * u).exp();
+                let free = e
+                    * (cc.abs() * h0.abs() + ss.abs() * (g0.abs() + sigma.abs() * h0.abs()))
+                    + e * (cc.abs() * g0.abs()
+                        + ss.abs() * (self.k.abs() * h0.abs() + sigma.abs() * g0.abs()))
+                        / w;
+                let steady = xs.hypot(*xc) * (1.0 + 2.0 * PI / period / w);
+                // Phases: omega u and 2 pi t / Tp carry relative errors of a few ulps.
+                free * (1.0 + (omega + sigma.abs()) * u.abs())
+                    + steady * (1.0 + 2.0 * PI * t.abs() / period)
+            }
+            Form::Series { hi, .. } => {
+                let x = horner_abs(hi, u.abs());
+                x * (1.0 + 1.0 / w)
+            }
+        };
+        // The response to the forcing's stated error (a truncated series of the motion).
+        let forcing = self.force_error * u.abs() * (u.abs() + 1.0 / w);
+        ROUNDING_ULPS * f64::EPSILON * size + forcing
+    }
+}
+
+/// Multiple of the unit roundoff per summed term that the rounding estimate books.
+const ROUNDING_ULPS: f64 = 8.0;
+
+/// C and S of the oscillator form at u.
+fn trig(omega2: f64, omega: f64, u: f64) -> (f64, f64) {
+    if omega2 > 0.0 {
+        let (s, c) = (omega * u).sin_cos();
+        (c, if omega > 0.0 { s / omega } else { u })
+    } else if omega2 < 0.0 {
+        let y = omega * u;
+        (y.cosh(), y.sinh() / omega)
+    } else {
+        (1.0, u)
+    }
+}
+
+fn horner(coefficients: &[f64], u: f64) -> f64 {
+    coefficients.iter().rev().fold(0.0, |acc, &c| acc * u + c)
+}
+
+fn horner_abs(coefficients: &[f64], u: f64) -> f64 {
+    coefficients
+        .iter()
+        .rev()
+        .fold(0.0, |acc, &c| acc * u + c.abs())
+}

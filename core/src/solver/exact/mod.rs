@@ -1,0 +1,442 @@
+//! The exact solution: eq. 16 solved in closed form within each mode, events found as roots of
+//! closed-form functions that cannot be missed, and the state carried across re-anchors in
+//! twice the working precision.
+//!
+//! Within a mode eq. 16 is linear with constant coefficients ([`Automaton::linear_form`]), so
+//! the state moves by the mode's 2x2 matrix exponential plus the response to the floor, which is
+//! closed form for every kind of motion the model has ([`crate::excitation::ClosedForm`]):
+//! nothing at all for free motion, a steady state for a sinusoid, and for polynomial pieces (a
+//! record's linear pieces between samples, the ramp's cubic, the Ricker wavelet's Taylor pieces
+//! with their stated remainder) the Taylor series of the solution, summed to rounding
+//! ([`flow`]). The automaton is the only model: the solver reads each mode's coefficients, its
+//! guards and its resets from it.
+//!
+//! Events ([`scan`]): the first guard crossing of each flow is bracketed between consecutive
+//! extrema of q, located with certified bounds on q'' and q''', and refined by Newton steps to
+//! a few ulps of t; q is then put on the guard and the reset applied to q'.
+//!
+//! Precision: a flow is summed from its anchor, so free motion and a sine need no steps; the
+//! state is carried from flow to flow (a record's samples) compensated, as hi + lo. The solver
+//! books a first-order estimate of its own error: the rounding of every term summed and of every
+//! phase formed, carried through the flows in the energy norm (it cannot grow faster than the
+//! mode's largest rate) and through the resets, and turned into an error of each event time
+//! (the error of q over |q'|) and of each peak (of q, and of its time, the error of q' over
+//! |q''|). The estimate also covers a relative error of a few ulps in the model's constants.
+//!
+//! Energy books: the input and damping work are integrated along each flow by 8-point
+//! Gauss-Legendre quadrature on pieces short against the flow's rates, which is exact to
+//! rounding for these smooth integrands; the energy residual therefore checks the quadrature
+//! and the resets, not the solution.
+
+mod flow;
+mod scan;
+
+use std::time::Instant;
+
+use serde::Serialize;
+
+use super::budget::RunBudget;
+use crate::automaton::{Automaton, Guard, Mode};
+use crate::excitation::FloorMotion;
+use crate::solution::{Recorder, RoundingEstimate, Solution, SolverStats};
+use crate::solver::{History, InitialState, OutputGrid, SolverError};
+
+use flow::{Compensated, Flow, Point};
+use scan::{first_crossing, ScanError, Watch};
+
+/// The method's name in statistics, tables and model files.
+pub const NAME: &str = "exact";
+
+/// Settings of the exact solver: it has no tolerance, only the spacing of its history.
+#[derive(Debug, Clone, Copy, Serialize)]
+pub struct ExactSettings {
+    /// Spacing of the sampled history, s.
+    pub output_dt: f64,
+}
+
+/// Gauss-Legendre nodes and weights on [-1, 1], 8 points.
+const GAUSS_NODES: [f64; 4] = [
+    0.183_434_642_495_649_8,
+    0.525_532_409_916_329,
+    0.796_666_477_413_626_7,
+    0.960_289_856_497_536_3,
+];
+const GAUSS_WEIGHTS: [f64; 4] = [
+    0.362_683_783_378_362,
+    0.313_706_645_877_887_3,
+    0.222_381_034_453_374_5,
+    0.101_228_536_290_376_3,
+];
+/// Longest quadrature piece, in units of 1 / (the flow's fastest rate).
+const QUADRATURE_REACH: f64 = 0.5;
+/// Safety factor on the first-order error estimate.
+const ESTIMATE_SAFETY: f64 = 4.0;
+
+/// Solves the automaton exactly from `initial` over [0, duration].
+pub fn solve(
+    automaton: &Automaton,
+    floor: &dyn FloorMotion,
+    initial: InitialState,
+    duration: f64,
+    settings: &ExactSettings,
+    history: History,
+) -> Result<Solution, SolverError> {
+    let started = Instant::now();
+    let mut run = Run {
+        automaton,
+        floor,
+        mode: automaton.initial_mode(initial.q),
+        t: 0.0,
+        q: Compensated::new(initial.q),
+        v: Compensated::new(initial.qdot),
+        error_q: 0.0,
+        error_v: 0.0,
+        recorder: Recorder::new(
+            automaton,
+            0.0,
+            initial.q,
+            initial.qdot,
+            automaton.initial_mode(initial.q),
+            history,
+        ),
+        grid: OutputGrid::for_history(history, duration, settings.output_dt),
+        work: Work::default(),
+        max_q: initial.q,
+        min_q: initial.q,
+        episode_peak: initial.q.abs(),
+        event_errors: Vec::new(),
+        peak_errors: PeakErrors::default(),
+        flows: 0,
+        evaluations: 0,
+        unresolved: 0,
+    };
+    let final_time = run.go(duration)?;
+    let stats = SolverStats {
+        method: NAME.to_string(),
+        steps: run.flows,
+        error_test_failures: 0,
+        nonlinear_iterations: 0,
+        jacobian_evaluations: 0,
+        crossing_retries: run.unresolved,
+        rhs_evaluations: run.evaluations,
+        wall_time_s: started.elapsed().as_secs_f64(),
+    };
+    let mode = run.mode;
+    let estimate = RoundingEstimate {
+        event_time: run.event_errors.clone(),
+        max_q: run.peak_errors.max_q,
+        t_max_q: run.peak_errors.t_max_q,
+        min_q: run.peak_errors.min_q,
+        t_min_q: run.peak_errors.t_min_q,
+    };
+    let mut solution = run.recorder.finish(final_time, mode, stats);
+    solution.rounding = Some(estimate);
+    Ok(solution)
+}
+
+/// The integrals of the input and damping power up to `t`, J.
+#[derive(Debug, Default, Clone, Copy)]
+struct Work {
+    t: f64,
+    input: f64,
+    damping: f64,
+}
+
+/// Error estimates of the recorded peaks: of the value (m) and of its time (s).
+#[derive(Debug, Default, Clone, Copy)]
+struct PeakErrors {
+    max_q: f64,
+    t_max_q: f64,
+    min_q: f64,
+    t_min_q: f64,
+}
+
+struct Run<'a> {
+    automaton: &'a Automaton,
+    floor: &'a dyn FloorMotion,
+    mode: Mode,
+    t: f64,
+    q: Compensated,
+    v: Compensated,
+    /// First-order bounds on the error of q and q' at `t`.
+    error_q: f64,
+    error_v: f64,
+    recorder: Recorder<'a>,
+    grid: OutputGrid,
+    work: Work,
+    max_q: f64,
+    min_q: f64,
+    /// |q| at the peak of the rocking episode under way.
+    episode_peak: f64,
+    event_errors: Vec<f64>,
+    peak_errors: PeakErrors,
+    flows: usize,
+    evaluations: usize,
+    unresolved: usize,
+}
+
+impl<'a> Run<'a> {
+    fn failed(&self, t: f64, message: impl Into<String>) -> SolverError {
+        SolverError::Failed {
+            method: NAME.to_string(),
+            t,
+            message: message.into(),
+        }
+    }
+
+    /// Runs to `end` or to overturning; the final time.
+    fn go(&mut self, end: f64) -> Result<f64, SolverError> {
+        let mut budget = RunBudget::new();
+        let automaton = self.automaton;
+        let mut first = true;
+        while self.mode != Mode::Overturned {
+            let Some(linear) = automaton.linear_form(self.mode) else {
+                break;
+            };
+            let stretch = self.floor.closed_form(self.t);
+            if !(stretch.until > self.t) {
+                return Err(self.failed(
+                    self.t,
+                    format!(
+                        "the floor motion's closed form at t = {} s ends at {} s, not after it",
+                        self.t, stretch.until
+                    ),
+                ));
+            }
+            let flow = Flow::new(
+                &linear,
+                &stretch,
+                self.t,
+                self.q,
+                self.v,
+                stretch.until.min(end),
+            );
+            self.flows += 1;
+            budget
+                .step(self.t, self.flows)
+                .map_err(|m| self.failed(self.t, m))?;
+            let guards: Vec<Guard> = automaton
+                .guards(self.mode)
+                .iter()
+                .map(|&slot| automaton.guard(self.mode, slot))
+                .collect();
+            let mut watch = self.watch(&guards);
+            let start = flow.point(self.t);
+            if first {
+                // The run's first state is a sample.
+                self.emit(&flow, self.t, true);
+                first = false;
+            }
+            let finish = scan::evaluate(&flow, flow.until, &mut watch);
+            let found =
+                finish.and_then(|stop| first_crossing(&flow, start, stop, &guards, &mut watch));
+            self.evaluations += watch.evaluations;
+            self.unresolved += watch.unresolved;
+            let found = match found {
+                Ok(found) => found,
+                Err(ScanError::NotFinite(t)) => {
+                    return Err(self.failed(
+                        t,
+                        format!(
+                            "the closed-form state is not finite (floor acceleration {} m/s^2)",
+                            self.floor.acceleration(t)
+                        ),
+                    ))
+                }
+                Err(ScanError::TooMuchWork(t)) => {
+                    return Err(self.failed(
+                        t,
+                        format!(
+                            "more than {} evaluations of one closed form: the run would not end \
+                             in a useful time",
+                            scan::MAX_EVALUATIONS
+                        ),
+                    ))
+                }
+            };
+            let stop = found.map_or(flow.until, |(p, _)| p.t);
+            for extremum in &watch.extrema {
+                self.peak(&flow, extremum);
+            }
+            self.emit(&flow, stop, true);
+            match found {
+                Some((p, guard)) => {
+                    self.event(&flow, p, guard);
+                    budget.event(p.t).map_err(|m| self.failed(p.t, m))?;
+                }
+                None => {
+                    self.advance_work(&flow, flow.until);
+                    let (q, v) = flow.state(flow.until);
+                    let (eq, ev) = self.propagated_error(&flow, flow.until);
+                    self.error_q = eq;
+                    self.error_v = ev;
+                    self.q = q;
+                    self.v = v;
+                    self.t = flow.until;
+                    self.peak(&flow, &flow.point(flow.until));
+                    if self.t >= end {
+                        break;
+                    }
+                }
+            }
+        }
+        Ok(self.t)
+    }
+
+    /// The levels that matter in this mode's flows.
+    fn watch(&self, guards: &[Guard]) -> Watch {
+        let guard_up = guards
+            .iter()
+            .filter(|g| g.direction > 0.0)
+            .map(|g| g.level)
+            .fold(f64::INFINITY, f64::min);
+        let guard_down = guards
+            .iter()
+            .filter(|g| g.direction < 0.0)
+            .map(|g| g.level)
+            .fold(f64::NEG_INFINITY, f64::max);
+        let (max, min) = match self.mode {
+            Mode::RockRight => (self.episode_peak.min(self.max_q), self.min_q),
+            Mode::RockLeft => (self.max_q, (-self.episode_peak).max(self.min_q)),
+            _ => (self.max_q, self.min_q),
+        };
+        Watch {
+            guard_up,
+            guard_down,
+            max,
+            min,
+            extrema: Vec::new(),
+            evaluations: 0,
+            unresolved: 0,
+        }
+    }
+
+    /// Offers a state where q may be extremal to the recorder and to the peak trackers.
+    fn peak(&mut self, flow: &Flow, p: &Point) {
+        let (error_q, error_v) = self.propagated_error(flow, p.t);
+        let t_error = if p.acc != 0.0 {
+            error_v / p.acc.abs()
+        } else {
+            0.0
+        };
+        let t_error = ESTIMATE_SAFETY * t_error + 2.0 * scan::ulp(p.t);
+        if p.q > self.max_q {
+            self.max_q = p.q;
+            self.peak_errors.max_q = ESTIMATE_SAFETY * error_q;
+            self.peak_errors.t_max_q = t_error;
+        }
+        if p.q < self.min_q {
+            self.min_q = p.q;
+            self.peak_errors.min_q = ESTIMATE_SAFETY * error_q;
+            self.peak_errors.t_min_q = t_error;
+        }
+        if matches!(self.mode, Mode::RockRight | Mode::RockLeft) {
+            self.episode_peak = self.episode_peak.max(p.q.abs());
+        }
+        self.recorder.peak_candidate(p.t, p.q);
+    }
+
+    /// Bounds on the error of q and q' at `t` in `flow`: the anchor's error carried at the
+    /// mode's largest rate in the energy norm, plus the rounding of the closed form there.
+    fn propagated_error(&self, flow: &Flow, t: f64) -> (f64, f64) {
+        let w = flow.stiffness().abs().sqrt().max(1e-300);
+        let u = (t - flow.anchor).max(0.0);
+        let z = (w * self.error_q).hypot(self.error_v) * (flow.growth_rate() * u).exp();
+        let rounding = flow.rounding(t);
+        (z / w + rounding, z + w * rounding)
+    }
+
+    /// Books the grid's samples up to `until` (and at it when `inclusive`).
+    fn emit(&mut self, flow: &Flow, until: f64, inclusive: bool) {
+        while let Some(t) = self.grid.peek() {
+            if t > until || (!inclusive && t == until) {
+                break;
+            }
+            let p = flow.point(t);
+            self.advance_work(flow, t);
+            self.recorder.sample(
+                t,
+                self.mode,
+                p.q,
+                p.v,
+                self.floor.acceleration(t),
+                self.work.input,
+                self.work.damping,
+            );
+            self.grid.advance();
+        }
+    }
+
+    /// Integrates the input and damping power along `flow` up to `t`.
+    fn advance_work(&mut self, flow: &Flow, t: f64) {
+        let from = self.work.t;
+        let span = t - from;
+        if span <= 0.0 {
+            return;
+        }
+        let pieces = (span * flow.rate() / QUADRATURE_REACH)
+            .ceil()
+            .clamp(1.0, 1e7) as usize;
+        let h = span / pieces as f64;
+        let (a, mode) = (self.automaton, self.mode);
+        let power = |tau: f64| {
+            let p = flow.point(tau);
+            let floor = self.floor.acceleration(tau);
+            (a.input_power(mode, p.v, floor), a.damping_power(mode, p.v))
+        };
+        let (mut input, mut damping) = (0.0, 0.0);
+        for i in 0..pieces {
+            let middle = from + (i as f64 + 0.5) * h;
+            for (node, weight) in GAUSS_NODES.iter().zip(GAUSS_WEIGHTS) {
+                for side in [-1.0, 1.0] {
+                    let (pi, pd) = power(middle + side * node * 0.5 * h);
+                    input += weight * 0.5 * h * pi;
+                    damping += weight * 0.5 * h * pd;
+                }
+            }
+        }
+        self.work = Work {
+            t,
+            input: self.work.input + input,
+            damping: self.work.damping + damping,
+        };
+    }
+
+    /// The event at `p` through `guard`: booked, reset applied, mode changed.
+    fn event(&mut self, flow: &Flow, p: Point, guard: Guard) {
+        let automaton = self.automaton;
+        let (error_q, error_v) = self.propagated_error(flow, p.t);
+        // The guard's level carries the rounding of the constants it is made of.
+        let level_error = 4.0 * f64::EPSILON * guard.level.abs();
+        let speed = p.v.abs().max(f64::MIN_POSITIVE);
+        let t_error = (error_q + level_error) / speed + 2.0 * scan::ulp(p.t);
+        self.event_errors
+            .push(ESTIMATE_SAFETY * t_error + 2.0 * scan::ulp(p.t));
+        self.advance_work(flow, p.t);
+        let qdot_after = automaton.reset_velocity(guard.kind, p.v);
+        let from = self.mode;
+        self.recorder.event(
+            p.t,
+            guard.kind,
+            from,
+            guard.to,
+            guard.level,
+            p.v,
+            qdot_after,
+            self.floor.acceleration(p.t),
+            self.work.input,
+            self.work.damping,
+        );
+        let factor = (qdot_after / p.v).abs();
+        let factor = if factor.is_finite() { factor } else { 1.0 };
+        self.error_v = factor * (error_v + p.acc.abs() * t_error);
+        self.error_q = qdot_after.abs() * t_error + level_error;
+        self.mode = guard.to;
+        self.t = p.t;
+        self.q = Compensated::new(guard.level);
+        self.v = Compensated::new(qdot_after);
+        if guard.to != Mode::PreUplift {
+            self.episode_peak = guard.level.abs();
+        }
+    }
+}
