@@ -343,8 +343,9 @@ class Excitation:
 # One closed-form segment: x'' + C x' + K x = -beta a(t) on [t0, t1], x = q - shift
 # --------------------------------------------------------------------------------------------
 class Segment:
-    def __init__(self, C, K, beta, shift, piece, t0, q0, v0):
+    def __init__(self, C, K, beta, shift, piece, piece_t0, t0, q0, v0):
         self.C, self.K, self.beta, self.shift, self.t0 = C, K, beta, shift, t0
+        self.piece_t0 = piece_t0      # the origin of a polynomial piece's local time
         self.piece = piece
         kind = piece[0]
         disc = C * C - 4 * K
@@ -403,7 +404,7 @@ class Segment:
 
     def _part(self, t, n):
         if self.poly is not None:
-            tau = t - self.t0
+            tau = t - self.piece_t0
             a = self.poly
             for _ in range(n):
                 a = [k * a[k] for k in range(1, len(a))]
@@ -577,7 +578,7 @@ class Solver:
             p_end = pieces[pi][1]
             t1 = t_end if p_end is None else min(p_end, t_end)
             C, K, beta, shift = self.mode_coeffs(mode)
-            seg = Segment(C, K, beta, shift, pieces[pi][2], t, q, v)
+            seg = Segment(C, K, beta, shift, pieces[pi][2], pieces[pi][0], t, q, v)
             n_segments += 1
             crit = self.critical_points(seg, t, t1)
             pts = [t] + crit + ([t1] if not crit or crit[-1] != t1 else [])
