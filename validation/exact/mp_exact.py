@@ -724,7 +724,6 @@ def write_outputs(res, out, name, dps, elapsed):
                           ended_by=ep["ended_by"], peak_abs_q=ep["peak_abs_q"], t_peak=ep["t_peak"])
                      for i, ep in enumerate(res["episodes"])],
         "constants": {c: k[c] for c in ck},
-        "wall_time_s": round(elapsed, 2),
     }
     with open(os.path.join(out, "peaks.json"), "w") as fh:
         fh.write(to_json(doc) + "\n")
