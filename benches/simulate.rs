@@ -56,6 +56,49 @@ fn el_centro(c: &mut Criterion) {
     }
 }
 
+/// The exact method on the paper's example and through the whole El Centro record, and tsit45
+/// at rtol = 1e-12 beside it (the accuracy the exact method's results are compared at).
+fn exact(c: &mut Criterion) {
+    for (file, duration) in [
+        ("models/ichinose1986.toml", 6.0),
+        ("models/elcentro1940.toml", 31.16),
+    ] {
+        let name = Path::new(file)
+            .file_stem()
+            .unwrap()
+            .to_string_lossy()
+            .to_string();
+        let model = load(
+            file,
+            Overrides {
+                method: Some("exact".to_string()),
+                duration: Some(duration),
+                ..Overrides::default()
+            },
+        );
+        c.bench_function(&format!("{name} {duration} s exact"), |b| {
+            b.iter(|| {
+                flexrock::commands::run::simulate(std::hint::black_box(&model)).expect("solves")
+            })
+        });
+        for (rtol, atol) in [(1e-10, 1e-12), (1e-12, 1e-14)] {
+            let model = load(
+                file,
+                Overrides {
+                    method: Some("tsit45".to_string()),
+                    duration: Some(duration),
+                    ..tolerances(rtol, atol)
+                },
+            );
+            c.bench_function(&format!("{name} {duration} s tsit45 rtol={rtol:e}"), |b| {
+                b.iter(|| {
+                    flexrock::commands::run::simulate(std::hint::black_box(&model)).expect("solves")
+                })
+            });
+        }
+    }
+}
+
 /// The reference case at rtol = 1e-8 with the other methods.
 fn reference_case_methods(c: &mut Criterion) {
     for method in ["esdirk34", "tr-bdf2", "tsit45"] {
@@ -95,6 +138,7 @@ fn constants(c: &mut Criterion) {
 criterion_group!(
     benches,
     reference_case,
+    exact,
     reference_case_methods,
     el_centro,
     constants

@@ -113,7 +113,18 @@ pub struct Automaton {
     /// M int U^2 and M int V^2, kg: the body's kinetic energy is these times q'^2/2.
     kinetic_mass_pre_uplift: f64,
     kinetic_mass_rocking: f64,
+    /// Relative uncertainty of the constants above as computed (see
+    /// [`Automaton::constants_uncertainty`]).
+    uncertainty: f64,
 }
+
+/// Relative uncertainty of the constants of the paper's self-weight variant: closed forms of a
+/// few transcendental operations, each within an ulp or two, so a few ulps in all.
+const CLOSED_FORM_UNCERTAINTY: f64 = 8.0 * f64::EPSILON;
+/// Relative uncertainty of the constants of the consistent variant: they come from a Ritz
+/// solution in double precision, which agrees with the same solution in 40-digit arithmetic to
+/// 1.1e-11 on the reference body (validation/exact); ten times that.
+const RITZ_UNCERTAINTY: f64 = 1e-10;
 
 impl Automaton {
     /// The automaton of the body whose constants are `constants`.
@@ -135,6 +146,38 @@ impl Automaton {
             zeta_landing: constants.zeta_landing,
             kinetic_mass_pre_uplift: constants.kinetic_mass(false),
             kinetic_mass_rocking: constants.kinetic_mass(true),
+            uncertainty: match constants.self_weight {
+                crate::body::SelfWeight::Paper => CLOSED_FORM_UNCERTAINTY,
+                crate::body::SelfWeight::Consistent => RITZ_UNCERTAINTY,
+            },
+        }
+    }
+
+    /// The relative uncertainty of the automaton's constants as computed in double precision.
+    pub fn constants_uncertainty(&self) -> f64 {
+        self.uncertainty
+    }
+
+    /// A copy whose constants of the dynamics (Me, Ke, the damping, s_n, F' while rocking,
+    /// q_topple, beta, nu and the resets) are each moved by `size` relative, in a pseudo-random
+    /// direction fixed by `pattern`: the exact solver runs such copies to estimate its error.
+    pub(crate) fn nudged(&self, pattern: u64, size: f64) -> Automaton {
+        let nudge = |value: f64, item: u64| {
+            value * (1.0 + size * crate::solver::exact::nudge_sign(pattern, item))
+        };
+        Automaton {
+            me: nudge(self.me, 0),
+            ke: nudge(self.ke, 1),
+            damping_coefficient: nudge(self.damping_coefficient, 2),
+            s_n: nudge(self.s_n, 3),
+            rocking_stiffness: nudge(self.rocking_stiffness, 4),
+            topple: nudge(self.topple, 5),
+            beta1: nudge(self.beta1, 6),
+            nu2: nudge(self.nu2, 7),
+            beta2: nudge(self.beta2, 8),
+            zeta_uplift: nudge(self.zeta_uplift, 9),
+            zeta_landing: nudge(self.zeta_landing, 10),
+            ..self.clone()
         }
     }
 

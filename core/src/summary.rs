@@ -8,7 +8,7 @@ use crate::body::Body;
 use crate::constants::Constants;
 use crate::model::{Model, ModelFile};
 use crate::simulate::{warnings, Provenance};
-use crate::solution::{Solution, SolverStats};
+use crate::solution::{RoundingEstimate, Solution, SolverStats};
 use crate::solver::{InitialState, SolverSettings};
 
 /// summary.json of `flexrock run`.
@@ -70,6 +70,10 @@ pub struct RunSummary<'a> {
     pub duration: f64,
     /// The model file as read, with command-line overrides applied.
     pub inputs: &'a ModelFile,
+    /// The exact method's estimate of its own error on each event time and on the peaks
+    /// (absent for the other methods).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub error_estimate: Option<&'a RoundingEstimate>,
 }
 
 /// summary.json of a solved model.
@@ -102,5 +106,6 @@ pub fn summary<'a>(model: &'a Model, solution: &'a Solution) -> RunSummary<'a> {
         initial_state: model.initial,
         duration: model.duration,
         inputs: &model.file,
+        error_estimate: solution.rounding.as_ref(),
     }
 }

@@ -459,10 +459,15 @@ impl Model {
         records: &RecordCache,
     ) -> Result<Model> {
         if let Some(m) = &overrides.method {
-            // Switching between Newmark and the adaptive methods on the command line sets aside
-            // the file's keys of the other family: they were written for the file's method.
-            let newmark = |name: Option<&str>| name == Some("newmark");
-            if newmark(Some(m)) != newmark(file.solver.method.as_deref()) {
+            // Switching between the families of methods (Newmark, the adaptive methods, the exact
+            // one) on the command line sets aside the file's keys of the other family: they were
+            // written for the file's method.
+            let family = |name: Option<&str>| match name {
+                Some("newmark") => 1,
+                Some(crate::solver::exact::NAME) => 2,
+                _ => 0,
+            };
+            if family(Some(m)) != family(file.solver.method.as_deref()) {
                 let keep_output_dt = file.solver.output_dt;
                 file.solver = SolverSection {
                     output_dt: keep_output_dt,

@@ -55,10 +55,6 @@ impl Compensated {
     pub fn new(value: f64) -> Self {
         Compensated { hi: value, lo: 0.0 }
     }
-    /// hi + lo, rounded.
-    pub fn value(self) -> f64 {
-        self.hi + self.lo
-    }
     fn sum(hi: f64, lo: f64) -> Self {
         let (s, e) = two_sum(hi, lo);
         Compensated { hi: s, lo: e }
@@ -118,6 +114,8 @@ enum Form {
         hi: [f64; SERIES_TERMS],
         /// Those of the free motion from the anchor's lo part.
         lo: [f64; SERIES_TERMS],
+        /// Terms summed: the rest lie below 2^-70 of the state over the flow.
+        terms: usize,
     },
 }
 
@@ -328,18 +326,27 @@ impl Flow {
         for value in f.iter_mut() {
             *value *= -beta;
         }
+        let span = (until - anchor).max(0.0);
+        // rho^n / n! below 2^-70 beyond the forcing's own terms, rho = the flow's reach.
+        let rho = k.abs().sqrt().max(c.abs()) * span;
+        let mut terms = degree + 3;
+        let mut tail = (1..=terms).fold(1.0, |acc, n| acc * rho / n as f64);
+        while terms < SERIES_TERMS && tail > 2f64.powi(-70) {
+            terms += 1;
+            tail *= rho / terms as f64;
+        }
+        let terms = terms.min(SERIES_TERMS);
         let recurrence = |a0: f64, a1: f64, forced: bool| {
             let mut a = [0.0; SERIES_TERMS];
             a[0] = a0;
             a[1] = a1;
-            for n in 0..SERIES_TERMS - 2 {
+            for n in 0..terms - 2 {
                 let forcing = if forced && n <= degree { f[n] } else { 0.0 };
                 a[n + 2] = (forcing - k * a[n] - c * (n + 1) as f64 * a[n + 1])
                     / ((n + 1) * (n + 2)) as f64;
             }
             a
         };
-        let span = (until - anchor).max(0.0);
         let force_bound = f[..=degree]
             .iter()
             .rev()
@@ -359,6 +366,7 @@ impl Flow {
             form: Form::Series {
                 hi: recurrence(x.hi, v.hi, true),
                 lo: recurrence(x.lo, v.lo, false),
+                terms,
             },
         }
     }
@@ -372,17 +380,18 @@ impl Flow {
     pub fn state(&self, t: f64) -> (Compensated, Compensated) {
         let u = t - self.anchor;
         match &self.form {
-            Form::Series { hi, lo } => {
+            Form::Series { hi, lo, terms } => {
+                let n = *terms;
                 let mut dhi = [0.0; SERIES_TERMS - 1];
                 let mut dlo = [0.0; SERIES_TERMS - 1];
-                for n in 1..SERIES_TERMS {
-                    dhi[n - 1] = n as f64 * hi[n];
-                    dlo[n - 1] = n as f64 * lo[n];
+                for i in 1..n {
+                    dhi[i - 1] = i as f64 * hi[i];
+                    dlo[i - 1] = i as f64 * lo[i];
                 }
-                let x = compensated_horner(hi, u);
-                let xl = horner(lo, u);
-                let v = compensated_horner(&dhi, u);
-                let vl = horner(&dlo, u);
+                let x = compensated_horner(&hi[..n], u);
+                let xl = horner(&lo[..n], u);
+                let v = compensated_horner(&dhi[..n - 1], u);
+                let vl = horner(&dlo[..n - 1], u);
                 let (q_hi, q_e) = two_sum(x.hi, self.q_eq);
                 (
                     Compensated::sum(q_hi, q_e + x.lo + xl),
@@ -436,17 +445,19 @@ impl Flow {
                     jerk: df - k * v - c * acc,
                 }
             }
-            Form::Series { hi, lo } => {
+            Form::Series { hi, lo, terms } => {
                 // x and its first three derivatives by Horner, hi and lo together.
                 let mut d = [0.0; 4];
-                for n in (0..SERIES_TERMS).rev() {
+                for n in (0..*terms).rev() {
                     let a = hi[n] + lo[n];
                     d[3] = d[3] * u + d[2] * 3.0;
                     d[2] = d[2] * u + d[1] * 2.0;
                     d[1] = d[1] * u + d[0];
                     d[0] = d[0] * u + a;
                 }
-                let x = compensated_horner(hi, u).value() + horner(lo, u);
+                // x itself from its hi part with the anchor's lo part added apart, so that the
+                // anchor's extra precision is not lost in the sum.
+                let x = horner(&hi[..*terms], u) + horner(&lo[..*terms], u);
                 Point {
                     t,
                     q: x + self.q_eq,
@@ -470,17 +481,6 @@ impl Flow {
     /// The mode's q_eq.
     pub fn equilibrium(&self) -> f64 {
         self.q_eq
-    }
-
-    /// Rate at which the free motion can grow, 1/s, in the energy norm sqrt(|k| x^2 + x'^2):
-    /// the largest eigenvalue of the symmetric part of the mode's matrix in that norm.
-    pub fn growth_rate(&self) -> f64 {
-        let (k, c) = (self.k, self.c);
-        if k > 0.0 {
-            (-c).max(0.0)
-        } else {
-            0.5 * (-c + (c * c + 4.0 * k.abs()).sqrt())
-        }
     }
 
     /// Bounds on |x''| and |x'''| over `[t0, t0 + h]` from the state at t0: the free motion
@@ -520,8 +520,9 @@ impl Flow {
         }
     }
 
-    /// An estimate of the rounding error of the state at `t` (in |x| + |x'| / |k|^(1/2)):
-    /// unit roundoff times the size of the terms summed and of the phases formed.
+    /// An estimate of the rounding error of the state carried to `t` (in |x| + |x'| / |k|^(1/2)):
+    /// unit roundoff times the size of the terms summed and of the phases formed. The rounding
+    /// of one evaluation of a point, a few ulps of its q, is booked apart where it is used.
     pub fn rounding(&self, t: f64) -> f64 {
         let u = t - self.anchor;
         let w = self.k.abs().sqrt().max(1e-300);
@@ -549,8 +550,10 @@ impl Flow {
                 free * (1.0 + (omega + sigma.abs()) * u.abs())
                     + steady * (1.0 + 2.0 * PI * t.abs() / period)
             }
-            Form::Series { hi, .. } => {
-                let x = horner_abs(hi, u.abs());
+            Form::Series { hi, terms, .. } => {
+                // Carried compensated: only the rounding of the coefficients beyond the anchor's
+                // own (each a few ulps) is left.
+                let x = horner_abs(&hi[2..*terms], u.abs()) * u * u;
                 x * (1.0 + 1.0 / w)
             }
         };
