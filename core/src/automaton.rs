@@ -162,9 +162,7 @@ impl Automaton {
     /// q_topple, beta, nu and the resets) are each moved by `size` relative, in a pseudo-random
     /// direction fixed by `pattern`: the exact solver runs such copies to estimate its error.
     pub(crate) fn nudged(&self, pattern: u64, size: f64) -> Automaton {
-        let nudge = |value: f64, item: u64| {
-            value * (1.0 + size * crate::solver::exact::nudge_sign(pattern, item))
-        };
+        let nudge = |value: f64, item: u64| value * (1.0 + size * nudge_sign(pattern, item));
         Automaton {
             me: nudge(self.me, 0),
             ke: nudge(self.ke, 1),
@@ -443,6 +441,22 @@ impl Automaton {
     /// Rocking part r = q - s of q (eq. 9).
     pub fn rocking_part(&self, mode: Mode, q: f64) -> f64 {
         q - self.flexural_part(mode, q)
+    }
+}
+
+/// A pseudo-random sign for nudge pattern `pattern`, item `item` (a fixed hash: results do not
+/// change from run to run).
+pub(crate) fn nudge_sign(pattern: u64, item: u64) -> f64 {
+    let mut x = pattern
+        .wrapping_mul(0x9E37_79B9_7F4A_7C15)
+        .wrapping_add(item.wrapping_mul(0xBF58_476D_1CE4_E5B9));
+    x ^= x >> 31;
+    x = x.wrapping_mul(0x94D0_49BB_1331_11EB);
+    x ^= x >> 29;
+    if x & 1 == 0 {
+        1.0
+    } else {
+        -1.0
     }
 }
 

@@ -8,6 +8,7 @@ mod common;
 
 mod constants;
 mod dynamics;
+mod exact;
 mod hardening;
 mod independent;
 mod layers;

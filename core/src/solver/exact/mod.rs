@@ -114,8 +114,9 @@ pub fn solve(
         for pattern in 0..SHADOW_RUNS {
             let nudged = automaton.nudged(pattern as u64 + 1, size);
             let moved = InitialState {
-                q: initial.q * (1.0 + size * nudge_sign(pattern as u64 + 1, 100)),
-                qdot: initial.qdot * (1.0 + size * nudge_sign(pattern as u64 + 1, 101)),
+                q: initial.q * (1.0 + size * crate::automaton::nudge_sign(pattern as u64 + 1, 100)),
+                qdot: initial.qdot
+                    * (1.0 + size * crate::automaton::nudge_sign(pattern as u64 + 1, 101)),
             };
             let (shadow, _) = solve_once(
                 &nudged,
@@ -136,22 +137,6 @@ pub fn solve(
 
 /// Runs that estimate the error of a run with a history.
 pub const SHADOW_RUNS: usize = 3;
-
-/// A pseudo-random sign for nudge pattern `pattern`, item `item` (a fixed hash: results do not
-/// change from run to run).
-pub(crate) fn nudge_sign(pattern: u64, item: u64) -> f64 {
-    let mut x = pattern
-        .wrapping_mul(0x9E37_79B9_7F4A_7C15)
-        .wrapping_add(item.wrapping_mul(0xBF58_476D_1CE4_E5B9));
-    x ^= x >> 31;
-    x = x.wrapping_mul(0x94D0_49BB_1331_11EB);
-    x ^= x >> 29;
-    if x & 1 == 0 {
-        1.0
-    } else {
-        -1.0
-    }
-}
 
 /// Adds to `estimate` the safety factor times the distance of the shadow run from the run.
 /// From the first event whose kind differs (or that one run lacks) on, the event sequence itself
