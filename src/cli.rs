@@ -104,7 +104,7 @@ pub(crate) enum Command {
         #[command(subcommand)]
         command: RecordCommand,
     },
-    /// Compare Newmark at the paper's dt with a tight adaptive reference; write compare.csv,
+    /// Compare Newmark at the paper's dt with the exact solution; write compare.csv,
     /// compare_history.csv, compare.json, compare.svg and compare_relations.svg.
     Compare {
         /// Model file (TOML).
@@ -118,9 +118,10 @@ pub(crate) enum Command {
         /// Newmark variant at events: compensate or substep [default: the file's, else compensate].
         #[arg(long)]
         variant: Option<String>,
-        /// Relative tolerance of the adaptive reference.
-        #[arg(long, default_value = REFERENCE_RTOL_TEXT.as_str())]
-        reference_rtol: f64,
+        /// Relative tolerance of an adaptive reference (the file's adaptive method, BDF when it
+        /// names another) [default: none, the reference is the exact solution].
+        #[arg(long)]
+        reference_rtol: Option<f64>,
         /// Simulated time, s (overrides simulation.duration).
         #[arg(long)]
         duration: Option<f64>,
@@ -130,7 +131,7 @@ pub(crate) enum Command {
         timings: TimingsArg,
     },
     /// Convergence study: Newmark at each dt and each adaptive method at each tolerance against
-    /// a reference; write convergence.csv, convergence.json and two SVG figures.
+    /// the exact solution; write convergence.csv, convergence.json and two SVG figures.
     Converge {
         /// Model file (TOML).
         model: PathBuf,
@@ -143,9 +144,10 @@ pub(crate) enum Command {
         /// Relative tolerances of the adaptive methods, separated by commas.
         #[arg(long, value_delimiter = ',', default_value = RTOLS_TEXT.as_str())]
         rtol: Vec<f64>,
-        /// Relative tolerance of the reference.
-        #[arg(long, default_value = REFERENCE_RTOL_TEXT.as_str())]
-        reference_rtol: f64,
+        /// Relative tolerance of an adaptive reference (the file's adaptive method, BDF when it
+        /// names another) [default: none, the reference is the exact solution].
+        #[arg(long)]
+        reference_rtol: Option<f64>,
         /// Simulated time, s (overrides simulation.duration).
         #[arg(long)]
         duration: Option<f64>,
@@ -408,7 +410,4 @@ pub(crate) static RTOLS_TEXT: LazyLock<String> = LazyLock::new(|| {
         &flexrock::commands::converge::DEFAULT_RTOLS,
         flexrock::writers::scientific,
     )
-});
-pub(crate) static REFERENCE_RTOL_TEXT: LazyLock<String> = LazyLock::new(|| {
-    flexrock::writers::scientific(flexrock::commands::compare::DEFAULT_REFERENCE_RTOL)
 });

@@ -12,7 +12,7 @@ use flexrock_core::{compare as comparison, converge as convergence, fem_check as
 use crate::model::Model;
 use crate::simulate::{err_naming, json};
 
-/// `compare(model, dt=None, variant=None, reference_rtol=1e-12)`: the model solved by Newmark
+/// `compare(model, dt=None, variant=None, reference_rtol=None)`: the model solved by Newmark
 /// (its `solver.dt`, or `dt`) and by the adaptive reference, measured against each other.
 #[pyfunction]
 #[pyo3(signature = (model, dt=None, variant=None, reference_rtol=None))]
@@ -29,16 +29,12 @@ pub(crate) fn compare<'py>(
         ("solver.newmark_variant", "variant"),
         ("rtol", "reference_rtol"),
     ];
-    let rtol = reference_rtol.unwrap_or(comparison::DEFAULT_REFERENCE_RTOL);
     let reference = m
-        .reference_settings(rtol)
+        .reference(reference_rtol)
         .map_err(|e| err_naming(e, &names))?;
-    let newmark = m
-        .newmark_settings(dt, variant.as_deref())
-        .map_err(|e| err_naming(e, &names))?;
-    let (reference, newmark) = (
-        SolverSettings::Adaptive(reference),
-        SolverSettings::Newmark(newmark),
+    let newmark = SolverSettings::Newmark(
+        m.newmark_settings(dt, variant.as_deref())
+            .map_err(|e| err_naming(e, &names))?,
     );
     let solved = py.detach(|| -> flexrock_core::Result<_> {
         let r = flexrock_core::simulate_with(m, &reference)?;
@@ -56,7 +52,7 @@ pub(crate) fn compare<'py>(
     Ok(out)
 }
 
-/// `converge(model, dts=None, rtols=None, reference_rtol=1e-12)`: every Newmark step of `dts`
+/// `converge(model, dts=None, rtols=None, reference_rtol=None)`: every Newmark step of `dts`
 /// and every adaptive tolerance of `rtols` measured against one reference, with the fitted
 /// orders and efficiency slopes.
 #[pyfunction]
@@ -76,9 +72,8 @@ pub(crate) fn converge<'py>(
         ("solver.rtol", "rtols"),
         ("rtol", "reference_rtol"),
     ];
-    let rtol = reference_rtol.unwrap_or(comparison::DEFAULT_REFERENCE_RTOL);
     let reference = m
-        .reference_settings(rtol)
+        .reference(reference_rtol)
         .map_err(|e| err_naming(e, &names))?;
     // The cases' steps and tolerances are named by the lists that gave them.
     let case_names = [
@@ -90,7 +85,7 @@ pub(crate) fn converge<'py>(
     let configurations =
         convergence::configurations(m, &dts, &rtols).map_err(|e| err_naming(e, &case_names))?;
     let study = py
-        .detach(|| convergence::converge(m, SolverSettings::Adaptive(reference), &configurations))
+        .detach(|| convergence::converge(m, reference, &configurations))
         .map_err(|e| err_naming(e, &names))?;
     let out = PyDict::new(py);
     out.set_item("reference", study.reference_settings.label())?;

@@ -34,8 +34,8 @@ pub const COMPARE_HISTORY_COLUMNS: [&str; 10] = columns::names(&GRID_COLUMNS);
 /// Options of `flexrock compare`.
 #[derive(Debug, Clone)]
 pub struct CompareOptions {
-    /// Relative tolerance of the adaptive reference.
-    pub reference_rtol: f64,
+    /// Relative tolerance of an adaptive reference; None: the exact solution is the reference.
+    pub reference_rtol: Option<f64>,
     /// Newmark step (default: the file's, else the paper's 0.02 s).
     pub dt: Option<f64>,
     /// Newmark variant (default: the file's, else "compensate").
@@ -47,7 +47,7 @@ pub struct CompareOptions {
 impl Default for CompareOptions {
     fn default() -> Self {
         CompareOptions {
-            reference_rtol: DEFAULT_REFERENCE_RTOL,
+            reference_rtol: None,
             dt: None,
             variant: None,
             wall_times: writers::WallTimes::Inline,
@@ -133,12 +133,7 @@ pub fn compare_settings(
     model: &Model,
     options: &CompareOptions,
 ) -> Result<(SolverSettings, SolverSettings)> {
-    let reference = model
-        .reference_settings(options.reference_rtol)
-        .map_err(|e| {
-            e.renamed("rtol", "--reference-rtol")
-                .renamed("solver.rtol", "--reference-rtol")
-        })?;
+    let reference = reference_settings(model, options.reference_rtol)?;
     let newmark = model
         .newmark_settings(options.dt, options.variant.as_deref())
         .map_err(|e| {
@@ -151,10 +146,17 @@ pub fn compare_settings(
                 None => e,
             }
         })?;
-    Ok((
-        SolverSettings::Adaptive(reference),
-        SolverSettings::Newmark(newmark),
-    ))
+    Ok((reference, SolverSettings::Newmark(newmark)))
+}
+
+/// The reference of `compare` and `converge`: the exact solution, or the model's adaptive method
+/// at `rtol` when one is given (an error names `--reference-rtol`).
+pub fn reference_settings(model: &Model, rtol: Option<f64>) -> Result<SolverSettings> {
+    model.reference(rtol).map_err(|e| {
+        e.renamed("rtol", "--reference-rtol")
+            .renamed("solver.rtol", "--reference-rtol")
+            .into()
+    })
 }
 
 /// Runs the reference and Newmark, compares them, writes compare.csv, compare_history.csv,

@@ -32,8 +32,8 @@ pub struct ConvergeOptions {
     pub dts: Vec<f64>,
     /// Relative tolerances; each runs with every adaptive method.
     pub rtols: Vec<f64>,
-    /// Relative tolerance of the adaptive reference.
-    pub reference_rtol: f64,
+    /// Relative tolerance of an adaptive reference; None: the exact solution is the reference.
+    pub reference_rtol: Option<f64>,
     /// Where the solves' wall times go (convergence.json and .csv, or timings.json).
     pub wall_times: writers::WallTimes,
 }
@@ -43,7 +43,7 @@ impl Default for ConvergeOptions {
         ConvergeOptions {
             dts: DEFAULT_DTS.to_vec(),
             rtols: DEFAULT_RTOLS.to_vec(),
-            reference_rtol: crate::commands::compare::DEFAULT_REFERENCE_RTOL,
+            reference_rtol: None,
             wall_times: writers::WallTimes::Inline,
         }
     }
@@ -57,8 +57,8 @@ pub struct ConvergeSummary {
     pub provenance: crate::commands::run::Provenance,
     /// The reference's method.
     pub reference_method: String,
-    /// The reference's relative tolerance.
-    pub reference_rtol: f64,
+    /// The reference's relative tolerance (null: the reference is the exact solution).
+    pub reference_rtol: Option<f64>,
     /// What the reference solution cost.
     pub reference_statistics: SolverStats,
     /// Number of events of the reference solution.
@@ -102,11 +102,8 @@ pub fn configurations(
             ));
         }
     }
-    let reference_settings = SolverSettings::Adaptive(
-        model
-            .reference_settings(options.reference_rtol)
-            .map_err(flag("--reference-rtol"))?,
-    );
+    let reference_settings =
+        crate::commands::compare::reference_settings(model, options.reference_rtol)?;
     let mut configurations = flexrock_core::converge::newmark_configurations(model, &options.dts)
         .map_err(|e| e.renamed("solver.dt", "--dt"))?;
     configurations.extend(
@@ -116,10 +113,11 @@ pub fn configurations(
     // Every value is valid on its own; errors are measured against the reference: one no tighter than a case measures the
     // reference's own error, and the orders printed would mean nothing.
     let tightest = options.rtols.iter().copied().fold(f64::INFINITY, f64::min);
-    if options.reference_rtol.partial_cmp(&tightest) != Some(std::cmp::Ordering::Less) {
+    let reference_rtol = options.reference_rtol.unwrap_or(0.0);
+    if reference_rtol.partial_cmp(&tightest) != Some(std::cmp::Ordering::Less) {
         return Err(crate::Error::invalid(
             "--reference-rtol",
-            options.reference_rtol,
+            reference_rtol,
             &format!(
                 "the reference must be tighter than every case: give a --reference-rtol below \
                  the smallest --rtol ({}), e.g. 1e-12",
@@ -289,15 +287,23 @@ fn figures(summary: &ConvergeSummary) -> Result<(String, String)> {
     ))
 }
 
+/// How a reference is as accurate as it is, for the printed tables: "the closed form" or
+/// "rtol = 1e-12".
+pub fn reference_accuracy(rtol: Option<f64>) -> String {
+    rtol.map_or("the closed form, errors are true errors".to_string(), |r| {
+        format!("rtol = {r:e}")
+    })
+}
+
 /// The printed table, orders and efficiency slopes of `flexrock converge`.
 pub fn converge_text(report: &ConvergeReport) -> String {
     let s = &report.summary;
     let mut t = String::new();
     let _ = writeln!(
         t,
-        "flexrock {VERSION} converge: reference {} at rtol = {:e} ({}, {})",
+        "flexrock {VERSION} converge: reference {} ({}; {}, {})",
         s.reference_method,
-        s.reference_rtol,
+        reference_accuracy(s.reference_rtol),
         count(s.reference_events, "event", "events"),
         count(s.reference_statistics.steps, "step", "steps")
     );

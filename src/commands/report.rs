@@ -164,7 +164,7 @@ pub(crate) struct CompareFile {
 #[derive(Debug, Clone, Deserialize)]
 pub(crate) struct ConvergeFile {
     pub reference_method: String,
-    pub reference_rtol: f64,
+    pub reference_rtol: Option<f64>,
     pub reference_events: usize,
     pub output_dt: f64,
     pub cases: Vec<Case>,
@@ -301,8 +301,8 @@ fn stability_share(file: &CompareFile, path: &Path) -> Result<Option<f64>> {
 struct Read {
     compensate: CompareFile,
     substep: CompareFile,
-    /// The reference's relative tolerance (compensate run).
-    reference_rtol: f64,
+    /// The reference's relative tolerance (compensate run); None for the exact solution.
+    reference_rtol: Option<f64>,
     /// The Newmark steps of the two compare runs, s.
     compensate_dt: f64,
     substep_dt: f64,
@@ -320,12 +320,15 @@ fn read_inputs(inputs: &ReportInputs) -> Result<Read> {
     let compensate: CompareFile = read_json(&compensate_json)?;
     let substep: CompareFile = read_json(&substep_json)?;
     Ok(Read {
-        reference_rtol: setting(
-            compensate.reference.solver.rtol,
-            &compensate_json,
-            "reference.solver",
-            "rtol",
-        )?,
+        reference_rtol: match compensate.reference.method.as_str() {
+            flexrock_core::solver::exact::NAME => None,
+            _ => Some(setting(
+                compensate.reference.solver.rtol,
+                &compensate_json,
+                "reference.solver",
+                "rtol",
+            )?),
+        },
         compensate_dt: setting(
             compensate.newmark.solver.dt,
             &compensate_json,
@@ -397,7 +400,7 @@ fn write_paper_example(t: &mut String, r: &Read, fig: &dyn Fn(&str) -> String) {
     );
     let _ = writeln!(
         t,
-        "Model: `{}` (T = {:.4} s, s_n = {:.5} m, {} s). Reference: {} at rtol = {:e}. Newmark: \
+        "Model: `{}` (T = {:.4} s, s_n = {:.5} m, {} s). Reference: {} ({}). Newmark: \
          linear acceleration (beta = 1/6, gamma = 1/2), dt = {dt} s, the paper's setting; \
          *compensate* is the paper's overshoot compensation, *substep* lands a sub-step on each crossing.\n",
         c.model_file.as_deref().unwrap_or("?"),
@@ -405,7 +408,7 @@ fn write_paper_example(t: &mut String, r: &Read, fig: &dyn Fn(&str) -> String) {
         c.s_n,
         c.duration,
         c.reference.method,
-        r.reference_rtol,
+        crate::commands::converge::reference_accuracy(r.reference_rtol),
     );
     let _ = writeln!(
         t,
@@ -513,11 +516,11 @@ fn write_convergence(t: &mut String, converge: &ConvergeFile, fig: &dyn Fn(&str)
     let _ = writeln!(t, "## 2. Convergence study\n");
     let _ = writeln!(
         t,
-        "Reference: {} at rtol = {:e} ({} events). Errors on the common {} s grid; event-time error \
+        "Reference: {} ({}; {} events). Errors on the common {} s grid; event-time error \
          over matched events; peak error = the larger error of max q and min q. Wall times are left out: they change from \
          run to run (`flexrock converge --timings-apart` writes them to timings.json).\n",
         converge.reference_method,
-        converge.reference_rtol,
+        crate::commands::converge::reference_accuracy(converge.reference_rtol),
         converge.reference_events,
         converge.output_dt
     );

@@ -560,6 +560,18 @@ impl Model {
 }
 
 impl Model {
+    /// The reference of a comparison or a convergence study: the exact solution on the model's
+    /// output grid, or, when `rtol` is given, the tight adaptive run of
+    /// [`Model::reference_settings`].
+    pub fn reference(&self, rtol: Option<f64>) -> Result<SolverSettings> {
+        Ok(match rtol {
+            None => SolverSettings::Exact(crate::solver::exact::ExactSettings {
+                output_dt: self.solver.output_dt(),
+            }),
+            Some(rtol) => SolverSettings::Adaptive(self.reference_settings(rtol)?),
+        })
+    }
+
     /// Settings of a tight adaptive reference: the file's adaptive method (BDF when the file
     /// names Newmark) at `rtol`, with atol = rtol / 100 (q is of order 0.1 m), on the model's
     /// output grid.
