@@ -64,6 +64,27 @@ enum Family {
     Newmark,
 }
 
+/// Which family of methods `name` belongs to: Newmark, the exact method, or the adaptive
+/// methods (any other name). Switching families from outside a file sets aside the file's keys
+/// of the other family ([`FAMILY_KEYS`]): they were written for the file's method.
+pub(crate) fn method_family(name: &str) -> u8 {
+    match name {
+        "newmark" => 1,
+        EXACT => 2,
+        _ => 0,
+    }
+}
+
+/// The `[solver]` keys that belong to one family of methods.
+pub(crate) const FAMILY_KEYS: [&str; 6] = [
+    "rtol",
+    "atol",
+    "dt",
+    "newmark_beta",
+    "newmark_gamma",
+    "newmark_variant",
+];
+
 /// The exact method's model-file name.
 const EXACT: &str = crate::solver::exact::NAME;
 

@@ -281,7 +281,8 @@ impl RunOutcome {
             ),
             (
                 "energy_residual_share",
-                Cell::Float(Some(self.energy_residual_share)),
+                // Empty where the run kept no energy books (the exact method's).
+                Cell::Float(Some(self.energy_residual_share).filter(|x| !x.is_nan())),
             ),
             ("steps", Cell::Int(Some(self.steps))),
             ("rhs_evaluations", Cell::Int(Some(self.rhs_evaluations))),
