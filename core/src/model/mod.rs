@@ -462,7 +462,12 @@ impl Model {
             // Switching between the families of methods (Newmark, the adaptive methods, the exact
             // one) on the command line sets aside the file's keys of the other family: they were
             // written for the file's method.
-            let file_method = file.solver.method.as_deref().unwrap_or("bdf");
+            let gives_tolerance = file.solver.rtol.is_some() || file.solver.atol.is_some();
+            let file_method = file
+                .solver
+                .method
+                .as_deref()
+                .unwrap_or(solver_section::default_method(gives_tolerance));
             if solver_section::method_family(m) != solver_section::method_family(file_method) {
                 let keep_output_dt = file.solver.output_dt;
                 file.solver = SolverSection {

@@ -105,10 +105,15 @@ impl Setting {
                 // as `--method` does.
                 if self.key == "solver.method" {
                     use super::solver_section::{method_family, FAMILY_KEYS};
-                    let old = section_table.get("method").and_then(|v| v.as_str());
-                    let new = self.value.as_str();
-                    if let Some(new) = new {
-                        if method_family(old.unwrap_or("bdf")) != method_family(new) {
+                    let gives_tolerance = ["rtol", "atol"]
+                        .iter()
+                        .any(|key| section_table.contains_key(*key));
+                    let old = section_table
+                        .get("method")
+                        .and_then(|v| v.as_str())
+                        .unwrap_or(super::solver_section::default_method(gives_tolerance));
+                    if let Some(new) = self.value.as_str() {
+                        if method_family(old) != method_family(new) {
                             for key in FAMILY_KEYS {
                                 section_table.remove(key);
                             }

@@ -85,6 +85,17 @@ pub(crate) const FAMILY_KEYS: [&str; 6] = [
     "newmark_variant",
 ];
 
+/// The method of a `[solver]` section that names none: the exact method, or BDF (the default
+/// before the exact method existed) when the section gives an adaptive tolerance, so that such
+/// files run as they always have.
+pub(crate) fn default_method(gives_tolerance: bool) -> &'static str {
+    if gives_tolerance {
+        "bdf"
+    } else {
+        EXACT
+    }
+}
+
 /// The exact method's model-file name.
 const EXACT: &str = crate::solver::exact::NAME;
 
@@ -94,7 +105,10 @@ pub(super) fn solver_from_section(
     omega: f64,
     width: f64,
 ) -> Result<SolverSettings> {
-    let name = s.method.as_deref().unwrap_or("bdf");
+    let name = s
+        .method
+        .as_deref()
+        .unwrap_or(default_method(s.rtol.is_some() || s.atol.is_some()));
     let is_newmark = name == "newmark";
     let is_exact = name == EXACT;
     let adaptive = AdaptiveMethod::from_name(name);

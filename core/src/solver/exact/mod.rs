@@ -139,7 +139,7 @@ pub fn solve(
 }
 
 /// Runs that estimate the error of a run with a history.
-pub const SHADOW_RUNS: usize = 3;
+pub const SHADOW_RUNS: usize = 2;
 
 /// Adds to `estimate` the safety factor times the distance of the shadow run from the run.
 /// From the first event whose kind differs (or that one run lacks) on, the event sequence itself
