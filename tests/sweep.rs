@@ -653,7 +653,10 @@ fn a_full_form_sweep_searches_and_names_the_full_equations_block() {
     }
     let plan = |json: &serde_json::Value| json.to_string();
     assert!(!plan(&default_json).contains("rigid_form"));
-    assert!(plan(&full_json).contains("\"rigid_form\":\"full\""), "{full_json}");
+    assert!(
+        plan(&full_json).contains("\"rigid_form\":\"full\""),
+        "{full_json}"
+    );
     let header = std::fs::read_to_string(dir.join("full").join("sweep.csv")).unwrap();
     let header = header.lines().next().unwrap();
     assert!(
@@ -696,7 +699,10 @@ fn a_full_form_sweep_searches_and_names_the_full_equations_block() {
     ]);
     let stderr = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(2), "{stderr}");
-    assert!(stderr.contains("rigid") && stderr.contains("exact"), "{stderr}");
+    assert!(
+        stderr.contains("rigid") && stderr.contains("exact"),
+        "{stderr}"
+    );
     assert!(!refused.exists());
 }
 

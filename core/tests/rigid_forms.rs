@@ -171,7 +171,11 @@ fn a_free_full_block_overturns_from_its_energy_threshold() {
             // The peak from the energy: cos(alpha - theta_max) = cos(alpha) + (v/H)^2/(2 p^2).
             let v = factor * threshold / H;
             let peak = H * (alpha - (alpha.cos() + v * v / (2.0 * p * p)).acos());
-            assert!((o.max_abs_q / peak - 1.0).abs() < 1e-9, "{} {peak}", o.max_abs_q);
+            assert!(
+                (o.max_abs_q / peak - 1.0).abs() < 1e-9,
+                "{} {peak}",
+                o.max_abs_q
+            );
         }
     }
 }
@@ -436,7 +440,9 @@ fn forms_are_named_small_angle_and_full() {
     for form in RigidForm::ALL {
         assert_eq!(RigidForm::parse("rigid_form", form.name()).unwrap(), form);
     }
-    let e = RigidForm::parse("rigid_form", "exact").unwrap_err().to_string();
+    let e = RigidForm::parse("rigid_form", "exact")
+        .unwrap_err()
+        .to_string();
     assert!(
         e.contains("rigid_form") && e.contains("exact") && e.contains("small-angle"),
         "{e}"

@@ -561,39 +561,38 @@ impl Sweep {
                         _ => None,
                     },
                 };
-                let rigid_minimum = |block: fn(
-                    f64,
-                    f64,
-                    f64,
-                ) -> std::result::Result<
-                    RigidBlock,
-                    crate::solver::SolverError,
-                >,
-                                     form: RigidForm| {
-                    let trial = |value: f64| -> Result<find_min::Trial> {
-                        let model = self.model(&at(value))?;
-                        let b = &model.body;
-                        let block = block(b.height, b.width, b.gravity)?.with_form(form);
-                        let out = crate::rigid::simulate_block(
-                            &block,
-                            model.floor.as_ref(),
-                            model.duration,
-                        )?;
-                        Ok(find_min::Trial {
-                            overturned: out.overturned,
-                            t_overturn: out.t_overturn,
-                            steps: 0,
-                            rhs_evaluations: 0,
-                        })
+                let rigid_minimum =
+                    |block: fn(
+                        f64,
+                        f64,
+                        f64,
+                    )
+                        -> std::result::Result<RigidBlock, crate::solver::SolverError>,
+                     form: RigidForm| {
+                        let trial = |value: f64| -> Result<find_min::Trial> {
+                            let model = self.model(&at(value))?;
+                            let b = &model.body;
+                            let block = block(b.height, b.width, b.gravity)?.with_form(form);
+                            let out = crate::rigid::simulate_block(
+                                &block,
+                                model.floor.as_ref(),
+                                model.duration,
+                            )?;
+                            Ok(find_min::Trial {
+                                overturned: out.overturned,
+                                t_overturn: out.t_overturn,
+                                steps: 0,
+                                rhs_evaluations: 0,
+                            })
+                        };
+                        let min = find_min::search(find, trial)
+                            .ok()
+                            .and_then(|o| o.min_overturning);
+                        let scaled = min
+                            .and_then(scales_at)
+                            .and_then(|s| s.amplitude_over_g_tan_alpha);
+                        (min, scaled)
                     };
-                    let min = find_min::search(find, trial)
-                        .ok()
-                        .and_then(|o| o.min_overturning);
-                    let scaled = min
-                        .and_then(scales_at)
-                        .and_then(|s| s.amplitude_over_g_tan_alpha);
-                    (min, scaled)
-                };
                 let (housner, housner_over_g_tan_alpha) =
                     rigid_minimum(RigidBlock::housner, find.rigid_form);
                 // The elastic model's limit is the small-angle equation, whatever Housner's

@@ -94,7 +94,10 @@ fn names(cells: impl IntoIterator<Item = (&'static str, Cell)>) -> Vec<&'static 
 
 /// Empty cells of the kinds of `cells`.
 fn emptied(cells: impl IntoIterator<Item = (&'static str, Cell)>) -> Vec<Cell> {
-    cells.into_iter().map(|(_, c)| Cell::empty(c.kind())).collect()
+    cells
+        .into_iter()
+        .map(|(_, c)| Cell::empty(c.kind()))
+        .collect()
 }
 
 /// The cells of `cells`, without their names.
@@ -538,7 +541,10 @@ mod tests {
     /// the default's columns are those of before the full form existed.
     #[test]
     fn the_rigid_form_column_names_the_full_form_only() {
-        assert_eq!(Row::columns(true), Row::columns(Layout::Minimum(RigidForm::SmallAngle)));
+        assert_eq!(
+            Row::columns(true),
+            Row::columns(Layout::Minimum(RigidForm::SmallAngle))
+        );
         assert!(!Row::columns(true).contains(&"rigid_form"));
         let columns = Row::columns(Layout::Minimum(RigidForm::Full));
         let at = |name: &str| columns.iter().position(|c| *c == name).unwrap();
