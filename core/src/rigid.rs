@@ -1,4 +1,4 @@
-//! The slender rigid block of the rigid limit (book/src/model.md §7; Housner 1963): the reference
+//! The rigid block of the rigid limit (book/src/model.md §7; Housner 1963): the reference
 //! that overturning spectra of the elastic body are plotted against, and what the elastic model
 //! must tend to as E grows.
 //!
@@ -18,25 +18,31 @@
 //! - when |q| reaches B it has overturned (terminal).
 //!
 //! That is the small-angle (linearised, slender) form of Housner's equation, the default
-//! ([`RigidForm::SmallAngle`]), and the form the elastic model tends to as E grows. The full
-//! equation of a rectangular block ([`RigidForm::Full`]; Housner 1963, Bull. Seismol. Soc. Am.
-//! 53(2); Zhang and Makris 2001, J. Eng. Mech. 127(5); Dimitrakopoulos and DeJong 2012, Proc.
-//! R. Soc. A 468), with alpha = atan(B/H), R = sqrt(H^2 + B^2)/2 (the
-//! half-diagonal), p^2 = 3 g/(4 R) and theta = q/H:
+//! ([`RigidForm::SmallAngle`]), and the form the elastic model tends to as E grows. The other
+//! form ([`RigidForm::Full`]) is the full equation of a rectangular rigid block, the paper's
+//! eq. A6 (Ichinose 1986, appendix), also Housner 1963 (Bull. Seismol. Soc. Am. 53(2)), Zhang and
+//! Makris 2001 (J. Eng. Mech. 127(5)) and Dimitrakopoulos and DeJong 2012 (Proc. R. Soc. A 468).
+//! With alpha = atan(B/H), R = sqrt(H^2 + B^2)/2 (the half-diagonal), p^2 = 3 g/(4 R) and
+//! theta = q/H:
 //!
 //! ```text
 //! theta'' = -p^2 [ sin(s alpha - theta) + (a(t)/g) cos(s alpha - theta) ],   s = sgn(theta)
 //! ```
 //!
-//! (a(t) > 0 pushes the floor towards +x, so that a negative floor acceleration tilts the block
-//! to the right, q > 0, as in the small-angle form). With sin x ~ x, cos x ~ 1, alpha ~ B/H and
-//! R ~ H/2 it is the small-angle equation above; the two differ by O(alpha^2). Uplift (|a| =
-//! g tan alpha = g B/H, the same threshold), the impact rule and the chatter rule are the same
-//! in both forms: Housner's e = 1 - (3/2) sin^2 alpha follows from the conservation of angular
-//! momentum about the new toe for a rectangular block of any slenderness, so it is no small-angle
-//! approximation; the block has overturned when |theta| reaches alpha,
-//! that is |q| = H atan(B/H) (the unstable equilibrium of the full equation), against |q| = B in
-//! the small-angle form (whose unstable equilibrium is theta = B/H).
+//! with the same sign convention as the small-angle form: a(t) > 0 is the floor accelerating
+//! towards +x, which tilts the block towards -x (q < 0). With sin x ~ x, cos x ~ 1, alpha ~ B/H
+//! and R ~ H/2 it is the small-angle equation above; the two differ by O(alpha^2). The rules
+//! are the same in both forms:
+//!
+//! - uplift when |a| reaches a_up (g tan alpha = g B/H for Housner's block), in the direction
+//!   above;
+//! - at an impact q' -> e q' with Housner's e = 1 - (3/2) sin^2 alpha, which follows from the
+//!   conservation of angular momentum about the new toe for a rectangular block of any
+//!   slenderness, so it is no small-angle approximation;
+//! - overturned when theta reaches the equation's unstable equilibrium: |theta| = alpha, that
+//!   is |q| = H atan(B/H), in the full form; |theta| = B/H, |q| = B, in the small-angle form
+//!   ([`RigidBlock::overturning_displacement`]);
+//! - chatter is cut short by the same rule (below), with each form's pull towards the floor.
 //!
 //! # Numerical method
 //!
