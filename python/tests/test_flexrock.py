@@ -92,6 +92,20 @@ def test_method_and_tolerances_as_the_flags(tmp_path):
     same_as_cli(flexrock.simulate(model, method="tsit45", rtol=1e-8, atol=1e-12), tmp_path)
 
 
+def test_the_exact_method_equals_the_command_line_and_estimates_its_error(tmp_path):
+    run_cli("run", MODEL, "--out", tmp_path, "--method", "exact")
+    result = flexrock.simulate(flexrock.Model.from_file(MODEL), method="exact")
+    same_as_cli(result, tmp_path)
+    summary = json.loads((tmp_path / "summary.json").read_text())
+    assert result.summary["error_estimate"] == summary["error_estimate"]
+    estimate = result.summary["error_estimate"]
+    assert len(estimate["event_time"]) == len(result.events) > 0
+    assert all(0 < e < 1e-9 for e in estimate["event_time"])
+    assert result.summary["solver"] == {"method": "exact", "output_dt": 0.005}
+    with pytest.raises(flexrock.FlexrockError, match="rtol"):
+        flexrock.simulate(flexrock.Model.from_file(MODEL), method="exact", rtol=1e-8)
+
+
 def test_set_is_editing_the_file(tmp_path):
     text = MODEL.read_text()
     model = flexrock.Model.from_toml(text)

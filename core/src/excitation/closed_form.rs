@@ -54,6 +54,18 @@ impl ClosedForm {
         }
     }
 
+    /// a = A sin(2 pi t / Tp) for good.
+    pub fn sine(amplitude: f64, period: f64) -> Self {
+        ClosedForm::exact(
+            f64::INFINITY,
+            Shape::Sinusoid {
+                sin_part: amplitude,
+                cos_part: 0.0,
+                period,
+            },
+        )
+    }
+
     /// A polynomial about `origin` with the given low-order coefficients, exact until `until`.
     pub fn polynomial(origin: f64, low: &[f64], until: f64) -> Self {
         let mut coefficients = [0.0; MAX_DEGREE + 1];

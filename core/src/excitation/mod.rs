@@ -122,14 +122,7 @@ impl FloorMotion for Harmonic {
         "harmonic"
     }
     fn closed_form(&self, _t: f64) -> ClosedForm {
-        ClosedForm::exact(
-            f64::INFINITY,
-            Shape::Sinusoid {
-                sin_part: self.amplitude,
-                cos_part: 0.0,
-                period: self.period,
-            },
-        )
+        ClosedForm::sine(self.amplitude, self.period)
     }
     fn parameters(&self) -> serde_json::Value {
         serde_json::json!({ "kind": self.kind(), "amplitude": self.amplitude, "period": self.period })
@@ -210,14 +203,7 @@ impl FloorMotion for PaperSine {
             let [c1, c2, c3] = self.ramp_coefficients;
             ClosedForm::polynomial(0.0, &[0.0, c1, c2, c3], self.ramp)
         } else {
-            ClosedForm::exact(
-                f64::INFINITY,
-                Shape::Sinusoid {
-                    sin_part: self.amplitude,
-                    cos_part: 0.0,
-                    period: self.period,
-                },
-            )
+            ClosedForm::sine(self.amplitude, self.period)
         }
     }
     fn parameters(&self) -> serde_json::Value {

@@ -422,10 +422,9 @@ impl Flow {
                 fs,
                 fc,
             } => {
-                let (cc, ss) = trig(*omega2, *omega, u);
-                let e = (sigma * u).exp();
-                let xh = e * (cc * h0 + ss * (g0 - sigma * h0));
-                let vh = e * (cc * g0 + ss * (-k * h0 + sigma * g0));
+                let (x_terms, v_terms) = free_terms(k, *sigma, *omega2, *omega, *h0, *g0, u);
+                let xh = x_terms.iter().sum::<f64>();
+                let vh = v_terms.iter().sum::<f64>();
                 let big_omega = 2.0 * PI / period;
                 let (s, co) = if *xs == 0.0 && *xc == 0.0 && *fs == 0.0 && *fc == 0.0 {
                     (0.0, 0.0)
@@ -541,13 +540,9 @@ impl Flow {
                 period,
                 ..
             } => {
-                let (cc, ss) = trig(*omega2, *omega, u);
-                let e = (sigma * u).exp();
-                let free = e
-                    * (cc.abs() * h0.abs() + ss.abs() * (g0.abs() + sigma.abs() * h0.abs()))
-                    + e * (cc.abs() * g0.abs()
-                        + ss.abs() * (self.k.abs() * h0.abs() + sigma.abs() * g0.abs()))
-                        / w;
+                let (x_terms, v_terms) = free_terms(self.k, *sigma, *omega2, *omega, *h0, *g0, u);
+                let size = |terms: [f64; 3]| terms.iter().map(|t| t.abs()).sum::<f64>();
+                let free = size(x_terms) + size(v_terms) / w;
                 let steady = xs.hypot(*xc) * (1.0 + 2.0 * PI / period / w);
                 // Phases: omega u and 2 pi t / Tp carry relative errors of a few ulps.
                 free * (1.0 + (omega + sigma.abs()) * u.abs())
@@ -568,6 +563,26 @@ impl Flow {
 
 /// Multiple of the unit roundoff per summed term that the rounding estimate books.
 const ROUNDING_ULPS: f64 = 8.0;
+
+/// The terms of the free motion x_h = e^(sigma u) [C h0 + S (g0 - sigma h0)] and of its rate
+/// x_h' = e^(sigma u) [C g0 + S (sigma g0 - k h0)] at u, each summed to give the value.
+#[allow(clippy::too_many_arguments)]
+fn free_terms(
+    k: f64,
+    sigma: f64,
+    omega2: f64,
+    omega: f64,
+    h0: f64,
+    g0: f64,
+    u: f64,
+) -> ([f64; 3], [f64; 3]) {
+    let (cc, ss) = trig(omega2, omega, u);
+    let e = (sigma * u).exp();
+    (
+        [e * cc * h0, e * ss * g0, -e * ss * sigma * h0],
+        [e * cc * g0, e * ss * sigma * g0, -e * ss * k * h0],
+    )
+}
 
 /// C and S of the oscillator form at u.
 fn trig(omega2: f64, omega: f64, u: f64) -> (f64, f64) {
