@@ -207,7 +207,14 @@ fn figures(summary: &ConvergeSummary) -> Result<(String, String)> {
     ];
     let mut dt_panels = Vec::new();
     let mut work_panels = Vec::new();
+    // Say what the errors are measured against: the exact solution (true errors) or a tight run.
+    let against = match summary.reference_rtol {
+        None => " (against the exact solution)".to_string(),
+        Some(rtol) => format!(" (against {} at rtol {rtol:e})", summary.reference_method),
+    };
     for (name, title, y_label) in titles {
+        let title = format!("{title}{against}");
+        let title = title.as_str();
         let mut dt_series = Vec::new();
         let mut work_series = Vec::new();
         for (i, method) in methods.iter().enumerate() {
