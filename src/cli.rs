@@ -298,7 +298,12 @@ pub(crate) struct SweepArgs {
     /// Width of the final bracket of --find-min, in KEY's units [default: (HI - LO)/1e4].
     #[arg(long)]
     pub(crate) tol: Option<f64>,
-    /// A sweep file (TOML: vary, set, find_min, scan, tol); flags add to it.
+    /// The equation of Housner's rigid block searched beside the body by --find-min: the
+    /// small-angle (linearised) one, or the full one [default: small-angle]. A full-form sweep's
+    /// sweep.csv has a rigid_form column.
+    #[arg(long, value_name = "FORM", value_parser = ["small-angle", "full"])]
+    pub(crate) rigid_form: Option<String>,
+    /// A sweep file (TOML: vary, set, find_min, scan, tol, rigid_form); flags add to it.
     #[arg(long)]
     pub(crate) sweep_file: Option<PathBuf>,
     /// Compute only shard K of N (disjoint slices of whole chunks), into OUT/shard-K-of-N; set

@@ -81,7 +81,7 @@ fn core_named_by_flags(error: Error, overrides: &Overrides, fem: &FemOverrides) 
 }
 
 /// The flag of a sweep request's value named by the sweep file's key (`vary KEY`,
-/// `find_min KEY`, `scan`, `tol`, `chunk_size`), as the core names it.
+/// `find_min KEY`, `scan`, `tol`, `chunk_size`, `rigid_form`), as the core names it.
 fn sweep_flag_for(key: &str) -> Option<String> {
     let (name, rest) = match key.split_once(' ') {
         Some((name, rest)) => (name, Some(rest)),
@@ -93,6 +93,7 @@ fn sweep_flag_for(key: &str) -> Option<String> {
         "scan" if rest.is_none() => "--scan",
         "tol" if rest.is_none() => "--tol",
         "chunk_size" if rest.is_none() => "--chunk-size",
+        "rigid_form" if rest.is_none() => "--rigid-form",
         _ => return None,
     };
     Some(match rest {

@@ -54,6 +54,10 @@ fn sweep(args: SweepArgs) -> flexrock::Result<Output> {
             scan: args.scan,
             tol: args.tol,
             chunk_size: args.chunk_size,
+            rigid_form: match &args.rigid_form {
+                Some(text) => Some(flexrock_core::rigid::RigidForm::parse("rigid_form", text)?),
+                None => None,
+            },
             ..Request::default()
         };
         if let Some(file) = &args.sweep_file {

@@ -284,6 +284,21 @@ fn bad_requests_are_refused_before_anything_is_written() {
             "--chunk-size",
         ),
         (
+            "rigid form without a search",
+            vec!["--vary", "excitation.period=1,2", "--rigid-form", "full"],
+            "--rigid-form",
+        ),
+        (
+            "unknown rigid form",
+            vec![
+                "--find-min",
+                "excitation.amplitude=1:5",
+                "--rigid-form",
+                "exact",
+            ],
+            "exact",
+        ),
+        (
             "zero threads",
             vec!["--vary", "excitation.period=1,2", "--threads", "0"],
             "--threads",
@@ -592,6 +607,103 @@ fn the_minimum_search_brackets_a_transition_and_reports_the_safe_band_above_it()
     assert!(overturns(bands[0].1) && overturns(bands[1].0));
     assert_eq!(bands[1].1, 60.0);
     assert!(dir.join("spectrum.svg").is_file());
+}
+
+/// `--rigid-form full` searches Housner's block by the full equation: under the 0.8 s one-sine
+/// pulse the reference block overturns from 3.033 m/s^2 instead of the small-angle form's
+/// 2.998 m/s^2 (independent calculations, core/tests/rigid_forms.rs), to 0.2 %. sweep.csv says
+/// so in a `rigid_form` column after Housner's two, and sweep.json in `find_min.rigid_form`;
+/// the default sweep has neither, and the elastic body's and the rigid limit's columns are the
+/// same in both. A sweep file's `rigid_form` does the same, and an unknown one is refused.
+#[test]
+fn a_full_form_sweep_searches_and_names_the_full_equations_block() {
+    let dir = scratch_dir("sweep-rigid-form");
+    let model = pulse_model();
+    let model = model.to_str().unwrap();
+    let sweep = |out: &Path, extra: &[&str]| {
+        let mut args = vec![
+            "sweep",
+            model,
+            "--out",
+            out.to_str().unwrap(),
+            "--vary",
+            "excitation.period=0.8",
+            "--find-min",
+            "excitation.amplitude=1.8:8",
+            "--tol",
+            "1e-4",
+            "--quiet",
+        ];
+        args.extend(extra);
+        run(&args);
+        let json: serde_json::Value =
+            serde_json::from_slice(&std::fs::read(out.join("sweep.json")).unwrap()).unwrap();
+        (rows(out).remove(0), json)
+    };
+    let (default, default_json) = sweep(&dir.join("default"), &[]);
+    let (full, full_json) = sweep(&dir.join("full"), &["--rigid-form", "full"]);
+    assert!(!default.contains_key("rigid_form"), "{default:?}");
+    assert_eq!(full["rigid_form"], "full");
+    let small_angle = number(&default, "rigid_min_overturning");
+    let housner = number(&full, "rigid_min_overturning");
+    assert!((small_angle / 2.998 - 1.0).abs() < 2e-3, "{small_angle}");
+    assert!((housner / 3.033 - 1.0).abs() < 2e-3, "{housner}");
+    for column in ["min_overturning", "rigid_limit_min_overturning"] {
+        assert_eq!(default[column], full[column], "{column}");
+    }
+    let plan = |json: &serde_json::Value| json.to_string();
+    assert!(!plan(&default_json).contains("rigid_form"));
+    assert!(
+        plan(&full_json).contains("\"rigid_form\":\"full\""),
+        "{full_json}"
+    );
+    let header = std::fs::read_to_string(dir.join("full").join("sweep.csv")).unwrap();
+    let header = header.lines().next().unwrap();
+    assert!(
+        header.contains("rigid_amplitude_over_g_tan_alpha,rigid_form,rigid_limit_min_overturning"),
+        "{header}"
+    );
+
+    // The same from a sweep file; an unknown form there is refused, naming the key.
+    let file = dir.join("plan.toml");
+    std::fs::write(
+        &file,
+        "vary = [\"excitation.period=0.8\"]\nfind_min = \"excitation.amplitude=1.8:8\"\n\
+         tol = 1e-4\nrigid_form = \"full\"\n",
+    )
+    .unwrap();
+    let from_file = dir.join("file");
+    run(&[
+        "sweep",
+        model,
+        "--out",
+        from_file.to_str().unwrap(),
+        "--sweep-file",
+        file.to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert_eq!(rows(&from_file).remove(0), full);
+    std::fs::write(
+        &file,
+        "find_min = \"excitation.amplitude=1.8:8\"\nrigid_form = \"exact\"\n",
+    )
+    .unwrap();
+    let refused = dir.join("refused");
+    let o = flexrock(&[
+        "sweep",
+        model,
+        "--out",
+        refused.to_str().unwrap(),
+        "--sweep-file",
+        file.to_str().unwrap(),
+    ]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains("rigid") && stderr.contains("exact"),
+        "{stderr}"
+    );
+    assert!(!refused.exists());
 }
 
 /// The continuity the paper asks for (its section 4): as E grows, the elastic body's smallest

@@ -618,6 +618,7 @@ fn a_plan_reads_back_bit_for_bit() {
                 hi: 15.0,
                 scan: 100,
                 tol,
+                rigid_form: Default::default(),
             }),
             chunk_size: 1,
             records: Vec::new(),

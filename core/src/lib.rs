@@ -58,8 +58,8 @@
 //! - [`model`]: the TOML model file (its schema and checks);
 //! - [`fem`]: the plane-stress finite element check of the paper's Section 3 (mesh, elements,
 //!   banded solver, eigenvalues, dynamics, pushover);
-//! - [`rigid`]: the slender rigid block of the rigid limit (Housner's block), which the elastic
-//!   body must tend to as E grows; [`findings`]: the paper's qualitative findings in numbers;
+//! - [`rigid`]: the rigid block of the rigid limit (Housner's block), which the elastic body must
+//!   tend to as E grows, by the small-angle (default) or the full rocking equation; [`findings`]: the paper's qualitative findings in numbers;
 //! - `flexural_shape` (private): the self-weighted cantilever mode psi of the consistent variant;
 //! - [`run_tables`]: the columns of a run's tables; [`summary`]: summary.json of a run;
 //! - [`sweep`]: parametric studies and minimum overturning searches;

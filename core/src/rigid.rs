@@ -1,4 +1,4 @@
-//! The slender rigid block of the rigid limit (book/src/model.md §7; Housner 1963): the reference
+//! The rigid block of the rigid limit (book/src/model.md §7; Housner 1963): the reference
 //! that overturning spectra of the elastic body are plotted against, and what the elastic model
 //! must tend to as E grows.
 //!
@@ -16,6 +16,33 @@
 //! - when q crosses 0 the block hits the floor: q' -> e q' with Housner's restitution
 //!   e = (2 H^2 - B^2)/(2 (H^2 + B^2)) (eq. A7), and it rocks on about the other toe;
 //! - when |q| reaches B it has overturned (terminal).
+//!
+//! That is the small-angle (linearised, slender) form of Housner's equation, the default
+//! ([`RigidForm::SmallAngle`]), and the form the elastic model tends to as E grows. The other
+//! form ([`RigidForm::Full`]) is the full equation of a rectangular rigid block, the paper's
+//! eq. A6 (Ichinose 1986, appendix), also Housner 1963 (Bull. Seismol. Soc. Am. 53(2)), Zhang and
+//! Makris 2001 (J. Eng. Mech. 127(5)) and Dimitrakopoulos and DeJong 2012 (Proc. R. Soc. A 468).
+//! With alpha = atan(B/H), R = sqrt(H^2 + B^2)/2 (the half-diagonal), p^2 = 3 g/(4 R) and
+//! theta = q/H:
+//!
+//! ```text
+//! theta'' = -p^2 [ sin(s alpha - theta) + (a(t)/g) cos(s alpha - theta) ],   s = sgn(theta)
+//! ```
+//!
+//! with the same sign convention as the small-angle form: a(t) > 0 is the floor accelerating
+//! towards +x, which tilts the block towards -x (q < 0). With sin x ~ x, cos x ~ 1, alpha ~ B/H
+//! and R ~ H/2 it is the small-angle equation above; the two differ by O(alpha^2). The rules
+//! are the same in both forms:
+//!
+//! - uplift when |a| reaches a_up (g tan alpha = g B/H for Housner's block), in the direction
+//!   above;
+//! - at an impact q' -> e q' with Housner's e = 1 - (3/2) sin^2 alpha, which follows from the
+//!   conservation of angular momentum about the new toe for a rectangular block of any
+//!   slenderness, so it is no small-angle approximation;
+//! - overturned when theta reaches the equation's unstable equilibrium: |theta| = alpha, that
+//!   is |q| = H atan(B/H), in the full form; |theta| = B/H, |q| = B, in the small-angle form
+//!   ([`RigidBlock::overturning_displacement`]);
+//! - chatter is cut short by the same rule (below), with each form's pull towards the floor.
 //!
 //! # Numerical method
 //!
@@ -42,18 +69,28 @@
 //! is located by bisection; an excursion beyond a_up shorter than an eighth of a step can be
 //! missed. Halving the step changes event times and peaks by about 1e-13 (see the tests).
 //!
+//! The full equation has no closed-form propagator: it is integrated by the classical
+//! fourth-order Runge-Kutta method from the step's start, in [`FULL_SUBSTEPS`] equal substeps
+//! per [`RigidSettings::max_step`] (so a propagation to a trial time of a bisection is again a
+//! fresh integration from the step's start, smooth in that time). Steps, breakpoints, the
+//! splitting at turning points and the event location are those of the small-angle form. With
+//! the default step (1 ms) the local error is of order (p h)^5 and (2 pi h/Tp)^5 per substep;
+//! halving the step changes event times and peaks by less than 1e-10 (see the tests).
+//!
 //! # Chatter
 //!
 //! A block that lands slowly while |a| < g B/H falls back from either side: its impacts form a
 //! geometric sequence whose flights shrink by e each time and which ends in finite time (Zeno).
 //! After an impact with |q'| = v while |a(t)| < g B/H, the remaining sequence, if the floor
-//! acceleration stayed as it is, would last at most 2 v / ((3/2)(g B/H - |a|) (1 - e)). When that
+//! acceleration stayed as it is, would last at most 2 v / (c (g B/H - |a|) (1 - e)), with
+//! c = 3/2 in the small-angle form and c = (3/2) cos^2 alpha in the full form (its pull towards
+//! the floor at theta = 0, H p^2 (sin alpha - (|a|/g) cos alpha)). When that
 //! is at most [`ZENO_TIME`] the block is put at rest ([`RigidEventKind::Settle`]). Since
 //! g B/H <= a_up, the resting block stays until the floor reaches a_up.
 
 #![warn(missing_docs)]
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use crate::constants::ModeShapeIntegrals;
 use crate::invalid::InvalidParameter;
@@ -76,6 +113,9 @@ pub const DEFAULT_STEP_FRACTION: f64 = 0.05;
 /// time, s (see the module documentation).
 pub const ZENO_TIME: f64 = 1e-6;
 
+/// Fourth-order Runge-Kutta substeps per [`RigidSettings::max_step`] of the full equation.
+pub const FULL_SUBSTEPS: f64 = 4.0;
+
 /// Points per step at which a resting block checks the floor acceleration against a_up.
 const REST_SAMPLES: usize = 8;
 
@@ -93,6 +133,58 @@ const GAUSS_WEIGHTS: [f64; 4] = [
     0.101_228_536_290_376_3,
 ];
 
+/// Which rocking equation a block obeys (see the module documentation).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum RigidForm {
+    /// The small-angle (linearised, slender) form, q'' = k^2 (q - s B) - (3/2) a, k^2 =
+    /// 3 g/(2 H): the default, and the form the elastic model tends to as E grows.
+    #[default]
+    SmallAngle,
+    /// Housner's full equation of a rectangular block, theta'' = -p^2 [sin(s alpha - theta) +
+    /// (a/g) cos(s alpha - theta)], p^2 = 3 g/(4 R), R = sqrt(H^2 + B^2)/2, alpha = atan(B/H).
+    Full,
+}
+
+impl RigidForm {
+    /// Every form, in the order they are listed to users.
+    pub const ALL: [RigidForm; 2] = [RigidForm::SmallAngle, RigidForm::Full];
+
+    /// The name in files and on the command line: `small-angle` or `full`.
+    pub fn name(self) -> &'static str {
+        match self {
+            RigidForm::SmallAngle => "small-angle",
+            RigidForm::Full => "full",
+        }
+    }
+
+    /// True for the default, the small-angle form.
+    pub fn is_small_angle(&self) -> bool {
+        *self == RigidForm::SmallAngle
+    }
+
+    /// The form named `text`; `key` names the setting in the message of an unknown name.
+    pub fn parse(key: &str, text: &str) -> std::result::Result<Self, InvalidParameter> {
+        RigidForm::ALL
+            .into_iter()
+            .find(|f| f.name() == text)
+            .ok_or_else(|| {
+                InvalidParameter::new(
+                    key,
+                    text,
+                    "must be \"small-angle\" (the linearised equation, the default) or \"full\" \
+                     (Housner's full equation)",
+                )
+            })
+    }
+}
+
+impl std::fmt::Display for RigidForm {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
 /// A slender rigid block of height H and width B standing on a rigid floor.
 #[derive(Debug, Clone, Serialize)]
 pub struct RigidBlock {
@@ -100,6 +192,9 @@ pub struct RigidBlock {
     width: f64,
     gravity: f64,
     uplift_acceleration: f64,
+    /// The equation it obeys; not written for the default, so that its JSON is unchanged.
+    #[serde(skip_serializing_if = "RigidForm::is_small_angle")]
+    form: RigidForm,
 }
 
 impl RigidBlock {
@@ -146,7 +241,24 @@ impl RigidBlock {
             width,
             gravity,
             uplift_acceleration,
+            form: RigidForm::SmallAngle,
         })
+    }
+
+    /// The same block obeying the equation `form` (the constructors give the small-angle form).
+    pub fn with_form(mut self, form: RigidForm) -> Self {
+        self.form = form;
+        self
+    }
+
+    /// The equation the block obeys.
+    pub fn form(&self) -> RigidForm {
+        self.form
+    }
+
+    /// alpha = atan(B/H), the slenderness angle, rad.
+    pub fn slenderness(&self) -> f64 {
+        (self.width / self.height).atan()
     }
 
     /// Height H, m.
@@ -154,9 +266,18 @@ impl RigidBlock {
         self.height
     }
 
-    /// Width B, m; |q| = B is the overturning limit.
+    /// Width B, m; |q| = B is the overturning limit of the small-angle form.
     pub fn width(&self) -> f64 {
         self.width
+    }
+
+    /// |q| at which the block has overturned, m: B in the small-angle form (theta = B/H), H
+    /// atan(B/H) in the full form (theta = alpha).
+    pub fn overturning_displacement(&self) -> f64 {
+        match self.form {
+            RigidForm::SmallAngle => self.width,
+            RigidForm::Full => self.height * self.slenderness(),
+        }
     }
 
     /// Gravity acceleration g, m/s^2.
@@ -175,9 +296,18 @@ impl RigidBlock {
         self.gravity * self.width / self.height
     }
 
-    /// k = p = sqrt(3 g/(2 H)), rad/s: the frequency parameter of the slender block.
+    /// The frequency parameter, rad/s: k = sqrt(3 g/(2 H)) in the small-angle form (the slender
+    /// block's), p = sqrt(3 g/(4 R)), R = sqrt(H^2 + B^2)/2, in the full form.
     pub fn frequency(&self) -> f64 {
-        (1.5 * self.gravity / self.height).sqrt()
+        match self.form {
+            RigidForm::SmallAngle => (1.5 * self.gravity / self.height).sqrt(),
+            RigidForm::Full => (0.75 * self.gravity / self.half_diagonal()).sqrt(),
+        }
+    }
+
+    /// R = sqrt(H^2 + B^2)/2, m: the distance from a toe to the centre of mass.
+    pub fn half_diagonal(&self) -> f64 {
+        0.5 * self.height.hypot(self.width)
     }
 
     /// Housner's coefficient of restitution e = (2 H^2 - B^2)/(2 (H^2 + B^2)) = 1 - 1.5 sin^2
@@ -187,9 +317,26 @@ impl RigidBlock {
         (2.0 * h2 - b2) / (2.0 * (h2 + b2))
     }
 
-    /// k B, m/s: the smallest speed at which a free block leaving q = 0 overturns.
+    /// The smallest speed q' at which a free block leaving q = 0 overturns, m/s: k B in the
+    /// small-angle form; in the full form, from the energy p^2 (1 - cos alpha) the block must
+    /// gain to reach theta = alpha, 2 p H sin(alpha/2).
     pub fn overturning_velocity(&self) -> f64 {
-        self.frequency() * self.width
+        match self.form {
+            RigidForm::SmallAngle => self.frequency() * self.width,
+            RigidForm::Full => {
+                2.0 * self.frequency() * self.height * (0.5 * self.slenderness()).sin()
+            }
+        }
+    }
+
+    /// The pull towards the floor at q = 0 per unit of (g B/H - |a|): the q'' of a block at
+    /// q = 0 under a floor acceleration |a| below g B/H is -c (g B/H - |a|), c = 3/2 in the
+    /// small-angle form, (3/2) cos^2 alpha in the full form.
+    fn pull_factor(&self) -> f64 {
+        match self.form {
+            RigidForm::SmallAngle => 1.5,
+            RigidForm::Full => 1.5 * self.slenderness().cos().powi(2),
+        }
     }
 }
 
@@ -383,13 +530,16 @@ pub fn simulate_from(
         )
         .into());
     }
-    if !(initial.q.is_finite() && initial.q.abs() < block.width) {
-        return Err(InvalidParameter::new(
-            "rigid.q0",
-            initial.q,
-            &format!("must lie strictly between -B and B ({} m)", block.width),
-        )
-        .into());
+    let limit = block.overturning_displacement();
+    if !(initial.q.is_finite() && initial.q.abs() < limit) {
+        let rule = match block.form {
+            RigidForm::SmallAngle => format!("must lie strictly between -B and B ({limit} m)"),
+            RigidForm::Full => format!(
+                "must lie strictly between -H atan(B/H) and H atan(B/H) ({limit} m), where the \
+                 full equation's block overturns"
+            ),
+        };
+        return Err(InvalidParameter::new("rigid.q0", initial.q, &rule).into());
     }
     if !initial.qdot.is_finite() {
         return Err(
@@ -412,9 +562,12 @@ pub fn simulate_from(
 struct Run<'a> {
     floor: &'a dyn FloorMotion,
     propagator: Propagator<'a>,
-    width: f64,
+    /// |q| at which the block has overturned.
+    limit: f64,
     restitution: f64,
     tipping: f64,
+    /// See [`RigidBlock::pull_factor`].
+    pull_factor: f64,
     uplift: f64,
     duration: f64,
     max_step: f64,
@@ -457,10 +610,20 @@ impl<'a> Run<'a> {
                 quiet_after: floor.quiet_after(),
                 k: block.frequency(),
                 width: block.width,
+                full: match block.form {
+                    RigidForm::SmallAngle => None,
+                    RigidForm::Full => Some(FullEquation {
+                        height: block.height,
+                        alpha: block.slenderness(),
+                        gravity: block.gravity,
+                        substep: max_step / FULL_SUBSTEPS,
+                    }),
+                },
             },
-            width: block.width,
+            limit: block.overturning_displacement(),
             restitution: block.restitution(),
             tipping: block.tipping_acceleration(),
+            pull_factor: block.pull_factor(),
             uplift: block.uplift_acceleration,
             duration,
             max_step,
@@ -621,9 +784,9 @@ impl<'a> Run<'a> {
                     };
                     return self.impact(te, at(te).1);
                 }
-            } else if side * qb >= self.width {
-                // Moving away from it: overturned when |q| reaches B.
-                let te = first_true(ta, tb, |t| side * at(t).0 >= self.width);
+            } else if side * qb >= self.limit {
+                // Moving away from it: overturned when |q| reaches the overturning displacement.
+                let te = first_true(ta, tb, |t| side * at(t).0 >= self.limit);
                 return self.overturn(te, side, at(te).1);
             }
         }
@@ -657,9 +820,9 @@ impl<'a> Run<'a> {
         self.book(RigidEventKind::Impact, qdot_before, qdot)?;
 
         // Chatter (see the module documentation): the impacts still to come would end within
-        // 2 |q'| / ((3/2)(g B/H - |a|)(1 - e)).
+        // 2 |q'| / (c (g B/H - |a|)(1 - e)).
         let a = self.floor.acceleration(t).abs();
-        let pull = 1.5 * (self.tipping - a);
+        let pull = self.pull_factor * (self.tipping - a);
         if pull > 0.0 && 2.0 * qdot.abs() <= ZENO_TIME * pull * (1.0 - self.restitution) {
             self.state = RigidState {
                 t,
@@ -673,8 +836,9 @@ impl<'a> Run<'a> {
         Ok(())
     }
 
+    /// The block has overturned on `side` (|q| reached the overturning displacement).
     fn overturn(&mut self, t: f64, side: f64, qdot: f64) -> Result<()> {
-        let q = side * self.width;
+        let q = side * self.limit;
         self.state = RigidState {
             t,
             q,
@@ -710,13 +874,73 @@ struct Propagator<'a> {
     quiet_after: Option<f64>,
     k: f64,
     width: f64,
+    /// The full equation's numbers, or None for the small-angle form.
+    full: Option<FullEquation>,
+}
+
+/// The numbers of the full equation in q = theta H units: q'' = -H p^2 [sin(s alpha - q/H) +
+/// (a/g) cos(s alpha - q/H)], with p = [`Propagator::k`].
+#[derive(Clone, Copy)]
+struct FullEquation {
+    height: f64,
+    alpha: f64,
+    gravity: f64,
+    /// Longest Runge-Kutta substep, s.
+    substep: f64,
 }
 
 impl Propagator<'_> {
-    /// (q, q') a time `tau` after t0, from (q0, v0) at t0 rocking on `side`: the exact solution
-    /// of q'' = k^2 (q - side B) - (3/2) a(t), with the forcing integrals by 8-point
-    /// Gauss-Legendre quadrature.
+    /// (q, q') a time `tau` after t0, from (q0, v0) at t0 rocking on `side`.
     fn propagate(&self, t0: f64, q0: f64, v0: f64, side: f64, tau: f64) -> (f64, f64) {
+        match self.full {
+            None => self.propagate_small_angle(t0, q0, v0, side, tau),
+            Some(full) => self.propagate_full(&full, t0, q0, v0, side, tau),
+        }
+    }
+
+    /// The full equation by the classical fourth-order Runge-Kutta method in equal substeps of
+    /// at most `full.substep`.
+    fn propagate_full(
+        &self,
+        full: &FullEquation,
+        t0: f64,
+        q0: f64,
+        v0: f64,
+        side: f64,
+        tau: f64,
+    ) -> (f64, f64) {
+        if tau <= 0.0 {
+            return (q0, v0);
+        }
+        let scale = full.height * self.k * self.k;
+        let forced = self.quiet_after.is_none_or(|quiet| t0 < quiet);
+        let accel = |t: f64, q: f64| {
+            let angle = side * full.alpha - q / full.height;
+            let a = if forced {
+                self.floor.acceleration(t)
+            } else {
+                0.0
+            };
+            -scale * (angle.sin() + a / full.gravity * angle.cos())
+        };
+        let n = (tau / full.substep).ceil().max(1.0);
+        let h = tau / n;
+        let (mut q, mut v) = (q0, v0);
+        for i in 0..n as usize {
+            let t = t0 + h * i as f64;
+            let a1 = accel(t, q);
+            let a2 = accel(t + 0.5 * h, q + 0.5 * h * v);
+            let a3 = accel(t + 0.5 * h, q + 0.5 * h * v + 0.25 * h * h * a1);
+            let a4 = accel(t + h, q + h * v + 0.5 * h * h * a2);
+            q += h * v + h * h / 6.0 * (a1 + a2 + a3);
+            v += h / 6.0 * (a1 + 2.0 * a2 + 2.0 * a3 + a4);
+        }
+        (q, v)
+    }
+
+    /// The exact solution of q'' = k^2 (q - side B) - (3/2) a(t), with the forcing integrals by
+    /// 8-point Gauss-Legendre quadrature.
+    fn propagate_small_angle(&self, t0: f64, q0: f64, v0: f64, side: f64, tau: f64) -> (f64, f64) {
         let k = self.k;
         let (sinh, cosh) = ((k * tau).sinh(), (k * tau).cosh());
         let half_sinh = (0.5 * k * tau).sinh();

@@ -214,7 +214,10 @@ impl Solution {
     /// The largest energy residual as a share of the energy scale (0 when nothing moved): how
     /// far the integration is from the exact solution's energy books.
     pub fn energy_residual_share(&self) -> f64 {
-        if self.max_energy_residual <= self.energy_rounding {
+        if self.max_energy_residual.is_nan() {
+            // No energy books were kept.
+            f64::NAN
+        } else if self.max_energy_residual <= self.energy_rounding {
             // A run too short or too quiet for its energies to rise above their rounding
             // (1 microsecond: energies near 1e-19 J) balances to rounding.
             0.0
@@ -250,6 +253,8 @@ pub(crate) struct Recorder<'a> {
     max_energy_residual: f64,
     energy_scale: f64,
     t_overturn: Option<f64>,
+    /// Whether the energy books are kept (see [`Recorder::without_energy_books`]).
+    energy_books: bool,
 }
 
 impl<'a> Recorder<'a> {
@@ -297,7 +302,17 @@ impl<'a> Recorder<'a> {
             max_energy_residual: 0.0,
             energy_scale: 0.0,
             t_overturn: None,
+            energy_books: true,
         }
+    }
+
+    /// A recorder that keeps no energy books: the solver integrates no work, and the solution's
+    /// energy residual and scale are NaN (not computed). The exact method's runs without a
+    /// history (sweeps, minimum searches) are such runs: their energy balance holds by
+    /// construction, and checking it would cost more than the solution.
+    pub fn without_energy_books(mut self) -> Self {
+        self.energy_books = false;
+        self
     }
 
     /// Records a state; `work_input` and `work_damping` are the integrals (J) of
@@ -316,12 +331,14 @@ impl<'a> Recorder<'a> {
         let a = self.automaton;
         let energy = a.energy(mode, q, qdot);
         let residual = energy - self.initial_energy - work_input + work_damping - self.event_jumps;
-        self.max_energy_residual = self.max_energy_residual.max(residual.abs());
-        self.energy_scale = self
-            .energy_scale
-            .max(energy.abs())
-            .max(work_input.abs())
-            .max(work_damping.abs());
+        if self.energy_books {
+            self.max_energy_residual = self.max_energy_residual.max(residual.abs());
+            self.energy_scale = self
+                .energy_scale
+                .max(energy.abs())
+                .max(work_input.abs())
+                .max(work_damping.abs());
+        }
         self.peak_candidate(t, q);
         if self.history == History::PeaksOnly {
             return;
@@ -454,8 +471,16 @@ impl<'a> Recorder<'a> {
             t_overturn: self.t_overturn,
             final_time,
             final_mode,
-            max_energy_residual: self.max_energy_residual,
-            energy_scale: self.energy_scale,
+            max_energy_residual: if self.energy_books {
+                self.max_energy_residual
+            } else {
+                f64::NAN
+            },
+            energy_scale: if self.energy_books {
+                self.energy_scale
+            } else {
+                f64::NAN
+            },
             energy_rounding: ENERGY_ROUNDING_ULPS
                 * f64::EPSILON
                 * self.energy_scale.max(

@@ -17,3 +17,4 @@ mod model_robustness;
 mod random_models;
 mod recorded_motion;
 mod rigid;
+mod rigid_forms;

@@ -18,7 +18,7 @@ fn axis_text(value: &Bound<'_, PyAny>) -> PyResult<String> {
 }
 
 /// An error about the request, named by the Python argument that gave the value: `axes["KEY"]`,
-/// `find_min`, `scan`, `tol`.
+/// `find_min`, `scan`, `tol`, `rigid_form`.
 fn request_error(e: flexrock_core::Error) -> PyErr {
     use flexrock_core::Error;
     let renamed = match e {
@@ -51,7 +51,7 @@ fn cell<'py>(py: Python<'py>, cell: &Cell) -> PyResult<Bound<'py, PyAny>> {
 /// `{"columns": [...], "kinds": ["int"|"float"|"bool"|"str", ...], "values": [[...], ...],
 /// "axes": [(key, [values]), ...]}`, None where sweep.csv's field is empty.
 #[pyfunction]
-#[pyo3(signature = (model, axes, find_min=None, scan=None, tol=None))]
+#[pyo3(signature = (model, axes, find_min=None, scan=None, tol=None, rigid_form=None))]
 pub(crate) fn sweep<'py>(
     py: Python<'py>,
     model: &Model,
@@ -59,11 +59,20 @@ pub(crate) fn sweep<'py>(
     find_min: Option<(String, f64, f64)>,
     scan: Option<usize>,
     tol: Option<f64>,
+    rigid_form: Option<String>,
 ) -> PyResult<Bound<'py, PyDict>> {
+    let rigid_form = match rigid_form {
+        Some(text) => Some(
+            flexrock_core::rigid::RigidForm::parse("rigid_form", &text)
+                .map_err(|e| request_error(e.into()))?,
+        ),
+        None => None,
+    };
     let mut request = Request {
         settings: model.settings.clone(),
         scan,
         tol,
+        rigid_form,
         find_min: find_min.map(|(key, lo, hi)| (key, Interval { lo, hi })),
         ..Request::default()
     };
@@ -86,7 +95,7 @@ pub(crate) fn sweep<'py>(
     }
     .map_err(request_error)?;
     let plan = &sweep.plan;
-    let find = plan.find_min.is_some();
+    let find = plan.layout();
     let rows = py.detach(|| sweep.rows(0..sweep.points(), &|| {}));
     let mut columns: Vec<String> = vec!["point".into()];
     let mut kinds: Vec<&str> = vec!["int"];

@@ -306,6 +306,9 @@ def test_a_sweep_equals_the_command_lines_table_typed(tmp_path):
         (dict(find_min=("excitation.amplitude", 1.0, float("nan"))), r"^find_min = 1:NaN: "),
         (dict(find_min=("excitation.amplitude", 1.0, 2.0), scan=1), r"^scan = 1: must lie in"),
         (dict(find_min=("excitation.amplitude", 1.0, 2.0), tol=-1.0), r"^tol = -1: must be a positive"),
+        (dict(find_min=("excitation.amplitude", 1.0, 2.0), rigid_form="exact"),
+         r"^rigid_form = exact: must be \"small-angle\""),
+        (dict(rigid_form="full"), r"^rigid_form = full: chooses the rigid block of a minimum search"),
     ],
 )
 def test_sweep_errors_name_the_argument(kwargs, message):

@@ -166,6 +166,20 @@ def test_sweep_of_a_model_text_with_a_minimum_search(tmp_path):
     same_table(got, rows)
 
 
+def test_sweep_with_the_full_rigid_equation_equals_the_command_line(tmp_path):
+    # rigid_form="full" is --rigid-form full: the same table, with its rigid_form column.
+    pulse = ROOT / "models" / "pulse-map.toml"
+    run_cli("sweep", pulse, "--out", tmp_path, "--quiet", "--vary", "excitation.period=0.8",
+            "--find-min", "excitation.amplitude=1.8:8", "--rigid-form", "full")
+    rows = read_csv(tmp_path / "sweep.csv")
+    got = flexrock.sweep(flexrock.Model.from_file(pulse), {"excitation.period": [0.8]},
+                         find_min=("excitation.amplitude", 1.8, 8.0), rigid_form="full")
+    same_table(got, rows)
+    assert rows[0]["rigid_form"] == "full"
+    # The reference block overturns from 3.033 m/s^2 by the full equation (2.998 small-angle).
+    assert abs(float(rows[0]["rigid_min_overturning"]) / 3.033 - 1) < 2e-3
+
+
 def test_to_pandas():
     pandas = pytest.importorskip("pandas")
     frame = flexrock.simulate(flexrock.Model.from_file(MODEL)).to_pandas()

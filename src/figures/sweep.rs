@@ -694,8 +694,12 @@ fn spectrum(plan: &Plan, table: &SweepTable, x: usize) -> Result<Vec<u8>> {
     ] {
         sort(v);
     }
-    // Short labels: the legend strip holds about 26 characters.
-    let housner = "rigid block (Housner)";
+    // Short labels: the legend strip holds about 26 characters. The default (small-angle)
+    // block keeps its label; the full equation's says so.
+    let housner = match find.rigid_form {
+        flexrock_core::rigid::RigidForm::SmallAngle => "rigid block (Housner)",
+        flexrock_core::rigid::RigidForm::Full => "Housner, full equation",
+    };
     let limit = format!(
         "rigid limit ({:.3} g B/H)",
         flexrock_core::constants::ModeShapeIntegrals::exact().rigid_limit_uplift_factor()

@@ -462,12 +462,13 @@ impl Model {
             // Switching between the families of methods (Newmark, the adaptive methods, the exact
             // one) on the command line sets aside the file's keys of the other family: they were
             // written for the file's method.
-            let family = |name: Option<&str>| match name {
-                Some("newmark") => 1,
-                Some(crate::solver::exact::NAME) => 2,
-                _ => 0,
-            };
-            if family(Some(m)) != family(file.solver.method.as_deref()) {
+            let gives_tolerance = file.solver.rtol.is_some() || file.solver.atol.is_some();
+            let file_method = file
+                .solver
+                .method
+                .as_deref()
+                .unwrap_or(solver_section::default_method(gives_tolerance));
+            if solver_section::method_family(m) != solver_section::method_family(file_method) {
                 let keep_output_dt = file.solver.output_dt;
                 file.solver = SolverSection {
                     output_dt: keep_output_dt,

@@ -64,6 +64,38 @@ enum Family {
     Newmark,
 }
 
+/// Which family of methods `name` belongs to: Newmark, the exact method, or the adaptive
+/// methods (any other name). Switching families from outside a file sets aside the file's keys
+/// of the other family ([`FAMILY_KEYS`]): they were written for the file's method.
+pub(crate) fn method_family(name: &str) -> u8 {
+    match name {
+        "newmark" => 1,
+        EXACT => 2,
+        _ => 0,
+    }
+}
+
+/// The `[solver]` keys that belong to one family of methods.
+pub(crate) const FAMILY_KEYS: [&str; 6] = [
+    "rtol",
+    "atol",
+    "dt",
+    "newmark_beta",
+    "newmark_gamma",
+    "newmark_variant",
+];
+
+/// The method of a `[solver]` section that names none: the exact method, or BDF (the default
+/// before the exact method existed) when the section gives an adaptive tolerance, so that such
+/// files run as they always have.
+pub(crate) fn default_method(gives_tolerance: bool) -> &'static str {
+    if gives_tolerance {
+        "bdf"
+    } else {
+        EXACT
+    }
+}
+
 /// The exact method's model-file name.
 const EXACT: &str = crate::solver::exact::NAME;
 
@@ -73,7 +105,10 @@ pub(super) fn solver_from_section(
     omega: f64,
     width: f64,
 ) -> Result<SolverSettings> {
-    let name = s.method.as_deref().unwrap_or("bdf");
+    let name = s
+        .method
+        .as_deref()
+        .unwrap_or(default_method(s.rtol.is_some() || s.atol.is_some()));
     let is_newmark = name == "newmark";
     let is_exact = name == EXACT;
     let adaptive = AdaptiveMethod::from_name(name);

@@ -104,7 +104,6 @@ pub fn default_value(key: &str) -> Option<toml::Value> {
         "excitation.tail" => Some(Float(0.0)),
         "simulation.q0" => Some(Float(0.0)),
         "simulation.qdot0" => Some(Float(0.0)),
-        "solver.method" => text("bdf"),
         "solver.rtol" => Some(Float(DEFAULT_RTOL)),
         "solver.atol" => Some(Float(DEFAULT_ATOL)),
         "solver.output_dt" => Some(Float(DEFAULT_OUTPUT_DT)),
@@ -148,6 +147,16 @@ pub fn value_in_effect(table: &toml::Table, key: &str) -> Result<Option<toml::Va
         .and_then(toml::Value::as_table)
         .and_then(|t| t.get(name))
         .cloned();
+    if key == "solver.method" && given.is_none() {
+        // The default method depends on whether the section gives a tolerance.
+        let gives_tolerance = table
+            .get("solver")
+            .and_then(toml::Value::as_table)
+            .is_some_and(|t| t.contains_key("rtol") || t.contains_key("atol"));
+        return Ok(Some(toml::Value::String(
+            super::solver_section::default_method(gives_tolerance).to_string(),
+        )));
+    }
     Ok(given.or_else(|| default_value(key)))
 }
 

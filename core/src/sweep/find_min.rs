@@ -11,6 +11,7 @@ use serde::{Deserialize, Serialize};
 
 use super::row::MinimumOutcome;
 use crate::format::shortest;
+use crate::rigid::RigidForm;
 
 /// Default number of scanned values.
 pub const DEFAULT_SCAN: usize = 100;
@@ -32,6 +33,10 @@ pub struct FindMin {
     pub scan: usize,
     /// Width of the final bracket, in the key's units.
     pub tol: f64,
+    /// The equation of Housner's block searched beside the body; not written for the default
+    /// (small-angle), so that the stored plan of a default sweep is unchanged.
+    #[serde(default, skip_serializing_if = "RigidForm::is_small_angle")]
+    pub rigid_form: RigidForm,
 }
 
 impl FindMin {
@@ -171,6 +176,7 @@ mod tests {
             hi: 10.0,
             scan,
             tol,
+            rigid_form: RigidForm::SmallAngle,
         }
     }
 

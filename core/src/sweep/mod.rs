@@ -24,12 +24,12 @@ use serde::{Deserialize, Serialize};
 
 pub use axis::{Axis, Interval};
 pub use find_min::FindMin;
-pub use row::{Cell, Outcome, Row, Status};
+pub use row::{Cell, Layout, Outcome, Row, Status};
 use row::{RigidMinima, RunOutcome, Scales};
 
 use crate::error::{Error, Result};
 use crate::model::{read_schema, Model, Overrides, RecordCache, Setting};
-use crate::rigid::RigidBlock;
+use crate::rigid::{RigidBlock, RigidForm};
 
 /// Simulations per chunk, roughly: a chunk is the most a kill can lose.
 pub const SIMULATIONS_PER_CHUNK: usize = 1024;
@@ -79,12 +79,16 @@ impl Plan {
     pub fn columns(&self) -> Vec<String> {
         let mut columns = vec!["point".to_string()];
         columns.extend(self.axes.iter().map(|a| a.key.clone()));
-        columns.extend(
-            Row::columns(self.find_min.is_some())
-                .into_iter()
-                .map(str::to_string),
-        );
+        columns.extend(Row::columns(self.layout()).into_iter().map(str::to_string));
         columns
+    }
+
+    /// The result columns the sweep has: runs, or a minimum search with its rigid block's form.
+    pub fn layout(&self) -> Layout {
+        match &self.find_min {
+            None => Layout::Runs,
+            Some(find) => Layout::Minimum(find.rigid_form),
+        }
     }
 
     /// The index of each axis at point `index` (the last axis varies fastest).
@@ -141,6 +145,8 @@ pub struct Request {
     pub tol: Option<f64>,
     /// Points per chunk [default: about [`SIMULATIONS_PER_CHUNK`] simulations].
     pub chunk_size: Option<usize>,
+    /// The equation of Housner's block in the minimum search [default: small-angle].
+    pub rigid_form: Option<RigidForm>,
 }
 
 /// A sweep file: the axes, settings and search of a sweep, written as on the command line.
@@ -151,6 +157,7 @@ pub struct Request {
 /// find_min = "excitation.amplitude=0.5:15"   # optional
 /// scan = 100                                  # optional
 /// tol = 1e-3                                  # optional
+/// rigid_form = "full"                         # optional, with find_min
 /// ```
 #[derive(Debug, Clone, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -169,6 +176,8 @@ pub struct SweepFile {
     pub tol: Option<f64>,
     /// As `--chunk-size`.
     pub chunk_size: Option<usize>,
+    /// As `--rigid-form`.
+    pub rigid_form: Option<String>,
 }
 
 impl Request {
@@ -216,6 +225,10 @@ impl Request {
         self.scan = self.scan.or(file.scan);
         self.tol = self.tol.or(file.tol);
         self.chunk_size = self.chunk_size.or(file.chunk_size);
+        if let Some(text) = &file.rigid_form {
+            let form = RigidForm::parse("rigid_form", text).map_err(|e| in_file(e.into()))?;
+            self.rigid_form = self.rigid_form.or(Some(form));
+        }
         Ok(())
     }
 }
@@ -303,9 +316,18 @@ impl Sweep {
                     hi: interval.hi,
                     scan,
                     tol,
+                    rigid_form: request.rigid_form.unwrap_or_default(),
                 })
             }
         };
+        if let (Some(form), None) = (request.rigid_form, &find_min) {
+            return Err(Error::invalid(
+                "rigid_form",
+                form.name(),
+                "chooses the rigid block of a minimum search (find_min, --find-min), which \
+                 this sweep does not make",
+            ));
+        }
         if request.axes.is_empty() && find_min.is_none() {
             return Err(Error::invalid(
                 "vary",
@@ -539,42 +561,46 @@ impl Sweep {
                         _ => None,
                     },
                 };
-                let rigid_minimum = |block: fn(
-                    f64,
-                    f64,
-                    f64,
-                ) -> std::result::Result<
-                    RigidBlock,
-                    crate::solver::SolverError,
-                >| {
-                    let trial = |value: f64| -> Result<find_min::Trial> {
-                        let model = self.model(&at(value))?;
-                        let b = &model.body;
-                        let block = block(b.height, b.width, b.gravity)?;
-                        let out = crate::rigid::simulate_block(
-                            &block,
-                            model.floor.as_ref(),
-                            model.duration,
-                        )?;
-                        Ok(find_min::Trial {
-                            overturned: out.overturned,
-                            t_overturn: out.t_overturn,
-                            steps: 0,
-                            rhs_evaluations: 0,
-                        })
+                let rigid_minimum =
+                    |block: fn(
+                        f64,
+                        f64,
+                        f64,
+                    )
+                        -> std::result::Result<RigidBlock, crate::solver::SolverError>,
+                     form: RigidForm| {
+                        let trial = |value: f64| -> Result<find_min::Trial> {
+                            let model = self.model(&at(value))?;
+                            let b = &model.body;
+                            let block = block(b.height, b.width, b.gravity)?.with_form(form);
+                            let out = crate::rigid::simulate_block(
+                                &block,
+                                model.floor.as_ref(),
+                                model.duration,
+                            )?;
+                            Ok(find_min::Trial {
+                                overturned: out.overturned,
+                                t_overturn: out.t_overturn,
+                                steps: 0,
+                                rhs_evaluations: 0,
+                            })
+                        };
+                        let min = find_min::search(find, trial)
+                            .ok()
+                            .and_then(|o| o.min_overturning);
+                        let scaled = min
+                            .and_then(scales_at)
+                            .and_then(|s| s.amplitude_over_g_tan_alpha);
+                        (min, scaled)
                     };
-                    let min = find_min::search(find, trial)
-                        .ok()
-                        .and_then(|o| o.min_overturning);
-                    let scaled = min
-                        .and_then(scales_at)
-                        .and_then(|s| s.amplitude_over_g_tan_alpha);
-                    (min, scaled)
-                };
-                let (housner, housner_over_g_tan_alpha) = rigid_minimum(RigidBlock::housner);
+                let (housner, housner_over_g_tan_alpha) =
+                    rigid_minimum(RigidBlock::housner, find.rigid_form);
+                // The elastic model's limit is the small-angle equation, whatever Housner's
+                // block's form.
                 let (elastic_limit, elastic_limit_over_g_tan_alpha) =
-                    rigid_minimum(RigidBlock::elastic_limit);
+                    rigid_minimum(RigidBlock::elastic_limit, RigidForm::SmallAngle);
                 let rigid = RigidMinima {
+                    form: find.rigid_form,
                     housner,
                     housner_over_g_tan_alpha,
                     elastic_limit,

@@ -8,6 +8,7 @@
 use crate::automaton::EventKind;
 use crate::format::shortest;
 use crate::model::Model;
+use crate::rigid::RigidForm;
 use crate::solution::Solution;
 
 /// One field of a row, typed; `None` where the field is empty (no value is known).
@@ -87,17 +88,20 @@ impl Cell {
 }
 
 /// The names of `cells`.
-fn names<const N: usize>(cells: [(&'static str, Cell); N]) -> Vec<&'static str> {
-    cells.iter().map(|(name, _)| *name).collect()
+fn names(cells: impl IntoIterator<Item = (&'static str, Cell)>) -> Vec<&'static str> {
+    cells.into_iter().map(|(name, _)| name).collect()
 }
 
 /// Empty cells of the kinds of `cells`.
-fn emptied<const N: usize>(cells: [(&'static str, Cell); N]) -> Vec<Cell> {
-    cells.iter().map(|(_, c)| Cell::empty(c.kind())).collect()
+fn emptied(cells: impl IntoIterator<Item = (&'static str, Cell)>) -> Vec<Cell> {
+    cells
+        .into_iter()
+        .map(|(_, c)| Cell::empty(c.kind()))
+        .collect()
 }
 
 /// The cells of `cells`, without their names.
-fn values<const N: usize>(cells: [(&'static str, Cell); N]) -> Vec<Cell> {
+fn values(cells: impl IntoIterator<Item = (&'static str, Cell)>) -> Vec<Cell> {
     cells.into_iter().map(|(_, c)| c).collect()
 }
 
@@ -281,7 +285,8 @@ impl RunOutcome {
             ),
             (
                 "energy_residual_share",
-                Cell::Float(Some(self.energy_residual_share)),
+                // Empty where the run kept no energy books (the exact method's).
+                Cell::Float(Some(self.energy_residual_share).filter(|x| !x.is_nan())),
             ),
             ("steps", Cell::Int(Some(self.steps))),
             ("rhs_evaluations", Cell::Int(Some(self.rhs_evaluations))),
@@ -330,10 +335,15 @@ impl MinimumOutcome {
 }
 
 /// The same search for the rigid blocks of the body's geometry under the same floor motion:
-/// Housner's slender block (uplift at g B/H) and the block the elastic model tends to as E grows
-/// (uplift at its quasi-static uplift acceleration's limit); see [`crate::rigid`].
+/// Housner's block (uplift at g B/H), by the equation `form`, and the block the elastic model
+/// tends to as E grows (uplift at its quasi-static uplift acceleration's limit), always by the
+/// small-angle equation, which is the elastic model's own limit; see [`crate::rigid`].
 #[derive(Debug, Clone, Copy, Default)]
 pub struct RigidMinima {
+    /// The equation of Housner's block: a `rigid_form` column after its two says `full` when it
+    /// is the full equation; with the default small-angle form there is no such column, so that
+    /// the columns are those of before the full form existed.
+    pub form: RigidForm,
     /// Housner's block's smallest overturning value.
     pub housner: Option<f64>,
     /// Its peak floor acceleration over g tan(alpha).
@@ -345,14 +355,19 @@ pub struct RigidMinima {
 }
 
 impl RigidMinima {
-    /// The cells, by column name.
-    pub fn named(&self) -> [(&'static str, Cell); 4] {
-        [
+    /// The cells, by column name (`rigid_form` only for the full form).
+    pub fn named(&self) -> Vec<(&'static str, Cell)> {
+        let mut cells = vec![
             ("rigid_min_overturning", Cell::Float(self.housner)),
             (
                 "rigid_amplitude_over_g_tan_alpha",
                 Cell::Float(self.housner_over_g_tan_alpha),
             ),
+        ];
+        if !self.form.is_small_angle() {
+            cells.push(("rigid_form", Cell::text(self.form.name())));
+        }
+        cells.extend([
             (
                 "rigid_limit_min_overturning",
                 Cell::Float(self.elastic_limit),
@@ -361,7 +376,37 @@ impl RigidMinima {
                 "rigid_limit_amplitude_over_g_tan_alpha",
                 Cell::Float(self.elastic_limit_over_g_tan_alpha),
             ),
-        ]
+        ]);
+        cells
+    }
+
+    /// No values, Housner's block by `form`.
+    pub fn with_form(form: RigidForm) -> Self {
+        RigidMinima {
+            form,
+            ..RigidMinima::default()
+        }
+    }
+}
+
+/// Which result columns a sweep has.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Layout {
+    /// One run per point.
+    Runs,
+    /// A minimum search per point, with the rigid blocks' searches by the given form of
+    /// Housner's block (see [`RigidMinima`]).
+    Minimum(RigidForm),
+}
+
+impl From<bool> for Layout {
+    /// `true`: a minimum search with the default (small-angle) rigid block; `false`: runs.
+    fn from(find_min: bool) -> Self {
+        if find_min {
+            Layout::Minimum(RigidForm::SmallAngle)
+        } else {
+            Layout::Runs
+        }
     }
 }
 
@@ -398,21 +443,23 @@ impl Row {
         }
     }
 
-    /// The result columns, for a sweep that searches a minimum or not.
-    pub fn columns(find_min: bool) -> Vec<&'static str> {
+    /// The result columns, for a sweep that searches a minimum (`true` or a [`Layout`]) or not.
+    pub fn columns(layout: impl Into<Layout>) -> Vec<&'static str> {
         let mut columns = vec!["status", "reason"];
-        if find_min {
-            columns.extend(names(MinimumOutcome::default().named()));
-            columns.extend(names(RigidMinima::default().named()));
-        } else {
-            columns.extend(names(RunOutcome::default().named()));
+        match layout.into() {
+            Layout::Minimum(form) => {
+                columns.extend(names(MinimumOutcome::default().named()));
+                columns.extend(names(RigidMinima::with_form(form).named()));
+            }
+            Layout::Runs => columns.extend(names(RunOutcome::default().named())),
         }
         columns.extend(names(Scales::default().named()));
         columns
     }
 
     /// The result cells, in the order of [`Row::columns`]; empty where there is no value.
-    pub fn cells(&self, find_min: bool) -> Vec<Cell> {
+    pub fn cells(&self, layout: impl Into<Layout>) -> Vec<Cell> {
+        let layout = layout.into();
         let mut cells = vec![
             Cell::Text(Some(self.status.name().to_string())),
             Cell::text(&self.reason),
@@ -423,11 +470,13 @@ impl Row {
                 cells.extend(values(min.named()));
                 cells.extend(values(rigid.named()));
             }
-            None if find_min => {
-                cells.extend(emptied(MinimumOutcome::default().named()));
-                cells.extend(emptied(RigidMinima::default().named()));
-            }
-            None => cells.extend(emptied(RunOutcome::default().named())),
+            None => match layout {
+                Layout::Minimum(form) => {
+                    cells.extend(emptied(MinimumOutcome::default().named()));
+                    cells.extend(emptied(RigidMinima::with_form(form).named()));
+                }
+                Layout::Runs => cells.extend(emptied(RunOutcome::default().named())),
+            },
         }
         match &self.scales {
             Some(scales) => cells.extend(values(scales.named())),
@@ -437,8 +486,8 @@ impl Row {
     }
 
     /// The result fields as sweep.csv holds them, in the order of [`Row::columns`].
-    pub fn fields(&self, find_min: bool) -> Vec<String> {
-        self.cells(find_min).iter().map(Cell::field).collect()
+    pub fn fields(&self, layout: impl Into<Layout>) -> Vec<String> {
+        self.cells(layout).iter().map(Cell::field).collect()
     }
 }
 
@@ -460,11 +509,16 @@ mod tests {
             scales: Some(Scales::default()),
         };
         let failed = Row::failure(Status::Failed, "a reason".into());
-        for find_min in [false, true] {
-            let columns = Row::columns(find_min);
+        for layout in [
+            Layout::Runs,
+            Layout::Minimum(RigidForm::SmallAngle),
+            Layout::Minimum(RigidForm::Full),
+        ] {
+            let find_min = layout != Layout::Runs;
+            let columns = Row::columns(layout);
             let mut seen = std::collections::BTreeSet::new();
             assert!(columns.iter().all(|c| seen.insert(*c)), "{columns:?}");
-            let empty = failed.cells(find_min);
+            let empty = failed.cells(layout);
             assert_eq!(empty.len(), columns.len());
             assert_eq!(empty[1], Cell::Text(Some("a reason".into())));
             assert!(empty[2..].iter().all(|c| c.field().is_empty()));
@@ -482,5 +536,36 @@ mod tests {
                 assert_eq!(at("omega_p_over_p"), Cell::Float(None));
             }
         }
+    }
+
+    /// The `rigid_form` column is there, after Housner's block's two, only for the full form:
+    /// the default's columns are those of before the full form existed.
+    #[test]
+    fn the_rigid_form_column_names_the_full_form_only() {
+        assert_eq!(
+            Row::columns(true),
+            Row::columns(Layout::Minimum(RigidForm::SmallAngle))
+        );
+        assert!(!Row::columns(true).contains(&"rigid_form"));
+        let columns = Row::columns(Layout::Minimum(RigidForm::Full));
+        let at = |name: &str| columns.iter().position(|c| *c == name).unwrap();
+        assert_eq!(at("rigid_form"), at("rigid_amplitude_over_g_tan_alpha") + 1);
+        assert_eq!(at("rigid_limit_min_overturning"), at("rigid_form") + 1);
+        let row = Row {
+            status: Status::Ok,
+            reason: String::new(),
+            outcome: Some(Outcome::Minimum(
+                MinimumOutcome::default(),
+                RigidMinima {
+                    housner: Some(3.0),
+                    ..RigidMinima::with_form(RigidForm::Full)
+                },
+            )),
+            scales: None,
+        };
+        let fields = row.fields(Layout::Minimum(RigidForm::Full));
+        assert_eq!(fields.len(), columns.len());
+        assert_eq!(fields[at("rigid_form")], "full");
+        assert_eq!(fields[at("rigid_min_overturning")], "3");
     }
 }

@@ -300,6 +300,7 @@ def sweep(
     find_min: Optional[Tuple[str, float, float]] = None,
     scan: Optional[int] = None,
     tol: Optional[float] = None,
+    rigid_form: Optional[str] = None,
 ) -> SweepResult:
     """A parametric study: every combination of the axes' values, on every core.
 
@@ -318,6 +319,9 @@ def sweep(
         Values scanned before the bisection of ``find_min``.
     tol : float, optional
         Tolerance of the bisection of ``find_min``, in the key's unit.
+    rigid_form : {"small-angle", "full"}, optional
+        The equation of Housner's rigid block searched beside the body by ``find_min``: the
+        small-angle one (the default) or the full one, which adds a ``rigid_form`` column.
 
     Returns
     -------
@@ -341,7 +345,11 @@ def sweep(
             "sweep: the model's ground motion was given as arrays; a sweep reads its record from "
             "a file: write the samples to a CSV record file and set excitation.path to it"
         )
-    return SweepResult(_native.sweep(model, dict(axes), find_min=find_min, scan=scan, tol=tol))
+    return SweepResult(
+        _native.sweep(
+            model, dict(axes), find_min=find_min, scan=scan, tol=tol, rigid_form=rigid_form
+        )
+    )
 
 
 def compare(

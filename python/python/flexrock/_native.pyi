@@ -94,6 +94,7 @@ def sweep(
     find_min: Optional[Tuple[str, float, float]] = None,
     scan: Optional[int] = None,
     tol: Optional[float] = None,
+    rigid_form: Optional[str] = None,
 ) -> Any: ...
 def compare(
     model: Model,

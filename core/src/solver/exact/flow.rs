@@ -490,7 +490,7 @@ impl Flow {
         let (k, c) = (self.k, self.c);
         let w = k.abs().sqrt();
         let x0 = p.q - self.q_eq;
-        let z0 = (w * x0).hypot(p.v);
+        let z0 = (w * w * x0 * x0 + p.v * p.v).sqrt();
         let z = ((w + c.abs()) * h).exp() * (z0 + h * self.force_bound);
         let m2 = (w + c.abs()) * z + self.force_bound;
         let m3 = w * w * z + c.abs() * m2 + self.force_rate_bound;
@@ -513,8 +513,11 @@ impl Flow {
                 ..
             } if *omega2 > 0.0 && *sigma <= 0.0 => {
                 let u = (t0 - self.anchor).max(0.0);
-                let r = h0.hypot((g0 - sigma * h0) / omega);
-                Some((sigma * u).exp() * r * (1.0 + 1e-12) + xs.hypot(*xc))
+                let r = {
+                    let b = (g0 - sigma * h0) / omega;
+                    (h0 * h0 + b * b).sqrt()
+                };
+                Some((sigma * u).exp() * r * (1.0 + 1e-12) + (xs * xs + xc * xc).sqrt())
             }
             _ => None,
         }

@@ -106,8 +106,11 @@ pub fn solve(
     history: History,
 ) -> Result<Solution, SolverError> {
     let started = Instant::now();
-    let (mut solution, local) =
-        solve_once(automaton, floor, initial, duration, settings, history, true)?;
+    // A run without a history keeps no energy books (Recorder::without_energy_books).
+    let energy = history == History::Sampled;
+    let (mut solution, local) = solve_once(
+        automaton, floor, initial, duration, settings, history, energy,
+    )?;
     if history == History::Sampled {
         let mut estimate = local;
         let size = automaton.constants_uncertainty();
@@ -136,7 +139,7 @@ pub fn solve(
 }
 
 /// Runs that estimate the error of a run with a history.
-pub const SHADOW_RUNS: usize = 3;
+pub const SHADOW_RUNS: usize = 2;
 
 /// Adds to `estimate` the safety factor times the distance of the shadow run from the run.
 /// From the first event whose kind differs (or that one run lacks) on, the event sequence itself
@@ -171,6 +174,19 @@ fn solve_once(
     energy: bool,
 ) -> Result<(Solution, RoundingEstimate), SolverError> {
     let started = Instant::now();
+    let recorder = Recorder::new(
+        automaton,
+        0.0,
+        initial.q,
+        initial.qdot,
+        automaton.initial_mode(initial.q),
+        history,
+    );
+    let recorder = if energy {
+        recorder
+    } else {
+        recorder.without_energy_books()
+    };
     let mut run = Run {
         automaton,
         floor,
@@ -179,14 +195,7 @@ fn solve_once(
         q: Compensated::new(initial.q),
         v: Compensated::new(initial.qdot),
         energy,
-        recorder: Recorder::new(
-            automaton,
-            0.0,
-            initial.q,
-            initial.qdot,
-            automaton.initial_mode(initial.q),
-            history,
-        ),
+        recorder,
         grid: OutputGrid::for_history(history, duration, settings.output_dt),
         work: Work::default(),
         max_q: initial.q,

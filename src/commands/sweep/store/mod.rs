@@ -417,7 +417,7 @@ fn row_fields(plan: &Plan, index: usize, row: &flexrock_core::sweep::Row) -> Vec
     for (axis, &i) in plan.axes.iter().zip(&plan.coordinates(index)) {
         fields.push(axis.values[i].clone());
     }
-    fields.extend(row.fields(plan.find_min.is_some()));
+    fields.extend(row.fields(plan.layout()));
     fields
 }
 
