@@ -567,7 +567,7 @@ fn docs() -> String {
         .collect()
 }
 
-const METHODS: [&str; 5] = ["bdf", "esdirk34", "tr-bdf2", "tsit45", "newmark"];
+const METHODS: [&str; 6] = ["exact", "bdf", "esdirk34", "tr-bdf2", "tsit45", "newmark"];
 
 #[test]
 fn every_method_is_accepted_and_documented() {
@@ -647,10 +647,21 @@ fn converge_shows_its_defaults_as_they_are_typed() {
         help.contains("[default: 1e-3,1e-4,1e-5,1e-6,1e-7,1e-8,1e-9,1e-10,1e-11]"),
         "{help}"
     );
-    assert!(help.contains("[default: 1e-12]"), "{help}");
     assert!(!help.contains("0.000000000001"), "{help}");
-    let help = String::from_utf8_lossy(&flexrock(&["compare", "--help"]).stdout).into_owned();
-    assert!(help.contains("[default: 1e-12]"), "{help}");
+    // The reference is the exact solution unless --reference-rtol asks for an adaptive one.
+    for command in ["converge", "compare"] {
+        let help = String::from_utf8_lossy(&flexrock(&[command, "--help"]).stdout).into_owned();
+        let reference = help
+            .split("--reference-rtol")
+            .nth(1)
+            .and_then(|rest| rest.split("--duration").next())
+            .unwrap_or_else(|| panic!("{command} --help has no --reference-rtol: {help}"));
+        assert!(
+            reference.contains("[default: none, the reference is the exact solution]"),
+            "{command}: {reference}"
+        );
+        assert!(!reference.contains("1e-12"), "{command}: {reference}");
+    }
 }
 
 #[test]

@@ -121,7 +121,7 @@ fn a_summary_without_a_key_is_an_error_naming_the_key_and_the_file() {
         ("compare-compensate/compare.json", "max_abs_time_difference"),
         ("compare-substep/compare.json", "n_events"),
         ("compare-compensate/compare.json", "dt"),
-        ("converge/convergence.json", "reference_rtol"),
+        ("converge/convergence.json", "reference_method"),
         ("converge/convergence.json", "rtol"),
     ] {
         let dir = edited_copy("report-missing-key", file, |t| without_key(t, key));

@@ -358,7 +358,7 @@ def compare(
     variant: Optional[str] = None,
     reference_rtol: Optional[float] = None,
 ) -> dict:
-    """The model solved by the paper's Newmark method and by the adaptive reference, compared.
+    """The model solved by the paper's Newmark method and by the exact solution, compared.
 
     The same computation as ``flexrock compare``: events matched one to one (a missed or an
     extra event is reported, never paired with a neighbour), peaks, and the differences of q on
@@ -373,7 +373,9 @@ def compare(
     variant : {"compensate", "substep"}, optional
         How Newmark treats a step that crosses an event.
     reference_rtol : float, optional
-        Relative tolerance of the adaptive reference (default 1e-12).
+        Relative tolerance of an adaptive reference (the model's adaptive method, BDF when it
+        names another). Default None: the reference is the exact solution, so the
+        differences are Newmark's true errors.
 
     Returns
     -------
@@ -416,7 +418,9 @@ def converge(
     rtols : sequence of float, optional
         Tolerances of the adaptive methods (default: 1e-3 to 1e-11).
     reference_rtol : float, optional
-        Relative tolerance of the reference (default 1e-12).
+        Relative tolerance of an adaptive reference (the model's adaptive method, BDF when it
+        names another); it must be below every tolerance of ``rtols``. Default None: the
+        reference is the exact solution, so the errors are true errors.
 
     Returns
     -------
