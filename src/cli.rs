@@ -43,9 +43,10 @@ pub(crate) enum Command {
         /// Absolute tolerance (overrides solver.atol).
         #[arg(long)]
         atol: Option<f64>,
-        /// Integration method: bdf (implicit, the default), esdirk34, tr-bdf2 (implicit), tsit45
-        /// (explicit) or newmark (fixed step) (overrides solver.method; switching between newmark
-        /// and the adaptive methods sets aside the file's keys of the other).
+        /// Integration method: exact (closed form, the default), bdf (implicit, the default of a
+        /// [solver] section that gives rtol or atol), esdirk34, tr-bdf2 (implicit), tsit45
+        /// (explicit) or newmark (fixed step) (overrides solver.method; switching between exact,
+        /// newmark and the adaptive methods sets aside the file's keys of the other).
         #[arg(long)]
         method: Option<String>,
         /// Newmark time step, s (overrides solver.dt; needs method newmark).

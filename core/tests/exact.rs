@@ -26,11 +26,11 @@ fn with_exact(text: &str) -> String {
 /// formulas alone, to 1e-13 relative.
 #[test]
 fn free_undamped_rocking_is_the_chain_of_cosh_and_arccos() {
-    let text = with_exact(&format!(
+    let text = with_exact(
         "[body]\nheight = 4.0\nwidth = 0.7\ndepth = 1.0\ndensity = 600.0\nyoungs_modulus = 5.0e6\n\
          damping_ratio = 0.0\ngravity = 9.81\n[excitation]\nkind = \"free\"\n\
-         [simulation]\nduration = 6.0\nq0 = 0.4\nqdot0 = 0.0"
-    ));
+         [simulation]\nduration = 6.0\nq0 = 0.4\nqdot0 = 0.0",
+    );
     let model = common::model(&text);
     let c = &model.constants;
     let mu = (-c.nu2 * c.rocking_stiffness / c.generalised_mass).sqrt();

@@ -89,7 +89,9 @@ fn compensated_horner(coefficients: &[f64], u: f64) -> Compensated {
     Compensated::sum(s, correction)
 }
 
-/// What drives a flow, and how it is summed.
+/// What drives a flow, and how it is summed. One flow lives at a time, on the stack: the series
+/// form's arrays are not boxed, which would cost an allocation per sample of a record.
+#[allow(clippy::large_enum_variant)]
 #[derive(Debug, Clone)]
 enum Form {
     Oscillator {

@@ -288,7 +288,8 @@ impl<'a> Run<'a> {
                 break;
             };
             let stretch = self.floor.closed_form(self.t);
-            if !(stretch.until > self.t) {
+            // NaN included: a closed form that does not end after t cannot be followed.
+            if stretch.until.partial_cmp(&self.t) != Some(std::cmp::Ordering::Greater) {
                 return Err(self.failed(
                     self.t,
                     format!(
