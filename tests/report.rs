@@ -168,7 +168,7 @@ fn the_numbers_come_from_the_files_not_from_the_text() {
     });
     let text = report_text(&inputs(&dir)).expect("report");
     assert!(
-        text.contains("adaptive reference vs Newmark dt = 0.01 s"),
+        text.contains("the exact solution vs Newmark dt = 0.01 s"),
         "{text}"
     );
     assert!(text.contains("(dt = 0.01 s)"), "{text}");
