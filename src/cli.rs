@@ -60,6 +60,11 @@ pub(crate) enum Command {
         duration: Option<f64>,
         #[command(flatten)]
         set: SetArgs,
+        /// Also solve the model exactly and write check.json: the run's error against the exact
+        /// solution on every event, the peaks and the output grid (its certificate, for any
+        /// method).
+        #[arg(long)]
+        check: bool,
         /// Also draw the figures of `flexrock plot` (plot_motion.svg, plot_force.svg,
         /// plot_energy.svg), written with the run's files as one set.
         #[arg(long)]

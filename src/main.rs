@@ -204,6 +204,7 @@ fn execute(command: Command) -> flexrock::Result<Output> {
             variant,
             duration,
             set,
+            check,
             plot,
             timings,
         } => {
@@ -216,7 +217,7 @@ fn execute(command: Command) -> flexrock::Result<Output> {
                 newmark_variant: variant,
                 settings: set.settings_for(&path),
             };
-            run(&path, out, &overrides, plot, timings.wall_times())
+            run(&path, out, &overrides, check, plot, timings.wall_times())
         }
         Command::Plot(args) => plot(args),
         Command::Events { dir, csv, json } => events(&dir, csv, json),
@@ -360,13 +361,19 @@ fn run(
     path: &std::path::Path,
     out: Option<PathBuf>,
     overrides: &Overrides,
+    check: bool,
     plot: bool,
     wall_times: flexrock::writers::WallTimes,
 ) -> flexrock::Result<Output> {
     let model = load(path, overrides)?;
     let out = out.unwrap_or_else(|| default_out_dir(path, ""));
     flexrock::writers::check_creatable(&out)?;
-    let report = flexrock::commands::run::run_to_dir_with(&model, &out, plot, wall_times)?;
+    let options = flexrock::commands::run::RunOptions {
+        check,
+        plots: plot,
+        wall_times,
+    };
+    let report = flexrock::commands::run::run_to_dir_checked(&model, &out, &options)?;
     Ok(Output {
         stdout: flexrock::commands::run::run_report_text(&model, &report).into_bytes(),
         warnings: report.warnings.clone(),

@@ -906,3 +906,68 @@ fn a_record_path_is_relative_to_where_it_was_given() {
     );
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
 }
+
+/// `run --check` writes check.json: the run's error against the exact solution. Its largest
+/// event-time error is the one read off the two event logs here (the run's, and the exact
+/// method's own run), an exact run checks to zero, and without the flag there is no check.json.
+#[test]
+fn run_check_measures_the_run_against_the_exact_solution() {
+    let read_events = |dir: &std::path::Path| -> Vec<(String, f64)> {
+        let text = std::fs::read_to_string(dir.join("events.csv")).unwrap();
+        text.lines()
+            .skip(1)
+            .map(|l| {
+                let f: Vec<&str> = l.split(',').collect();
+                (f[2].to_string(), f[1].parse().unwrap())
+            })
+            .collect()
+    };
+    let exact_dir = common::scratch_dir("run-check-exact");
+    let o = common::run_reference(&exact_dir, &["--method", "exact", "--check"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let check: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(exact_dir.join("check.json")).unwrap())
+            .unwrap();
+    assert_eq!(check["method"], "exact");
+    assert_eq!(
+        check["comparison"]["events"]["max_abs_time_difference"],
+        0.0
+    );
+    let exact = read_events(&exact_dir);
+
+    for (method, below) in [("bdf", 1e-7), ("tsit45", 1e-8), ("newmark", 0.1)] {
+        let dir = common::scratch_dir(&format!("run-check-{method}"));
+        let o = common::run_reference(&dir, &["--method", method, "--check"]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let stdout = String::from_utf8_lossy(&o.stdout);
+        assert!(
+            stdout.contains("check against the exact solution: 22 of 22 events matched"),
+            "{stdout}"
+        );
+        let check: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(dir.join("check.json")).unwrap())
+                .unwrap();
+        let run = read_events(&dir);
+        assert_eq!(run.len(), exact.len(), "{method}");
+        let largest = run
+            .iter()
+            .zip(&exact)
+            .map(|(a, b)| {
+                assert_eq!(a.0, b.0, "{method}");
+                (a.1 - b.1).abs()
+            })
+            .fold(0.0, f64::max);
+        let reported = check["comparison"]["events"]["max_abs_time_difference"]
+            .as_f64()
+            .unwrap();
+        assert!(
+            (reported - largest).abs() <= 1e-15,
+            "{method}: {reported} against {largest}"
+        );
+        assert!(reported > 0.0 && reported < below, "{method}: {reported}");
+        assert_eq!(check["events"].as_array().unwrap().len(), exact.len());
+    }
+    let plain = common::scratch_dir("run-check-none");
+    assert!(common::run_reference(&plain, &[]).status.success());
+    assert!(!plain.join("check.json").exists());
+}

@@ -583,3 +583,62 @@ mod tests {
         assert_eq!(serialized_keys(&grid_row), names(&GRID_COLUMNS));
     }
 }
+
+/// A run measured against the exact solution of its model: the run's certificate
+/// (`flexrock run --check`, check.json).
+#[derive(Debug, Clone, Serialize)]
+pub struct Check {
+    /// The method of the run checked, e.g. "bdf".
+    pub method: String,
+    /// The run against the exact solution: events, peaks and the output grid.
+    pub comparison: Comparison,
+    /// Every event of either solution, paired in order, with the run's error.
+    pub events: Vec<EventCheck>,
+    /// The exact solution's own estimate of its largest event-time error, s: the run's errors
+    /// are true errors to within it.
+    pub exact_error_estimate: f64,
+}
+
+/// One event of a [`Check`].
+#[derive(Debug, Clone, Serialize)]
+pub struct EventCheck {
+    /// The kind of event, e.g. "uplift".
+    pub kind: &'static str,
+    /// The run's time of it, s; None when the run missed it.
+    pub t: Option<f64>,
+    /// The exact time, s; None when the run has an event the exact solution lacks.
+    pub t_exact: Option<f64>,
+    /// t - t_exact, s.
+    pub error: Option<f64>,
+}
+
+/// Checks `solution`, a run of `model` with any method, against the exact solution of `model`.
+pub fn check(model: &Model, solution: &Solution) -> crate::Result<Check> {
+    let exact = crate::simulate::simulate_with(model, &model.reference(None)?)?;
+    let comparison = compare(
+        &exact,
+        solution,
+        model.solver.output_dt(),
+        max_event_shift(model),
+    );
+    let events = comparison
+        .pairs
+        .iter()
+        .map(|p| EventCheck {
+            kind: p.kind.name(),
+            t: p.other.as_ref().map(|e| e.t),
+            t_exact: p.reference.as_ref().map(|e| e.t),
+            error: p.time_difference(),
+        })
+        .collect();
+    let exact_error_estimate = exact
+        .rounding
+        .as_ref()
+        .map_or(0.0, |r| r.event_time.iter().copied().fold(0.0, f64::max));
+    Ok(Check {
+        method: model.solver.label(),
+        comparison,
+        events,
+        exact_error_estimate,
+    })
+}

@@ -151,6 +151,8 @@ pub struct RunReport {
     pub files: Vec<PathBuf>,
     /// What a reader of the result must know (also in summary.json).
     pub warnings: Vec<String>,
+    /// The run against the exact solution, with `--check`.
+    pub check: Option<flexrock_core::compare::Check>,
 }
 
 /// Solves a model and writes history.csv, events.csv, episodes.csv and summary.json into
@@ -164,7 +166,39 @@ pub fn run_to_dir_with(
     plots: bool,
     wall_times: writers::WallTimes,
 ) -> Result<RunReport> {
+    let options = RunOptions {
+        check: false,
+        plots,
+        wall_times,
+    };
+    run_to_dir_checked(model, out_dir, &options)
+}
+
+/// What `flexrock run` writes besides its four files.
+#[derive(Debug, Clone, Copy)]
+pub struct RunOptions {
+    /// check.json: the run against the exact solution.
+    pub check: bool,
+    /// The figures of `flexrock plot`.
+    pub plots: bool,
+    /// Where the wall time goes.
+    pub wall_times: writers::WallTimes,
+}
+
+/// Solves `model` and writes its files into `out_dir`, with check.json and the figures when
+/// `options` ask for them, all as one set.
+pub fn run_to_dir_checked(
+    model: &Model,
+    out_dir: &Path,
+    options: &RunOptions,
+) -> Result<RunReport> {
+    let (plots, wall_times) = (options.plots, options.wall_times);
     let mut solution = simulate(model)?;
+    let check = if options.check {
+        Some(flexrock_core::compare::check(model, &solution)?)
+    } else {
+        None
+    };
     let mut timings = writers::Timings::new(wall_times);
     timings.take(
         "summary.json/statistics/wall_time_s",
@@ -182,6 +216,9 @@ pub fn run_to_dir_with(
             writers::json_bytes(&summary(model, &solution)),
         ),
     ];
+    if let Some(check) = &check {
+        files.push(("check.json", writers::json_bytes(check)));
+    }
     if plots {
         let data = crate::writers::run_dir::RunData::from_bytes(
             out_dir,
@@ -198,6 +235,7 @@ pub fn run_to_dir_with(
         solution,
         files,
         warnings,
+        check,
     })
 }
 
@@ -265,6 +303,23 @@ pub fn run_report_text(model: &Model, report: &RunReport) -> String {
             .map_or_else(String::new, |t| format!(", {t}")),
         s.max_energy_residual
     );
+    if let Some(c) = &report.check {
+        let e = &c.comparison.events;
+        let _ = writeln!(
+            t,
+            "  check against the exact solution: {} of {} events matched ({} missed, {} spurious), \
+             largest event-time error {:.3e} s, peak error {:.3e} m, largest error of q on the grid \
+             {:.3e} m (the exact solution's own estimate: {:.1e} s)",
+            e.n_matched,
+            e.n_reference,
+            e.n_missed,
+            e.n_spurious,
+            e.max_abs_time_difference,
+            c.comparison.peaks.peak_error,
+            c.comparison.grid.max_abs_q_difference,
+            c.exact_error_estimate
+        );
+    }
     for f in &report.files {
         let _ = writeln!(t, "  wrote {}", f.display());
     }
