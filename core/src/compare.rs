@@ -16,9 +16,6 @@ use crate::model::Model;
 use crate::solution::{Event, Extremum, Sample, Solution};
 use crate::solver::OutputGrid;
 
-/// Relative tolerance of the adaptive reference solution.
-pub const DEFAULT_REFERENCE_RTOL: f64 = 1e-12;
-
 /// Events further apart than a quarter of the pre-uplift period are different events.
 pub fn max_event_shift(model: &Model) -> f64 {
     0.25 * model.constants.period

@@ -21,8 +21,7 @@ use flexrock_core::solver::SolverSettings;
 
 pub use flexrock_core::compare::{
     compare, grid_rows, match_events, max_event_shift, on_grid, Comparison, EventAgreement,
-    EventPair, EventRow, GridDifferences, GridRow, PeakComparison, DEFAULT_REFERENCE_RTOL,
-    EVENT_COLUMNS, GRID_COLUMNS,
+    EventPair, EventRow, GridDifferences, GridRow, PeakComparison, EVENT_COLUMNS, GRID_COLUMNS,
 };
 
 /// Column names of compare.csv (a contract): the names of [`EVENT_COLUMNS`].

@@ -21,7 +21,7 @@ pub enum Shape {
         /// Period, s.
         period: f64,
     },
-    /// a = sum over j <= degree of coefficients[j] (t - origin)^j, m/s^2.
+    /// a = sum over j <= degree of `coefficients[j]` (t - origin)^j, m/s^2.
     Polynomial {
         /// The time the powers are taken about, s.
         origin: f64,

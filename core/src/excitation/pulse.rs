@@ -181,7 +181,7 @@ impl Ricker {
     }
 
     /// The wavelet on the piece holding `t`: rest in the tails, and in between the Taylor series
-    /// of degree [`MAX_DEGREE`] about the middle of a piece [`RICKER_PIECE`] wide in x.
+    /// of degree [`MAX_DEGREE`] about the middle of a piece 0.3 wide in x.
     ///
     /// With g(x) = (1 - 2 x^2) exp(-x^2) = -(1/2) d^2/dx^2 exp(-x^2) and
     /// d^n/dx^n exp(-x^2) = (-1)^n H_n(x) exp(-x^2), the Taylor coefficients about x0 are

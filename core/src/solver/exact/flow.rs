@@ -94,23 +94,7 @@ fn compensated_horner(coefficients: &[f64], u: f64) -> Compensated {
 #[allow(clippy::large_enum_variant)]
 #[derive(Debug, Clone)]
 enum Form {
-    Oscillator {
-        sigma: f64,
-        /// omega^2 = k - sigma^2.
-        omega2: f64,
-        /// |omega^2|^(1/2).
-        omega: f64,
-        /// Free motion at the anchor: x_h and x_h'.
-        h0: f64,
-        g0: f64,
-        /// Steady state x_p = xs sin(phi) + xc cos(phi), phi = 2 pi t / period.
-        xs: f64,
-        xc: f64,
-        period: f64,
-        /// Forcing f = fs sin(phi) + fc cos(phi).
-        fs: f64,
-        fc: f64,
-    },
+    Oscillator(Oscillator),
     Series {
         /// Taylor coefficients of x about the anchor from its hi part and the forcing.
         hi: [f64; SERIES_TERMS],
@@ -119,6 +103,55 @@ enum Form {
         /// Terms summed: the rest lie below 2^-70 of the state over the flow.
         terms: usize,
     },
+}
+
+/// The oscillator form: the free motion from the anchor and a sinusoid's steady state.
+#[derive(Debug, Clone)]
+struct Oscillator {
+    sigma: f64,
+    /// omega^2 = k - sigma^2.
+    omega2: f64,
+    /// |omega^2|^(1/2).
+    omega: f64,
+    /// Free motion at the anchor: x_h and x_h'.
+    h0: f64,
+    g0: f64,
+    /// Steady state x_p = xs sin(phi) + xc cos(phi), phi = 2 pi t / period.
+    xs: f64,
+    xc: f64,
+    period: f64,
+    /// Forcing f = fs sin(phi) + fc cos(phi).
+    fs: f64,
+    fc: f64,
+}
+
+impl Oscillator {
+    /// The terms of the free motion x_h = e^(sigma u) [C h0 + S (g0 - sigma h0)] and of its rate
+    /// x_h' = e^(sigma u) [C g0 + S (sigma g0 - k h0)] at u, each summed to give the value.
+    fn free_terms(&self, k: f64, u: f64) -> ([f64; 3], [f64; 3]) {
+        let (cc, ss) = trig(self.omega2, self.omega, u);
+        let e = (self.sigma * u).exp();
+        let (h0, g0, sigma) = (self.h0, self.g0, self.sigma);
+        (
+            [e * cc * h0, e * ss * g0, -e * ss * sigma * h0],
+            [e * cc * g0, e * ss * sigma * g0, -e * ss * k * h0],
+        )
+    }
+
+    /// The steady state and the forcing at t: x_p, x_p', f and f'.
+    fn steady(&self, t: f64) -> [f64; 4] {
+        if self.xs == 0.0 && self.xc == 0.0 && self.fs == 0.0 && self.fc == 0.0 {
+            return [0.0; 4];
+        }
+        let big_omega = 2.0 * PI / self.period;
+        let (s, co) = (2.0 * PI * t / self.period).sin_cos();
+        [
+            self.xs * s + self.xc * co,
+            big_omega * (self.xs * co - self.xc * s),
+            self.fs * s + self.fc * co,
+            big_omega * (self.fs * co - self.fc * s),
+        ]
+    }
 }
 
 /// The solution within one mode from an anchor state over `[anchor, until]`.
@@ -286,7 +319,7 @@ impl Flow {
             force_bound: amplitude + force_error,
             force_rate_bound: amplitude * big_omega,
             force_error,
-            form: Form::Oscillator {
+            form: Form::Oscillator(Oscillator {
                 sigma,
                 omega2,
                 omega,
@@ -297,7 +330,7 @@ impl Flow {
                 period,
                 fs,
                 fc,
-            },
+            }),
         }
     }
 
@@ -400,7 +433,7 @@ impl Flow {
                     Compensated::sum(v.hi, v.lo + vl),
                 )
             }
-            Form::Oscillator { .. } => {
+            Form::Oscillator(_) => {
                 let p = self.point(t);
                 (Compensated::new(p.q), Compensated::new(p.v))
             }
@@ -412,31 +445,11 @@ impl Flow {
         let u = t - self.anchor;
         let (k, c) = (self.k, self.c);
         match &self.form {
-            Form::Oscillator {
-                sigma,
-                omega2,
-                omega,
-                h0,
-                g0,
-                xs,
-                xc,
-                period,
-                fs,
-                fc,
-            } => {
-                let (x_terms, v_terms) = free_terms(k, *sigma, *omega2, *omega, *h0, *g0, u);
-                let xh = x_terms.iter().sum::<f64>();
-                let vh = v_terms.iter().sum::<f64>();
-                let big_omega = 2.0 * PI / period;
-                let (s, co) = if *xs == 0.0 && *xc == 0.0 && *fs == 0.0 && *fc == 0.0 {
-                    (0.0, 0.0)
-                } else {
-                    (2.0 * PI * t / period).sin_cos()
-                };
-                let x = xh + (xs * s + xc * co);
-                let v = vh + big_omega * (xs * co - xc * s);
-                let f = fs * s + fc * co;
-                let df = big_omega * (fs * co - fc * s);
+            Form::Oscillator(o) => {
+                let (x_terms, v_terms) = o.free_terms(k, u);
+                let [xp, vp, f, df] = o.steady(t);
+                let x = x_terms.iter().sum::<f64>() + xp;
+                let v = v_terms.iter().sum::<f64>() + vp;
                 let acc = f - k * x - c * v;
                 Point {
                     t,
@@ -474,7 +487,7 @@ impl Flow {
     pub fn rate(&self) -> f64 {
         let free = self.k.abs().sqrt().max(self.c.abs());
         match &self.form {
-            Form::Oscillator { period, .. } => free.max(2.0 * PI / period),
+            Form::Oscillator(o) => free.max(2.0 * PI / o.period),
             Form::Series { .. } => free,
         }
     }
@@ -503,22 +516,12 @@ impl Flow {
     /// amplitude never grows: |x_h| <= e^(sigma u) (h0^2 + ((g0 - sigma h0)/omega)^2)^(1/2).
     pub fn envelope(&self, t0: f64) -> Option<f64> {
         match &self.form {
-            Form::Oscillator {
-                sigma,
-                omega2,
-                omega,
-                h0,
-                g0,
-                xs,
-                xc,
-                ..
-            } if *omega2 > 0.0 && *sigma <= 0.0 => {
+            Form::Oscillator(o) if o.omega2 > 0.0 && o.sigma <= 0.0 => {
                 let u = (t0 - self.anchor).max(0.0);
-                let r = {
-                    let b = (g0 - sigma * h0) / omega;
-                    (h0 * h0 + b * b).sqrt()
-                };
-                Some((sigma * u).exp() * r * (1.0 + 1e-12) + (xs * xs + xc * xc).sqrt())
+                let b = (o.g0 - o.sigma * o.h0) / o.omega;
+                let r = (o.h0 * o.h0 + b * b).sqrt();
+                let steady = (o.xs * o.xs + o.xc * o.xc).sqrt();
+                Some((o.sigma * u).exp() * r * (1.0 + 1e-12) + steady)
             }
             _ => None,
         }
@@ -531,24 +534,14 @@ impl Flow {
         let u = t - self.anchor;
         let w = self.k.abs().sqrt().max(1e-300);
         let size = match &self.form {
-            Form::Oscillator {
-                sigma,
-                omega2,
-                omega,
-                h0,
-                g0,
-                xs,
-                xc,
-                period,
-                ..
-            } => {
-                let (x_terms, v_terms) = free_terms(self.k, *sigma, *omega2, *omega, *h0, *g0, u);
+            Form::Oscillator(o) => {
+                let (x_terms, v_terms) = o.free_terms(self.k, u);
                 let size = |terms: [f64; 3]| terms.iter().map(|t| t.abs()).sum::<f64>();
                 let free = size(x_terms) + size(v_terms) / w;
-                let steady = xs.hypot(*xc) * (1.0 + 2.0 * PI / period / w);
+                let steady = o.xs.hypot(o.xc) * (1.0 + 2.0 * PI / o.period / w);
                 // Phases: omega u and 2 pi t / Tp carry relative errors of a few ulps.
-                free * (1.0 + (omega + sigma.abs()) * u.abs())
-                    + steady * (1.0 + 2.0 * PI * t.abs() / period)
+                free * (1.0 + (o.omega + o.sigma.abs()) * u.abs())
+                    + steady * (1.0 + 2.0 * PI * t.abs() / o.period)
             }
             Form::Series { hi, terms, .. } => {
                 // Carried compensated: only the rounding of the coefficients beyond the anchor's
@@ -565,26 +558,6 @@ impl Flow {
 
 /// Multiple of the unit roundoff per summed term that the rounding estimate books.
 const ROUNDING_ULPS: f64 = 8.0;
-
-/// The terms of the free motion x_h = e^(sigma u) [C h0 + S (g0 - sigma h0)] and of its rate
-/// x_h' = e^(sigma u) [C g0 + S (sigma g0 - k h0)] at u, each summed to give the value.
-#[allow(clippy::too_many_arguments)]
-fn free_terms(
-    k: f64,
-    sigma: f64,
-    omega2: f64,
-    omega: f64,
-    h0: f64,
-    g0: f64,
-    u: f64,
-) -> ([f64; 3], [f64; 3]) {
-    let (cc, ss) = trig(omega2, omega, u);
-    let e = (sigma * u).exp();
-    (
-        [e * cc * h0, e * ss * g0, -e * ss * sigma * h0],
-        [e * cc * g0, e * ss * sigma * g0, -e * ss * k * h0],
-    )
-}
 
 /// C and S of the oscillator form at u.
 fn trig(omega2: f64, omega: f64, u: f64) -> (f64, f64) {

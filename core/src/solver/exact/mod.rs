@@ -8,10 +8,10 @@
 //! nothing at all for free motion, a steady state for a sinusoid, and for polynomial pieces (a
 //! record's linear pieces between samples, the ramp's cubic, the Ricker wavelet's Taylor pieces
 //! with their stated remainder) the Taylor series of the solution, summed to rounding
-//! ([`flow`]). The automaton is the only model: the solver reads each mode's coefficients, its
+//! (`flow.rs`). The automaton is the only model: the solver reads each mode's coefficients, its
 //! guards and its resets from it.
 //!
-//! Events ([`scan`]): the first guard crossing of each flow is bracketed between consecutive
+//! Events (`scan.rs`): the first guard crossing of each flow is bracketed between consecutive
 //! extrema of q, located with certified bounds on q'' and q''', and refined by Newton steps to
 //! a few ulps of t; q is then put on the guard and the reset applied to q'.
 //!
@@ -94,7 +94,7 @@ const ESTIMATE_SAFETY: f64 = 4.0;
 /// A run that keeps its history also estimates its own error: to the rounding of each event
 /// time and peak where it is computed, it adds the spread of [`SHADOW_RUNS`] runs of the same
 /// model whose constants and initial state are moved by their own uncertainty in pseudo-random
-/// directions ([`Automaton::nudged`]), times a safety factor. This is discrete stochastic
+/// directions (`Automaton::nudged`), times a safety factor. This is discrete stochastic
 /// arithmetic in the manner of CESTAC (Vignes 1993): the spread measures how far rounding of
 /// that size carries each result, including through ill-conditioned (grazing) events.
 pub fn solve(
