@@ -126,16 +126,20 @@ struct Oscillator {
 }
 
 impl Oscillator {
-    /// The terms of the free motion x_h = e^(sigma u) [C h0 + S (g0 - sigma h0)] and of its rate
-    /// x_h' = e^(sigma u) [C g0 + S (sigma g0 - k h0)] at u, each summed to give the value.
-    fn free_terms(&self, k: f64, u: f64) -> ([f64; 3], [f64; 3]) {
+    /// The free motion x_h = e^(sigma u) [C h0 + S (g0 - sigma h0)] and its rate
+    /// x_h' = e^(sigma u) [C g0 + S (sigma g0 - k h0)] at u, and the sizes of the terms summed
+    /// for each (for the rounding estimate).
+    fn free(&self, k: f64, u: f64) -> [f64; 4] {
         let (cc, ss) = trig(self.omega2, self.omega, u);
         let e = (self.sigma * u).exp();
         let (h0, g0, sigma) = (self.h0, self.g0, self.sigma);
-        (
-            [e * cc * h0, e * ss * g0, -e * ss * sigma * h0],
-            [e * cc * g0, e * ss * sigma * g0, -e * ss * k * h0],
-        )
+        [
+            e * (cc * h0 + ss * (g0 - sigma * h0)),
+            e * (cc * g0 + ss * (-k * h0 + sigma * g0)),
+            e.abs() * (cc.abs() * h0.abs() + ss.abs() * (g0.abs() + sigma.abs() * h0.abs())),
+            e.abs()
+                * (cc.abs() * g0.abs() + ss.abs() * (k.abs() * h0.abs() + sigma.abs() * g0.abs())),
+        ]
     }
 
     /// The steady state and the forcing at t: x_p, x_p', f and f'.
@@ -446,10 +450,10 @@ impl Flow {
         let (k, c) = (self.k, self.c);
         match &self.form {
             Form::Oscillator(o) => {
-                let (x_terms, v_terms) = o.free_terms(k, u);
+                let [xh, vh, _, _] = o.free(k, u);
                 let [xp, vp, f, df] = o.steady(t);
-                let x = x_terms.iter().sum::<f64>() + xp;
-                let v = v_terms.iter().sum::<f64>() + vp;
+                let x = xh + xp;
+                let v = vh + vp;
                 let acc = f - k * x - c * v;
                 Point {
                     t,
@@ -535,9 +539,8 @@ impl Flow {
         let w = self.k.abs().sqrt().max(1e-300);
         let size = match &self.form {
             Form::Oscillator(o) => {
-                let (x_terms, v_terms) = o.free_terms(self.k, u);
-                let size = |terms: [f64; 3]| terms.iter().map(|t| t.abs()).sum::<f64>();
-                let free = size(x_terms) + size(v_terms) / w;
+                let [_, _, x_size, v_size] = o.free(self.k, u);
+                let free = x_size + v_size / w;
                 let steady = o.xs.hypot(o.xc) * (1.0 + 2.0 * PI / o.period / w);
                 // Phases: omega u and 2 pi t / Tp carry relative errors of a few ulps.
                 free * (1.0 + (o.omega + o.sigma.abs()) * u.abs())
