@@ -222,8 +222,10 @@ def simulate(
     model : Model
         The model (with its settings, and its ground motion if given as arrays).
     method : str, optional
-        The solver, for this run (replaces the model's ``solver.method``): "bdf", "tsit45",
-        "newmark", ...
+        The solver, for this run (replaces the model's ``solver.method``): "exact" (the
+        closed-form solution, the default of a model that names no method and no tolerance;
+        ``summary["error_estimate"]`` then holds its own error on each event time and peak),
+        "bdf", "esdirk34", "tr-bdf2", "tsit45" or "newmark".
     rtol, atol : float, optional
         Tolerances of an adaptive solver (``solver.rtol``, ``solver.atol``, m).
     duration : float, optional
