@@ -390,3 +390,35 @@ fn the_hardening_cases_log_the_events_of_a_tight_run() {
     );
     assert!(identical * 100 >= texts.len() * 95);
 }
+
+/// A body at rest on a floor at rest stays there: q is 0 at every sample, no event, and the
+/// solver proves it at once (a value equal to the extreme recorded is no new peak), where it
+/// used to halve the first interval until it gave up. From rest under a one-sine pulse, whose
+/// floor acceleration also starts at zero, the start is a double root of q' (q' = q'' = 0): the
+/// test on q''' settles it in a few halvings.
+#[test]
+fn a_body_at_rest_stays_at_rest_and_a_start_from_rest_is_cheap() {
+    let rest = exact(&with_exact(&common::reference_body(
+        "[excitation]\nkind = \"free\"\n[simulation]\nduration = 5.0",
+    )));
+    assert!(rest.events.is_empty());
+    assert!(rest.samples.iter().all(|s| s.q == 0.0 && s.qdot == 0.0));
+    assert!(
+        rest.stats.rhs_evaluations < 10,
+        "{}",
+        rest.stats.rhs_evaluations
+    );
+    let pulse = exact(&with_exact(&common::reference_body(
+        "[excitation]\nkind = \"sine-pulse\"\namplitude = 1.0\nperiod = 0.8\n[simulation]\nduration = 0.001",
+    )));
+    assert!(pulse.events.is_empty());
+    assert!(
+        pulse.stats.crossing_retries == 0,
+        "no interval left unresolved"
+    );
+    assert!(
+        pulse.stats.rhs_evaluations < 40,
+        "{}",
+        pulse.stats.rhs_evaluations
+    );
+}

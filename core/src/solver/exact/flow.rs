@@ -169,6 +169,8 @@ pub(super) struct Flow {
     /// Bounds on |f| and |f'| over the flow, m/s^2 and m/s^3.
     pub force_bound: f64,
     pub force_rate_bound: f64,
+    /// Bound on |f''| over the flow, m/s^4.
+    pub force_curvature_bound: f64,
     /// Bound on |f - (the closed form's f)|, m/s^2 (a truncated series of the motion).
     pub force_error: f64,
     form: Form,
@@ -322,6 +324,7 @@ impl Flow {
             q_eq,
             force_bound: amplitude + force_error,
             force_rate_bound: amplitude * big_omega,
+            force_curvature_bound: amplitude * big_omega * big_omega,
             force_error,
             form: Form::Oscillator(Oscillator {
                 sigma,
@@ -393,6 +396,9 @@ impl Flow {
         let force_rate_bound = (1..=degree)
             .rev()
             .fold(0.0, |acc: f64, j| acc * span + j as f64 * f[j].abs());
+        let force_curvature_bound = (2..=degree).rev().fold(0.0, |acc: f64, j| {
+            acc * span + (j * (j - 1)) as f64 * f[j].abs()
+        });
         Flow {
             anchor,
             until,
@@ -401,6 +407,7 @@ impl Flow {
             q_eq,
             force_bound: force_bound + force_error,
             force_rate_bound,
+            force_curvature_bound,
             force_error,
             form: Form::Series {
                 hi: recurrence(x.hi, v.hi, true),
@@ -504,7 +511,7 @@ impl Flow {
     /// Bounds on |x''| and |x'''| over `[t0, t0 + h]` from the state at t0: the free motion
     /// grows at most as e^((|k|^(1/2) + |c|) h) in the energy norm, and the forcing adds at most
     /// h max|f| to it.
-    pub fn derivative_bounds(&self, p: &Point, h: f64) -> (f64, f64) {
+    pub fn derivative_bounds(&self, p: &Point, h: f64) -> (f64, f64, f64) {
         let (k, c) = (self.k, self.c);
         let w = k.abs().sqrt();
         let x0 = p.q - self.q_eq;
@@ -512,7 +519,10 @@ impl Flow {
         let z = ((w + c.abs()) * h).exp() * (z0 + h * self.force_bound);
         let m2 = (w + c.abs()) * z + self.force_bound;
         let m3 = w * w * z + c.abs() * m2 + self.force_rate_bound;
-        (m2 * (1.0 + 1e-9), m3 * (1.0 + 1e-9))
+        // The fourth derivative is f'' - k x'' - c x''' by the equation.
+        let m4 = w * w * m2 + c.abs() * m3 + self.force_curvature_bound;
+        let safe = 1.0 + 1e-9;
+        (m2 * safe, m3 * safe, m4 * safe)
     }
 
     /// A bound on |x - x_p| (the free motion) over the rest of an oscillator flow from `t0`

@@ -84,18 +84,25 @@ pub(super) fn first_crossing(
         if h <= 0.0 {
             continue;
         }
-        let (m2, m3) = flow.derivative_bounds(&a, h);
+        let (m2, m3, m4) = flow.derivative_bounds(&a, h);
         let mut upper = (a.q + a.v.max(0.0) * h).min(b.q + (-b.v).max(0.0) * h) + 0.5 * m2 * h * h;
         let mut lower = (a.q + a.v.min(0.0) * h).max(b.q + (-b.v).min(0.0) * h) - 0.5 * m2 * h * h;
         if let Some(envelope) = flow.envelope(a.t) {
             upper = upper.min(flow.equilibrium() + envelope);
             lower = lower.max(flow.equilibrium() - envelope);
         }
-        if upper < watch.up() && lower > watch.down() {
+        // Reaching a level is not passing it: a guard is crossed only beyond it, and a value equal
+        // to the extreme recorded is no new peak (a body at rest stays at rest).
+        if upper <= watch.up() && lower >= watch.down() {
             continue;
         }
         let monotone = a.v * b.v > 0.0 && a.v.abs() + b.v.abs() > m2 * h;
-        let single_root = a.acc * b.acc > 0.0 && a.acc.abs() + b.acc.abs() > m3 * h;
+        // q'' keeps its sign when it has one sign at both ends with room to spare (M3), or when
+        // q''' keeps its sign (M4), so that q'' is monotone, and q'' does not change sign between
+        // the ends (one of them may be zero: the start from rest of a floor that starts at zero).
+        let jerk_one_signed = a.jerk * b.jerk > 0.0 && a.jerk.abs() + b.jerk.abs() > m4 * h;
+        let single_root = (a.acc * b.acc > 0.0 && a.acc.abs() + b.acc.abs() > m3 * h)
+            || (jerk_one_signed && a.acc * b.acc >= 0.0 && (a.acc != 0.0 || b.acc != 0.0));
         // The monotone pieces of [a, b], and the extremum between them.
         let (pieces, peak) = if monotone {
             ([Some((a, b)), None], None)
