@@ -422,3 +422,60 @@ fn a_body_at_rest_stays_at_rest_and_a_start_from_rest_is_cheap() {
         pulse.stats.rhs_evaluations
     );
 }
+
+/// Every kind of floor motion's closed form is the motion: at 20,001 times over 10 s, the shape
+/// of the stretch holding t gives a(t) to rounding (within the stated bound for the Ricker
+/// wavelet's Taylor pieces), and the stretch holds t (it ends after it). Where the floor jumps
+/// (the end of a record whose last sample is not zero) a(t) there is the side before the jump,
+/// which the stretch ending at t gives: a single point, which no integral sees.
+#[test]
+fn every_closed_form_of_the_floor_is_the_floor_motion() {
+    use flexrock_core::excitation::{
+        FloorMotion, Free, Harmonic, PaperSine, PulseShape, RecordedMotion, Ricker, SinePulse,
+    };
+    let record: Vec<f64> = (0..700)
+        .map(|k| 3.0 * (0.37 * k as f64).sin() * (-0.004 * k as f64).exp())
+        .collect();
+    let motions: Vec<Box<dyn FloorMotion>> = vec![
+        Box::new(Free),
+        Box::new(Harmonic {
+            amplitude: 2.5,
+            period: 1.5,
+        }),
+        Box::new(PaperSine::new(5.0, 1.0, 0.412)),
+        Box::new(SinePulse::new(3.0, 0.8, 2.0, PulseShape::Antisymmetric)),
+        Box::new(SinePulse::new(3.0, 0.8, 1.0, PulseShape::Symmetric)),
+        Box::new(Ricker {
+            amplitude: 4.0,
+            period: 1.0,
+            center: 1.5,
+        }),
+        Box::new(RecordedMotion::new("made up".to_string(), 0.01, record)),
+    ];
+    for floor in &motions {
+        let peak = floor.peak_acceleration().max(1.0);
+        for i in 0..=20_000 {
+            let t = i as f64 * 5e-4;
+            let form = floor.closed_form(t);
+            assert!(
+                form.until > t,
+                "{}: the stretch at t = {t} ends at {}",
+                floor.kind(),
+                form.until
+            );
+            let a = floor.acceleration(t);
+            let mut difference = (form.shape.value(t) - a).abs();
+            if t > 0.0 {
+                let before = floor.closed_form(t - 5e-4);
+                if before.until == t {
+                    difference = difference.min((before.shape.value(t) - a).abs());
+                }
+            }
+            assert!(
+                difference <= form.error_bound + 1e-13 * peak,
+                "{} at t = {t}: closed form off by {difference:e}",
+                floor.kind()
+            );
+        }
+    }
+}

@@ -242,7 +242,7 @@ fn compare_figure(
     let panel = |title: &str, y_label: &str, value: fn(&Sample) -> f64, s_n_lines: bool| {
         let series = vec![
             Series::line(
-                "reference",
+                &format!("reference ({})", reference.stats.method),
                 reference.samples.iter().map(|x| (x.t, value(x))).collect(),
                 0,
             ),
@@ -284,7 +284,11 @@ fn relations_figure(reference: &Solution, other: &Solution, label: &str) -> Resu
         x_label: x_label.to_string(),
         y_label: y_label.to_string(),
         series: vec![
-            Series::line("reference", reference.samples.iter().map(xy).collect(), 0),
+            Series::line(
+                &format!("reference ({})", reference.stats.method),
+                reference.samples.iter().map(xy).collect(),
+                0,
+            ),
             Series::line(label, other.samples.iter().map(xy).collect(), 1),
         ],
         // A preference: the figure moves it to a corner the curves leave free, or beside the plot.

@@ -155,25 +155,6 @@ pub struct RunReport {
     pub check: Option<flexrock_core::compare::Check>,
 }
 
-/// Solves a model and writes history.csv, events.csv, episodes.csv and summary.json into
-/// `out_dir`, and with
-/// `plots` also the figures of [`crate::figures::run`], drawn from the three files as they are about
-/// to be written and written with them as one atomic set. With [`writers::WallTimes::Apart`] the
-/// solve's wall time goes to timings.json, written with them.
-pub fn run_to_dir_with(
-    model: &Model,
-    out_dir: &Path,
-    plots: bool,
-    wall_times: writers::WallTimes,
-) -> Result<RunReport> {
-    let options = RunOptions {
-        check: false,
-        plots,
-        wall_times,
-    };
-    run_to_dir_checked(model, out_dir, &options)
-}
-
 /// What `flexrock run` writes besides its four files.
 #[derive(Debug, Clone, Copy)]
 pub struct RunOptions {
@@ -185,8 +166,11 @@ pub struct RunOptions {
     pub wall_times: writers::WallTimes,
 }
 
-/// Solves `model` and writes its files into `out_dir`, with check.json and the figures when
-/// `options` ask for them, all as one set.
+/// Solves a model and writes history.csv, events.csv, episodes.csv and summary.json into
+/// `out_dir`; with `options.check` also check.json (the run against the exact solution), and with
+/// `options.plots` the figures of [`crate::figures::run`], drawn from the files as they are about
+/// to be written. All are written as one atomic set. With [`writers::WallTimes::Apart`] the
+/// solve's wall time goes to timings.json, written with them.
 pub fn run_to_dir_checked(
     model: &Model,
     out_dir: &Path,
@@ -308,13 +292,17 @@ pub fn run_report_text(model: &Model, report: &RunReport) -> String {
         let _ = writeln!(
             t,
             "  check against the exact solution: {} of {} events matched ({} missed, {} spurious), \
-             largest event-time error {:.3e} s, peak error {:.3e} m, largest error of q on the grid \
+             {}, peak error {:.3e} m, largest error of q on the grid \
              {:.3e} m (the exact solution's own estimate: {:.1e} s)",
             e.n_matched,
             e.n_reference,
             e.n_missed,
             e.n_spurious,
-            e.max_abs_time_difference,
+            if e.n_matched == 0 {
+                "no event to time".to_string()
+            } else {
+                format!("largest event-time error {:.3e} s", e.max_abs_time_difference)
+            },
             c.comparison.peaks.peak_error,
             c.comparison.grid.max_abs_q_difference,
             c.exact_error_estimate
