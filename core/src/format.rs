@@ -11,16 +11,50 @@ pub fn number(x: f64) -> String {
 /// but 0.005, 0.0003125, 43.98). It reads back exactly, and 1e300 or 1e-300 never print as
 /// 301 digits.
 pub fn shortest(x: f64) -> String {
-    let plain = format!("{x}");
     if !x.is_finite() {
-        return plain;
+        return format!("{x}");
     }
+    // One shortest-digit conversion (the costly part of a sweep's table), in exponent form;
+    // the plain form has the same digits, placed by the exponent.
     let exponent = format!("{x:e}");
-    if exponent.len() + 2 <= plain.len() {
-        exponent
-    } else {
-        plain
+    let (mantissa, power) = exponent.split_once('e').unwrap_or((&exponent, "0"));
+    let power: i64 = power.parse().unwrap_or(0);
+    let (sign, mantissa) = match mantissa.strip_prefix('-') {
+        Some(rest) => ("-", rest),
+        None => ("", mantissa),
+    };
+    let (lead, rest) = mantissa.split_once('.').unwrap_or((mantissa, ""));
+    let n = (lead.len() + rest.len()) as i64;
+    let plain_len = sign.len() as i64
+        + if power >= 0 {
+            n.max(power + 1) + i64::from(n > power + 1)
+        } else {
+            1 + 1 + (-power - 1) + n
+        };
+    if exponent.len() as i64 + 2 <= plain_len {
+        return exponent;
     }
+    let mut plain = String::with_capacity(plain_len as usize);
+    plain.push_str(sign);
+    if power >= 0 {
+        // The first digit, then `power` more before the point (zeros where the digits end).
+        plain.push_str(lead);
+        let before = power as usize;
+        if rest.len() <= before {
+            plain.push_str(rest);
+            plain.extend(std::iter::repeat_n('0', before - rest.len()));
+        } else {
+            plain.push_str(&rest[..before]);
+            plain.push('.');
+            plain.push_str(&rest[before..]);
+        }
+    } else {
+        plain.push_str("0.");
+        plain.extend(std::iter::repeat_n('0', (-power - 1) as usize));
+        plain.push_str(lead);
+        plain.push_str(rest);
+    }
+    plain
 }
 
 /// A short time step or period in seconds: five decimals, or two significant digits below
@@ -121,6 +155,45 @@ mod tests {
         assert_eq!(shortest(43.980000000000004), "43.980000000000004");
         assert_eq!(shortest(f64::NAN), "NaN");
         assert_eq!(shortest(f64::NEG_INFINITY), "-inf");
+        assert_eq!(shortest(-0.0), "-0");
+        assert_eq!(shortest(120.0), "120");
+        assert_eq!(shortest(1.5e5), "150000");
+    }
+
+    /// The plain form built from the exponent form's digits is the standard library's own
+    /// plain form, wherever it is chosen; and the choice is the one the two lengths make.
+    #[test]
+    fn shortest_is_the_shorter_of_the_two_standard_forms() {
+        let mut state = 0x9e37_79b9_7f4a_7c15_u64;
+        let mut next = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            state
+        };
+        let mut values = vec![0.0, -0.0, 1.0, 10.0, 100.0, 0.1, 0.01, 1e-5, 1e21, 1e22, 123456.0];
+        for _ in 0..20_000 {
+            let bits = next();
+            let x = f64::from_bits(bits);
+            if x.is_finite() {
+                values.push(x);
+            }
+            // Numbers of everyday size, with few and with many digits.
+            let scale = 10f64.powi((next() % 30) as i32 - 15);
+            values.push((next() % 100_000) as f64 * scale);
+            values.push((next() as f64 / u64::MAX as f64 - 0.5) * scale);
+        }
+        for x in values {
+            let plain = format!("{x}");
+            let exponent = format!("{x:e}");
+            let expected = if exponent.len() + 2 <= plain.len() {
+                exponent
+            } else {
+                plain
+            };
+            assert_eq!(shortest(x), expected, "{x:e}");
+            assert_eq!(shortest(x).parse::<f64>().unwrap().to_bits(), x.to_bits());
+        }
         assert_eq!(readable(43.980000000000004), "43.98");
         assert_eq!(readable(0.1 + 0.2), "0.3");
         assert_eq!(readable(1.0 / 3.0), "0.333333333333");

@@ -495,10 +495,22 @@ impl Sweep {
     /// The rows of the points `points`, in point order (in parallel with the `parallel`
     /// feature); `done` is called as each point finishes, from the thread that computed it.
     pub fn rows(&self, points: std::ops::Range<usize>, done: &(dyn Fn() + Sync)) -> Vec<Row> {
+        self.rows_as(points, done, |_, row| row)
+    }
+
+    /// `with(index, row)` of the points `points`, in point order; each computed in parallel
+    /// with its point (with the `parallel` feature), so that turning rows into text is shared
+    /// among the threads too.
+    pub fn rows_as<T: Send>(
+        &self,
+        points: std::ops::Range<usize>,
+        done: &(dyn Fn() + Sync),
+        with: impl Fn(usize, Row) -> T + Sync + Send,
+    ) -> Vec<T> {
         in_order(points, |i| {
             let row = self.evaluate(i);
             done();
-            row
+            with(i, row)
         })
     }
 

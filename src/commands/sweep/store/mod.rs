@@ -400,12 +400,11 @@ fn rows_of(
     points: std::ops::Range<usize>,
     progress: &dyn Progress,
 ) -> Vec<Vec<String>> {
-    let first = points.start;
-    let rows = sweep.rows(points, &|| progress.advance(1));
-    rows.iter()
-        .enumerate()
-        .map(|(i, row)| row_fields(&sweep.plan, first + i, row))
-        .collect()
+    sweep.rows_as(
+        points,
+        &|| progress.advance(1),
+        |i, row| row_fields(&sweep.plan, i, &row),
+    )
 }
 
 fn chunk_path(dir: &Path, chunk: usize) -> PathBuf {
