@@ -24,8 +24,8 @@ use flexrock_core::sweep::Plan;
 pub struct SweepTable {
     /// Column names, from the header.
     pub columns: Vec<String>,
-    /// The fields of each row, as text.
-    pub rows: Vec<Vec<String>>,
+    /// The fields of each row, as text (one allocation per row: a map has many).
+    pub rows: Vec<csv::StringRecord>,
     path: std::path::PathBuf,
 }
 
@@ -46,7 +46,7 @@ impl SweepTable {
         let mut rows = Vec::new();
         for record in reader.records() {
             let record = record.map_err(|e| fail(format!("a malformed row: {e}")))?;
-            rows.push(record.iter().map(str::to_string).collect());
+            rows.push(record);
         }
         Ok(SweepTable {
             columns,
@@ -92,7 +92,7 @@ impl SweepTable {
             {
                 counts.inaccurate += 1;
             }
-            match row[status].as_str() {
+            match &row[status] {
                 "ok" => counts.ok += 1,
                 "invalid" => counts.invalid += 1,
                 _ => counts.failed += 1,
@@ -166,7 +166,7 @@ fn ida(plan: &Plan, table: &SweepTable, x: usize) -> Result<Vec<u8>> {
         let Some(xv) = plan.axes[x].number(c[x]) else {
             continue;
         };
-        let overturned = row[over_column] == "true";
+        let overturned = &row[over_column] == "true";
         let value = table.number(r, q_column);
         let g = other.map_or(0, |o| c[o]);
         match (overturned, value) {
@@ -335,7 +335,7 @@ fn drawable(values: &[f64]) -> bool {
 }
 
 /// The point number of row `r` (its first field).
-fn point_of(table: &SweepTable, r: usize, row: &[String]) -> Result<usize> {
+fn point_of(table: &SweepTable, r: usize, row: &csv::StringRecord) -> Result<usize> {
     row[0].parse().map_err(|_| Error::ReadResult {
         path: table.path.clone(),
         message: format!("row {} has no point number", r + 1),
@@ -371,7 +371,7 @@ fn map(plan: &Plan, table: &SweepTable, x: usize, y: usize) -> Result<Option<Vec
         let c = plan.coordinates(point);
         cells[c[x]][c[y]] = Cell {
             value: table.number(r, q_column),
-            overturned: row[over_column] == "true",
+            overturned: &row[over_column] == "true",
         };
     }
     let physical = |axis: usize| -> Vec<f64> {
