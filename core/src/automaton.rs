@@ -6,7 +6,8 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::constants::Constants;
+use crate::constants::{Constants, LinearRates};
+use crate::double_double::DoubleDouble;
 
 /// A discrete mode of the body.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -110,6 +111,8 @@ pub struct Automaton {
     beta2: f64,
     zeta_uplift: f64,
     zeta_landing: f64,
+    /// k and c of eq. 16 in each mode, rounded once from the constants to twice the precision.
+    rates: LinearRates,
     /// M int U^2 and M int V^2, kg: the body's kinetic energy is these times q'^2/2.
     kinetic_mass_pre_uplift: f64,
     kinetic_mass_rocking: f64,
@@ -144,6 +147,7 @@ impl Automaton {
             beta2: constants.beta2,
             zeta_uplift: constants.zeta_uplift,
             zeta_landing: constants.zeta_landing,
+            rates: constants.linear_rates,
             kinetic_mass_pre_uplift: constants.kinetic_mass(false),
             kinetic_mass_rocking: constants.kinetic_mass(true),
             uncertainty: match constants.self_weight {
@@ -175,6 +179,12 @@ impl Automaton {
             beta2: nudge(self.beta2, 8),
             zeta_uplift: nudge(self.zeta_uplift, 9),
             zeta_landing: nudge(self.zeta_landing, 10),
+            rates: LinearRates {
+                pre_uplift_stiffness: nudge(self.rates.pre_uplift_stiffness, 11),
+                pre_uplift_damping: nudge(self.rates.pre_uplift_damping, 12),
+                rocking_stiffness: nudge(self.rates.rocking_stiffness, 13),
+                rocking_damping: nudge(self.rates.rocking_damping, 14),
+            },
             ..self.clone()
         }
     }
@@ -271,6 +281,15 @@ impl Automaton {
         }
     }
 
+    /// [`Automaton::reset_velocity`] to twice the precision, for a solver that carries q' so.
+    pub(crate) fn reset_velocity_twice(&self, kind: EventKind, qdot: DoubleDouble) -> DoubleDouble {
+        match kind {
+            EventKind::Uplift => qdot * self.zeta_uplift,
+            EventKind::Landing => qdot / self.zeta_landing,
+            EventKind::Overturn => qdot,
+        }
+    }
+
     /// Effectiveness factor nu of the mode.
     pub fn effectiveness(&self, mode: Mode) -> f64 {
         match mode {
@@ -325,17 +344,22 @@ impl Automaton {
     }
 
     /// Eq. 16 within `mode` as the linear equation it is there, x'' + c x' + k x = -beta a(t)
-    /// with x = q - q_eq: the coefficients the exact solver integrates in closed form. They are
-    /// read off the same branch of F and the same nu, beta and damping as
-    /// [`Automaton::acceleration`]. None for the terminal mode.
+    /// with x = q - q_eq: the coefficients the exact solver integrates in closed form. k and c
+    /// are the partial derivatives of [`Automaton::acceleration`] (the same branch of F, the same
+    /// nu and damping), as the constants compute them to twice the precision and round once
+    /// (`Constants::linear_rates`). None for the terminal mode.
     pub fn linear_form(&self, mode: Mode) -> Option<LinearForm> {
         if mode == Mode::Overturned {
             return None;
         }
-        let (d_q, d_qdot) = self.acceleration_jacobian(mode);
+        let rates = &self.rates;
+        let (stiffness, damping) = match mode {
+            Mode::PreUplift => (rates.pre_uplift_stiffness, rates.pre_uplift_damping),
+            _ => (rates.rocking_stiffness, rates.rocking_damping),
+        };
         Some(LinearForm {
-            stiffness: -d_q,
-            damping: -d_qdot,
+            stiffness,
+            damping,
             // F(q) = F' (q - q_eq) on the branch: q_eq is where the branch's force vanishes.
             equilibrium: match mode {
                 Mode::PreUplift | Mode::Overturned => 0.0,

@@ -2,6 +2,8 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::double_double::DoubleDouble as Dd;
+
 use crate::invalid::InvalidParameter;
 
 type Result<T> = std::result::Result<T, InvalidParameter>;
@@ -79,15 +81,18 @@ pub struct Body {
     pub self_weight: SelfWeight,
 }
 
-/// Mass of a prism of `density` (kg/m^3) and size H x B x D (m), kg.
+/// Mass of a prism of `density` (kg/m^3) and size H x B x D (m), kg: the double nearest the
+/// product of the numbers as written.
 pub fn prism_mass(density: f64, height: f64, width: f64, depth: f64) -> f64 {
-    density * height * width * depth
+    let written = Dd::decimal;
+    (written(density) * written(height) * written(width) * written(depth)).value()
 }
 
 /// EI = E D B^3 / 12 of a solid rectangular section of width B (in the plane of motion) and
-/// depth D, N m^2.
+/// depth D, N m^2: the double nearest it for the numbers as written.
 pub fn solid_section_flexural_rigidity(youngs_modulus: f64, width: f64, depth: f64) -> f64 {
-    youngs_modulus * depth * width.powi(3) / 12.0
+    let written = Dd::decimal;
+    (written(youngs_modulus) * written(depth) * written(width).cube() / 12.0).value()
 }
 
 impl Body {

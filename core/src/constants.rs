@@ -3,18 +3,34 @@
 use serde::{Deserialize, Serialize};
 
 use crate::body::{Body, ConstantSet, SelfWeight};
+use crate::double_double::DoubleDouble as Dd;
 use crate::invalid::InvalidParameter;
 
 type Result<T> = std::result::Result<T, InvalidParameter>;
 use crate::flexural_shape::SelfWeightedShape;
 
-/// First root of cos L cosh L = -1 (first cantilever mode).
-pub const MODE_ROOT: f64 = 1.875_104_068_711_961;
+/// First root of cos L cosh L = -1 (first cantilever mode), to twice the precision: the root to
+/// 60 digits, 1.8751040687119611664453082410782141625701, split into the double nearest it and the
+/// double nearest the rest.
+const MODE_ROOT_TWICE: Dd = Dd {
+    hi: 1.875_104_068_711_961_1,
+    lo: 5.255_420_140_731_619e-17,
+};
 
-/// sigma = (cosh L + cos L)/(sinh L + sin L) of the first cantilever mode (book/src/model.md §2).
+/// First root of cos L cosh L = -1 (first cantilever mode): the double nearest it.
+pub const MODE_ROOT: f64 = MODE_ROOT_TWICE.hi;
+
+/// sigma = (cosh L + cos L)/(sinh L + sin L) = 0.73409551375891275582878278897692494488 to
+/// twice the precision, as [`MODE_ROOT_TWICE`].
+const MODE_SIGMA_TWICE: Dd = Dd {
+    hi: 0.734_095_513_758_912_8,
+    lo: -4.295_637_836_888_931_4e-17,
+};
+
+/// sigma = (cosh L + cos L)/(sinh L + sin L) of the first cantilever mode (book/src/model.md §2):
+/// the double nearest it.
 pub fn mode_sigma() -> f64 {
-    let l = MODE_ROOT;
-    (l.cosh() + l.cos()) / (l.sinh() + l.sin())
+    MODE_SIGMA_TWICE.hi
 }
 
 /// The first cantilever mode U(xi), scaled to U(1) = 1 (book/src/model.md §2).
@@ -62,34 +78,13 @@ pub struct ModeShapeIntegrals {
 impl ModeShapeIntegrals {
     /// The exact numbers of the paper's U (book/src/model.md §2, constants).
     pub fn exact() -> Self {
-        let l = MODE_ROOT;
-        let sigma = mode_sigma();
-        let int_u = sigma / l;
-        let int_u2 = 0.25;
-        ModeShapeIntegrals {
-            int_u,
-            int_u2,
-            int_u_xi: 1.0 / (l * l),
-            beta1: int_u / int_u2,
-            stiffness_coefficient: l.powi(3) * sigma,
-            base_moment_coefficient: l * l,
-            weight_in_bending: false,
-        }
+        ShapeNumbers::exact().rounded()
     }
 
     /// The rounded values printed in the paper: L = 1.8751, int U = 0.3915 (Me = 0.3915 M),
     /// int U^2 = 0.2503, beta1 = 1.564, Ke = 4.840 EI/H^3.
     pub fn paper() -> Self {
-        let l: f64 = 1.8751;
-        ModeShapeIntegrals {
-            int_u: 0.3915,
-            int_u2: 0.2503,
-            int_u_xi: 1.0 / (l * l),
-            beta1: 1.564,
-            stiffness_coefficient: 4.840,
-            base_moment_coefficient: l * l,
-            weight_in_bending: false,
-        }
+        ShapeNumbers::paper().rounded()
     }
 
     /// The numbers of the self-weighted mode psi of the consistent variant. With
@@ -97,15 +92,7 @@ impl ModeShapeIntegrals {
     /// base shear of the loads m psi per s), and the base moment of those loads per s is
     /// K_psi H (int psi xi)/int psi^2 = Omega (int psi xi) EI/H^2.
     pub fn self_weighted(psi: &SelfWeightedShape) -> Self {
-        ModeShapeIntegrals {
-            int_u: psi.int_psi,
-            int_u2: psi.int_psi2,
-            int_u_xi: psi.int_psi_xi,
-            beta1: psi.int_psi / psi.int_psi2,
-            stiffness_coefficient: psi.omega_coefficient * psi.int_psi,
-            base_moment_coefficient: psi.omega_coefficient * psi.int_psi_xi,
-            weight_in_bending: true,
-        }
+        ShapeNumbers::self_weighted(psi).rounded()
     }
 
     /// The rigid-limit uplift factor: the quasi-static uplift acceleration omega^2 s_n / beta1 of
@@ -131,6 +118,84 @@ impl ModeShapeIntegrals {
     /// The shape of `body`'s variant: the paper's U (exact or rounded), or psi solved for the
     /// body's M g H^2/EI (`None` when the body buckles under its own weight).
     pub fn for_body(body: &Body) -> Option<Self> {
+        ShapeNumbers::for_body(body).map(|numbers| numbers.rounded())
+    }
+}
+
+/// The numbers of [`ModeShapeIntegrals`] to twice the precision: their one home, from which the
+/// doubles are rounded once.
+#[derive(Debug, Clone, Copy)]
+struct ShapeNumbers {
+    int_u: Dd,
+    int_u2: Dd,
+    int_u_xi: Dd,
+    beta1: Dd,
+    stiffness_coefficient: Dd,
+    base_moment_coefficient: Dd,
+    weight_in_bending: bool,
+}
+
+impl ShapeNumbers {
+    /// The paper's U: int U = sigma/L, int U^2 = 1/4, int U xi = 1/L^2, Ke = L^3 sigma EI/H^3,
+    /// U''(0) = L^2.
+    fn exact() -> Self {
+        let (l, sigma) = (MODE_ROOT_TWICE, MODE_SIGMA_TWICE);
+        let int_u = sigma / l;
+        let int_u2 = Dd::exact(0.25);
+        ShapeNumbers {
+            int_u,
+            int_u2,
+            int_u_xi: 1.0 / (l * l),
+            beta1: int_u / int_u2,
+            stiffness_coefficient: l.cube() * sigma,
+            base_moment_coefficient: l * l,
+            weight_in_bending: false,
+        }
+    }
+
+    /// The paper's printed values, as the decimals they are printed as.
+    fn paper() -> Self {
+        let l = Dd::decimal(1.8751);
+        ShapeNumbers {
+            int_u: Dd::decimal(0.3915),
+            int_u2: Dd::decimal(0.2503),
+            int_u_xi: 1.0 / (l * l),
+            beta1: Dd::decimal(1.564),
+            stiffness_coefficient: Dd::decimal(4.840),
+            base_moment_coefficient: l * l,
+            weight_in_bending: false,
+        }
+    }
+
+    /// The self-weighted mode psi, from its numbers in double precision.
+    fn self_weighted(psi: &SelfWeightedShape) -> Self {
+        let (int_psi, int_psi2) = (Dd::exact(psi.int_psi), Dd::exact(psi.int_psi2));
+        let omega = Dd::exact(psi.omega_coefficient);
+        ShapeNumbers {
+            int_u: int_psi,
+            int_u2: int_psi2,
+            int_u_xi: Dd::exact(psi.int_psi_xi),
+            beta1: int_psi / int_psi2,
+            stiffness_coefficient: omega * int_psi,
+            base_moment_coefficient: omega * psi.int_psi_xi,
+            weight_in_bending: true,
+        }
+    }
+
+    /// The numbers of a shape known only in double precision.
+    fn of(shape: &ModeShapeIntegrals) -> Self {
+        ShapeNumbers {
+            int_u: Dd::exact(shape.int_u),
+            int_u2: Dd::exact(shape.int_u2),
+            int_u_xi: Dd::exact(shape.int_u_xi),
+            beta1: Dd::exact(shape.beta1),
+            stiffness_coefficient: Dd::exact(shape.stiffness_coefficient),
+            base_moment_coefficient: Dd::exact(shape.base_moment_coefficient),
+            weight_in_bending: shape.weight_in_bending,
+        }
+    }
+
+    fn for_body(body: &Body) -> Option<Self> {
         match (body.self_weight, body.constant_set) {
             (SelfWeight::Paper, ConstantSet::Exact) => Some(Self::exact()),
             (SelfWeight::Paper, ConstantSet::Paper) => Some(Self::paper()),
@@ -138,23 +203,35 @@ impl ModeShapeIntegrals {
                 .map(|psi| Self::self_weighted(&psi)),
         }
     }
+
+    fn rounded(&self) -> ModeShapeIntegrals {
+        ModeShapeIntegrals {
+            int_u: self.int_u.value(),
+            int_u2: self.int_u2.value(),
+            int_u_xi: self.int_u_xi.value(),
+            beta1: self.beta1.value(),
+            stiffness_coefficient: self.stiffness_coefficient.value(),
+            base_moment_coefficient: self.base_moment_coefficient.value(),
+            weight_in_bending: self.weight_in_bending,
+        }
+    }
 }
 
 /// The velocity shape while rocking, V = s' U + r' xi (eq. 13), with s' = ds/dq and r' = 1 - s'
 /// constant while rocking (the paper's (-s_n U + B xi)/d), and its integrals per unit height.
 struct RockingShape {
-    ds: f64,
-    dr: f64,
+    ds: Dd,
+    dr: Dd,
     /// int_0^1 U V dxi.
-    int_uv: f64,
+    int_uv: Dd,
     /// int_0^1 V dxi.
-    int_v: f64,
+    int_v: Dd,
     /// int_0^1 V^2 dxi.
-    int_v2: f64,
+    int_v2: Dd,
 }
 
 impl RockingShape {
-    fn new(shape: &ModeShapeIntegrals, flexural_slope: f64) -> Self {
+    fn new(shape: &ShapeNumbers, flexural_slope: Dd) -> Self {
         let (ds, dr) = (flexural_slope, 1.0 - flexural_slope);
         RockingShape {
             ds,
@@ -164,6 +241,22 @@ impl RockingShape {
             int_v2: ds * ds * shape.int_u2 + 2.0 * ds * dr * shape.int_u_xi + dr * dr / 3.0,
         }
     }
+}
+
+/// The coefficients of eq. 16 within each mode, written x'' + c x' + k x = -beta a with
+/// x = q - q_eq: k = nu F'/Me and c = (gamma/E) nu F'/Me, each rounded once from the constants
+/// to twice the precision. They are what the exact method integrates
+/// ([`crate::Automaton::linear_form`]).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct LinearRates {
+    /// k before uplift, 1/s^2 (omega^2).
+    pub pre_uplift_stiffness: f64,
+    /// c before uplift, 1/s (2 h omega).
+    pub pre_uplift_damping: f64,
+    /// k while rocking, 1/s^2 (negative).
+    pub rocking_stiffness: f64,
+    /// c while rocking, 1/s (negative).
+    pub rocking_damping: f64,
 }
 
 /// Every constant the automaton and the reports need, derived once from a [`Body`].
@@ -214,21 +307,32 @@ pub struct Constants {
     pub gravity_parameter_ratio: f64,
     /// Width B, m.
     pub width: f64,
+    /// k and c of each mode, rounded once (not written out: they follow from the rest).
+    #[serde(skip)]
+    pub linear_rates: LinearRates,
 }
 
 impl Constants {
     /// Derives the constants and rejects bodies for which the model has no meaning.
+    ///
+    /// They are computed to twice the precision from the body's numbers as written (0.7 is seven
+    /// tenths) and each rounded once, so that every constant is the double nearest its true value
+    /// (within an ulp): the exact method's event times depend on them, and near a grazing uplift
+    /// or over a long chain of impacts they amplify a constant's rounding.
     pub fn new(body: &Body) -> Result<Self> {
-        let (h, b) = (body.height, body.width);
-        let mg = body.mass * body.gravity;
+        let written = Dd::decimal;
+        let (h, b) = (written(body.height), written(body.width));
+        let mass = written(body.mass);
+        let flexural_rigidity = written(body.flexural_rigidity);
+        let mg = mass * written(body.gravity);
         let gravity_parameter = body.gravity_parameter();
 
         // A cantilever buckles under its own weight at M g H^2/EI = 7.837: beyond it there is no
         // upright equilibrium to rock about. (This also keeps the paper's s_n below B: s_n
         // reaches B only at M g H^2/EI = 2 L^2/(1 - 2 int U) = 32.4.)
-        let shape = ModeShapeIntegrals::for_body(body)
+        let numbers = ShapeNumbers::for_body(body)
             .filter(|_| gravity_parameter < SELF_WEIGHT_BUCKLING_PARAMETER);
-        let Some(shape) = shape else {
+        let Some(numbers) = numbers else {
             return Err(InvalidParameter::new(
                 "derived gravity parameter M g H^2/EI",
                 gravity_parameter,
@@ -238,17 +342,20 @@ impl Constants {
                 ),
             ));
         };
+        let shape = numbers.rounded();
 
-        let me = body.mass * shape.int_u;
-        let ke = shape.stiffness_coefficient * body.flexural_rigidity / h.powi(3);
-        let omega = (ke / me).sqrt();
-        if !(omega.is_finite()
-            && omega > 0.0
-            && crate::limits::at_least(2.0 * std::f64::consts::PI / omega, MIN_PERIOD))
+        let me = mass * numbers.int_u;
+        let ke = numbers.stiffness_coefficient * flexural_rigidity / h.cube();
+        let omega_squared = ke / me;
+        let omega = omega_squared.sqrt();
+        let period = (crate::double_double::TWO_PI / omega).value();
+        if !(omega.value().is_finite()
+            && omega.value() > 0.0
+            && crate::limits::at_least(period, MIN_PERIOD))
         {
             return Err(InvalidParameter::new(
                 "derived pre-uplift period T (s)",
-                2.0 * std::f64::consts::PI / omega,
+                period,
                 &format!(
                     "must be at least {MIN_PERIOD:e} s: no body that rocks on a floor is that stiff \
                      for its mass, and the solvers would need steps far below a microsecond"
@@ -259,27 +366,27 @@ impl Constants {
         // Moments about the toe (eq. 8; validation/SELF-WEIGHT.md): the base bending moment
         // c_M EI s/H^2 plus the weight's M g (int U) s equal the weight's M g B/2 at uplift.
         let s_n = b
-            / (2.0 * body.flexural_rigidity * shape.base_moment_coefficient / (mg * h * h)
-                + 2.0 * shape.int_u);
-        let rocking = RockingBranch::new(&shape, ke, s_n, b, mg / h);
+            / (2.0 * flexural_rigidity * numbers.base_moment_coefficient / (mg * h * h)
+                + 2.0 * numbers.int_u);
+        let rocking = RockingBranch::new(&numbers, ke, s_n, b, mg / h);
 
-        if !(rocking.stiffness < 0.0 && rocking.topple_displacement > s_n) {
+        if !(rocking.stiffness.value() < 0.0 && rocking.topple_displacement.value() > s_n.value()) {
             return Err(InvalidParameter::new(
                 "derived restoring force while rocking",
                 format!(
                     "dF/dq = {} N/m, F = 0 at q = {} m",
-                    crate::format::shortest(rocking.stiffness),
-                    crate::format::shortest(rocking.topple_displacement)
+                    crate::format::shortest(rocking.stiffness.value()),
+                    crate::format::shortest(rocking.topple_displacement.value())
                 ),
                 &format!(
                     "the force must fall after uplift at s_n = {} m and vanish beyond it: this body \
                      is too close to buckling under its own weight for the model",
-                    crate::format::shortest(s_n)
+                    crate::format::shortest(s_n.value())
                 ),
             ));
         }
 
-        let v = RockingShape::new(&shape, rocking.flexural_slope);
+        let v = RockingShape::new(&numbers, rocking.flexural_slope);
         let (ds, dr) = (v.ds, v.dr);
         let nu2 = v.int_uv / v.int_v2;
         let beta2 = v.int_v / v.int_v2;
@@ -287,45 +394,58 @@ impl Constants {
         // Eqs. 19-22: angular momentum about the pivot toe (uplift) and the landing edge. The
         // body turns about the toe at r'/H per unit q', so the centroid's vertical motion adds
         // (B^2/4) r' (the paper: (B^2/4) B/d).
-        let int_uy = h * h * shape.int_u_xi;
-        let int_vy = h * h * (ds * shape.int_u_xi + dr / 3.0);
+        let int_uy = h * h * numbers.int_u_xi;
+        let int_vy = h * h * (ds * numbers.int_u_xi + dr / 3.0);
         let rotary = b * b / 12.0;
         let vertical = (b * b / 4.0) * dr;
         let zeta_uplift = (int_uy + rotary) / (int_vy + rotary + vertical);
-        let zeta_landing = (int_uy + rotary) / (int_vy + rotary - vertical);
+        let zeta_landing = ((int_uy + rotary) / (int_vy + rotary - vertical)).value();
         if !(zeta_landing > 0.0 && zeta_landing < 1.0) {
             return Err(InvalidParameter::new(
                 "derived landing ratio zetaL",
                 zeta_landing,
                 &format!(
-                    "the body (H = {h} m, B = {b} m) is too squat for the slender-body model: zetaL must lie in (0, 1)"
+                    "the body (H = {} m, B = {} m) is too squat for the slender-body model: zetaL must lie in (0, 1)",
+                    body.height, body.width
                 ),
             ));
         }
+
+        // gamma/E = 2 h/omega; k = nu F'/Me and c = (gamma/E) k in each mode (nu = 1, F' = Ke
+        // before uplift).
+        let damping_coefficient = 2.0 * written(body.damping_ratio) / omega;
+        let rocking_rate = nu2 * rocking.stiffness / me;
+        let linear_rates = LinearRates {
+            pre_uplift_stiffness: omega_squared.value(),
+            pre_uplift_damping: (damping_coefficient * omega_squared).value(),
+            rocking_stiffness: rocking_rate.value(),
+            rocking_damping: (damping_coefficient * rocking_rate).value(),
+        };
 
         Ok(Constants {
             constant_set: body.constant_set,
             self_weight: body.self_weight,
             mode_shape: shape,
-            generalised_mass: me,
-            generalised_stiffness: ke,
-            omega,
-            period: 2.0 * std::f64::consts::PI / omega,
-            damping_coefficient: 2.0 * body.damping_ratio / omega,
-            uplift_displacement: s_n,
+            generalised_mass: me.value(),
+            generalised_stiffness: ke.value(),
+            omega: omega.value(),
+            period,
+            damping_coefficient: damping_coefficient.value(),
+            uplift_displacement: s_n.value(),
             beta1: shape.beta1,
-            nu2,
-            beta2,
-            zeta_uplift,
+            nu2: nu2.value(),
+            beta2: beta2.value(),
+            zeta_uplift: zeta_uplift.value(),
             zeta_landing,
-            rocking_stiffness: rocking.stiffness,
-            rocking_flexural_slope: rocking.flexural_slope,
-            topple_displacement: rocking.topple_displacement,
-            flexural_part_at_topple: rocking.flexural_part_at_topple,
-            quasi_static_uplift_acceleration: omega * omega * s_n / shape.beta1,
+            rocking_stiffness: rocking.stiffness.value(),
+            rocking_flexural_slope: rocking.flexural_slope.value(),
+            topple_displacement: rocking.topple_displacement.value(),
+            flexural_part_at_topple: rocking.flexural_part_at_topple.value(),
+            quasi_static_uplift_acceleration: (omega_squared * s_n / numbers.beta1).value(),
             gravity_parameter,
             gravity_parameter_ratio: gravity_parameter / SELF_WEIGHT_BUCKLING_PARAMETER,
-            width: b,
+            width: b.value(),
+            linear_rates,
         })
     }
 
@@ -333,13 +453,14 @@ impl Constants {
     /// times q'^2/2, with the shape U before uplift and V while rocking (the inertial term of the
     /// virtual-work balance, book/src/model.md §4-§5). The mass M is Me / int U.
     pub fn kinetic_mass(&self, rocking: bool) -> f64 {
-        let shape = &self.mode_shape;
+        let shape = ShapeNumbers::of(&self.mode_shape);
         let mass = self.generalised_mass / shape.int_u;
-        if rocking {
-            mass * RockingShape::new(shape, self.rocking_flexural_slope).int_v2
+        let share = if rocking {
+            RockingShape::new(&shape, Dd::exact(self.rocking_flexural_slope)).int_v2
         } else {
-            mass * shape.int_u2
-        }
+            shape.int_u2
+        };
+        (mass * share).value()
     }
 
     /// Flexural rigidity that gives `body` (whose own `flexural_rigidity` is ignored) the
@@ -440,23 +561,17 @@ impl Constants {
 /// this is the paper's eq. 9b, s = s_n (B - q)/(B - s_n).
 struct RockingBranch {
     /// dF/dq, N/m.
-    stiffness: f64,
+    stiffness: Dd,
     /// ds/dq.
-    flexural_slope: f64,
+    flexural_slope: Dd,
     /// q where F = 0, m.
-    topple_displacement: f64,
+    topple_displacement: Dd,
     /// s there, m.
-    flexural_part_at_topple: f64,
+    flexural_part_at_topple: Dd,
 }
 
 impl RockingBranch {
-    fn new(
-        shape: &ModeShapeIntegrals,
-        ke: f64,
-        s_n: f64,
-        width: f64,
-        weight_per_height: f64,
-    ) -> Self {
+    fn new(shape: &ShapeNumbers, ke: Dd, s_n: Dd, width: Dd, weight_per_height: Dd) -> Self {
         // Eliminating lambda: s [M g B/(2 s_n)] + r M g kappa = M g B/2, with kappa = 1/2 - c
         // (int U xi)(int U)/int U^2 the weight's net lever on r; so s = (B/2 - kappa q)/(B/(2 s_n)
         // - kappa). F = Ke s - k_r r with k_r = c M g (int U)^2/(int U^2 H).
@@ -480,7 +595,7 @@ impl RockingBranch {
                 stiffness,
                 flexural_slope,
                 topple_displacement: width,
-                flexural_part_at_topple: 0.0,
+                flexural_part_at_topple: Dd::exact(0.0),
             }
         }
     }

@@ -171,7 +171,9 @@ mod tests {
             state ^= state << 17;
             state
         };
-        let mut values = vec![0.0, -0.0, 1.0, 10.0, 100.0, 0.1, 0.01, 1e-5, 1e21, 1e22, 123456.0];
+        let mut values = vec![
+            0.0, -0.0, 1.0, 10.0, 100.0, 0.1, 0.01, 1e-5, 1e21, 1e22, 123456.0,
+        ];
         for _ in 0..20_000 {
             let bits = next();
             let x = f64::from_bits(bits);

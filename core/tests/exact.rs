@@ -173,16 +173,15 @@ fn a_grazing_uplift_a_billionth_above_the_threshold_is_found() {
 
 /// The references of validation/exact/: for each case the exact method gives the same event
 /// sequence; every event time within 1e-13 s and every peak within 1e-13 m of the 40-digit
-/// evaluation, and each run's own error estimate at least its true error. Two kinds of result
-/// may be further off, and then within their estimate: those of the consistent self-weight
-/// variant, whose constants come from a Ritz solution good to about 1e-11; and an event right
-/// after a near-graze (harmonic-uplifts, event 16, crosses s_n at 0.22 m/s), which amplifies the
-/// rounding of the constants themselves (a few ulps) to 1.3e-13 s, and the events after it
-/// (up to 1.8e-13 s).
+/// evaluation, and each run's own error estimate at least its true error. The consistent
+/// self-weight variant's constants come from a Ritz solution good to about 1e-11, so its results
+/// are held to 1e-8 (and to their estimate). The cases include a long chain of shallow uplifts of
+/// a near-rigid body (free-rocking-stiff, 267 events) and uplifts right after a slow approach to
+/// s_n under a sine near resonance (harmonic-uplifts), where a state's rounding is most amplified.
 #[test]
 fn the_multiprecision_references_to_1e_13() {
     let dir = common::workspace_file("validation/exact/reference");
-    let (mut cases, mut beyond) = (0, 0);
+    let mut cases = 0;
     for entry in std::fs::read_dir(&dir).expect("validation/exact/reference") {
         let case = entry.expect("entry").path();
         let name = case.file_name().unwrap().to_string_lossy().to_string();
@@ -213,19 +212,18 @@ fn the_multiprecision_references_to_1e_13() {
             assert_eq!(event.kind.name(), kind, "{name}");
             assert_eq!(event.to.name(), to, "{name}");
             let true_error = (event.t - t).abs();
+            // The paper's variant to 1e-13 s whatever the estimate; the consistent one to its
+            // estimate where that is larger.
+            let limit = if name.contains("consistent") {
+                tolerance.max(*error)
+            } else {
+                tolerance
+            };
             assert!(
-                true_error <= tolerance.max(*error),
+                true_error <= limit,
                 "{name}: event {} off by {true_error:e} s",
                 event.index
             );
-            if true_error > tolerance {
-                assert!(
-                    name == "harmonic-uplifts" && event.index >= 16,
-                    "{name}: event {} off by {true_error:e} s",
-                    event.index
-                );
-                beyond += 1;
-            }
             assert!(
                 *error >= true_error,
                 "{name}: event {} estimate {error:e} below {true_error:e}",
@@ -264,8 +262,7 @@ fn the_multiprecision_references_to_1e_13() {
         );
         cases += 1;
     }
-    assert!(cases >= 14, "{cases} cases");
-    assert!(beyond <= 6, "{beyond} events beyond 1e-13 s");
+    assert!(cases >= 15, "{cases} cases");
 }
 
 /// (t, kind, to) of each row of a reference events.csv.

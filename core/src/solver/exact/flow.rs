@@ -15,6 +15,7 @@
 //!   ((n+1)(n+2)). It is summed with compensated Horner, and a flow of this form is kept short
 //!   enough (|k|^(1/2) tau, |c| tau <= 1/2) that [`SERIES_TERMS`] terms reach rounding.
 
+use crate::double_double::{two_product, two_sum, DoubleDouble as Dd, TWO_PI};
 use std::f64::consts::PI;
 
 use crate::automaton::LinearForm;
@@ -61,19 +62,6 @@ impl Compensated {
     }
 }
 
-/// a + b = s + e exactly (Knuth).
-fn two_sum(a: f64, b: f64) -> (f64, f64) {
-    let s = a + b;
-    let bb = s - a;
-    (s, (a - (s - bb)) + (b - bb))
-}
-
-/// a b = p + e exactly.
-fn two_product(a: f64, b: f64) -> (f64, f64) {
-    let p = a * b;
-    (p, a.mul_add(b, -p))
-}
-
 /// sum c_n u^n by compensated Horner (Graillat, Langlois and Louvet 2005): as if in twice the
 /// working precision.
 fn compensated_horner(coefficients: &[f64], u: f64) -> Compensated {
@@ -116,6 +104,10 @@ struct Oscillator {
     /// Free motion at the anchor: x_h and x_h'.
     h0: f64,
     g0: f64,
+    /// While rocking (k < 0), the free motion as a growing and a decaying exponential,
+    /// x_h = a e^(growth u) + b e^(decay u): the form in which a motion that rises and returns
+    /// (as the body's does between uplift and landing) is summed without cancellation.
+    saddle: Option<Saddle>,
     /// Steady state x_p = xs sin(phi) + xc cos(phi), phi = 2 pi t / period.
     xs: f64,
     xc: f64,
@@ -125,11 +117,67 @@ struct Oscillator {
     fc: f64,
 }
 
+/// x_h = a e^(growth u) + b e^(decay u), growth = sigma + |omega|, decay = sigma - |omega|.
+#[derive(Debug, Clone, Copy)]
+struct Saddle {
+    a: f64,
+    b: f64,
+    /// a and b to twice the precision, for the state at an event.
+    a_twice: Dd,
+    b_twice: Dd,
+    growth: f64,
+    decay: f64,
+}
+
+impl Saddle {
+    /// The saddle of x'' + c x' + k x = 0 (k < 0) from x_h, x_h' at the anchor, each given to
+    /// twice the precision: a and b are computed to twice the precision and rounded once, so
+    /// that the rounding of the anchor state is not amplified by e^(growth u).
+    fn new(sigma: f64, omega: f64, h0: Dd, g0: Dd) -> Self {
+        // a + b = h0, growth a + decay b = g0.
+        let growth = sigma + omega;
+        let decay = sigma - omega;
+        let spread = Dd::from(two_sum(growth, -decay));
+        let a = (g0 - h0 * decay) / spread;
+        let b = (h0 * growth - g0) / spread;
+        Saddle {
+            a: a.value(),
+            b: b.value(),
+            a_twice: a,
+            b_twice: b,
+            growth,
+            decay,
+        }
+    }
+
+    /// x_h and x_h' at u to twice the precision (but for the rounding of growth and decay).
+    fn at_twice(&self, u: f64) -> (Dd, Dd) {
+        let up = self.a_twice * Dd::from(two_product(self.growth, u)).exp();
+        let down = self.b_twice * Dd::from(two_product(self.decay, u)).exp();
+        (up + down, up * self.growth + down * self.decay)
+    }
+
+    /// x_h, x_h' and the sizes of their terms at u.
+    fn at(&self, u: f64) -> [f64; 4] {
+        let up = self.a * (self.growth * u).exp();
+        let down = self.b * (self.decay * u).exp();
+        [
+            up + down,
+            self.growth * up + self.decay * down,
+            up.abs() + down.abs(),
+            (self.growth * up).abs() + (self.decay * down).abs(),
+        ]
+    }
+}
+
 impl Oscillator {
     /// The free motion x_h = e^(sigma u) [C h0 + S (g0 - sigma h0)] and its rate
     /// x_h' = e^(sigma u) [C g0 + S (sigma g0 - k h0)] at u, and the sizes of the terms summed
     /// for each (for the rounding estimate).
     fn free(&self, k: f64, u: f64) -> [f64; 4] {
+        if let Some(saddle) = &self.saddle {
+            return saddle.at(u);
+        }
         let (cc, ss) = trig(self.omega2, self.omega, u);
         let e = (self.sigma * u).exp();
         let (h0, g0, sigma) = (self.h0, self.g0, self.sigma);
@@ -148,7 +196,7 @@ impl Oscillator {
             return [0.0; 4];
         }
         let big_omega = 2.0 * PI / self.period;
-        let (s, co) = (2.0 * PI * t / self.period).sin_cos();
+        let (s, co) = phase(t, 0.0, self.period);
         [
             self.xs * s + self.xc * co,
             big_omega * (self.xs * co - self.xc * s),
@@ -162,6 +210,9 @@ impl Oscillator {
 #[derive(Debug, Clone)]
 pub(super) struct Flow {
     pub anchor: f64,
+    /// The anchor's time beyond the double `anchor`: an event's time found to a fraction of an
+    /// ulp, so that rounding event times does not shift the rest of the motion.
+    anchor_lo: f64,
     pub until: f64,
     k: f64,
     c: f64,
@@ -177,12 +228,15 @@ pub(super) struct Flow {
 }
 
 impl Flow {
-    /// The flow of `linear` from state (q, q') at `anchor`, under the floor's closed form
-    /// `floor`, ending at `end` at the latest (the end of the stretch or of the run).
+    /// The flow of `linear` from state (q, q') at time `anchor` + `anchor_lo` (|anchor_lo| below
+    /// an ulp of `anchor`), under the floor's closed form `floor`, ending at `end` at the latest
+    /// (the end of the stretch or of the run).
+    #[allow(clippy::too_many_arguments)]
     pub fn new(
         linear: &LinearForm,
         floor: &ClosedForm,
         anchor: f64,
+        anchor_lo: f64,
         q: Compensated,
         v: Compensated,
         end: f64,
@@ -195,9 +249,19 @@ impl Flow {
         let rate = k.abs().sqrt().max(c.abs());
         let force_error = beta.abs() * floor.error_bound;
         match floor.shape {
-            Shape::Rest => {
-                Self::oscillator(k, c, q_eq, anchor, x, v, end, 0.0, 0.0, 1.0, force_error)
-            }
+            Shape::Rest => Self::oscillator(
+                k,
+                c,
+                q_eq,
+                (anchor, anchor_lo),
+                x,
+                v,
+                end,
+                0.0,
+                0.0,
+                1.0,
+                force_error,
+            ),
             Shape::Sinusoid {
                 sin_part,
                 cos_part,
@@ -210,7 +274,7 @@ impl Flow {
                         k,
                         c,
                         q_eq,
-                        anchor,
+                        (anchor, anchor_lo),
                         x,
                         v,
                         end,
@@ -221,8 +285,7 @@ impl Flow {
                     )
                 } else {
                     // The sine's Taylor series about the anchor, as a polynomial floor.
-                    let phase = 2.0 * PI * anchor / period;
-                    let (s, co) = phase.sin_cos();
+                    let (s, co) = phase(anchor, anchor_lo, period);
                     let mut coefficients = [0.0; MAX_DEGREE + 1];
                     let mut scale = 1.0;
                     // d^n/dt^n of sin(phi) and cos(phi): rotate by a quarter turn per order.
@@ -242,7 +305,7 @@ impl Flow {
                         c,
                         beta,
                         q_eq,
-                        anchor,
+                        (anchor, anchor_lo),
                         x,
                         v,
                         end.min(anchor + reach),
@@ -264,7 +327,7 @@ impl Flow {
                     c,
                     beta,
                     q_eq,
-                    anchor,
+                    (anchor, anchor_lo),
                     x,
                     v,
                     end.min(anchor + reach),
@@ -282,7 +345,7 @@ impl Flow {
         k: f64,
         c: f64,
         q_eq: f64,
-        anchor: f64,
+        (anchor, anchor_lo): (f64, f64),
         x: Compensated,
         v: Compensated,
         end: f64,
@@ -304,11 +367,21 @@ impl Flow {
             let det = d * d + e * e;
             ((d * fs + e * fc) / det, (d * fc - e * fs) / det)
         };
-        let (s, co) = (2.0 * PI * anchor / period).sin_cos();
+        let (s, co) = phase(anchor, 0.0, period);
+        // The steady state at anchor + anchor_lo: one Taylor step from the anchor's double.
         let xp = xs * s + xc * co;
         let vp = big_omega * (xs * co - xc * s);
+        let (xp, vp) = (
+            xp + vp * anchor_lo,
+            vp - big_omega * big_omega * xp * anchor_lo,
+        );
         let h0 = (x.hi - xp) + x.lo;
         let g0 = (v.hi - vp) + v.lo;
+        let saddle = (k < 0.0 && omega2 < 0.0).then(|| {
+            let h0 = Dd::from(two_sum(x.hi, -xp)) + x.lo;
+            let g0 = Dd::from(two_sum(v.hi, -vp)) + v.lo;
+            Saddle::new(sigma, omega, h0, g0)
+        });
         let growth = sigma.abs() + if omega2 < 0.0 { omega } else { 0.0 };
         let until = if growth > 0.0 {
             end.min(anchor + OSCILLATOR_REACH / growth)
@@ -318,6 +391,7 @@ impl Flow {
         let amplitude = fs.hypot(fc);
         Flow {
             anchor,
+            anchor_lo,
             until,
             k,
             c,
@@ -332,6 +406,7 @@ impl Flow {
                 omega,
                 h0,
                 g0,
+                saddle,
                 xs,
                 xc,
                 period,
@@ -347,7 +422,7 @@ impl Flow {
         c: f64,
         beta: f64,
         q_eq: f64,
-        anchor: f64,
+        (anchor, anchor_lo): (f64, f64),
         x: Compensated,
         v: Compensated,
         until: f64,
@@ -357,7 +432,7 @@ impl Flow {
         force_error: f64,
     ) -> Self {
         // The forcing f = -beta a as a polynomial in u = t - anchor (Taylor shift from origin).
-        let shift = anchor - origin;
+        let shift = (anchor - origin) + anchor_lo;
         let mut f = [0.0; MAX_DEGREE + 1];
         f[..=degree].copy_from_slice(&floor[..=degree]);
         for i in 0..degree {
@@ -401,6 +476,7 @@ impl Flow {
         });
         Flow {
             anchor,
+            anchor_lo,
             until,
             k,
             c,
@@ -417,6 +493,11 @@ impl Flow {
         }
     }
 
+    /// Time since the anchor.
+    fn local(&self, t: f64) -> f64 {
+        (t - self.anchor) - self.anchor_lo
+    }
+
     /// The mode's k.
     pub fn stiffness(&self) -> f64 {
         self.k
@@ -424,7 +505,7 @@ impl Flow {
 
     /// The state (q, q') at `t`, compensated: the next flow's anchor.
     pub fn state(&self, t: f64) -> (Compensated, Compensated) {
-        let u = t - self.anchor;
+        let u = self.local(t);
         match &self.form {
             Form::Series { hi, lo, terms } => {
                 let n = *terms;
@@ -451,9 +532,32 @@ impl Flow {
         }
     }
 
+    /// q and q' at `t` to twice the precision where the flow's form allows (the series, and
+    /// the free motion while rocking, whose terms nearly cancel when the body barely lifts off),
+    /// else as [`Flow::point`]: the state at an event, from which the motion goes on.
+    pub fn state_at_event(&self, t: f64) -> (Dd, Dd) {
+        match &self.form {
+            Form::Oscillator(o) => match &o.saddle {
+                Some(saddle) => {
+                    let (x, v) = saddle.at_twice(self.local(t));
+                    let [xp, vp, _, _] = o.steady(t);
+                    (x + xp + self.q_eq, v + vp)
+                }
+                None => {
+                    let p = self.point(t);
+                    (Dd::exact(p.q), Dd::exact(p.v))
+                }
+            },
+            Form::Series { .. } => {
+                let (q, v) = self.state(t);
+                (Dd::new(q.hi, q.lo), Dd::new(v.hi, v.lo))
+            }
+        }
+    }
+
     /// q, q', q'' and q''' at `t`.
     pub fn point(&self, t: f64) -> Point {
-        let u = t - self.anchor;
+        let u = self.local(t);
         let (k, c) = (self.k, self.c);
         match &self.form {
             Form::Oscillator(o) => {
@@ -531,7 +635,7 @@ impl Flow {
     pub fn envelope(&self, t0: f64) -> Option<f64> {
         match &self.form {
             Form::Oscillator(o) if o.omega2 > 0.0 && o.sigma <= 0.0 => {
-                let u = (t0 - self.anchor).max(0.0);
+                let u = self.local(t0).max(0.0);
                 let b = (o.g0 - o.sigma * o.h0) / o.omega;
                 let r = (o.h0 * o.h0 + b * b).sqrt();
                 let steady = (o.xs * o.xs + o.xc * o.xc).sqrt();
@@ -545,7 +649,7 @@ impl Flow {
     /// unit roundoff times the size of the terms summed and of the phases formed. The rounding
     /// of one evaluation of a point, a few ulps of its q, is booked apart where it is used.
     pub fn rounding(&self, t: f64) -> f64 {
-        let u = t - self.anchor;
+        let u = self.local(t);
         let w = self.k.abs().sqrt().max(1e-300);
         let size = match &self.form {
             Form::Oscillator(o) => {
@@ -583,6 +687,18 @@ fn trig(omega2: f64, omega: f64, u: f64) -> (f64, f64) {
     } else {
         (1.0, u)
     }
+}
+
+/// sin and cos of 2 pi (t + t_lo)/period. The angle is reduced to a fraction of a turn in
+/// twice the precision before the double functions see it: over a long run the rounding of
+/// 2 pi t/period itself (an ulp of the angle) would be an error of the phase of the forcing, and
+/// near resonance the steady state it moves is many times the motion.
+fn phase(t: f64, t_lo: f64, period: f64) -> (f64, f64) {
+    let turns = (Dd::exact(t) + t_lo) / Dd::decimal(period);
+    let fraction = turns - turns.hi.round();
+    let angle = TWO_PI * fraction;
+    let (s, c) = angle.hi.sin_cos();
+    (s + c * angle.lo, c - s * angle.lo)
 }
 
 fn horner(coefficients: &[f64], u: f64) -> f64 {

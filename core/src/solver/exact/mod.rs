@@ -37,6 +37,7 @@ use serde::Serialize;
 
 use super::budget::RunBudget;
 use crate::automaton::{Automaton, Guard, Mode};
+use crate::double_double::DoubleDouble as Dd;
 use crate::excitation::FloorMotion;
 use crate::solution::{Recorder, RoundingEstimate, Solution, SolverStats};
 use crate::solver::{History, InitialState, OutputGrid, SolverError};
@@ -192,6 +193,7 @@ fn solve_once(
         floor,
         mode: automaton.initial_mode(initial.q),
         t: 0.0,
+        t_lo: 0.0,
         q: Compensated::new(initial.q),
         v: Compensated::new(initial.qdot),
         energy,
@@ -251,6 +253,9 @@ struct Run<'a> {
     floor: &'a dyn FloorMotion,
     mode: Mode,
     t: f64,
+    /// The time of the last event beyond the double `t` (a fraction of its ulp), 0 after a flow
+    /// that ends without one.
+    t_lo: f64,
     q: Compensated,
     v: Compensated,
     /// Whether the energy books are kept.
@@ -302,6 +307,7 @@ impl<'a> Run<'a> {
                 &linear,
                 &stretch,
                 self.t,
+                self.t_lo,
                 self.q,
                 self.v,
                 stretch.until.min(end),
@@ -365,6 +371,7 @@ impl<'a> Run<'a> {
                     self.q = q;
                     self.v = v;
                     self.t = flow.until;
+                    self.t_lo = 0.0;
                     self.peak(&flow, &flow.point(flow.until));
                     if self.t >= end {
                         break;
@@ -510,24 +517,43 @@ impl<'a> Run<'a> {
             (error_q + ESTIMATE_SAFETY * level_error) / speed + 2.0 * scan::ulp(p.t);
         self.event_errors.push(crossing_time);
         self.advance_work(flow, p.t);
-        let qdot_after = automaton.reset_velocity(guard.kind, p.v);
+        // The crossing lies between doubles: the rest of it, from q at the double found. Taken
+        // into the next flow's anchor, it keeps the rounding of event times (biased to the side
+        // beyond the guard) from adding up over a chain of events.
+        let found = flow.point(p.t);
+        let (q_found, v_found) = flow.state_at_event(p.t);
+        let rest = (Dd::exact(guard.level) - q_found).value() / v_found.value();
+        // The search stops within a few ulps of the crossing; more would be no rest of it.
+        let rest = if rest.abs() <= 16.0 * scan::ulp(p.t) {
+            rest
+        } else {
+            0.0
+        };
+        let before = v_found + found.acc * rest;
+        let after = automaton.reset_velocity_twice(guard.kind, before);
+        let (qdot_before, qdot_after) = (before.value(), after.value());
         let from = self.mode;
+        let t_event = p.t + rest;
         self.recorder.event(
-            p.t,
+            t_event,
             guard.kind,
             from,
             guard.to,
             guard.level,
-            p.v,
+            qdot_before,
             qdot_after,
-            self.floor.acceleration(p.t),
+            self.floor.acceleration(t_event),
             self.work.input,
             self.work.damping,
         );
         self.mode = guard.to;
         self.t = p.t;
+        self.t_lo = rest;
         self.q = Compensated::new(guard.level);
-        self.v = Compensated::new(qdot_after);
+        self.v = Compensated {
+            hi: after.hi,
+            lo: after.lo,
+        };
         if guard.to != Mode::PreUplift {
             self.episode_peak = guard.level.abs();
         }

@@ -1,0 +1,311 @@
+//! Numbers to twice the working precision: hi + lo, with |lo| at most half an ulp of hi (Dekker
+//! 1971; Hida, Li and Bailey 2001), and the error-free transformations they are built from.
+//!
+//! The body's derived constants are computed in this arithmetic and rounded once
+//! ([`crate::constants`]), so that each constant the exact method reads is the double nearest its
+//! true value for the body as written; the exact method also keeps its state to this precision.
+
+use std::ops::{Add, Div, Mul, Neg, Sub};
+
+/// a + b = s + e exactly (Knuth's two-sum).
+pub(crate) fn two_sum(a: f64, b: f64) -> (f64, f64) {
+    let s = a + b;
+    let bb = s - a;
+    (s, (a - (s - bb)) + (b - bb))
+}
+
+/// a + b = s + e exactly when |a| >= |b| (Dekker's fast two-sum).
+fn quick_two_sum(a: f64, b: f64) -> (f64, f64) {
+    let s = a + b;
+    (s, b - (s - a))
+}
+
+/// a b = p + e exactly (by a fused multiply-add).
+pub(crate) fn two_product(a: f64, b: f64) -> (f64, f64) {
+    let p = a * b;
+    (p, a.mul_add(b, -p))
+}
+
+/// hi + lo, normalised: hi is the double nearest the sum.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct DoubleDouble {
+    pub hi: f64,
+    pub lo: f64,
+}
+
+impl DoubleDouble {
+    /// Normalises hi + lo.
+    pub fn new(hi: f64, lo: f64) -> Self {
+        let (hi, lo) = two_sum(hi, lo);
+        DoubleDouble { hi, lo }
+    }
+
+    /// The double x, exactly.
+    pub const fn exact(x: f64) -> Self {
+        DoubleDouble { hi: x, lo: 0.0 }
+    }
+
+    /// The decimal number x is written as (its shortest round-trip digits), to twice the
+    /// precision: 0.7 is seven tenths, not the double nearest it. A model file's numbers are
+    /// read this way, as a person typed them.
+    pub fn decimal(x: f64) -> Self {
+        if !x.is_finite() || x == 0.0 {
+            return Self::exact(x);
+        }
+        let text = format!("{x:e}");
+        let (mantissa, power) = text.split_once('e').unwrap_or((&text, "0"));
+        let power: i32 = power.parse().unwrap_or(0);
+        let negative = mantissa.starts_with('-');
+        let digits: String = mantissa.chars().filter(char::is_ascii_digit).collect();
+        // At most 17 digits: two integers below 2^53 make them exactly.
+        let split = digits.len().saturating_sub(9);
+        let high: f64 = digits[..split].parse().unwrap_or(0.0);
+        let low: f64 = digits[split..].parse().unwrap_or(0.0);
+        let low_digits = (digits.len() - split) as i32;
+        let integer = DoubleDouble::from(two_product(high, 10f64.powi(low_digits))) + low;
+        // The value is integer * 10^(power - digits + 1).
+        let scale = power - digits.len() as i32 + 1;
+        let value = if scale >= 0 {
+            integer * power_of_ten(scale)
+        } else {
+            integer / power_of_ten(-scale)
+        };
+        if negative {
+            -value
+        } else {
+            value
+        }
+    }
+
+    /// The nearest double.
+    pub fn value(self) -> f64 {
+        self.hi
+    }
+
+    /// The square root (one Newton step from the double root).
+    pub fn sqrt(self) -> Self {
+        if self.hi <= 0.0 || !self.hi.is_finite() {
+            return Self::exact(self.hi.sqrt());
+        }
+        let root = self.hi.sqrt();
+        let square = DoubleDouble::from(two_product(root, root));
+        let residual = self - square;
+        DoubleDouble::new(root, residual.hi / (2.0 * root))
+    }
+
+    /// The cube.
+    pub fn cube(self) -> Self {
+        self * self * self
+    }
+
+    /// e^self: self = n ln 2 + r, e^r by its Taylor series at r / 32 and five squarings.
+    pub fn exp(self) -> Self {
+        if !self.hi.is_finite() || self.hi.abs() > 700.0 {
+            return Self::exact(self.hi.exp());
+        }
+        let n = (self.hi / LN_2.hi).round();
+        let r = self - LN_2 * n;
+        let r = r * (1.0 / 32.0);
+        // |r| < 0.011: 14 terms leave less than 1e-36.
+        let mut term = Self::exact(1.0);
+        let mut sum = Self::exact(1.0);
+        for i in 1..=14 {
+            term = term * r / f64::from(i);
+            sum = sum + term;
+        }
+        for _ in 0..5 {
+            sum = sum * sum;
+        }
+        // 2^n exactly, in two factors so that neither overflows.
+        let half = (n / 2.0).trunc();
+        sum * 2f64.powi(half as i32) * 2f64.powi((n - half) as i32)
+    }
+}
+
+/// 2 pi to twice the precision.
+pub(crate) const TWO_PI: DoubleDouble = DoubleDouble {
+    hi: 2.0 * std::f64::consts::PI,
+    lo: 2.0 * 1.224_646_799_147_353_2e-16,
+};
+
+/// ln 2 to twice the precision: 0.693147180559945309417232121458176568075500134360255.
+const LN_2: DoubleDouble = DoubleDouble {
+    hi: std::f64::consts::LN_2,
+    lo: 2.319_046_813_846_299_6e-17,
+};
+
+/// 10^n to twice the precision (exact up to 10^22, then by products).
+fn power_of_ten(n: i32) -> DoubleDouble {
+    let mut result = DoubleDouble::exact(1.0);
+    let mut left = n;
+    while left > 22 {
+        result = result * 1e22;
+        left -= 22;
+    }
+    result * 10f64.powi(left)
+}
+
+impl From<(f64, f64)> for DoubleDouble {
+    fn from((hi, lo): (f64, f64)) -> Self {
+        DoubleDouble::new(hi, lo)
+    }
+}
+
+impl From<f64> for DoubleDouble {
+    fn from(x: f64) -> Self {
+        DoubleDouble::exact(x)
+    }
+}
+
+impl Neg for DoubleDouble {
+    type Output = Self;
+    fn neg(self) -> Self {
+        DoubleDouble {
+            hi: -self.hi,
+            lo: -self.lo,
+        }
+    }
+}
+
+impl Add for DoubleDouble {
+    type Output = Self;
+    fn add(self, other: Self) -> Self {
+        let (s, e) = two_sum(self.hi, other.hi);
+        let (t, f) = two_sum(self.lo, other.lo);
+        let (s, e) = quick_two_sum(s, e + t);
+        let (hi, lo) = quick_two_sum(s, e + f);
+        DoubleDouble { hi, lo }
+    }
+}
+
+impl Sub for DoubleDouble {
+    type Output = Self;
+    fn sub(self, other: Self) -> Self {
+        self + (-other)
+    }
+}
+
+impl Mul for DoubleDouble {
+    type Output = Self;
+    fn mul(self, other: Self) -> Self {
+        let (p, e) = two_product(self.hi, other.hi);
+        let e = e + (self.hi * other.lo + self.lo * other.hi);
+        let (hi, lo) = quick_two_sum(p, e);
+        DoubleDouble { hi, lo }
+    }
+}
+
+impl Div for DoubleDouble {
+    type Output = Self;
+    fn div(self, other: Self) -> Self {
+        // Long division: three quotient digits, each from the remainder so far.
+        let q1 = self.hi / other.hi;
+        let r = self - other * q1;
+        let q2 = r.hi / other.hi;
+        let r = r - other * q2;
+        let q3 = r.hi / other.hi;
+        let (hi, lo) = quick_two_sum(q1, q2);
+        DoubleDouble { hi, lo } + q3
+    }
+}
+
+macro_rules! with_f64 {
+    ($($trait:ident $method:ident),*) => {$(
+        impl $trait<f64> for DoubleDouble {
+            type Output = Self;
+            fn $method(self, other: f64) -> Self {
+                $trait::$method(self, DoubleDouble::exact(other))
+            }
+        }
+        impl $trait<DoubleDouble> for f64 {
+            type Output = DoubleDouble;
+            fn $method(self, other: DoubleDouble) -> DoubleDouble {
+                $trait::$method(DoubleDouble::exact(self), other)
+            }
+        }
+    )*};
+}
+with_f64!(Add add, Sub sub, Mul mul, Div div);
+
+#[cfg(test)]
+mod tests {
+    use super::DoubleDouble as Dd;
+
+    /// The error of hi + lo from the rational p/q, relative, in integer arithmetic: exact (for
+    /// q up to about 10^4).
+    fn relative_error_from(x: Dd, p: i128, q: i128) -> f64 {
+        let (m_hi, e_hi) = frexp(x.hi);
+        let (m_lo, e_lo) = frexp(x.lo);
+        let k = -if m_lo == 0 { e_hi } else { e_hi.min(e_lo) };
+        let scaled = |m: i128, e: i32| (m * q) << (e + k);
+        let numerator = scaled(m_hi, e_hi) + scaled(m_lo, e_lo) - (p << k);
+        numerator as f64 / (p << k) as f64
+    }
+
+    /// v = mantissa 2^exponent with an integer mantissa.
+    fn frexp(v: f64) -> (i128, i32) {
+        if v == 0.0 {
+            return (0, 0);
+        }
+        let bits = v.to_bits();
+        let sign = if bits >> 63 == 1 { -1 } else { 1 };
+        let exponent = ((bits >> 52) & 0x7ff) as i32;
+        let fraction = (bits & ((1 << 52) - 1)) as i128;
+        let (mantissa, exponent) = if exponent == 0 {
+            (fraction, -1074)
+        } else {
+            (fraction | (1 << 52), exponent - 1075)
+        };
+        (sign * mantissa, exponent)
+    }
+
+    #[test]
+    fn decimals_are_read_to_twice_the_precision() {
+        // 0.7 = 7/10, 142916.66666666663 = 14291666666666663/10^11, 1.8751 = 18751/10^4.
+        for (x, p, q) in [
+            (0.7, 7, 10),
+            (0.123, 123, 1000),
+            (1.8751, 18751, 10_000),
+            (-2.5e-3, -25, 10_000),
+            (600.0, 600, 1),
+        ] {
+            let error = relative_error_from(Dd::decimal(x), p, q);
+            assert!(error.abs() < 1e-30, "{x}: {error:e}");
+        }
+    }
+
+    #[test]
+    fn arithmetic_is_good_to_twice_the_precision() {
+        let seven_tenths = Dd::decimal(0.7);
+        // 0.7^3 / 12 = 343/12000.
+        let cube = seven_tenths.cube() / 12.0;
+        assert!(relative_error_from(cube, 343, 12_000).abs() < 1e-30);
+        // sqrt(0.49) = 0.7; (0.7 - 1/3) * 3 = 11/10.
+        let root = Dd::decimal(0.49).sqrt();
+        assert!(relative_error_from(root, 7, 10).abs() < 1e-30);
+        let third = Dd::exact(1.0) / 3.0;
+        assert!(relative_error_from((seven_tenths - third) * 3.0, 11, 10).abs() < 1e-30);
+        // The double nearest 7/10 is the rounding of the double-double.
+        assert_eq!(seven_tenths.value(), 0.7);
+    }
+
+    /// e^x against the product of its factors: e^(a + b) = e^a e^b for exact doubles a and b
+    /// (each found independently), and e^(ln 2 k) = 2^k; and e^x e^-x = 1, all to 1e-29.
+    #[test]
+    fn exp_is_good_to_twice_the_precision() {
+        let close = |a: Dd, b: Dd| ((a - b) / b).hi.abs();
+        for (a, b) in [(0.375, 1.25), (-3.5, 0.0625), (10.0, -0.5), (1e-3, 2e-3)] {
+            let together = Dd::exact(a + b).exp();
+            let apart = Dd::exact(a).exp() * Dd::exact(b).exp();
+            assert!(close(together, apart) < 1e-29, "{a} + {b}");
+        }
+        for x in [0.1, 1.0, 3.7, 12.5, -20.0, 1e-9] {
+            let one = Dd::exact(x).exp() * Dd::exact(-x).exp();
+            assert!(close(one, Dd::exact(1.0)) < 1e-29, "{x}");
+            // The double part is the double exp within its own rounding.
+            assert!((Dd::exact(x).exp().hi / x.exp() - 1.0).abs() < 4e-16);
+        }
+        let sixteen = (super::LN_2 * 4.0).exp();
+        assert!(close(sixteen, Dd::exact(16.0)) < 1e-29);
+    }
+}
