@@ -17,4 +17,5 @@ mod model_robustness;
 mod random_models;
 mod recorded_motion;
 mod rigid;
+mod published_rigid;
 mod rigid_forms;
