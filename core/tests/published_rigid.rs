@@ -308,6 +308,8 @@ fn one_sine_pulses_overturn_in_two_modes_with_a_safe_region_between() {
         overturns_without_impact(&one_sine(&block, beta, ratio))
     })
     .unwrap();
+    let at_minimum = one_sine(&block, any, ratio);
+    eprintln!("omega_p/p {ratio}: {} impacts before overturning", at_minimum.n_impact);
     let survivors: Vec<f64> = grid(any, without, 41)
         .filter(|&beta| !one_sine(&block, beta, ratio).overturned)
         .collect();
