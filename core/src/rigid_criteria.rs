@@ -64,7 +64,10 @@ mod tests {
         let (b_cm, h_cm) = (45.0_f64, 180.0_f64);
         let in_cm = 10.0 * b_cm / h_cm.sqrt();
         let si = ishiyama_velocity(b_cm / 100.0, h_cm / 100.0);
-        assert!((si * 100.0 - in_cm).abs() < 1e-12, "{si} m/s against {in_cm} cm/s");
+        assert!(
+            (si * 100.0 - in_cm).abs() < 1e-12,
+            "{si} m/s against {in_cm} cm/s"
+        );
         assert!((in_cm - 33.541).abs() < 1e-3);
     }
 

@@ -214,8 +214,7 @@ fn linearised_overturns_without_impact(beta: f64, ratio: f64) -> bool {
     let c1 = -1.0 - c * (omega * t0).sin();
     let c2 = -c * omega * (omega * t0).cos();
     let psi = |t: f64| 1.0 + c * (omega * t).sin() + c1 * (t - t0).cosh() + c2 * (t - t0).sinh();
-    let dpsi =
-        |t: f64| c * omega * (omega * t).cos() + c1 * (t - t0).sinh() + c2 * (t - t0).cosh();
+    let dpsi = |t: f64| c * omega * (omega * t).cos() + c1 * (t - t0).sinh() + c2 * (t - t0).cosh();
     let samples = 20_000;
     for i in 1..=samples {
         let t = t0 + (end - t0) * i as f64 / samples as f64;
@@ -309,7 +308,10 @@ fn one_sine_pulses_overturn_in_two_modes_with_a_safe_region_between() {
     })
     .unwrap();
     let at_minimum = one_sine(&block, any, ratio);
-    eprintln!("omega_p/p {ratio}: {} impacts before overturning", at_minimum.n_impact);
+    eprintln!(
+        "omega_p/p {ratio}: {} impacts before overturning",
+        at_minimum.n_impact
+    );
     let survivors: Vec<f64> = grid(any, without, 41)
         .filter(|&beta| !one_sine(&block, beta, ratio).overturned)
         .collect();
@@ -321,5 +323,8 @@ fn one_sine_pulses_overturn_in_two_modes_with_a_safe_region_between() {
         survivors.last()
     );
     assert!(any < without, "{any} against {without}");
-    assert!(!survivors.is_empty(), "no safe region between {any} and {without}");
+    assert!(
+        !survivors.is_empty(),
+        "no safe region between {any} and {without}"
+    );
 }
