@@ -59,7 +59,9 @@
 //! - [`fem`]: the plane-stress finite element check of the paper's Section 3 (mesh, elements,
 //!   banded solver, eigenvalues, dynamics, pushover);
 //! - [`rigid`]: the rigid block of the rigid limit (Housner's block), which the elastic body must
-//!   tend to as E grows, by the small-angle (default) or the full rocking equation; [`findings`]: the paper's qualitative findings in numbers;
+//!   tend to as E grows, by the small-angle (default) or the full rocking equation;
+//!   [`rigid_criteria`]: published overturning criteria of rigid bodies (Ishiyama 1982);
+//!   [`findings`]: the paper's qualitative findings in numbers;
 //! - `flexural_shape` (private): the self-weighted cantilever mode psi of the consistent variant;
 //! - [`run_tables`]: the columns of a run's tables; [`summary`]: summary.json of a run;
 //! - [`sweep`]: parametric studies and minimum overturning searches;
@@ -126,6 +128,7 @@ pub mod model;
 pub mod pushover_check;
 pub mod record;
 pub mod rigid;
+pub mod rigid_criteria;
 pub mod run_tables;
 pub mod simulate;
 pub mod solution;

@@ -14,6 +14,7 @@ mod independent;
 mod layers;
 mod model_chapter;
 mod model_robustness;
+mod published_rigid;
 mod random_models;
 mod recorded_motion;
 mod rigid;

@@ -8,7 +8,7 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 /// The modules from the bottom up. A module may use only the modules before it.
-const LAYERS: [&str; 27] = [
+const LAYERS: [&str; 28] = [
     // units and formatting
     "units",
     "format",
@@ -28,6 +28,7 @@ const LAYERS: [&str; 27] = [
     "run_tables",
     "solver",
     "rigid",
+    "rigid_criteria",
     "fem",
     "findings",
     // the model file and simulation
