@@ -112,6 +112,7 @@ pub mod columns;
 pub mod compare;
 pub mod constants;
 pub mod converge;
+pub mod criteria;
 pub mod error;
 pub mod excitation;
 pub mod fem;
