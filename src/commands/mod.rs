@@ -2,6 +2,8 @@
 //! its files (through [`crate::writers`] and [`crate::figures`]).
 //!
 //! - [`run`]: `flexrock props` and `flexrock run`;
+//! - [`criteria`]: `flexrock criteria`, the overturning criteria of elastic bodies beside the
+//!   rigid block's;
 //! - [`compare`], [`converge`]: Newmark against the adaptive reference;
 //! - [`fem`], [`pushover`]: the finite element check (`flexrock fem`, `flexrock fem --pushover`);
 //! - [`record`]: `flexrock record info` and `flexrock record csv`;
@@ -9,6 +11,7 @@
 //! - [`sweep`]: `flexrock sweep`, the core's sweeps on disk (chunks, resuming, shards, merge).
 
 pub mod compare;
+pub mod criteria;
 pub mod converge;
 pub mod fem;
 pub mod pushover;

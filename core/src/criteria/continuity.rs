@@ -12,6 +12,8 @@ use super::Point;
 pub struct Decade {
     /// `body.self_weight`.
     pub self_weight: String,
+    /// Which excitations: "smooth" ([`Point::is_smooth`]) or "all".
+    pub excitations: &'static str,
     /// E, Pa.
     pub youngs_modulus: f64,
     /// phi = p T.
@@ -28,8 +30,16 @@ fn max_abs(values: impl Iterator<Item = Option<f64>>) -> Option<f64> {
     values.flatten().map(f64::abs).reduce(f64::max)
 }
 
-/// The decades, stiffest first within each self-weight variant (in the points' order of E).
+/// The decades over the smooth excitations ([`Point::is_smooth`]) and over all, stiffest first
+/// within each self-weight variant.
 pub fn decades(points: &[Point]) -> Vec<Decade> {
+    let smooth: Vec<Point> = points.iter().filter(|p| p.is_smooth()).cloned().collect();
+    let mut out = decades_of(&smooth, "smooth");
+    out.extend(decades_of(points, "all"));
+    out
+}
+
+fn decades_of(points: &[Point], excitations: &'static str) -> Vec<Decade> {
     let mut out: Vec<Decade> = Vec::new();
     for p in points {
         if out
@@ -44,6 +54,7 @@ pub fn decades(points: &[Point]) -> Vec<Decade> {
             .collect();
         out.push(Decade {
             self_weight: p.self_weight.clone(),
+            excitations,
             youngs_modulus: p.youngs_modulus,
             flexibility: p.flexibility,
             max_abs_difference_rigid_limit: max_abs(
@@ -62,12 +73,26 @@ pub fn decades(points: &[Point]) -> Vec<Decade> {
 }
 
 /// The largest flexibility of `self_weight` up to which (from the stiffest body on) every
-/// excitation's critical peak acceleration is within `share` of Housner's full-equation block;
-/// None when not even the stiffest body is.
-pub fn rigid_holds_below(decades: &[Decade], self_weight: &str, share: f64) -> Option<f64> {
+/// smooth excitation's critical peak acceleration is within `share` of the rigid block's
+/// (Housner's full-equation block with `housner`, else the model's rigid limit); None when not
+/// even the stiffest body is.
+pub fn rigid_holds_below(
+    decades: &[Decade],
+    self_weight: &str,
+    share: f64,
+    housner: bool,
+) -> Option<f64> {
     let mut last = None;
-    for d in decades.iter().filter(|d| d.self_weight == self_weight) {
-        match d.max_abs_difference_rigid_full {
+    for d in decades
+        .iter()
+        .filter(|d| d.self_weight == self_weight && d.excitations == "smooth")
+    {
+        let diff = if housner {
+            d.max_abs_difference_rigid_full
+        } else {
+            d.max_abs_difference_rigid_limit
+        };
+        match diff {
             Some(x) if x <= share => last = Some(d.flexibility),
             _ => break,
         }
