@@ -184,8 +184,8 @@ pub fn run(
     out: &Path,
 ) -> Result<CriteriaReport> {
     let start = std::time::Instant::now();
-    let absolute = |p: &PathBuf| std::path::absolute(p).unwrap_or_else(|_| p.clone());
-    let records: Vec<PathBuf> = fitted.iter().chain(held_out).map(absolute).collect();
+    // Relative record paths are relative to the current directory (as typed).
+    let records: Vec<PathBuf> = fitted.iter().chain(held_out).cloned().collect();
     let study = Study::standard(records);
     let points = criteria::run(model, &study)?;
     let base = flexrock_core::Model::load(model, &Default::default())?;
@@ -281,8 +281,8 @@ pub fn run(
         ("criteria.json", writers::json_bytes(&summary)),
     ];
     for (name, panels, columns, size) in [
-        ("criteria-plane", plane, 2, (1500u32, 650u32)),
-        ("criteria-flexibility", against, 2, (1500, 650)),
+        ("criteria-plane", plane, 1, (1100u32, 1300u32)),
+        ("criteria-flexibility", against, 1, (1000, 1500)),
     ] {
         let svg = crate::figures::plot::figure_sized(
             crate::figures::plot::Format::Svg,

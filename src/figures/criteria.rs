@@ -29,7 +29,7 @@ pub fn plane(points: &[Point], g: Geometry) -> Vec<Panel> {
             continue;
         }
         let mut panel = Panel::new(
-            &format!("Critical floor motions, body.self_weight = {sw}"),
+            &format!("Critical floor motions ({sw} self-weight); line: one-sine, ×: sines, one-cosine, records"),
             "floor peak velocity (m/s)",
             "floor peak acceleration (m/s²)",
         );
@@ -51,7 +51,7 @@ pub fn plane(points: &[Point], g: Geometry) -> Vec<Panel> {
         };
         panel = panel.with(
             Series::line(
-                "Housner block (full eq.), one-sine",
+                "Housner, full eq., one-sine",
                 one_sine(&rigid, &|p| Some((p.pgv_of(p.rigid_full_pga)?, p.rigid_full_pga?))),
                 0,
             )
@@ -84,7 +84,7 @@ pub fn plane(points: &[Point], g: Geometry) -> Vec<Panel> {
         panel.vertical_lines.push(VerticalLine {
             x: v_i,
             color: 0,
-            label: "Ishiyama: V = c B/√H, c = 1 m^½/s".into(),
+            label: "Ishiyama: V = c B/√H".into(),
         });
         panels.push(panel);
     }
@@ -164,9 +164,9 @@ pub fn against_flexibility(points: &[Point], fits: &[Fit], g: Geometry) -> Vec<P
     }
     let decades = continuity::decades(points);
     let mut cont = Panel::new(
-        "Continuity with the rigid block",
+        "Continuity with the rigid block (sines and one-sine pulses)",
         "flexibility φ = p T",
-        "largest |critical / rigid − 1|, sines and one-sine pulses",
+        "largest |critical / rigid − 1|",
     );
     cont.log_x = true;
     cont.log_y = true;
