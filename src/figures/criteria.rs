@@ -8,11 +8,6 @@ use flexrock_core::criteria::{continuity, fit::Fit, ishiyama, Point};
 
 const SELF_WEIGHTS: [&str; 2] = ["paper", "consistent"];
 
-fn sorted(mut points: Vec<(f64, f64)>) -> Vec<(f64, f64)> {
-    points.sort_by(|a, b| a.0.total_cmp(&b.0));
-    points
-}
-
 /// One panel per self-weight variant: each body's critical (PGV, PGA) under the one-sine pulses
 /// (a line across Tp), the sines and one-cosine pulses (markers), Housner's full-equation block
 /// (black), and Ishiyama's lines.
@@ -29,7 +24,7 @@ pub fn plane(points: &[Point], g: Geometry) -> Vec<Panel> {
             continue;
         }
         let mut panel = Panel::new(
-            &format!("Critical floor motions ({sw} self-weight); line: one-sine, ×: sines, one-cosine, records"),
+            &format!("{sw} self-weight: one-sine pulses (line), other motions (×)"),
             "floor peak velocity (m/s)",
             "floor peak acceleration (m/s²)",
         );
@@ -41,13 +36,12 @@ pub fn plane(points: &[Point], g: Geometry) -> Vec<Panel> {
             .copied()
             .filter(|p| p.youngs_modulus == moduli[0])
             .collect();
+        // In the order of the pulse period (the points' order), Tp = 0.5 s first.
         let one_sine = |ps: &[&Point], f: &dyn Fn(&Point) -> Option<(f64, f64)>| {
-            sorted(
-                ps.iter()
-                    .filter(|p| p.excitation == "one-sine")
-                    .filter_map(|p| f(p))
-                    .collect(),
-            )
+            ps.iter()
+                .filter(|p| p.excitation == "one-sine")
+                .filter_map(|p| f(p))
+                .collect::<Vec<_>>()
         };
         panel = panel.with(
             Series::line(
@@ -80,12 +74,22 @@ pub fn plane(points: &[Point], g: Geometry) -> Vec<Panel> {
                 .collect();
             panel = panel.with(Series::markers("", others, color, Marker::Cross));
         }
-        panel.reference_lines.push((a_i, "Ishiyama: A = g B/H".into()));
+        // The panel's log axes are linear axes of log10 values; its lines are given in them.
+        panel
+            .reference_lines
+            .push((a_i.log10(), "Ishiyama: A = g B/H".into()));
         panel.vertical_lines.push(VerticalLine {
-            x: v_i,
+            x: v_i.log10(),
             color: 0,
             label: "Ishiyama: V = c B/√H".into(),
         });
+        // The corner of Ishiyama's region, which also keeps both lines within the axes.
+        panel = panel.with(Series::markers(
+            "Ishiyama: both thresholds",
+            vec![(v_i, a_i)],
+            0,
+            Marker::TriangleDown,
+        ));
         panels.push(panel);
     }
     panels
@@ -193,6 +197,7 @@ pub fn against_flexibility(points: &[Point], fits: &[Fit], g: Geometry) -> Vec<P
                     .dashed(),
             );
     }
-    cont.reference_lines.push((0.05, "5 %".into()));
+    // On the log y axis, as its log10.
+    cont.reference_lines.push((0.05f64.log10(), "5 %".into()));
     vec![acc, vel, cont]
 }
