@@ -31,9 +31,15 @@ fn the_elastic_criterion_tends_to_the_rigid_limit_decade_by_decade() {
         // Falls decade by decade down to 5 GPa; at 50 GPa it is at the level of the bisection
         // (1e-5 of 39.5 m/s^2, 2e-4 of the values), so only its size is checked there.
         for w in diffs[..4].windows(2) {
-            assert!(w[1] < w[0], "Tp = {tp}: must fall per decade of E: {diffs:?}");
+            assert!(
+                w[1] < w[0],
+                "Tp = {tp}: must fall per decade of E: {diffs:?}"
+            );
         }
-        assert!(diffs[4] < 5e-3 && diffs[4] < diffs[2], "Tp = {tp}: {diffs:?}");
+        assert!(
+            diffs[4] < 5e-3 && diffs[4] < diffs[2],
+            "Tp = {tp}: {diffs:?}"
+        );
         // phi = p T falls by sqrt(10) per decade of E.
         for w in same.windows(2) {
             let r = w[0].flexibility / w[1].flexibility;

@@ -11,8 +11,8 @@
 //! - [`sweep`]: `flexrock sweep`, the core's sweeps on disk (chunks, resuming, shards, merge).
 
 pub mod compare;
-pub mod criteria;
 pub mod converge;
+pub mod criteria;
 pub mod fem;
 pub mod pushover;
 pub mod record;

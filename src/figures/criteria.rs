@@ -46,7 +46,9 @@ pub fn plane(points: &[Point], g: Geometry) -> Vec<Panel> {
         panel = panel.with(
             Series::line(
                 "Housner, full eq., one-sine",
-                one_sine(&rigid, &|p| Some((p.pgv_of(p.rigid_full_pga)?, p.rigid_full_pga?))),
+                one_sine(&rigid, &|p| {
+                    Some((p.pgv_of(p.rigid_full_pga)?, p.rigid_full_pga?))
+                }),
                 0,
             )
             .with_markers(),
@@ -136,7 +138,11 @@ pub fn against_flexibility(points: &[Point], fits: &[Fit], g: Geometry) -> Vec<P
                     color,
                     Marker::Circle,
                 ))
-                .with(Series::line(&format!("fit, {}", f.self_weight), smooth(q), color));
+                .with(Series::line(
+                    &format!("fit, {}", f.self_weight),
+                    smooth(q),
+                    color,
+                ));
         }
         if let Some(q) = &f.velocity {
             let pts = q.errors.iter().map(|e| (e.0, e.1)).collect();
@@ -147,7 +153,11 @@ pub fn against_flexibility(points: &[Point], fits: &[Fit], g: Geometry) -> Vec<P
                     color,
                     Marker::Circle,
                 ))
-                .with(Series::line(&format!("fit, {}", f.self_weight), smooth(q), color));
+                .with(Series::line(
+                    &format!("fit, {}", f.self_weight),
+                    smooth(q),
+                    color,
+                ));
         }
         let held: Vec<&Point> = points
             .iter()
@@ -163,8 +173,18 @@ pub fn against_flexibility(points: &[Point], fits: &[Fit], g: Geometry) -> Vec<P
             .filter_map(|p| Some((p.flexibility, p.critical_pgv()? / v_i)))
             .collect();
         let label = format!("held-out records, {}", f.self_weight);
-        acc = acc.with(Series::markers(&label, a_pts, color + 1, Marker::TriangleUp));
-        vel = vel.with(Series::markers(&label, v_pts, color + 1, Marker::TriangleUp));
+        acc = acc.with(Series::markers(
+            &label,
+            a_pts,
+            color + 1,
+            Marker::TriangleUp,
+        ));
+        vel = vel.with(Series::markers(
+            &label,
+            v_pts,
+            color + 1,
+            Marker::TriangleUp,
+        ));
     }
     let decades = continuity::decades(points);
     let mut cont = Panel::new(
@@ -176,8 +196,7 @@ pub fn against_flexibility(points: &[Point], fits: &[Fit], g: Geometry) -> Vec<P
     cont.log_y = true;
     cont.legend = Legend::Outside;
     for (k, sw) in SELF_WEIGHTS.iter().enumerate() {
-        let mine: Vec<&continuity::Decade> =
-            decades
+        let mine: Vec<&continuity::Decade> = decades
             .iter()
             .filter(|d| d.self_weight == *sw && d.excitations == "smooth")
             .collect();

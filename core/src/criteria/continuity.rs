@@ -58,7 +58,8 @@ fn decades_of(points: &[Point], excitations: &'static str) -> Vec<Decade> {
             youngs_modulus: p.youngs_modulus,
             flexibility: p.flexibility,
             max_abs_difference_rigid_limit: max_abs(
-                same.iter().map(|q| q.relative_difference(q.rigid_limit_pga)),
+                same.iter()
+                    .map(|q| q.relative_difference(q.rigid_limit_pga)),
             ),
             max_abs_difference_rigid_full: max_abs(
                 same.iter().map(|q| q.relative_difference(q.rigid_full_pga)),

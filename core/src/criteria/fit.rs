@@ -56,11 +56,12 @@ impl Quadratic {
             if m[col][col].abs() < 1e-300 {
                 return None;
             }
-            for row in 0..3 {
+            let pivot_row = m[col];
+            for (row, line) in m.iter_mut().enumerate() {
                 if row != col {
-                    let f = m[row][col] / m[col][col];
-                    for k in col..4 {
-                        m[row][k] -= f * m[col][k];
+                    let f = line[col] / pivot_row[col];
+                    for (x, p) in line.iter_mut().zip(pivot_row).skip(col) {
+                        *x -= f * p;
                     }
                 }
             }
@@ -71,7 +72,10 @@ impl Quadratic {
             errors: Vec::new(),
             max_abs_error: 0.0,
         };
-        q.errors = points.iter().map(|&(x, y)| (x, y, q.at(x) / y - 1.0)).collect();
+        q.errors = points
+            .iter()
+            .map(|&(x, y)| (x, y, q.at(x) / y - 1.0))
+            .collect();
         q.max_abs_error = q.errors.iter().map(|e| e.2.abs()).fold(0.0, f64::max);
         Some(q)
     }
@@ -127,9 +131,8 @@ pub fn fit(
         .iter()
         .filter(|p| p.self_weight == self_weight && p.critical_pga.is_some())
         .collect();
-    let (fitted, checked): (Vec<&Point>, Vec<&Point>) = mine
-        .iter()
-        .partition(|p| !held_out.contains(&p.excitation));
+    let (fitted, checked): (Vec<&Point>, Vec<&Point>) =
+        mine.iter().partition(|p| !held_out.contains(&p.excitation));
     let mut moduli: Vec<f64> = fitted.iter().map(|p| p.youngs_modulus).collect();
     moduli.sort_by(f64::total_cmp);
     moduli.dedup();
@@ -138,8 +141,14 @@ pub fn fit(
     for e in &moduli {
         let same: Vec<&&Point> = fitted.iter().filter(|p| p.youngs_modulus == *e).collect();
         let phi = same[0].flexibility;
-        let a = same.iter().filter_map(|p| p.critical_pga).fold(f64::INFINITY, f64::min);
-        let v = same.iter().filter_map(|p| p.critical_pgv()).fold(f64::INFINITY, f64::min);
+        let a = same
+            .iter()
+            .filter_map(|p| p.critical_pga)
+            .fold(f64::INFINITY, f64::min);
+        let v = same
+            .iter()
+            .filter_map(|p| p.critical_pgv())
+            .fold(f64::INFINITY, f64::min);
         envelope_a.push((phi, a / a_scale));
         envelope_v.push((phi, v / v_scale));
     }
@@ -150,10 +159,12 @@ pub fn fit(
     let acceleration = Quadratic::fit(&envelope_a);
     let velocity = Quadratic::fit(&envelope_v);
     let ratio = Quadratic::fit(&ratios);
-    let range = fitted.iter().map(|p| p.flexibility).fold(
-        (f64::INFINITY, f64::NEG_INFINITY),
-        |(lo, hi), x| (lo.min(x), hi.max(x)),
-    );
+    let range = fitted
+        .iter()
+        .map(|p| p.flexibility)
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| {
+            (lo.min(x), hi.max(x))
+        });
     let checks = checked
         .iter()
         .map(|p| Check {
@@ -165,9 +176,9 @@ pub fn fit(
             velocity_margin: velocity
                 .as_ref()
                 .and_then(|q| Some(p.critical_pgv()? / (q.at(p.flexibility) * v_scale))),
-            ratio_error: ratio
-                .as_ref()
-                .and_then(|q| Some(q.at(p.flexibility) * p.rigid_full_pga? / p.critical_pga? - 1.0)),
+            ratio_error: ratio.as_ref().and_then(|q| {
+                Some(q.at(p.flexibility) * p.rigid_full_pga? / p.critical_pga? - 1.0)
+            }),
         })
         .collect();
     let mut names: Vec<String> = fitted.iter().map(|p| p.excitation.clone()).collect();
@@ -190,7 +201,10 @@ mod tests {
     #[test]
     fn a_quadratic_is_fitted_exactly() {
         let f = |x: f64| 1.5 - 0.25 * x + 0.125 * x * x;
-        let pts: Vec<(f64, f64)> = [0.1, 0.5, 1.0, 2.0, 4.0].iter().map(|&x| (x, f(x))).collect();
+        let pts: Vec<(f64, f64)> = [0.1, 0.5, 1.0, 2.0, 4.0]
+            .iter()
+            .map(|&x| (x, f(x)))
+            .collect();
         let q = Quadratic::fit(&pts).unwrap();
         for (c, e) in q.coefficients.iter().zip([1.5, -0.25, 0.125]) {
             assert!((c - e).abs() < 1e-12, "{c} {e}");

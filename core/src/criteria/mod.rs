@@ -214,7 +214,8 @@ pub struct Point {
 impl Point {
     /// The critical peak velocity of the same motion, m/s.
     pub fn critical_pgv(&self) -> Option<f64> {
-        self.critical_pga.map(|a| a / self.pga_per_unit * self.pgv_per_unit)
+        self.critical_pga
+            .map(|a| a / self.pga_per_unit * self.pgv_per_unit)
     }
 
     /// A rigid value's peak velocity, m/s.
@@ -278,7 +279,8 @@ pub fn run(model: &Path, study: &Study) -> Result<Vec<Point>> {
     for self_weight in &study.self_weights {
         for excitation in &study.excitations {
             let base = model_table(&body, self_weight, excitation);
-            let text = toml::to_string(&base).map_err(|e| Error::invalid("body", e.to_string(), "not TOML"))?;
+            let text = toml::to_string(&base)
+                .map_err(|e| Error::invalid("body", e.to_string(), "not TOML"))?;
             let is_record = matches!(excitation, Excitation::Record(_));
             let periods: Vec<Option<f64>> = if is_record {
                 vec![None]
@@ -308,7 +310,8 @@ pub fn run(model: &Path, study: &Study) -> Result<Vec<Point>> {
                     e.insert("period".into(), (*tp).into());
                 }
                 let unit = Model::from_toml_str(
-                    &toml::to_string(&t).map_err(|e| Error::invalid("body", e.to_string(), "not TOML"))?,
+                    &toml::to_string(&t)
+                        .map_err(|e| Error::invalid("body", e.to_string(), "not TOML"))?,
                     &Overrides::default(),
                 )?;
                 let end = unit.floor.quiet_after().unwrap_or(unit.duration);
@@ -373,14 +376,19 @@ pub fn run(model: &Path, study: &Study) -> Result<Vec<Point>> {
 }
 
 /// Housner's block of the body's geometry, by `form`, searched as the elastic body is.
-fn rigid_minimum(table: &toml::Table, find: &find_min::FindMin, form: RigidForm) -> Result<Option<f64>> {
+fn rigid_minimum(
+    table: &toml::Table,
+    find: &find_min::FindMin,
+    form: RigidForm,
+) -> Result<Option<f64>> {
     let at = |value: f64| -> Result<Model> {
         let mut t = table.clone();
         if let Some(toml::Value::Table(e)) = t.get_mut("excitation") {
             let key = find.key.trim_start_matches("excitation.");
             e.insert(key.into(), value.into());
         }
-        let text = toml::to_string(&t).map_err(|e| Error::invalid("body", e.to_string(), "not TOML"))?;
+        let text =
+            toml::to_string(&t).map_err(|e| Error::invalid("body", e.to_string(), "not TOML"))?;
         Model::from_toml_str(&text, &Overrides::default())
     };
     let trial = |value: f64| -> Result<find_min::Trial> {

@@ -54,7 +54,10 @@ pub fn peak_velocity(floor: &dyn FloorMotion, end: f64) -> Option<f64> {
                 if degree > 1 {
                     return None;
                 }
-                let (c0, c1) = (coefficients[0], if degree == 1 { coefficients[1] } else { 0.0 });
+                let (c0, c1) = (
+                    coefficients[0],
+                    if degree == 1 { coefficients[1] } else { 0.0 },
+                );
                 let a = |u: f64| c0 + c1 * (u - origin);
                 let (a0, a1, h) = (a(t), a(until), until - t);
                 if a0 * a1 < 0.0 {
