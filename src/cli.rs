@@ -97,6 +97,23 @@ pub(crate) enum Command {
     /// records (excitation.path) against excitation.scale or excitation.amplitude an
     /// incremental dynamic analysis (ida.svg). Re-running the same command resumes an interrupted sweep.
     Sweep(SweepArgs),
+    /// Overturning criteria of elastic bodies of the model's geometry, E from near-rigid to
+    /// beyond the paper's body, under sines, one-sine and one-cosine pulses and records, beside
+    /// Housner's block: writes criteria.csv, continuity.csv, fit.json, criteria.json and
+    /// figures (SVG and PNG).
+    Criteria {
+        /// Model file (TOML); only its [body] table is used.
+        model: PathBuf,
+        /// Output directory.
+        #[arg(long)]
+        out: PathBuf,
+        /// A record (PEER AT2, in g) used for the fit; may be repeated.
+        #[arg(long)]
+        record: Vec<PathBuf>,
+        /// A record only checked against the fit (not used for it); may be repeated.
+        #[arg(long)]
+        check_record: Vec<PathBuf>,
+    },
     /// Print a shell completion script for flexrock (bash, zsh, fish, elvish or powershell),
     /// e.g. `flexrock completions bash > ~/.local/share/bash-completion/completions/flexrock`.
     Completions {

@@ -193,6 +193,19 @@ fn write_stderr(text: &str) {
 fn execute(command: Command) -> flexrock::Result<Output> {
     match command {
         Command::Sweep(args) => sweep(args),
+        Command::Criteria {
+            model,
+            out,
+            record,
+            check_record,
+        } => {
+            flexrock::writers::check_creatable(&out)?;
+            let report = flexrock::commands::criteria::run(&model, &record, &check_record, &out)?;
+            Ok(Output {
+                stdout: flexrock::commands::criteria::report_text(&report).into_bytes(),
+                warnings: Vec::new(),
+            })
+        }
         Command::Props { model, json, set } => props(&model, json, set),
         Command::Run {
             model: path,

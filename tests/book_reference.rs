@@ -90,7 +90,15 @@ fn strings(list: &[&str]) -> Vec<String> {
 fn the_output_tables_list_exactly_the_columns_the_writers_write() {
     use flexrock_core::sweep::row::{MinimumOutcome, RigidMinima, Row, RunOutcome, Scales};
     let text = page("outputs.md");
-    let tables: [(&str, &[&str]); 8] = [
+    let tables: [(&str, &[&str]); 10] = [
+        (
+            "columns: criteria.csv",
+            &flexrock::commands::criteria::CRITERIA_COLUMNS,
+        ),
+        (
+            "columns: continuity.csv",
+            &flexrock::commands::criteria::CONTINUITY_COLUMNS,
+        ),
         ("columns: history.csv", &flexrock::writers::HISTORY_COLUMNS),
         ("columns: events.csv", &flexrock::writers::EVENT_COLUMNS),
         ("columns: episodes.csv", &flexrock::writers::EPISODE_COLUMNS),

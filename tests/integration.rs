@@ -18,6 +18,7 @@ mod records;
 mod self_weight;
 
 // Commands.
+mod criteria;
 mod fem_cli;
 mod figures;
 mod plot_cli;

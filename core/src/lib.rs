@@ -114,6 +114,7 @@ pub mod columns;
 pub mod compare;
 pub mod constants;
 pub mod converge;
+pub mod criteria;
 mod double_double;
 pub mod error;
 pub mod excitation;

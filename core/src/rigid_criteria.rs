@@ -32,17 +32,15 @@
 //! the published rigid-body numbers (book/src/validation/published-rigid.md) says what was
 //! checked against the paper and how the project's rigid block compares with both lines.
 
-use crate::units::STANDARD_GRAVITY;
-
 /// The coefficient of Ishiyama's velocity line in SI units, m^(1/2)/s: V = c B/sqrt(H) with B,
 /// H in m and V in m/s. It is Ishiyama's 10 cm^(1/2)/s (V in cm/s, B and H in cm).
 pub const ISHIYAMA_VELOCITY_COEFFICIENT: f64 = 1.0;
 
-/// Ishiyama's (1982) acceleration criterion, m/s^2: the peak floor acceleration g B/H (g the
-/// standard gravity, 9.80665 m/s^2) below which a rigid body of width `b` and height `h` (m,
-/// the whole width and height) does not overturn. A necessary condition, not a sufficient one.
-pub fn ishiyama_acceleration(b: f64, h: f64) -> f64 {
-    STANDARD_GRAVITY * b / h
+/// Ishiyama's (1982) acceleration criterion, m/s^2: the peak floor acceleration g B/H below
+/// which a rigid body of width `b` and height `h` (m, the whole width and height) under
+/// gravity `g` (m/s^2) does not overturn. A necessary condition, not a sufficient one.
+pub fn ishiyama_acceleration(b: f64, h: f64, g: f64) -> f64 {
+    g * b / h
 }
 
 /// Ishiyama's (1982) velocity criterion, m/s: the peak floor velocity 10 B/sqrt(H) (cm/s, with
@@ -73,6 +71,6 @@ mod tests {
 
     #[test]
     fn the_acceleration_line_is_g_b_over_h() {
-        assert!((ishiyama_acceleration(0.7, 4.0) - 9.80665 * 0.175).abs() < 1e-15);
+        assert!((ishiyama_acceleration(0.7, 4.0, 9.80665) - 9.80665 * 0.175).abs() < 1e-15);
     }
 }

@@ -7,6 +7,7 @@
 mod common;
 
 mod constants;
+mod criteria;
 mod dynamics;
 mod exact;
 mod hardening;

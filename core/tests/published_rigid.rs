@@ -112,7 +112,10 @@ fn sine_overturns(block: &RigidBlock, amplitude: f64, cycles: f64, f: f64) -> bo
 fn check_ishiyama(cycles: f64) {
     for (b, h) in BODIES {
         let block = full_block(b, h);
-        let (a_line, v_line) = (ishiyama_acceleration(b, h), ishiyama_velocity(b, h));
+        let (a_line, v_line) = (
+            ishiyama_acceleration(b, h, flexrock_core::STANDARD_GRAVITY),
+            ishiyama_velocity(b, h),
+        );
         let crossing = G / (2.0 * PI * h.sqrt());
         let mut lowest_velocity = f64::INFINITY;
         let mut low_frequency_acceleration = None;

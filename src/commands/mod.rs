@@ -2,6 +2,8 @@
 //! its files (through [`crate::writers`] and [`crate::figures`]).
 //!
 //! - [`run`]: `flexrock props` and `flexrock run`;
+//! - [`criteria`]: `flexrock criteria`, the overturning criteria of elastic bodies beside the
+//!   rigid block's;
 //! - [`compare`], [`converge`]: Newmark against the adaptive reference;
 //! - [`fem`], [`pushover`]: the finite element check (`flexrock fem`, `flexrock fem --pushover`);
 //! - [`record`]: `flexrock record info` and `flexrock record csv`;
@@ -10,6 +12,7 @@
 
 pub mod compare;
 pub mod converge;
+pub mod criteria;
 pub mod fem;
 pub mod pushover;
 pub mod record;

@@ -400,11 +400,9 @@ fn rows_of(
     points: std::ops::Range<usize>,
     progress: &dyn Progress,
 ) -> Vec<Vec<String>> {
-    sweep.rows_as(
-        points,
-        &|| progress.advance(1),
-        |i, row| row_fields(&sweep.plan, i, &row),
-    )
+    sweep.rows_as(points, &|| progress.advance(1), |i, row| {
+        row_fields(&sweep.plan, i, &row)
+    })
 }
 
 fn chunk_path(dir: &Path, chunk: usize) -> PathBuf {

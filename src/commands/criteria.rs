@@ -1,0 +1,353 @@
+//! `flexrock criteria`: the overturning criteria study of [`flexrock_core::criteria`] on the
+//! body of a model file, written as criteria.csv, continuity.csv, fit.json, criteria.json and
+//! two figures (SVG and PNG); the wall time goes to timings.json, so that every other file is
+//! byte-stable.
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+use serde::Serialize;
+
+use crate::commands::run::VERSION;
+use crate::error::Result;
+use crate::figures::criteria as figures;
+use crate::writers::{self, Table};
+use flexrock_core::criteria::{self, continuity, fit, Point, Study};
+use flexrock_core::format::shortest;
+use flexrock_core::rigid_criteria::{
+    ishiyama_acceleration, ishiyama_velocity, ISHIYAMA_VELOCITY_COEFFICIENT,
+};
+
+/// Column names of criteria.csv (a contract), units in the names.
+pub const CRITERIA_COLUMNS: [&str; 24] = [
+    "self_weight",
+    "excitation",
+    "Tp_s",
+    "E_Pa",
+    "phi_pT",
+    "T_s",
+    "p_rad_per_s",
+    "critical_pga_m_per_s2",
+    "critical_pgv_m_per_s",
+    "critical_pga_over_gB_H",
+    "safe_below_pga_m_per_s2",
+    "overturning_bands_searched_key",
+    "n_bands",
+    "rigid_full_pga_m_per_s2",
+    "rigid_full_pgv_m_per_s",
+    "rigid_small_angle_pga_m_per_s2",
+    "rigid_small_angle_pgv_m_per_s",
+    "rigid_limit_pga_m_per_s2",
+    "rel_diff_vs_rigid_full",
+    "rel_diff_vs_rigid_limit",
+    "below_rigid_full",
+    "ishiyama_pga_m_per_s2",
+    "ishiyama_pgv_m_per_s",
+    "reason",
+];
+
+/// Column names of continuity.csv.
+pub const CONTINUITY_COLUMNS: [&str; 7] = [
+    "self_weight",
+    "excitations",
+    "E_Pa",
+    "phi_pT",
+    "max_abs_rel_diff_vs_rigid_limit",
+    "max_abs_rel_diff_vs_rigid_full",
+    "points",
+];
+
+/// The body's height, width and gravity (from the first point's model file).
+#[derive(Debug, Clone, Copy, Serialize)]
+pub struct Geometry {
+    /// H, m.
+    pub height: f64,
+    /// B, m.
+    pub width: f64,
+    /// g, m/s^2.
+    pub gravity: f64,
+}
+
+fn opt(x: Option<f64>) -> String {
+    x.map(shortest).unwrap_or_default()
+}
+
+fn criteria_csv(points: &[Point], g: Geometry) -> Vec<u8> {
+    let a_i = ishiyama_acceleration(g.width, g.height, g.gravity);
+    let v_i = ishiyama_velocity(g.width, g.height);
+    let mut table = Table::new(&CRITERIA_COLUMNS);
+    for p in points {
+        table.row([
+            p.self_weight.clone(),
+            p.excitation.clone(),
+            opt(p.period),
+            shortest(p.youngs_modulus),
+            shortest(p.flexibility),
+            shortest(p.pre_uplift_period),
+            shortest(p.p),
+            opt(p.critical_pga),
+            opt(p.critical_pgv()),
+            opt(p.critical_pga.map(|a| a / a_i)),
+            opt(p.safe_below_pga),
+            p.bands.clone(),
+            p.n_bands.to_string(),
+            opt(p.rigid_full_pga),
+            opt(p.pgv_of(p.rigid_full_pga)),
+            opt(p.rigid_small_angle_pga),
+            opt(p.pgv_of(p.rigid_small_angle_pga)),
+            opt(p.rigid_limit_pga),
+            opt(p.relative_difference(p.rigid_full_pga)),
+            opt(p.relative_difference(p.rigid_limit_pga)),
+            match (p.critical_pga, p.rigid_full_pga) {
+                (Some(a), Some(r)) => (a < r).to_string(),
+                (Some(_), None) => "true".into(),
+                _ => String::new(),
+            },
+            shortest(a_i),
+            shortest(v_i),
+            p.reason.clone(),
+        ]);
+    }
+    table.into_bytes()
+}
+
+fn continuity_csv(decades: &[continuity::Decade]) -> Vec<u8> {
+    let mut table = Table::new(&CONTINUITY_COLUMNS);
+    for d in decades {
+        table.row([
+            d.self_weight.clone(),
+            d.excitations.to_string(),
+            shortest(d.youngs_modulus),
+            shortest(d.flexibility),
+            opt(d.max_abs_difference_rigid_limit),
+            opt(d.max_abs_difference_rigid_full),
+            d.points.to_string(),
+        ]);
+    }
+    table.into_bytes()
+}
+
+/// criteria.json: how the study was made, and its findings.
+#[derive(Serialize)]
+struct Summary<'a> {
+    flexrock_version: &'a str,
+    model_file: String,
+    geometry: Geometry,
+    flexibility_parameter: &'static str,
+    solver: &'static str,
+    search: String,
+    rigid_blocks: &'static str,
+    ishiyama: IshiyamaLines,
+    study: &'a Study,
+    held_out: &'a [String],
+    rigid_limit_within_5_percent_up_to_phi: Vec<(String, Option<f64>)>,
+    housner_full_within_5_percent_up_to_phi: Vec<(String, Option<f64>)>,
+    below_rigid_full: Vec<Unconservative>,
+}
+
+#[derive(Serialize)]
+struct IshiyamaLines {
+    reference: &'static str,
+    acceleration_m_per_s2: f64,
+    velocity_m_per_s: f64,
+    velocity_constant_m_half_per_s: f64,
+}
+
+#[derive(Serialize)]
+struct Unconservative {
+    self_weight: String,
+    excitation: String,
+    period_s: Option<f64>,
+    youngs_modulus_pa: f64,
+    phi: f64,
+    critical_pga_m_per_s2: Option<f64>,
+    rigid_full_pga_m_per_s2: Option<f64>,
+    relative_difference: Option<f64>,
+}
+
+/// What `flexrock criteria` computed and wrote.
+pub struct CriteriaReport {
+    /// The points.
+    pub points: Vec<Point>,
+    /// The decades.
+    pub decades: Vec<continuity::Decade>,
+    /// The fits, one per self-weight variant.
+    pub fits: Vec<fit::Fit>,
+    /// The files written.
+    pub files: Vec<PathBuf>,
+}
+
+/// Runs the study on the body of `model` with the sines and pulses and the records `fitted`
+/// (used for the fit) and `held_out` (only checked against it); writes everything into `out`
+/// (all files or none).
+pub fn run(
+    model: &Path,
+    fitted: &[PathBuf],
+    held_out: &[PathBuf],
+    out: &Path,
+) -> Result<CriteriaReport> {
+    let start = std::time::Instant::now();
+    // Relative record paths are relative to the current directory (as typed).
+    let records: Vec<PathBuf> = fitted.iter().chain(held_out).cloned().collect();
+    let study = Study::standard(records);
+    let points = criteria::run(model, &study)?;
+    let base = flexrock_core::Model::load(model, &Default::default())?;
+    let geometry = Geometry {
+        height: base.body.height,
+        width: base.body.width,
+        gravity: base.body.gravity,
+    };
+    let held: Vec<String> = held_out
+        .iter()
+        .map(|p| criteria::Excitation::Record(p.clone()).name())
+        .collect();
+    let decades = continuity::decades(&points);
+    let fits: Vec<fit::Fit> = study
+        .self_weights
+        .iter()
+        .map(|sw| {
+            fit::fit(
+                &points,
+                sw,
+                &held,
+                (geometry.height, geometry.width, geometry.gravity),
+            )
+        })
+        .collect();
+    let summary = Summary {
+        flexrock_version: VERSION,
+        model_file: model.display().to_string(),
+        geometry,
+        flexibility_parameter: "phi = p T: the pre-uplift period T over the rocking time scale \
+                                1/p, p = sqrt(3 g/(4 R)), R the half-diagonal",
+        solver: "exact (the default)",
+        search: format!(
+            "scan of {} values of the interval, then bisection of the first transition to \
+             overturning to {} of the interval; bands above it that leave the body standing are \
+             listed (overturning_bands_searched_key)",
+            study.scan,
+            shortest(study.tol_share)
+        ),
+        rigid_blocks: "rigid_full: Housner's block by the full equation (uplift at g B/H); \
+                       rigid_small_angle: the same block by the small-angle equation; \
+                       rigid_limit: the elastic model's own E -> infinity limit (small-angle, \
+                       uplift at 1.1226 g B/H)",
+        ishiyama: IshiyamaLines {
+            reference: "Ishiyama (1982), Earthquake Eng. Struct. Dyn. 10, 635-650: A > g B/H \
+                        and V > 10 B/sqrt(H) cm/s (B, H in cm)",
+            acceleration_m_per_s2: ishiyama_acceleration(
+                geometry.width,
+                geometry.height,
+                geometry.gravity,
+            ),
+            velocity_m_per_s: ishiyama_velocity(geometry.width, geometry.height),
+            velocity_constant_m_half_per_s: ISHIYAMA_VELOCITY_COEFFICIENT,
+        },
+        study: &study,
+        held_out: &held,
+        rigid_limit_within_5_percent_up_to_phi: study
+            .self_weights
+            .iter()
+            .map(|sw| {
+                let phi = continuity::rigid_holds_below(&decades, sw, 0.05, false);
+                (sw.clone(), phi)
+            })
+            .collect(),
+        housner_full_within_5_percent_up_to_phi: study
+            .self_weights
+            .iter()
+            .map(|sw| {
+                let phi = continuity::rigid_holds_below(&decades, sw, 0.05, true);
+                (sw.clone(), phi)
+            })
+            .collect(),
+        below_rigid_full: continuity::unconservative(&points, 0.0)
+            .into_iter()
+            .map(|p| Unconservative {
+                self_weight: p.self_weight.clone(),
+                excitation: p.excitation.clone(),
+                period_s: p.period,
+                youngs_modulus_pa: p.youngs_modulus,
+                phi: p.flexibility,
+                critical_pga_m_per_s2: p.critical_pga,
+                rigid_full_pga_m_per_s2: p.rigid_full_pga,
+                relative_difference: p.relative_difference(p.rigid_full_pga),
+            })
+            .collect(),
+    };
+    let plane = figures::plane(&points, geometry);
+    let against = figures::against_flexibility(&points, &fits, geometry);
+    let mut files = vec![
+        ("criteria.csv", criteria_csv(&points, geometry)),
+        ("continuity.csv", continuity_csv(&decades)),
+        ("fit.json", writers::json_bytes(&fits)),
+        ("criteria.json", writers::json_bytes(&summary)),
+    ];
+    for (name, panels, columns, size) in [
+        ("criteria-plane", plane, 1, (1100u32, 1300u32)),
+        ("criteria-flexibility", against, 1, (1000, 1500)),
+    ] {
+        let svg = crate::figures::plot::figure_sized(
+            crate::figures::plot::Format::Svg,
+            name,
+            &panels,
+            columns,
+            size,
+        )?;
+        let png = crate::figures::plot::figure_sized(
+            crate::figures::plot::Format::Png,
+            name,
+            &panels,
+            columns,
+            size,
+        )?;
+        files.push((leak(format!("{name}.svg")), svg));
+        files.push((leak(format!("{name}.png")), png));
+    }
+    let timings = serde_json::json!({ "wall_time_s": start.elapsed().as_secs_f64() });
+    files.push(("timings.json", writers::json_bytes(&timings)));
+    let files = writers::write_atomically(out, &files)?;
+    Ok(CriteriaReport {
+        points,
+        decades,
+        fits,
+        files,
+    })
+}
+
+fn leak(s: String) -> &'static str {
+    Box::leak(s.into_boxed_str())
+}
+
+/// The text `flexrock criteria` prints.
+pub fn report_text(report: &CriteriaReport) -> String {
+    let mut t = String::new();
+    let _ = writeln!(
+        t,
+        "flexrock {VERSION} criteria: {} searches (exact method)",
+        report.points.len()
+    );
+    let _ = writeln!(
+        t,
+        "  {:<11} {:<7} {:>9} {:>8} {:>22} {:>22}",
+        "self_weight", "motions", "E (Pa)", "phi", "max|d| rigid limit", "max|d| Housner full"
+    );
+    for d in &report.decades {
+        let _ = writeln!(
+            t,
+            "  {:<11} {:<7} {:>9.2e} {:>8.4} {:>22} {:>22}",
+            d.self_weight,
+            d.excitations,
+            d.youngs_modulus,
+            d.flexibility,
+            d.max_abs_difference_rigid_limit
+                .map_or("-".into(), |x| format!("{x:.5}")),
+            d.max_abs_difference_rigid_full
+                .map_or("-".into(), |x| format!("{x:.5}")),
+        );
+    }
+    for f in &report.files {
+        let _ = writeln!(t, "  wrote {}", f.display());
+    }
+    t
+}

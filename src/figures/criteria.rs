@@ -1,0 +1,223 @@
+//! The figures of `flexrock criteria`: the (peak velocity, peak acceleration) plane with each
+//! flexibility's critical points and Ishiyama's two lines, and the critical values against the
+//! flexibility phi = p T with the fitted criterion and the continuity with the rigid block.
+
+use crate::commands::criteria::Geometry;
+use crate::figures::plot::{Legend, Marker, Panel, Series, VerticalLine};
+use flexrock_core::criteria::{continuity, fit::Fit, Point};
+use flexrock_core::rigid_criteria::{ishiyama_acceleration, ishiyama_velocity};
+
+const SELF_WEIGHTS: [&str; 2] = ["paper", "consistent"];
+
+/// One panel per self-weight variant: each body's critical (PGV, PGA) under the one-sine pulses
+/// (a line across Tp), the sines and one-cosine pulses (markers), Housner's full-equation block
+/// (black), and Ishiyama's lines.
+pub fn plane(points: &[Point], g: Geometry) -> Vec<Panel> {
+    let a_i = ishiyama_acceleration(g.width, g.height, g.gravity);
+    let v_i = ishiyama_velocity(g.width, g.height);
+    let mut moduli: Vec<f64> = points.iter().map(|p| p.youngs_modulus).collect();
+    moduli.sort_by(|a, b| b.total_cmp(a));
+    moduli.dedup();
+    let mut panels = Vec::new();
+    for sw in SELF_WEIGHTS {
+        let mine: Vec<&Point> = points.iter().filter(|p| p.self_weight == sw).collect();
+        if mine.is_empty() {
+            continue;
+        }
+        let mut panel = Panel::new(
+            &format!("{sw} self-weight: one-sine pulses (line), other motions (×)"),
+            "floor peak velocity (m/s)",
+            "floor peak acceleration (m/s²)",
+        );
+        panel.log_x = true;
+        panel.log_y = true;
+        panel.legend = Legend::Outside;
+        let rigid: Vec<&Point> = mine
+            .iter()
+            .copied()
+            .filter(|p| p.youngs_modulus == moduli[0])
+            .collect();
+        // In the order of the pulse period (the points' order), Tp = 0.5 s first.
+        let one_sine = |ps: &[&Point], f: &dyn Fn(&Point) -> Option<(f64, f64)>| {
+            ps.iter()
+                .filter(|p| p.excitation == "one-sine")
+                .filter_map(|p| f(p))
+                .collect::<Vec<_>>()
+        };
+        panel = panel.with(
+            Series::line(
+                "Housner, full eq., one-sine",
+                one_sine(&rigid, &|p| {
+                    Some((p.pgv_of(p.rigid_full_pga)?, p.rigid_full_pga?))
+                }),
+                0,
+            )
+            .with_markers(),
+        );
+        for (k, e) in moduli.iter().enumerate() {
+            let same: Vec<&Point> = mine
+                .iter()
+                .copied()
+                .filter(|p| p.youngs_modulus == *e)
+                .collect();
+            let phi = same[0].flexibility;
+            let color = k + 1;
+            panel = panel.with(
+                Series::line(
+                    &format!("φ = {phi:.3} (E = {e:.1e} Pa)"),
+                    one_sine(&same, &|p| Some((p.critical_pgv()?, p.critical_pga?))),
+                    color,
+                )
+                .with_markers(),
+            );
+            let others: Vec<(f64, f64)> = same
+                .iter()
+                .filter(|p| p.excitation != "one-sine")
+                .filter_map(|p| Some((p.critical_pgv()?, p.critical_pga?)))
+                .collect();
+            panel = panel.with(Series::markers("", others, color, Marker::Cross));
+        }
+        // The panel's log axes are linear axes of log10 values; its lines are given in them.
+        panel
+            .reference_lines
+            .push((a_i.log10(), "Ishiyama: A = g B/H".into()));
+        panel.vertical_lines.push(VerticalLine {
+            x: v_i.log10(),
+            color: 0,
+            label: "Ishiyama: V = c B/√H".into(),
+        });
+        // The corner of Ishiyama's region, which also keeps both lines within the axes.
+        panel = panel.with(Series::markers(
+            "Ishiyama: both thresholds",
+            vec![(v_i, a_i)],
+            0,
+            Marker::TriangleDown,
+        ));
+        panels.push(panel);
+    }
+    panels
+}
+
+/// Three panels: the smallest critical PGA over g B/H and the smallest critical PGV over
+/// c B/sqrt(H) against phi, with the fits and the held-out records; and the largest relative
+/// difference from the rigid blocks against phi.
+pub fn against_flexibility(points: &[Point], fits: &[Fit], g: Geometry) -> Vec<Panel> {
+    let a_i = ishiyama_acceleration(g.width, g.height, g.gravity);
+    let v_i = ishiyama_velocity(g.width, g.height);
+    let mut acc = Panel::new(
+        "Acceleration condition",
+        "flexibility φ = p T",
+        "smallest critical PGA / (g B/H)",
+    );
+    let mut vel = Panel::new(
+        "Velocity condition",
+        "flexibility φ = p T",
+        "smallest critical PGV / (c B/√H)",
+    );
+    for panel in [&mut acc, &mut vel] {
+        panel.log_x = true;
+        panel.legend = Legend::Outside;
+        panel.reference_lines.push((1.0, "Ishiyama (rigid)".into()));
+    }
+    for (k, f) in fits.iter().enumerate() {
+        let color = 2 * k + 1;
+        let smooth = |q: &flexrock_core::criteria::fit::Quadratic| -> Vec<(f64, f64)> {
+            let (lo, hi) = f.flexibility_range;
+            (0..=60)
+                .map(|i| {
+                    let phi = lo * (hi / lo).powf(i as f64 / 60.0);
+                    (phi, q.at(phi))
+                })
+                .collect()
+        };
+        if let Some(q) = &f.acceleration {
+            let pts = q.errors.iter().map(|e| (e.0, e.1)).collect();
+            acc = acc
+                .with(Series::markers(
+                    &format!("computed, {}", f.self_weight),
+                    pts,
+                    color,
+                    Marker::Circle,
+                ))
+                .with(Series::line(
+                    &format!("fit, {}", f.self_weight),
+                    smooth(q),
+                    color,
+                ));
+        }
+        if let Some(q) = &f.velocity {
+            let pts = q.errors.iter().map(|e| (e.0, e.1)).collect();
+            vel = vel
+                .with(Series::markers(
+                    &format!("computed, {}", f.self_weight),
+                    pts,
+                    color,
+                    Marker::Circle,
+                ))
+                .with(Series::line(
+                    &format!("fit, {}", f.self_weight),
+                    smooth(q),
+                    color,
+                ));
+        }
+        let held: Vec<&Point> = points
+            .iter()
+            .filter(|p| p.self_weight == f.self_weight)
+            .filter(|p| f.checks.iter().any(|c| c.excitation == p.excitation))
+            .collect();
+        let a_pts = held
+            .iter()
+            .filter_map(|p| Some((p.flexibility, p.critical_pga? / a_i)))
+            .collect();
+        let v_pts = held
+            .iter()
+            .filter_map(|p| Some((p.flexibility, p.critical_pgv()? / v_i)))
+            .collect();
+        let label = format!("held-out records, {}", f.self_weight);
+        acc = acc.with(Series::markers(
+            &label,
+            a_pts,
+            color + 1,
+            Marker::TriangleUp,
+        ));
+        vel = vel.with(Series::markers(
+            &label,
+            v_pts,
+            color + 1,
+            Marker::TriangleUp,
+        ));
+    }
+    let decades = continuity::decades(points);
+    let mut cont = Panel::new(
+        "Continuity with the rigid block (sines and one-sine pulses)",
+        "flexibility φ = p T",
+        "largest |critical / rigid − 1|",
+    );
+    cont.log_x = true;
+    cont.log_y = true;
+    cont.legend = Legend::Outside;
+    for (k, sw) in SELF_WEIGHTS.iter().enumerate() {
+        let mine: Vec<&continuity::Decade> = decades
+            .iter()
+            .filter(|d| d.self_weight == *sw && d.excitations == "smooth")
+            .collect();
+        let limit = mine
+            .iter()
+            .filter_map(|d| Some((d.flexibility, d.max_abs_difference_rigid_limit?)))
+            .collect();
+        let full = mine
+            .iter()
+            .filter_map(|d| Some((d.flexibility, d.max_abs_difference_rigid_full?)))
+            .collect();
+        cont = cont
+            .with(Series::line(&format!("vs rigid limit, {sw}"), limit, 2 * k + 1).with_markers())
+            .with(
+                Series::line(&format!("vs Housner (full), {sw}"), full, 2 * k + 2)
+                    .with_markers()
+                    .dashed(),
+            );
+    }
+    // On the log y axis, as its log10.
+    cont.reference_lines.push((0.05f64.log10(), "5 %".into()));
+    vec![acc, vel, cont]
+}
