@@ -8,7 +8,7 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 /// The modules from the bottom up. A module may use only the modules before it.
-const LAYERS: [&str; 28] = [
+const LAYERS: [&str; 30] = [
     // units and formatting
     "units",
     "format",
@@ -16,6 +16,7 @@ const LAYERS: [&str; 28] = [
     "suggest",
     "limits",
     "invalid",
+    "double_double",
     // physics
     "body",
     "flexural_shape",
@@ -42,6 +43,7 @@ const LAYERS: [&str; 28] = [
     "converge",
     "fem_check",
     "pushover_check",
+    "criteria",
 ];
 
 /// The files of module `name` under `src`: `name.rs`, or every file under `name/`.

@@ -77,12 +77,11 @@ pub fn plane(points: &[Point], g: Geometry) -> Vec<Panel> {
                 .collect();
             panel = panel.with(Series::markers("", others, color, Marker::Cross));
         }
-        // The panel's log axes are linear axes of log10 values; its lines are given in them.
         panel
             .reference_lines
-            .push((a_i.log10(), "Ishiyama: A = g B/H".into()));
+            .push((a_i, "Ishiyama: A = g B/H".into()));
         panel.vertical_lines.push(VerticalLine {
-            x: v_i.log10(),
+            x: v_i,
             color: 0,
             label: "Ishiyama: V = c B/√H".into(),
         });
@@ -217,7 +216,6 @@ pub fn against_flexibility(points: &[Point], fits: &[Fit], g: Geometry) -> Vec<P
                     .dashed(),
             );
     }
-    // On the log y axis, as its log10.
-    cont.reference_lines.push((0.05f64.log10(), "5 %".into()));
+    cont.reference_lines.push((0.05, "5 %".into()));
     vec![acc, vel, cont]
 }

@@ -116,6 +116,27 @@ pub struct Panel {
     pub vertical_lines: Vec<VerticalLine>,
 }
 
+impl Panel {
+    /// A value of the y axis in axis coordinates: its log10 on a log axis (None where that has
+    /// none), else itself. Lines are given in the data's own units, as the series are.
+    fn y_axis(&self, y: f64) -> Option<f64> {
+        if self.log_y {
+            (y > 0.0).then(|| y.log10())
+        } else {
+            Some(y)
+        }
+    }
+
+    /// As [`Panel::y_axis`], for the x axis.
+    fn x_axis(&self, x: f64) -> Option<f64> {
+        if self.log_x {
+            (x > 0.0).then(|| x.log10())
+        } else {
+            Some(x)
+        }
+    }
+}
+
 /// A thin vertical line across a panel, at an abscissa, in a palette colour; the first line of
 /// each non-empty label gets a legend entry.
 #[derive(Debug, Clone)]
@@ -515,8 +536,10 @@ fn axis_ranges(
         y1 = y1.max(y);
     }
     for &(level, _) in panel.reference_lines.iter().chain(&panel.dashed_lines) {
-        y0 = y0.min(level);
-        y1 = y1.max(level);
+        if let Some(level) = panel.y_axis(level) {
+            y0 = y0.min(level);
+            y1 = y1.max(level);
+        }
     }
     if x0 > x1 {
         (x0, x1, y0, y1) = (0.0, 1.0, 0.0, 1.0);
@@ -650,10 +673,14 @@ fn drawn_strokes<DB: DrawingBackend>(
         })
     };
     for (level, _) in panel.reference_lines.iter().chain(&panel.dashed_lines) {
-        line((x0, *level), (x1, *level), 1);
+        if let Some(level) = panel.y_axis(*level) {
+            line((x0, level), (x1, level), 1);
+        }
     }
     for v in &panel.vertical_lines {
-        line((v.x, y0), (v.x, y1), 1);
+        if let Some(x) = panel.x_axis(v.x) {
+            line((x, y0), (x, y1), 1);
+        }
     }
     for (s, pieces) in series {
         for points in pieces {
@@ -860,11 +887,15 @@ where
     let (ranges, (plot_w, plot_h)) = ranges_on(panel, &series, area.dim_in_pixel());
     let (x0, x1, y0, y1) = ranges;
     let mut chart = build_chart(panel, &area, ranges)?;
+    // Everyday sizes as decimals (0.032, 1, 3.2, 10), the rest as powers of ten.
     let log_label = |v: &f64| {
-        if (v - v.round()).abs() < 1e-9 {
+        let x = 10f64.powf(*v);
+        if (1e-3..1e4).contains(&x) {
+            flexrock_core::format::significant(x, 2)
+        } else if (v - v.round()).abs() < 1e-9 {
             format!("1e{}", v.round() as i64)
         } else {
-            format!("{:.1e}", 10f64.powf(*v))
+            format!("{x:.1e}")
         }
     };
     // Tick values are sums of float steps: one that is zero but for rounding reads as 0.
@@ -897,20 +928,27 @@ where
         .draw()?;
 
     for v in &panel.vertical_lines {
+        let Some(x) = panel.x_axis(v.x) else { continue };
         chart.draw_series(LineSeries::new(
-            [(v.x, y0), (v.x, y1)],
+            [(x, y0), (x, y1)],
             event_colour(v.color).stroke_width(1),
         ))?;
     }
     for (level, _) in &panel.reference_lines {
+        let Some(level) = panel.y_axis(*level) else {
+            continue;
+        };
         chart.draw_series(LineSeries::new(
-            [(x0, *level), (x1, *level)],
+            [(x0, level), (x1, level)],
             REFERENCE_GREY.stroke_width(1),
         ))?;
     }
     for (level, _) in &panel.dashed_lines {
+        let Some(level) = panel.y_axis(*level) else {
+            continue;
+        };
         chart.draw_series(DashedLineSeries::new(
-            [(x0, *level), (x1, *level)],
+            [(x0, level), (x1, level)],
             8,
             5,
             DASHED_GREY.stroke_width(1),
@@ -1022,6 +1060,27 @@ where
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// On log axes the lines are given in the data's units, as the series are: a line at
+    /// y = 1000 over data from 1 to 10 widens the axis to 10^3, not to 1000 decades.
+    #[test]
+    fn lines_on_log_axes_are_placed_at_their_logarithm() {
+        let mut panel =
+            Panel::new("t", "x", "y").with(Series::line("data", vec![(1.0, 1.0), (10.0, 10.0)], 0));
+        panel.log_x = true;
+        panel.log_y = true;
+        panel.reference_lines.push((1000.0, "line".into()));
+        panel.vertical_lines.push(VerticalLine {
+            x: 100.0,
+            color: 0,
+            label: "v".into(),
+        });
+        let (x0, x1, y0, y1) = axis_ranges(&panel, &drawable_pieces(&panel), (400, 300));
+        assert!(y1 >= 3.0 && y1 < 4.0, "y axis to {y1}");
+        assert!(y0 <= 0.0 && x0 <= 0.0, "{x0} {y0}");
+        assert!(x1 < 4.0, "x axis to {x1}");
+        figure("log.svg", &[panel], 1, (400, 300)).expect("draws");
+    }
 
     #[test]
     fn svg_has_title_labels_and_legend() {

@@ -35,10 +35,10 @@ use std::path::{Path, PathBuf};
 use serde::Serialize;
 
 use crate::error::{Error, Result};
+use crate::model::Model;
 use crate::model::Overrides;
 use crate::rigid::{RigidBlock, RigidForm};
 use crate::sweep::{find_min, Axis, Interval, Outcome, Request, Status, Sweep};
-use crate::Model;
 
 /// The excitations' periods, s: sines and pulses of 0.25 to 2 Hz.
 pub const PERIODS: [f64; 4] = [0.5, 1.0, 2.0, 4.0];
