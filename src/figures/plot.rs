@@ -1076,7 +1076,7 @@ mod tests {
             label: "v".into(),
         });
         let (x0, x1, y0, y1) = axis_ranges(&panel, &drawable_pieces(&panel), (400, 300));
-        assert!(y1 >= 3.0 && y1 < 4.0, "y axis to {y1}");
+        assert!((3.0..4.0).contains(&y1), "y axis to {y1}");
         assert!(y0 <= 0.0 && x0 <= 0.0, "{x0} {y0}");
         assert!(x1 < 4.0, "x axis to {x1}");
         figure("log.svg", &[panel], 1, (400, 300)).expect("draws");
