@@ -121,8 +121,8 @@ pub struct Automaton {
     uncertainty: f64,
 }
 
-/// Relative uncertainty of the constants of the paper's self-weight variant: closed forms of a
-/// few transcendental operations, each within an ulp or two, so a few ulps in all.
+/// Relative uncertainty of the constants of the paper's self-weight variant: closed forms
+/// computed in twice the precision and rounded once, so within an ulp; eight, to be generous.
 const CLOSED_FORM_UNCERTAINTY: f64 = 8.0 * f64::EPSILON;
 /// Relative uncertainty of the constants of the consistent variant: they come from a Ritz
 /// solution in double precision, which agrees with the same solution in 40-digit arithmetic to

@@ -16,7 +16,12 @@
 //! a few ulps of t; q is then put on the guard and the reset applied to q'.
 //!
 //! Precision: a flow is summed from its anchor, so free motion and a sine need no steps; the
-//! state is carried from flow to flow (a record's samples) compensated, as hi + lo. The solver
+//! state is carried from flow to flow (a record's samples) compensated, as hi + lo. At an event
+//! the crossing's time is kept beyond its double (the next flow's anchor is hi + lo), and the
+//! state there is summed to twice the precision (while rocking, from the free motion's growing
+//! and decaying exponentials, whose terms do not cancel when the body barely lifts off); the
+//! mode's coefficients are the constants rounded once from twice the precision; and a sine's
+//! phase is reduced to a fraction of a turn in twice the precision. The solver
 //! books a first-order estimate of its own error: the rounding of every term summed and of every
 //! phase formed, carried through the flows in the energy norm (it cannot grow faster than the
 //! mode's largest rate) and through the resets, and turned into an error of each event time
