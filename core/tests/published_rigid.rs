@@ -112,10 +112,7 @@ fn sine_overturns(block: &RigidBlock, amplitude: f64, cycles: f64, f: f64) -> bo
 fn check_ishiyama(cycles: f64) {
     for (b, h) in BODIES {
         let block = full_block(b, h);
-        let (a_line, v_line) = (
-            ishiyama_acceleration(b, h, flexrock_core::STANDARD_GRAVITY),
-            ishiyama_velocity(b, h),
-        );
+        let (a_line, v_line) = (ishiyama_acceleration(b, h, G), ishiyama_velocity(b, h));
         let crossing = G / (2.0 * PI * h.sqrt());
         let mut lowest_velocity = f64::INFINITY;
         let mut low_frequency_acceleration = None;
@@ -281,15 +278,7 @@ fn one_sine_pulses_overturn_in_two_modes_with_a_safe_region_between() {
     // Two modes: at omega_p/p = 2 and 4 the smallest overturning pulse overturns after an
     // impact, and well below (by a third at least) the smallest that overturns without one.
     for ratio in [2.0, 4.0] {
-        let scan = grid(1.0, 20.0, 191);
-        let any = first_transition(scan.clone(), 1e-5, |beta| {
-            one_sine(&block, beta, ratio).overturned
-        })
-        .unwrap();
-        let without = first_transition(scan, 1e-5, |beta| {
-            overturns_without_impact(&one_sine(&block, beta, ratio))
-        })
-        .unwrap();
+        let (any, without) = smallest_overturning(&block, ratio);
         let at_minimum = one_sine(&block, any, ratio);
         eprintln!(
             "omega_p/p {ratio}: smallest {any:.4} ({} impacts), without impact {without:.4}",
@@ -301,15 +290,7 @@ fn one_sine_pulses_overturn_in_two_modes_with_a_safe_region_between() {
     // The safe region: at omega_p/p = 8, some pulse between the smallest overturning one and
     // the smallest that overturns without impact leaves the block standing.
     let ratio = 8.0;
-    let scan = grid(1.0, 20.0, 191);
-    let any = first_transition(scan.clone(), 1e-5, |beta| {
-        one_sine(&block, beta, ratio).overturned
-    })
-    .unwrap();
-    let without = first_transition(scan, 1e-5, |beta| {
-        overturns_without_impact(&one_sine(&block, beta, ratio))
-    })
-    .unwrap();
+    let (any, without) = smallest_overturning(&block, ratio);
     let at_minimum = one_sine(&block, any, ratio);
     eprintln!(
         "omega_p/p {ratio}: {} impacts before overturning",
@@ -330,4 +311,20 @@ fn one_sine_pulses_overturn_in_two_modes_with_a_safe_region_between() {
         !survivors.is_empty(),
         "no safe region between {any} and {without}"
     );
+}
+
+/// The smallest one-sine pulse amplitude (in g tan alpha) at `ratio` = omega_p/p that overturns
+/// `block`, and the smallest that overturns it before its first impact: the first transitions
+/// of a scan of 1 to 20, bisected to 1e-5.
+fn smallest_overturning(block: &RigidBlock, ratio: f64) -> (f64, f64) {
+    let scan = grid(1.0, 20.0, 191);
+    let any = first_transition(scan.clone(), 1e-5, |beta| {
+        one_sine(block, beta, ratio).overturned
+    })
+    .unwrap();
+    let without = first_transition(scan, 1e-5, |beta| {
+        overturns_without_impact(&one_sine(block, beta, ratio))
+    })
+    .unwrap();
+    (any, without)
 }

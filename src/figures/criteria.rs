@@ -129,9 +129,10 @@ pub fn against_flexibility(points: &[Point], fits: &[Fit], g: Geometry) -> Vec<P
                 })
                 .collect()
         };
-        if let Some(q) = &f.acceleration {
+        // The computed points of one condition and its fitted curve, in the fit's colour.
+        let with_fit = |panel: Panel, q: &flexrock_core::criteria::fit::Quadratic| {
             let pts = q.errors.iter().map(|e| (e.0, e.1)).collect();
-            acc = acc
+            panel
                 .with(Series::markers(
                     &format!("computed, {}", f.self_weight),
                     pts,
@@ -142,22 +143,13 @@ pub fn against_flexibility(points: &[Point], fits: &[Fit], g: Geometry) -> Vec<P
                     &format!("fit, {}", f.self_weight),
                     smooth(q),
                     color,
-                ));
+                ))
+        };
+        if let Some(q) = &f.acceleration {
+            acc = with_fit(acc, q);
         }
         if let Some(q) = &f.velocity {
-            let pts = q.errors.iter().map(|e| (e.0, e.1)).collect();
-            vel = vel
-                .with(Series::markers(
-                    &format!("computed, {}", f.self_weight),
-                    pts,
-                    color,
-                    Marker::Circle,
-                ))
-                .with(Series::line(
-                    &format!("fit, {}", f.self_weight),
-                    smooth(q),
-                    color,
-                ));
+            vel = with_fit(vel, q);
         }
         let held: Vec<&Point> = points
             .iter()

@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Regenerates validation/criteria/results/ (the overturning criteria study of the book chapter
 # "Overturning criteria of elastic bodies", which links its figures there).
-# Everything it writes is byte-stable from run to run except results/timings.json. About a
-# minute on two cores.
+# Everything it writes is byte-stable from run to run except results/timings.json. About two
+# minutes on two cores.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 cargo build --release --quiet
