@@ -2,7 +2,7 @@
 //!
 //! - the thresholds, Ishiyama's two conditions made functions of the flexibility phi: the
 //!   smallest critical peak acceleration over the fitted excitations, over g B/H, and the
-//!   smallest critical peak velocity, over c B/sqrt(H) ([`super::ishiyama`]), each fitted as
+//!   smallest critical peak velocity, over c B/sqrt(H) ([`crate::rigid_criteria`]), each fitted as
 //!   k(phi) = k0 + k1 phi + k2 phi^2 by least squares: a body can overturn only if the floor's
 //!   peak acceleration exceeds k_A(phi) g B/H and its peak velocity k_V(phi) c B/sqrt(H);
 //! - the ratio of the elastic body's critical peak acceleration (and velocity: the same motion,

@@ -4,7 +4,8 @@
 //! pulses across period, and records scaled; with Housner's rigid block of the same geometry
 //! (full and small-angle equations) and the elastic model's own rigid limit at the same points.
 //!
-//! - [`ishiyama`]: Ishiyama's (1982) acceleration and velocity conditions for rigid bodies;
+//! - Ishiyama's (1982) acceleration and velocity conditions for rigid bodies come from
+//!   [`crate::rigid_criteria`], their one home;
 //! - [`velocity`]: the peak floor velocity of a motion, in closed form;
 //! - [`continuity`]: the elastic body against the rigid block, decade by decade of E;
 //! - [`fit`]: a closed-form criterion fitted to the points, its error on each.
