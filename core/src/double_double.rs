@@ -225,7 +225,27 @@ macro_rules! with_f64 {
         }
     )*};
 }
-with_f64!(Add add, Sub sub, Mul mul, Div div);
+with_f64!(Add add, Sub sub, Mul mul);
+
+impl Div<f64> for DoubleDouble {
+    type Output = Self;
+    /// By a double: one quotient digit, then the remainder's (exact by a fused product).
+    fn div(self, other: f64) -> Self {
+        let q1 = self.hi / other;
+        let (p, e) = two_product(q1, other);
+        let (s, f) = two_sum(self.hi, -p);
+        let q2 = (s + (f - e + self.lo)) / other;
+        let (hi, lo) = quick_two_sum(q1, q2);
+        DoubleDouble { hi, lo }
+    }
+}
+
+impl Div<DoubleDouble> for f64 {
+    type Output = DoubleDouble;
+    fn div(self, other: DoubleDouble) -> DoubleDouble {
+        DoubleDouble::exact(self) / other
+    }
+}
 
 #[cfg(test)]
 mod tests {
@@ -284,6 +304,9 @@ mod tests {
         let root = Dd::decimal(0.49).sqrt();
         assert!(relative_error_from(root, 7, 10).abs() < 1e-30);
         let third = Dd::exact(1.0) / 3.0;
+        // By a double: 0.7 / 12 = 7/120, and 1 / 3 against the division by a double-double.
+        assert!(relative_error_from(seven_tenths / 12.0, 7, 120).abs() < 1e-30);
+        assert!(relative_error_from(third, 1, 3).abs() < 1e-30);
         assert!(relative_error_from((seven_tenths - third) * 3.0, 11, 10).abs() < 1e-30);
         // The double nearest 7/10 is the rounding of the double-double.
         assert_eq!(seven_tenths.value(), 0.7);

@@ -112,6 +112,8 @@ struct Oscillator {
     xs: f64,
     xc: f64,
     period: f64,
+    /// 1 / the period, to twice the precision (for the phase).
+    frequency_twice: Dd,
     /// Forcing f = fs sin(phi) + fc cos(phi).
     fs: f64,
     fc: f64,
@@ -196,7 +198,7 @@ impl Oscillator {
             return [0.0; 4];
         }
         let big_omega = 2.0 * PI / self.period;
-        let (s, co) = phase(t, 0.0, self.period);
+        let (s, co) = phase(t, 0.0, self.frequency_twice);
         [
             self.xs * s + self.xc * co,
             big_omega * (self.xs * co - self.xc * s),
@@ -285,7 +287,7 @@ impl Flow {
                     )
                 } else {
                     // The sine's Taylor series about the anchor, as a polynomial floor.
-                    let (s, co) = phase(anchor, anchor_lo, period);
+                    let (s, co) = phase(anchor, anchor_lo, 1.0 / Dd::exact(period));
                     let mut coefficients = [0.0; MAX_DEGREE + 1];
                     let mut scale = 1.0;
                     // d^n/dt^n of sin(phi) and cos(phi): rotate by a quarter turn per order.
@@ -367,7 +369,8 @@ impl Flow {
             let det = d * d + e * e;
             ((d * fs + e * fc) / det, (d * fc - e * fs) / det)
         };
-        let (s, co) = phase(anchor, 0.0, period);
+        let frequency_twice = 1.0 / Dd::exact(period);
+        let (s, co) = phase(anchor, 0.0, frequency_twice);
         // The steady state at anchor + anchor_lo: one Taylor step from the anchor's double.
         let xp = xs * s + xc * co;
         let vp = big_omega * (xs * co - xc * s);
@@ -410,6 +413,7 @@ impl Flow {
                 xs,
                 xc,
                 period,
+                frequency_twice,
                 fs,
                 fc,
             }),
@@ -689,12 +693,12 @@ fn trig(omega2: f64, omega: f64, u: f64) -> (f64, f64) {
     }
 }
 
-/// sin and cos of 2 pi (t + t_lo)/period. The angle is reduced to a fraction of a turn in
+/// sin and cos of 2 pi (t + t_lo) f, f = 1/period to twice the precision. The angle is reduced to a fraction of a turn in
 /// twice the precision before the double functions see it: over a long run the rounding of
 /// 2 pi t/period itself (an ulp of the angle) would be an error of the phase of the forcing, and
 /// near resonance the steady state it moves is many times the motion.
-fn phase(t: f64, t_lo: f64, period: f64) -> (f64, f64) {
-    let turns = (Dd::exact(t) + t_lo) / Dd::decimal(period);
+fn phase(t: f64, t_lo: f64, frequency: Dd) -> (f64, f64) {
+    let turns = (Dd::exact(t) + t_lo) * frequency;
     let fraction = turns - turns.hi.round();
     let angle = TWO_PI * fraction;
     let (s, c) = angle.hi.sin_cos();
