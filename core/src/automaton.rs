@@ -274,14 +274,12 @@ impl Automaton {
 
     /// The reset of q' at an event (eqs. 21-22): uplift q' -> zetaU q', landing q' -> q'/zetaL.
     pub fn reset_velocity(&self, kind: EventKind, qdot: f64) -> f64 {
-        match kind {
-            EventKind::Uplift => self.zeta_uplift * qdot,
-            EventKind::Landing => qdot / self.zeta_landing,
-            EventKind::Overturn => qdot,
-        }
+        self.reset_velocity_twice(kind, DoubleDouble::exact(qdot))
+            .value()
     }
 
-    /// [`Automaton::reset_velocity`] to twice the precision, for a solver that carries q' so.
+    /// [`Automaton::reset_velocity`] to twice the precision, for a solver that carries q' so
+    /// (rounded, it is the double product or quotient itself).
     pub(crate) fn reset_velocity_twice(&self, kind: EventKind, qdot: DoubleDouble) -> DoubleDouble {
         match kind {
             EventKind::Uplift => qdot * self.zeta_uplift,

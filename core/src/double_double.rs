@@ -27,7 +27,7 @@ pub(crate) fn two_product(a: f64, b: f64) -> (f64, f64) {
 }
 
 /// hi + lo, normalised: hi is the double nearest the sum.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub(crate) struct DoubleDouble {
     pub hi: f64,
     pub lo: f64,
@@ -70,6 +70,10 @@ impl DoubleDouble {
         } else {
             integer / power_of_ten(-scale)
         };
+        // Beyond the range where 10^k is finite (subnormal numbers), the double itself.
+        if !value.hi.is_finite() || value.hi == 0.0 {
+            return Self::exact(x);
+        }
         if negative {
             -value
         } else {
@@ -291,6 +295,16 @@ mod tests {
         ] {
             let error = relative_error_from(Dd::decimal(x), p, q);
             assert!(error.abs() < 1e-30, "{x}: {error:e}");
+        }
+    }
+
+    /// The ends of the doubles' range read back as themselves, not as zero or infinity.
+    #[test]
+    fn decimals_at_the_ends_of_the_range_are_the_doubles() {
+        for x in [5e-324, -2.5e-320, 1e-300, 1.7976931348623157e308, -1e308] {
+            let read = Dd::decimal(x);
+            assert_eq!(read.value(), x, "{x:e}");
+            assert!(read.lo.is_finite());
         }
     }
 

@@ -45,26 +45,9 @@ pub(super) struct Point {
     pub jerk: f64,
 }
 
-/// A state kept to twice the working precision: hi + lo.
-#[derive(Debug, Clone, Copy, Default)]
-pub(super) struct Compensated {
-    pub hi: f64,
-    pub lo: f64,
-}
-
-impl Compensated {
-    pub fn new(value: f64) -> Self {
-        Compensated { hi: value, lo: 0.0 }
-    }
-    fn sum(hi: f64, lo: f64) -> Self {
-        let (s, e) = two_sum(hi, lo);
-        Compensated { hi: s, lo: e }
-    }
-}
-
 /// sum c_n u^n by compensated Horner (Graillat, Langlois and Louvet 2005): as if in twice the
 /// working precision.
-fn compensated_horner(coefficients: &[f64], u: f64) -> Compensated {
+fn compensated_horner(coefficients: &[f64], u: f64) -> Dd {
     let mut iter = coefficients.iter().rev();
     let mut s = *iter.next().unwrap_or(&0.0);
     let mut correction = 0.0;
@@ -74,7 +57,7 @@ fn compensated_horner(coefficients: &[f64], u: f64) -> Compensated {
         s = sum;
         correction = correction * u + (pe + se);
     }
-    Compensated::sum(s, correction)
+    Dd::new(s, correction)
 }
 
 /// What drives a flow, and how it is summed. One flow lives at a time, on the stack: the series
@@ -239,15 +222,15 @@ impl Flow {
         floor: &ClosedForm,
         anchor: f64,
         anchor_lo: f64,
-        q: Compensated,
-        v: Compensated,
+        q: Dd,
+        v: Dd,
         end: f64,
     ) -> Self {
         let (k, c, beta) = (linear.stiffness, linear.damping, linear.participation);
         let q_eq = linear.equilibrium;
         // x = q - q_eq, kept compensated.
         let (x_hi, x_e) = two_sum(q.hi, -q_eq);
-        let x = Compensated::sum(x_hi, x_e + q.lo);
+        let x = Dd::new(x_hi, x_e + q.lo);
         let rate = k.abs().sqrt().max(c.abs());
         let force_error = beta.abs() * floor.error_bound;
         match floor.shape {
@@ -348,8 +331,8 @@ impl Flow {
         c: f64,
         q_eq: f64,
         (anchor, anchor_lo): (f64, f64),
-        x: Compensated,
-        v: Compensated,
+        x: Dd,
+        v: Dd,
         end: f64,
         fs: f64,
         fc: f64,
@@ -427,8 +410,8 @@ impl Flow {
         beta: f64,
         q_eq: f64,
         (anchor, anchor_lo): (f64, f64),
-        x: Compensated,
-        v: Compensated,
+        x: Dd,
+        v: Dd,
         until: f64,
         origin: f64,
         floor: &[f64; MAX_DEGREE + 1],
@@ -508,7 +491,7 @@ impl Flow {
     }
 
     /// The state (q, q') at `t`, compensated: the next flow's anchor.
-    pub fn state(&self, t: f64) -> (Compensated, Compensated) {
+    pub fn state(&self, t: f64) -> (Dd, Dd) {
         let u = self.local(t);
         match &self.form {
             Form::Series { hi, lo, terms } => {
@@ -524,14 +507,11 @@ impl Flow {
                 let v = compensated_horner(&dhi[..n - 1], u);
                 let vl = horner(&dlo[..n - 1], u);
                 let (q_hi, q_e) = two_sum(x.hi, self.q_eq);
-                (
-                    Compensated::sum(q_hi, q_e + x.lo + xl),
-                    Compensated::sum(v.hi, v.lo + vl),
-                )
+                (Dd::new(q_hi, q_e + x.lo + xl), Dd::new(v.hi, v.lo + vl))
             }
             Form::Oscillator(_) => {
                 let p = self.point(t);
-                (Compensated::new(p.q), Compensated::new(p.v))
+                (Dd::exact(p.q), Dd::exact(p.v))
             }
         }
     }

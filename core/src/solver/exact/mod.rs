@@ -47,7 +47,7 @@ use crate::excitation::FloorMotion;
 use crate::solution::{Recorder, RoundingEstimate, Solution, SolverStats};
 use crate::solver::{History, InitialState, OutputGrid, SolverError};
 
-use flow::{Compensated, Flow, Point};
+use flow::{Flow, Point};
 use scan::{first_crossing, ScanError, Watch};
 
 /// The method's name in statistics, tables and model files.
@@ -199,8 +199,8 @@ fn solve_once(
         mode: automaton.initial_mode(initial.q),
         t: 0.0,
         t_lo: 0.0,
-        q: Compensated::new(initial.q),
-        v: Compensated::new(initial.qdot),
+        q: Dd::exact(initial.q),
+        v: Dd::exact(initial.qdot),
         energy,
         recorder,
         grid: OutputGrid::for_history(history, duration, settings.output_dt),
@@ -261,8 +261,8 @@ struct Run<'a> {
     /// The time of the last event beyond the double `t` (a fraction of its ulp), 0 after a flow
     /// that ends without one.
     t_lo: f64,
-    q: Compensated,
-    v: Compensated,
+    q: Dd,
+    v: Dd,
     /// Whether the energy books are kept.
     energy: bool,
     recorder: Recorder<'a>,
@@ -554,11 +554,8 @@ impl<'a> Run<'a> {
         self.mode = guard.to;
         self.t = p.t;
         self.t_lo = rest;
-        self.q = Compensated::new(guard.level);
-        self.v = Compensated {
-            hi: after.hi,
-            lo: after.lo,
-        };
+        self.q = Dd::exact(guard.level);
+        self.v = after;
         if guard.to != Mode::PreUplift {
             self.episode_peak = guard.level.abs();
         }
