@@ -114,6 +114,21 @@ impl Error {
         }
     }
 
+    /// The same error about column `index` of a row: a key `body.x` becomes `column[index].x`.
+    pub fn in_column(self, index: usize) -> Self {
+        match self {
+            Error::InvalidParameter { key, value, rule } => Error::InvalidParameter {
+                key: match key.strip_prefix("body.") {
+                    Some(rest) => format!("column[{index}].{rest}"),
+                    None => format!("column[{index}]: {key}"),
+                },
+                value,
+                rule,
+            },
+            other => other,
+        }
+    }
+
     /// True for errors caused by the user's input rather than by the computation or the disk.
     pub fn is_input_error(&self) -> bool {
         matches!(

@@ -130,6 +130,7 @@ pub mod pushover_check;
 pub mod record;
 pub mod rigid;
 pub mod rigid_criteria;
+pub mod row;
 pub mod run_tables;
 pub mod simulate;
 pub mod solution;
