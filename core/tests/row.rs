@@ -239,8 +239,14 @@ fn one_impact_of_two_free_columns_is_newtons_law() {
                 "an elastic impact loses {loss} J"
             );
         }
-        // Nothing lifts off.
+        // Nothing lifts off, and each column's energy books close through the impact.
         for c in &solved.columns {
+            assert!(
+                c.max_energy_residual <= 1e-12 * c.energy_scale,
+                "energy residual {} of {}",
+                c.max_energy_residual,
+                c.energy_scale
+            );
             assert!(c.events.iter().all(|ev| ev.kind == EventKind::Impact));
             assert_eq!(c.final_mode, Mode::PreUplift);
         }

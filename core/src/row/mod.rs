@@ -9,6 +9,45 @@
 //! impulse acting on each column through its velocity shape, simultaneous impacts of a chain
 //! resolved together as a linear complementarity problem. Between impacts the columns move
 //! independently, so a row whose gaps never close gives each column's single run.
+//!
+//! ```
+//! use flexrock_core::automaton::EventKind;
+//! use flexrock_core::body::{prism_mass, solid_section_flexural_rigidity, Body};
+//! use flexrock_core::body::{ConstantSet, SelfWeight};
+//! use flexrock_core::excitation::PaperSine;
+//! use flexrock_core::row::{ColumnSpec, Row};
+//! use flexrock_core::solver::exact::{solve_row, ExactSettings};
+//! use flexrock_core::solver::{History, InitialState};
+//!
+//! // Two columns of the paper's size, the right one stiffer, 2 cm apart, under the paper's sine.
+//! let column = |youngs_modulus: f64| ColumnSpec {
+//!     body: Body {
+//!         height: 4.0,
+//!         width: 0.7,
+//!         depth: 1.0,
+//!         mass: prism_mass(600.0, 4.0, 0.7, 1.0),
+//!         flexural_rigidity: solid_section_flexural_rigidity(youngs_modulus, 0.7, 1.0),
+//!         damping_ratio: 0.05,
+//!         gravity: 9.81,
+//!         constant_set: ConstantSet::Exact,
+//!         self_weight: SelfWeight::Paper,
+//!     },
+//!     initial: InitialState { q: 0.0, qdot: 0.0 },
+//! };
+//! let row = Row::new(&[column(5e6), column(5e7)], &[0.02], 0.5)?;
+//! let floor = PaperSine::new(4.0, 1.0, 0.412);
+//! let settings = ExactSettings { output_dt: 0.01 };
+//! let solved = solve_row(&row, &floor, 6.0, &settings, History::Sampled)?;
+//! // The softer column sways further and strikes its neighbour.
+//! assert!(!solved.impacts.is_empty());
+//! let first = solved.impacts[0];
+//! assert!(first.impulse > 0.0 && first.separating_velocity > 0.0);
+//! // Each impact is an event of both columns, whose q' jumps there.
+//! for column in &solved.columns {
+//!     assert!(column.events.iter().any(|e| e.kind == EventKind::Impact));
+//! }
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
 
 mod contact;
 mod impact;
@@ -143,7 +182,7 @@ impl Row {
                 (column.automaton.initial_mode(q), q)
             };
             let gap = contact.gap((&left.automaton, &right.automaton), at(left), at(right));
-            if !(gap > 0.0) {
+            if gap.is_nan() || gap <= 0.0 {
                 return Err(Error::invalid(
                     &format!("row.gaps[{c}]"),
                     contact.clearance,
