@@ -114,11 +114,15 @@ impl Error {
         }
     }
 
-    /// The same error about column `index` of a row: a key `body.x` becomes `column[index].x`.
+    /// The same error about column `index` of a row: a key `body.x` (or `simulation.q0`) becomes
+    /// `column[index].x`.
     pub fn in_column(self, index: usize) -> Self {
         match self {
             Error::InvalidParameter { key, value, rule } => Error::InvalidParameter {
-                key: match key.strip_prefix("body.") {
+                key: match key
+                    .strip_prefix("body.")
+                    .or_else(|| key.strip_prefix("simulation."))
+                {
                     Some(rest) => format!("column[{index}].{rest}"),
                     None => format!("column[{index}]: {key}"),
                 },

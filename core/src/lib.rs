@@ -131,6 +131,7 @@ pub mod record;
 pub mod rigid;
 pub mod rigid_criteria;
 pub mod row;
+pub mod row_results;
 pub mod run_tables;
 pub mod simulate;
 pub mod solution;
