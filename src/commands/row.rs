@@ -88,10 +88,10 @@ pub fn row_report_text(model: &RowModel, report: &RowReport) -> String {
     let lost: f64 = s.impact_energy_loss.iter().map(|(_, e)| e).sum();
     let _ = writeln!(
         t,
-        "  {} at {}, taking {:.6e} J; {}",
+        "  {} at {}, taking {} J; {}",
         writers::count(s.impacts.len(), "impact", "impacts"),
         writers::count(s.impact_energy_loss.len(), "instant", "instants"),
-        lost,
+        writers::significant(lost, 6),
         match s.overturned {
             Some((i, at)) => format!("column {i} overturned at t = {at:.9} s (the run ends there)"),
             None => "no overturning".to_string(),

@@ -50,16 +50,22 @@ pub fn panels(model: &RowModel, solution: &RowSolution) -> Vec<Panel> {
     );
     floor.legend = Legend::Outside;
     let mut q = Panel::new(
-        "Top displacement of each column i, left to right",
+        "Top displacement of each column i (H × B, pre-uplift period T)",
         "t (s)",
         "q (m)",
     );
     for (i, column) in solution.columns.iter().enumerate() {
         let body = &model.bodies[i];
+        // The pre-uplift period from the automaton's own rate: k = omega^2.
+        let period = model.row.columns()[i]
+            .automaton
+            .linear_form(flexrock_core::automaton::Mode::PreUplift)
+            .map_or(f64::NAN, |f| std::f64::consts::TAU / f.stiffness.sqrt());
         let name = format!(
-            "{i}: H × B = {} × {} m",
+            "{i}: {} × {} m, T = {} s",
             crate::writers::significant(body.height, 4),
-            crate::writers::significant(body.width, 4)
+            crate::writers::significant(body.width, 4),
+            crate::writers::significant(period, 3)
         );
         q = q.with(
             Series::line(
