@@ -5,7 +5,12 @@
 use crate::common::{flexrock, refused, repo, scratch_dir};
 
 fn run(model: &std::path::Path, out: &std::path::Path, extra: &[&str]) -> std::process::Output {
-    let mut args = vec!["run", model.to_str().unwrap(), "--out", out.to_str().unwrap()];
+    let mut args = vec![
+        "run",
+        model.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ];
     args.extend_from_slice(extra);
     flexrock(&args)
 }
@@ -60,7 +65,9 @@ fn a_row_run_writes_every_column_and_the_impacts_the_same_twice() {
         let t = row.split(',').nth(1).unwrap();
         for i in 0..2 {
             assert!(
-                events(i).lines().any(|e| e.contains(&format!(",{t},impact,"))),
+                events(i)
+                    .lines()
+                    .any(|e| e.contains(&format!(",{t},impact,"))),
                 "column {i} has no impact at {t}"
             );
         }
@@ -121,8 +128,16 @@ const ROW: &str = "[row]\ngaps = [0.02]\nrestitution = 0.5\n\n\
 #[test]
 fn bad_row_files_are_refused_by_key_with_no_output() {
     let cases: [(&str, String, &str); 9] = [
-        ("gaps", ROW.replace("gaps = [0.02]", "gaps = [0.02, 0.01]"), "row.gaps = 2 gaps"),
-        ("gap-zero", ROW.replace("gaps = [0.02]", "gaps = [0.0]"), "row.gaps[0] = 0"),
+        (
+            "gaps",
+            ROW.replace("gaps = [0.02]", "gaps = [0.02, 0.01]"),
+            "row.gaps = 2 gaps",
+        ),
+        (
+            "gap-zero",
+            ROW.replace("gaps = [0.02]", "gaps = [0.0]"),
+            "row.gaps[0] = 0",
+        ),
         (
             "restitution",
             ROW.replace("restitution = 0.5", "restitution = 1.2"),
@@ -130,24 +145,45 @@ fn bad_row_files_are_refused_by_key_with_no_output() {
         ),
         (
             "width",
-            ROW.replacen("width = 0.7", "width = -0.7", 2).replacen("width = -0.7", "width = 0.7", 1),
+            ROW.replacen("width = 0.7", "width = -0.7", 2).replacen(
+                "width = -0.7",
+                "width = 0.7",
+                1,
+            ),
             "column[1].width = -0.7",
         ),
         (
             "q0",
-            ROW.replace("youngs_modulus = 5.0e7\n", "youngs_modulus = 5.0e7\nq0 = 0.9\n"),
+            ROW.replace(
+                "youngs_modulus = 5.0e7\n",
+                "youngs_modulus = 5.0e7\nq0 = 0.9\n",
+            ),
             "column[1].q0 = 0.9",
         ),
         (
             "unknown-key",
-            ROW.replace("youngs_modulus = 5.0e7\n", "youngs_modulus = 5.0e7\nheigth = 2\n"),
+            ROW.replace(
+                "youngs_modulus = 5.0e7\n",
+                "youngs_modulus = 5.0e7\nheigth = 2\n",
+            ),
             "column[1]: unknown field `heigth`",
         ),
-        ("method", ROW.to_string() + "[solver]\nmethod = \"bdf\"\n", "solver.method = \"bdf\""),
-        ("table", ROW.to_string() + "[body]\nheight = 4.0\n", "unknown table `body`"),
+        (
+            "method",
+            ROW.to_string() + "[solver]\nmethod = \"bdf\"\n",
+            "solver.method = \"bdf\"",
+        ),
+        (
+            "table",
+            ROW.to_string() + "[body]\nheight = 4.0\n",
+            "unknown table `body`",
+        ),
         (
             "overlap",
-            ROW.replace("youngs_modulus = 5.0e6\n", "youngs_modulus = 5.0e6\nq0 = 0.05\n"),
+            ROW.replace(
+                "youngs_modulus = 5.0e6\n",
+                "youngs_modulus = 5.0e6\nq0 = 0.05\n",
+            ),
             "overlap",
         ),
     ];
