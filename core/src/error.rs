@@ -114,21 +114,13 @@ impl Error {
         }
     }
 
-    /// The same error about column `index` of a row: a key `body.x` (or `simulation.q0`) becomes
-    /// `column[index].x`.
+    /// The same error about column `index` of a row ([`InvalidParameter::in_column`]); other
+    /// errors are returned unchanged.
     pub fn in_column(self, index: usize) -> Self {
         match self {
-            Error::InvalidParameter { key, value, rule } => Error::InvalidParameter {
-                key: match key
-                    .strip_prefix("body.")
-                    .or_else(|| key.strip_prefix("simulation."))
-                {
-                    Some(rest) => format!("column[{index}].{rest}"),
-                    None => format!("column[{index}]: {key}"),
-                },
-                value,
-                rule,
-            },
+            Error::InvalidParameter { key, value, rule } => InvalidParameter { key, value, rule }
+                .in_column(index)
+                .into(),
             other => other,
         }
     }

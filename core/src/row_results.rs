@@ -10,8 +10,9 @@ use crate::format::number;
 use crate::automaton::EventKind;
 use crate::body::Body;
 use crate::model::{RowModel, RowSection};
+use crate::row::RowSolution;
 use crate::simulate::VERSION;
-use crate::solver::exact::{ExactSettings, RowSolution};
+use crate::solver::exact::ExactSettings;
 use crate::solver::InitialState;
 
 /// summary.json of a row.

@@ -27,8 +27,8 @@ pub fn simulate_with(model: &Model, settings: &SolverSettings) -> Result<Solutio
 }
 
 /// Solves a row of columns (its own exact method) keeping every column's history.
-pub fn simulate_row(model: &crate::model::RowModel) -> Result<crate::solver::exact::RowSolution> {
-    Ok(crate::solver::exact::solve_row(
+pub fn simulate_row(model: &crate::model::RowModel) -> Result<crate::row::RowSolution> {
+    Ok(crate::row::solve_row(
         &model.row,
         model.floor.as_ref(),
         model.duration,

@@ -12,9 +12,9 @@ use flexrock_core::body::{
 };
 use flexrock_core::constants::Constants;
 use flexrock_core::excitation::{FloorMotion, Free, PaperSine, PulseShape, SinePulse};
-use flexrock_core::row::{ColumnSpec, Row};
+use flexrock_core::row::{solve_row, ColumnSpec, Row};
 use flexrock_core::solution::Solution;
-use flexrock_core::solver::exact::{self, solve_row, ExactSettings};
+use flexrock_core::solver::exact::{self, ExactSettings};
 use flexrock_core::solver::{History, InitialState};
 
 /// The first root of cos L cosh L = -1 and sigma of the cantilever mode, from their closed
@@ -339,7 +339,7 @@ fn impacts_that_accumulate_are_stopped_with_a_message() {
 fn bad_rows_are_refused_by_name() {
     let spec = at_rest(body(4.0, 0.7, 600.0, 5e6, 0.05));
     let two = [spec.clone(), spec.clone()];
-    let message = |r: Result<Row, flexrock_core::Error>| r.unwrap_err().to_string();
+    let message = |r: Result<Row, flexrock_core::InvalidParameter>| r.unwrap_err().to_string();
     assert!(message(Row::new(&two[..1], &[], 0.5)).contains("at least 2 columns"));
     assert!(message(Row::new(&two, &[0.1, 0.1], 0.5)).contains("row.gaps"));
     for gap in [0.0, -0.01, f64::NAN, f64::INFINITY] {

@@ -9,9 +9,9 @@ use crate::writers;
 use flexrock_core::automaton::EventKind;
 use flexrock_core::columns::fields;
 use flexrock_core::model::RowModel;
+use flexrock_core::row::RowSolution;
 use flexrock_core::row_results::{impact_rows, row_summary, IMPACT_COLUMNS, IMPACT_COLUMN_NAMES};
 use flexrock_core::simulate::{simulate_row, VERSION};
-use flexrock_core::solver::exact::RowSolution;
 
 /// What `flexrock run` on a row returns.
 pub struct RowReport {

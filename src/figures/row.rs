@@ -7,7 +7,7 @@
 use crate::error::Result;
 use crate::figures::plot::{self, Format, Legend, Panel, Series, VerticalLine};
 use flexrock_core::model::RowModel;
-use flexrock_core::solver::exact::RowSolution;
+use flexrock_core::row::RowSolution;
 
 /// The figure's file stem.
 pub const ROW_FIGURE: &str = "row_motion";

@@ -15,8 +15,8 @@
 //! use flexrock_core::body::{prism_mass, solid_section_flexural_rigidity, Body};
 //! use flexrock_core::body::{ConstantSet, SelfWeight};
 //! use flexrock_core::excitation::PaperSine;
-//! use flexrock_core::row::{ColumnSpec, Row};
-//! use flexrock_core::solver::exact::{solve_row, ExactSettings};
+//! use flexrock_core::row::{solve_row, ColumnSpec, Row};
+//! use flexrock_core::solver::exact::ExactSettings;
 //! use flexrock_core::solver::{History, InitialState};
 //!
 //! // Two columns of the paper's size, the right one stiffer, 2 cm apart, under the paper's sine.
@@ -51,14 +51,16 @@
 
 mod contact;
 mod impact;
+mod solve;
 
 pub use contact::Contact;
-pub use impact::{impulses, ImpactError};
+pub use impact::{impulses, ImpactError, MAX_SIMULTANEOUS};
+pub use solve::{solve_row, ImpactRecord, RowSolution, ACCUMULATION_SHARE};
 
 use crate::automaton::Automaton;
 use crate::body::Body;
 use crate::constants::{flexural_shape_at, Constants};
-use crate::error::Error;
+use crate::invalid::InvalidParameter as Error;
 use crate::solver::InitialState;
 
 /// One column of a row: its body and where it starts.
@@ -97,14 +99,14 @@ impl Row {
     /// contact. Errors name the key: `column[i].…`, `row.gaps`, `row.restitution`.
     pub fn new(columns: &[ColumnSpec], gaps: &[f64], restitution: f64) -> Result<Self, Error> {
         if columns.len() < 2 {
-            return Err(Error::invalid(
+            return Err(Error::new(
                 "column",
                 columns.len(),
                 "a row needs at least 2 columns",
             ));
         }
         if gaps.len() != columns.len() - 1 {
-            return Err(Error::invalid(
+            return Err(Error::new(
                 "row.gaps",
                 format!("{} gaps", gaps.len()),
                 &format!(
@@ -116,7 +118,7 @@ impl Row {
         }
         for (i, &gap) in gaps.iter().enumerate() {
             if !(gap.is_finite() && gap > 0.0) {
-                return Err(Error::invalid(
+                return Err(Error::new(
                     &format!("row.gaps[{i}]"),
                     gap,
                     "must be a finite clear gap > 0 m (columns touching at rest would stay in \
@@ -125,7 +127,7 @@ impl Row {
             }
         }
         if !(0.0..=1.0).contains(&restitution) {
-            return Err(Error::invalid(
+            return Err(Error::new(
                 "row.restitution",
                 restitution,
                 "must be in [0, 1]",
@@ -133,12 +135,8 @@ impl Row {
         }
         let mut built = Vec::with_capacity(columns.len());
         for (i, spec) in columns.iter().enumerate() {
-            let body = spec
-                .body
-                .clone()
-                .validated()
-                .map_err(|e| Error::from(e).in_column(i))?;
-            let constants = Constants::new(&body).map_err(|e| Error::from(e).in_column(i))?;
+            let body = spec.body.clone().validated().map_err(|e| e.in_column(i))?;
+            let constants = Constants::new(&body).map_err(|e| e.in_column(i))?;
             built.push(Column {
                 automaton: Automaton::new(&constants),
                 height: spec.body.height,
@@ -159,7 +157,7 @@ impl Row {
                     flexural_shape_at(body, xi)
                 };
                 shape.map(|shape| (xi, shape)).ok_or_else(|| {
-                    Error::invalid(
+                    Error::new(
                         &format!("column[{index}].height"),
                         body.height,
                         "the body buckles under its own weight",
@@ -183,7 +181,7 @@ impl Row {
             };
             let gap = contact.gap((&left.automaton, &right.automaton), at(left), at(right));
             if gap.is_nan() || gap <= 0.0 {
-                return Err(Error::invalid(
+                return Err(Error::new(
                     &format!("row.gaps[{c}]"),
                     contact.clearance,
                     &format!(

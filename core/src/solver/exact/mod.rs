@@ -33,11 +33,8 @@
 //! rounding for these smooth integrands; the energy residual therefore checks the quadrature
 //! and the resets, not the solution.
 
-mod flow;
-mod row;
-mod scan;
-
-pub use row::{solve_row, ImpactRecord, RowSolution, ACCUMULATION_SHARE};
+pub(crate) mod flow;
+pub(crate) mod scan;
 
 use std::time::Instant;
 

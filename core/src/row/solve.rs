@@ -1,4 +1,4 @@
-//! The exact solution of a row of columns (crate::row): every column moves by its own exact
+//! The exact solution of a row of columns: every column moves by its own exact
 //! flows, planned and taken exactly as a run of the column alone takes them, and the row
 //! searches the gap of each pair of neighbours along the two flows for its first closing.
 //!
@@ -9,7 +9,7 @@
 //! closing cannot be missed. With no closing, the columns whose stop ends the window take their
 //! flow, the others keep theirs, unchanged. At a closing, the columns in contact are cut there
 //! ([`Run::cut`]), the impulses of every contact closing at that instant are found together
-//! (crate::row::impulses), and each column's q' jumps by its share ([`Run::impact`]). A column
+//! ([`impulses`]), and each column's q' jumps by its share ([`Run::impact`]). A column
 //! that takes no part never re-anchors, so a row whose gaps never close gives, column by
 //! column, the runs of the columns alone to the last digit.
 //!
@@ -20,14 +20,14 @@
 
 use std::time::Instant;
 
-use super::flow::{Flow, Point};
-use super::scan::{self, first_crossing, ScanError, Smooth, Watch};
-use super::{ExactSettings, Planned, Run, NAME};
+use super::{impulses, Contact, Row};
 use crate::automaton::{Automaton, EventKind, Guard, Mode};
+use crate::solver::exact::flow::{Flow, Point};
+use crate::solver::exact::scan::{self, first_crossing, ScanError, Smooth, Watch};
+use crate::solver::exact::{ExactSettings, Planned, Run, NAME};
 
 use crate::double_double::DoubleDouble as Dd;
 use crate::excitation::FloorMotion;
-use crate::row::{impulses, Contact, Row};
 use crate::solution::Solution;
 use crate::solver::budget::RunBudget;
 use crate::solver::{History, SolverError};
