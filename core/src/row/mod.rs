@@ -4,8 +4,8 @@
 //!
 //! Each column keeps its own automaton: its modes, its flow within each, its uplifts, landings
 //! and overturning are exactly those of the body alone. The row adds contacts between
-//! neighbours, each at the top of the shorter of the two ([`contact`]), and an impact law at
-//! them ([`impact`]): Newton's restitution on the closing velocity of the contact points, the
+//! neighbours, each at the top of the shorter of the two ([`Contact`]), and an impact law at
+//! them ([`impulses`]): Newton's restitution on the closing velocity of the contact points, the
 //! impulse acting on each column through its velocity shape, simultaneous impacts of a chain
 //! resolved together as a linear complementarity problem. Between impacts the columns move
 //! independently, so a row whose gaps never close gives each column's single run.
