@@ -32,7 +32,9 @@ pub(crate) enum Command {
     },
     /// Simulate a model and write history.csv, events.csv, episodes.csv and summary.json.
     Run {
-        /// Model file (TOML).
+        /// Model file (TOML): one body, or a row of columns (a [row] table and one [[column]]
+        /// per column: each column's files, impacts.csv and summary.json; only --out,
+        /// --duration and --plot apply).
         model: PathBuf,
         /// Output directory [default: out/<model file stem>].
         #[arg(long)]

@@ -54,6 +54,9 @@ pub enum EventKind {
     Landing,
     /// |q| reaches B: the body falls over.
     Overturn,
+    /// A neighbouring column of a row strikes the body: q' jumps by the contact's impulse and
+    /// the mode stays. Never an event of a body alone.
+    Impact,
 }
 
 impl EventKind {
@@ -63,6 +66,7 @@ impl EventKind {
             EventKind::Uplift => "uplift",
             EventKind::Landing => "landing",
             EventKind::Overturn => "overturn",
+            EventKind::Impact => "impact",
         }
     }
 }
@@ -284,7 +288,8 @@ impl Automaton {
         match kind {
             EventKind::Uplift => qdot * self.zeta_uplift,
             EventKind::Landing => qdot / self.zeta_landing,
-            EventKind::Overturn => qdot,
+            // No reset of the body's own: a row's impact law gives the jump.
+            EventKind::Overturn | EventKind::Impact => qdot,
         }
     }
 
@@ -405,11 +410,7 @@ impl Automaton {
     /// uplift, M (int V^2) q'^2/2 while rocking (book/src/model.md §5). Unlike the SDOF energy,
     /// it falls at every uplift and landing; the fall is the energy the impact takes.
     pub fn body_kinetic_energy(&self, mode: Mode, qdot: f64) -> f64 {
-        let mass = match mode {
-            Mode::PreUplift => self.kinetic_mass_pre_uplift,
-            Mode::RockRight | Mode::RockLeft | Mode::Overturned => self.kinetic_mass_rocking,
-        };
-        0.5 * mass * qdot * qdot
+        0.5 * self.kinetic_mass(mode) * qdot * qdot
     }
 
     /// The SDOF energy E = Me q'^2/2 + V(q) in `mode`, whose balance the solvers book.
@@ -458,6 +459,34 @@ impl Automaton {
     pub fn flexural_part_at_rocking_part(&self, abs_r: f64) -> f64 {
         let slope = self.rocking_flexural_slope;
         self.s_n + slope / (1.0 - slope) * abs_r
+    }
+
+    /// M int Phi^2, kg, with Phi the velocity shape of `mode` (U before uplift, V while rocking):
+    /// the body's horizontal kinetic energy is this times q'^2/2, and a horizontal impulse J at
+    /// height xi H changes q' by Phi(xi) J over it.
+    pub fn kinetic_mass(&self, mode: Mode) -> f64 {
+        match mode {
+            Mode::PreUplift => self.kinetic_mass_pre_uplift,
+            Mode::RockRight | Mode::RockLeft | Mode::Overturned => self.kinetic_mass_rocking,
+        }
+    }
+
+    /// Horizontal displacement u = U(xi) s + xi r of the section at height xi H relative to the
+    /// floor, m, in `mode` at q; `shape` is U(xi), the flexural shape there (1 at the top, where
+    /// u = q).
+    pub fn displacement_at(&self, mode: Mode, q: f64, xi: f64, shape: f64) -> f64 {
+        let s = self.flexural_part(mode, q);
+        shape * s + xi * (q - s)
+    }
+
+    /// du/dq at height xi H in `mode` (the velocity shape Phi(xi): U(xi) before uplift, V(xi)
+    /// while rocking), with `shape` = U(xi). Within a mode u is affine in q, with this slope.
+    pub fn displacement_slope_at(&self, mode: Mode, xi: f64, shape: f64) -> f64 {
+        let ds = match mode {
+            Mode::PreUplift => 1.0,
+            Mode::RockRight | Mode::RockLeft | Mode::Overturned => self.rocking_flexural_slope,
+        };
+        shape * ds + xi * (1.0 - ds)
     }
 
     /// Rocking part r = q - s of q (eq. 9).

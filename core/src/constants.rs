@@ -40,6 +40,18 @@ pub fn cantilever_mode(xi: f64) -> f64 {
     (z.cosh() - z.cos() - sigma * (z.sinh() - z.sin())) / 2.0
 }
 
+/// The flexural shape of `body`'s variant at height xi H, scaled to 1 at the top: the paper's
+/// U(xi), or psi(xi) of the consistent variant (`None` when the body buckles under its own
+/// weight).
+pub fn flexural_shape_at(body: &Body, xi: f64) -> Option<f64> {
+    match body.self_weight {
+        SelfWeight::Paper => Some(cantilever_mode(xi)),
+        SelfWeight::Consistent => {
+            SelfWeightedShape::new(body.gravity_parameter()).map(|shape| shape.value(xi))
+        }
+    }
+}
+
 /// Value of M g H^2 / EI at which a uniform cantilever buckles under its own weight.
 pub const SELF_WEIGHT_BUCKLING_PARAMETER: f64 = 7.837;
 

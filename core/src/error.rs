@@ -114,6 +114,17 @@ impl Error {
         }
     }
 
+    /// The same error about column `index` of a row ([`InvalidParameter::in_column`]); other
+    /// errors are returned unchanged.
+    pub fn in_column(self, index: usize) -> Self {
+        match self {
+            Error::InvalidParameter { key, value, rule } => InvalidParameter { key, value, rule }
+                .in_column(index)
+                .into(),
+            other => other,
+        }
+    }
+
     /// True for errors caused by the user's input rather than by the computation or the disk.
     pub fn is_input_error(&self) -> bool {
         matches!(

@@ -17,6 +17,20 @@ pub struct InvalidParameter {
 }
 
 impl InvalidParameter {
+    /// The same error about column `index` of a row: a key `body.x` (or `simulation.q0`)
+    /// becomes `column[index].x`.
+    pub fn in_column(self, index: usize) -> Self {
+        let key = match self
+            .key
+            .strip_prefix("body.")
+            .or_else(|| self.key.strip_prefix("simulation."))
+        {
+            Some(rest) => format!("column[{index}].{rest}"),
+            None => format!("column[{index}]: {}", self.key),
+        };
+        InvalidParameter { key, ..self }
+    }
+
     /// The error for `key` = `value` breaking `rule`; numbers are quoted in their shortest form,
     /// and a value written with a unit (`0.3g`) gets a hint added to the rule.
     pub fn new(key: &str, value: impl Quoted, rule: &str) -> Self {

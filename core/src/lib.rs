@@ -130,6 +130,8 @@ pub mod pushover_check;
 pub mod record;
 pub mod rigid;
 pub mod rigid_criteria;
+pub mod row;
+pub mod row_results;
 pub mod run_tables;
 pub mod simulate;
 pub mod solution;

@@ -26,6 +26,17 @@ pub fn simulate_with(model: &Model, settings: &SolverSettings) -> Result<Solutio
     solve(model, settings, History::Sampled)
 }
 
+/// Solves a row of columns (its own exact method) keeping every column's history.
+pub fn simulate_row(model: &crate::model::RowModel) -> Result<crate::row::RowSolution> {
+    Ok(crate::row::solve_row(
+        &model.row,
+        model.floor.as_ref(),
+        model.duration,
+        &model.settings,
+        History::Sampled,
+    )?)
+}
+
 /// Solves a model with its own solver, keeping no history: events, peaks and statistics only
 /// (what a sweep needs of each of its points).
 pub fn simulate_peaks(model: &Model) -> Result<Solution> {

@@ -407,7 +407,8 @@ impl<'a> Recorder<'a> {
         self.mode = from;
         self.sample(t, from, q, qdot_before, floor_acc, work_input, work_damping);
         let a = self.automaton;
-        if let Some(episode) = self.open_episode() {
+        let ends_episode = matches!(kind, EventKind::Landing | EventKind::Overturn);
+        if let Some(episode) = self.open_episode().filter(|_| ends_episode) {
             // A landing or an overturning ends the episode.
             episode.t_end = Some(t);
             episode.ended_by = Some(kind);

@@ -20,3 +20,4 @@ mod random_models;
 mod recorded_motion;
 mod rigid;
 mod rigid_forms;
+mod row;

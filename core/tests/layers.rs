@@ -8,7 +8,7 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 /// The modules from the bottom up. A module may use only the modules before it.
-const LAYERS: [&str; 30] = [
+const LAYERS: [&str; 32] = [
     // units and formatting
     "units",
     "format",
@@ -30,6 +30,7 @@ const LAYERS: [&str; 30] = [
     "solver",
     "rigid",
     "rigid_criteria",
+    "row",
     "fem",
     "findings",
     // the model file and simulation
@@ -37,6 +38,7 @@ const LAYERS: [&str; 30] = [
     "model",
     "simulate",
     "summary",
+    "row_results",
     // analysis
     "sweep",
     "compare",

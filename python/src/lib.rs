@@ -1,6 +1,6 @@
 //! `flexrock._native`, the compiled half of the Python package `flexrock` (python/python/flexrock
 //! re-exports it with its documentation): `Model`, `GroundMotion`, `read_record`, `props`,
-//! `simulate` (a `Result` of numpy arrays), `sweep` (sweep.csv's columns, typed) and `compare`,
+//! `simulate` (a `Result` of numpy arrays), `simulate_row` (a row of columns), `sweep` (sweep.csv's columns, typed) and `compare`,
 //! `converge`, `fem_check`. Every number comes from flexrock-core exactly as the command line
 //! computes it; nothing is written to disk.
 
@@ -36,6 +36,8 @@ fn flexrock_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(motion::read_record, m)?)?;
     m.add_function(wrap_pyfunction!(simulate::props, m)?)?;
     m.add_function(wrap_pyfunction!(simulate::simulate, m)?)?;
+    m.add_class::<simulate::RowResult>()?;
+    m.add_function(wrap_pyfunction!(simulate::simulate_row, m)?)?;
     m.add_function(wrap_pyfunction!(sweep::sweep, m)?)?;
     m.add_function(wrap_pyfunction!(analysis::compare, m)?)?;
     m.add_function(wrap_pyfunction!(analysis::converge, m)?)?;

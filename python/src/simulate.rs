@@ -168,6 +168,18 @@ pub(crate) fn simulate(
     };
     let m = rebuilt.as_ref().unwrap_or(&model.model);
     let solution = py.detach(|| flexrock_core::simulate(m)).map_err(err)?;
+    let summary = json(py, &flexrock_core::summary::summary(m, &solution))?.unbind();
+    result_of(py, &solution, m.body.height, summary)
+}
+
+/// The `Result` of a solution: its history as numpy arrays, its events and episodes as dicts,
+/// and `summary`.
+fn result_of(
+    py: Python<'_>,
+    solution: &flexrock_core::solution::Solution,
+    height: f64,
+    summary: Py<PyAny>,
+) -> PyResult<SimResult> {
     let samples = &solution.samples;
     let column = |f: fn(&flexrock_core::solution::Sample) -> f64| -> Py<PyAny> {
         PyArray1::from_vec(py, samples.iter().map(f).collect())
@@ -194,7 +206,7 @@ pub(crate) fn simulate(
     for e in &solution.episodes {
         use flexrock_core::run_tables::{episode_fields, EpisodeField, EPISODE_COLUMNS};
         let d = PyDict::new(py);
-        for (column, field) in EPISODE_COLUMNS.iter().zip(episode_fields(e, m.body.height)) {
+        for (column, field) in EPISODE_COLUMNS.iter().zip(episode_fields(e, height)) {
             match field {
                 EpisodeField::Count(n) => d.set_item(column, n)?,
                 EpisodeField::Word(w) => d.set_item(column, w)?,
@@ -203,7 +215,6 @@ pub(crate) fn simulate(
         }
         episodes.append(d)?;
     }
-    let summary = json(py, &flexrock_core::summary::summary(m, &solution))?.unbind();
     Ok(SimResult {
         t: column(|s| s.t),
         q: column(|s| s.q),
@@ -219,5 +230,60 @@ pub(crate) fn simulate(
         events: events.into_any().unbind(),
         episodes: episodes.into_any().unbind(),
         summary,
+    })
+}
+
+/// The solution of `simulate_row`: each column's `Result`, the impacts and the summary.
+#[pyclass(module = "flexrock", name = "RowResult")]
+pub(crate) struct RowResult {
+    /// Each column's `Result`, left to right; its `summary` is the column's entry of the row's.
+    #[pyo3(get)]
+    columns: Py<PyAny>,
+    /// The impacts: dicts with impacts.csv's columns.
+    #[pyo3(get)]
+    impacts: Py<PyAny>,
+    /// The dict of the row's summary.json.
+    #[pyo3(get)]
+    summary: Py<PyAny>,
+}
+
+#[pymethods]
+impl RowResult {
+    fn __repr__(&self, py: Python<'_>) -> PyResult<String> {
+        Ok(format!(
+            "RowResult({} columns, {} impacts)",
+            self.columns.bind(py).len()?,
+            self.impacts.bind(py).len()?
+        ))
+    }
+}
+
+/// Solves a row model file (a `[row]` table and one `[[column]]` per column) by the exact
+/// method; `duration` (s) replaces `simulation.duration`.
+#[pyfunction]
+#[pyo3(signature = (path, duration=None))]
+pub(crate) fn simulate_row(
+    py: Python<'_>,
+    path: std::path::PathBuf,
+    duration: Option<f64>,
+) -> PyResult<RowResult> {
+    use flexrock_core::row_results::{impact_rows, row_summary};
+    let model = flexrock_core::model::RowModel::load(&path, duration)
+        .map_err(|e| err_naming(e, &[("simulation.duration", "duration")]))?;
+    let solution = py
+        .detach(|| flexrock_core::simulate::simulate_row(&model))
+        .map_err(err)?;
+    let summary = json(py, &row_summary(&model, &solution))?;
+    let columns = PyList::empty(py);
+    for (i, column) in solution.columns.iter().enumerate() {
+        let own = summary.get_item("columns")?.get_item(i)?.unbind();
+        columns.append(result_of(py, column, model.bodies[i].height, own)?)?;
+    }
+    // impacts.csv's rows, keyed by its column names (the row type serializes under them).
+    let impacts = json(py, &impact_rows(&model, &solution))?;
+    Ok(RowResult {
+        columns: columns.into_any().unbind(),
+        impacts: impacts.unbind(),
+        summary: summary.unbind(),
     })
 }

@@ -17,5 +17,6 @@ pub mod fem;
 pub mod pushover;
 pub mod record;
 pub mod report;
+pub mod row;
 pub mod run;
 pub mod sweep;

@@ -3,5 +3,6 @@
 
 pub mod criteria;
 pub mod plot;
+pub mod row;
 pub mod run;
 pub mod sweep;

@@ -7,6 +7,7 @@
 
 mod excitation_section;
 mod fem_section;
+mod row_file;
 mod setting;
 mod solver_section;
 mod table;
@@ -21,6 +22,7 @@ pub use fem_section::{
     FemSetup, DEFAULT_FEM_DT, DEFAULT_FEM_MU_K, DEFAULT_FEM_MU_S, DEFAULT_FEM_NX, DEFAULT_FEM_NY,
     DEFAULT_FEM_THETA, DEFAULT_POISSON_RATIO, FEM_SNAPSHOT_TIMES,
 };
+pub use row_file::{is_row_table, RowModel, RowSection, RowSimulationSection};
 use solver_section::{check_rtol, newmark_from_section, solver_from_section};
 pub use solver_section::{
     DEFAULT_NEWMARK_BETA, DEFAULT_NEWMARK_DT, DEFAULT_NEWMARK_GAMMA, MAX_ATOL_OVER_WIDTH, MAX_RTOL,

@@ -27,7 +27,7 @@ from __future__ import annotations
 from typing import Mapping, Optional, Sequence, Tuple, Union
 
 from . import _native
-from ._native import FlexrockError, GroundMotion, Model, Result, __version__
+from ._native import FlexrockError, GroundMotion, Model, Result, RowResult, __version__
 from ._sweep import SweepResult
 
 __all__ = [
@@ -35,6 +35,7 @@ __all__ = [
     "GroundMotion",
     "Model",
     "Result",
+    "RowResult",
     "SweepResult",
     "__version__",
     "compare",
@@ -43,6 +44,7 @@ __all__ = [
     "props",
     "read_record",
     "simulate",
+    "simulate_row",
     "sweep",
 ]
 
@@ -184,6 +186,60 @@ Examples
 >>> result = flexrock.simulate(model)
 >>> result.q.max(), result.summary["n_uplift"]
 """
+
+RowResult.__doc__ = """The solution of `simulate_row`: a row of columns that strike each other.
+
+Attributes
+----------
+columns : list of Result
+    Each column's solution, left to right (counted from 0): its history as numpy arrays, its
+    events (impacts among them, kind "impact") and episodes; its ``summary`` is the column's
+    entry of the row's summary.
+impacts : list of dict
+    One dict per contact struck, with impacts.csv's columns (``t`` in s, ``impulse`` in N s,
+    velocities in m/s, ``instant_energy_lost`` in J).
+summary : dict
+    The keys of the row's summary.json.
+
+Examples
+--------
+>>> row = flexrock.simulate_row("models/row-pair.toml")
+>>> len(row.columns), len(row.impacts), row.impacts[0]["impulse"]
+"""
+
+
+def simulate_row(path, duration: Optional[float] = None) -> RowResult:
+    """Solves a row of columns from its model file, by the exact method.
+
+    A row model file has a ``[row]`` table (``gaps``, ``restitution``), one ``[[column]]`` table
+    per column (the keys of ``[body]`` and ``q0``, ``qdot0``), and the ``[excitation]`` all
+    columns stand on (the book's chapter "A row of columns").
+
+    Parameters
+    ----------
+    path : str or path-like
+        The row model file; its record paths are relative to its directory.
+    duration : float, optional
+        Simulated time, s (replaces ``simulation.duration``).
+
+    Returns
+    -------
+    RowResult
+        ``columns`` (a `Result` per column), ``impacts`` (list of dicts) and ``summary``.
+
+    Raises
+    ------
+    FlexrockError
+        On a bad file or argument (the message names the key, e.g. ``column[1].width``, or
+        ``duration (sets simulation.duration)``), or a row that cannot be solved (impacts that
+        accumulate: persistent contact is not modelled).
+
+    Examples
+    --------
+    >>> row = flexrock.simulate_row("models/row-pair.toml")
+    >>> [c.summary["n_impact"] for c in row.columns]
+    """
+    return _native.simulate_row(path, duration)
 
 
 def props(model: Model) -> dict:

@@ -82,6 +82,14 @@ def simulate(
     duration: Optional[float] = None,
     output_dt: Optional[float] = None,
 ) -> Result: ...
+class RowResult:
+    columns: list[Result]
+    impacts: list[dict[str, Any]]
+    summary: dict[str, Any]
+
+def simulate_row(
+    path: Union[str, PathLike[str]], duration: Optional[float] = None
+) -> RowResult: ...
 def read_record(
     path: Union[str, PathLike[str]],
     format: Optional[str] = None,

@@ -36,7 +36,7 @@ const RESONANCE_SHARE: f64 = 1e-3;
 
 /// The state and its derivatives at one time: x (from q_eq), x', x'', x'''.
 #[derive(Debug, Clone, Copy)]
-pub(super) struct Point {
+pub(crate) struct Point {
     pub t: f64,
     /// q itself, m.
     pub q: f64,
@@ -193,7 +193,7 @@ impl Oscillator {
 
 /// The solution within one mode from an anchor state over `[anchor, until]`.
 #[derive(Debug, Clone)]
-pub(super) struct Flow {
+pub(crate) struct Flow {
     pub anchor: f64,
     /// The anchor's time beyond the double `anchor`: an event's time found to a fraction of an
     /// ulp, so that rounding event times does not shift the rest of the motion.

@@ -33,15 +33,15 @@
 //! rounding for these smooth integrands; the energy residual therefore checks the quadrature
 //! and the resets, not the solution.
 
-mod flow;
-mod scan;
+pub(crate) mod flow;
+pub(crate) mod scan;
 
 use std::time::Instant;
 
 use serde::Serialize;
 
 use super::budget::RunBudget;
-use crate::automaton::{Automaton, Guard, Mode};
+use crate::automaton::{Automaton, EventKind, Guard, Mode};
 use crate::double_double::DoubleDouble as Dd;
 use crate::excitation::FloorMotion;
 use crate::solution::{Recorder, RoundingEstimate, Solution, SolverStats};
@@ -180,60 +180,11 @@ fn solve_once(
     energy: bool,
 ) -> Result<(Solution, RoundingEstimate), SolverError> {
     let started = Instant::now();
-    let recorder = Recorder::new(
-        automaton,
-        0.0,
-        initial.q,
-        initial.qdot,
-        automaton.initial_mode(initial.q),
-        history,
+    let mut run = Run::new(
+        automaton, floor, initial, duration, settings, history, energy,
     );
-    let recorder = if energy {
-        recorder
-    } else {
-        recorder.without_energy_books()
-    };
-    let mut run = Run {
-        automaton,
-        floor,
-        mode: automaton.initial_mode(initial.q),
-        t: 0.0,
-        t_lo: 0.0,
-        q: Dd::exact(initial.q),
-        v: Dd::exact(initial.qdot),
-        energy,
-        recorder,
-        grid: OutputGrid::for_history(history, duration, settings.output_dt),
-        work: Work::default(),
-        max_q: initial.q,
-        min_q: initial.q,
-        episode_peak: initial.q.abs(),
-        event_errors: Vec::new(),
-        peak_errors: PeakErrors::default(),
-        flows: 0,
-        evaluations: 0,
-        unresolved: 0,
-    };
     let final_time = run.go(duration)?;
-    let stats = SolverStats {
-        method: NAME.to_string(),
-        steps: run.flows,
-        error_test_failures: 0,
-        nonlinear_iterations: 0,
-        jacobian_evaluations: 0,
-        crossing_retries: run.unresolved,
-        rhs_evaluations: run.evaluations,
-        wall_time_s: started.elapsed().as_secs_f64(),
-    };
-    let mode = run.mode;
-    let estimate = RoundingEstimate {
-        event_time: run.event_errors.clone(),
-        max_q: run.peak_errors.max_q,
-        t_max_q: run.peak_errors.t_max_q,
-        min_q: run.peak_errors.min_q,
-        t_min_q: run.peak_errors.t_min_q,
-    };
-    Ok((run.recorder.finish(final_time, mode, stats), estimate))
+    Ok(run.finish(final_time, started))
 }
 
 /// The integrals of the input and damping power up to `t`, J.
@@ -253,7 +204,7 @@ struct PeakErrors {
     t_min_q: f64,
 }
 
-struct Run<'a> {
+pub(crate) struct Run<'a> {
     automaton: &'a Automaton,
     floor: &'a dyn FloorMotion,
     mode: Mode,
@@ -277,9 +228,101 @@ struct Run<'a> {
     flows: usize,
     evaluations: usize,
     unresolved: usize,
+    /// True until the run's first state has been sampled.
+    first: bool,
+}
+
+/// A flow planned by [`Run::plan`]: its first guard crossing, if any, and the extrema of q the
+/// search found on the way.
+pub(crate) struct Planned {
+    flow: Flow,
+    found: Option<(Point, Guard)>,
+    extrema: Vec<Point>,
+}
+
+impl Planned {
+    /// The flow.
+    pub(crate) fn flow(&self) -> &Flow {
+        &self.flow
+    }
+
+    /// Where the flow stops on its own: its guard crossing, or its end.
+    pub(crate) fn stop(&self) -> f64 {
+        self.found.map_or(self.flow.until, |(p, _)| p.t)
+    }
 }
 
 impl<'a> Run<'a> {
+    /// A run of `automaton` from `initial` at t = 0 over [0, duration]; with `energy`, the
+    /// energy books are kept.
+    pub(crate) fn new(
+        automaton: &'a Automaton,
+        floor: &'a dyn FloorMotion,
+        initial: InitialState,
+        duration: f64,
+        settings: &ExactSettings,
+        history: History,
+        energy: bool,
+    ) -> Self {
+        let recorder = Recorder::new(
+            automaton,
+            0.0,
+            initial.q,
+            initial.qdot,
+            automaton.initial_mode(initial.q),
+            history,
+        );
+        let recorder = if energy {
+            recorder
+        } else {
+            recorder.without_energy_books()
+        };
+        Run {
+            automaton,
+            floor,
+            mode: automaton.initial_mode(initial.q),
+            t: 0.0,
+            t_lo: 0.0,
+            q: Dd::exact(initial.q),
+            v: Dd::exact(initial.qdot),
+            energy,
+            recorder,
+            grid: OutputGrid::for_history(history, duration, settings.output_dt),
+            work: Work::default(),
+            max_q: initial.q,
+            min_q: initial.q,
+            episode_peak: initial.q.abs(),
+            event_errors: Vec::new(),
+            peak_errors: PeakErrors::default(),
+            flows: 0,
+            evaluations: 0,
+            unresolved: 0,
+            first: true,
+        }
+    }
+
+    /// The solution booked up to `final_time`, and the local rounding estimate.
+    pub(crate) fn finish(self, final_time: f64, started: Instant) -> (Solution, RoundingEstimate) {
+        let stats = SolverStats {
+            method: NAME.to_string(),
+            steps: self.flows,
+            error_test_failures: 0,
+            nonlinear_iterations: 0,
+            jacobian_evaluations: 0,
+            crossing_retries: self.unresolved,
+            rhs_evaluations: self.evaluations,
+            wall_time_s: started.elapsed().as_secs_f64(),
+        };
+        let estimate = RoundingEstimate {
+            event_time: self.event_errors,
+            max_q: self.peak_errors.max_q,
+            t_max_q: self.peak_errors.t_max_q,
+            min_q: self.peak_errors.min_q,
+            t_min_q: self.peak_errors.t_min_q,
+        };
+        (self.recorder.finish(final_time, self.mode, stats), estimate)
+    }
+
     fn failed(&self, t: f64, message: impl Into<String>) -> SolverError {
         SolverError::Failed {
             method: NAME.to_string(),
@@ -291,100 +334,182 @@ impl<'a> Run<'a> {
     /// Runs to `end` or to overturning; the final time.
     fn go(&mut self, end: f64) -> Result<f64, SolverError> {
         let mut budget = RunBudget::new();
-        let automaton = self.automaton;
-        let mut first = true;
-        while self.mode != Mode::Overturned {
-            let Some(linear) = automaton.linear_form(self.mode) else {
+        while let Some(planned) = self.plan(end, &mut budget)? {
+            if !self.commit(planned, end, &mut budget)? {
                 break;
-            };
-            let stretch = self.floor.closed_form(self.t);
-            // NaN included: a closed form that does not end after t cannot be followed.
-            if stretch.until.partial_cmp(&self.t) != Some(std::cmp::Ordering::Greater) {
-                return Err(self.failed(
-                    self.t,
-                    format!(
-                        "the floor motion's closed form at t = {} s ends at {} s, not after it",
-                        self.t, stretch.until
-                    ),
-                ));
-            }
-            let flow = Flow::new(
-                &linear,
-                &stretch,
-                self.t,
-                self.t_lo,
-                self.q,
-                self.v,
-                stretch.until.min(end),
-            );
-            self.flows += 1;
-            budget
-                .step(self.t, self.flows)
-                .map_err(|m| self.failed(self.t, m))?;
-            let guards: Vec<Guard> = automaton
-                .guards(self.mode)
-                .iter()
-                .map(|&slot| automaton.guard(self.mode, slot))
-                .collect();
-            let mut watch = self.watch(&guards);
-            let start = flow.point(self.t);
-            if first {
-                // The run's first state is a sample.
-                self.emit(&flow, self.t, true);
-                first = false;
-            }
-            let finish = scan::evaluate(&flow, flow.until, &mut watch);
-            let found =
-                finish.and_then(|stop| first_crossing(&flow, start, stop, &guards, &mut watch));
-            self.evaluations += watch.evaluations;
-            self.unresolved += watch.unresolved;
-            let found = match found {
-                Ok(found) => found,
-                Err(ScanError::NotFinite(t)) => {
-                    return Err(self.failed(
-                        t,
-                        format!(
-                            "the closed-form state is not finite (floor acceleration {} m/s^2)",
-                            self.floor.acceleration(t)
-                        ),
-                    ))
-                }
-                Err(ScanError::TooMuchWork(t)) => {
-                    return Err(self.failed(
-                        t,
-                        format!(
-                            "more than {} evaluations of one closed form: the run would not end \
-                             in a useful time",
-                            scan::MAX_EVALUATIONS
-                        ),
-                    ))
-                }
-            };
-            let stop = found.map_or(flow.until, |(p, _)| p.t);
-            for extremum in &watch.extrema {
-                self.peak(&flow, extremum);
-            }
-            self.emit(&flow, stop, true);
-            match found {
-                Some((p, guard)) => {
-                    self.event(&flow, p, guard);
-                    budget.event(p.t).map_err(|m| self.failed(p.t, m))?;
-                }
-                None => {
-                    self.advance_work(&flow, flow.until);
-                    let (q, v) = flow.state(flow.until);
-                    self.q = q;
-                    self.v = v;
-                    self.t = flow.until;
-                    self.t_lo = 0.0;
-                    self.peak(&flow, &flow.point(flow.until));
-                    if self.t >= end {
-                        break;
-                    }
-                }
             }
         }
         Ok(self.t)
+    }
+
+    /// The next flow from the current state, searched for its first guard crossing, but not yet
+    /// taken: None in the terminal mode. A row of columns plans every column's flow and takes
+    /// each up to its own stop or up to a contact between columns ([`Run::cut`]).
+    pub(crate) fn plan(
+        &mut self,
+        end: f64,
+        budget: &mut RunBudget,
+    ) -> Result<Option<Planned>, SolverError> {
+        let automaton = self.automaton;
+        if self.mode == Mode::Overturned {
+            return Ok(None);
+        }
+        let Some(linear) = automaton.linear_form(self.mode) else {
+            return Ok(None);
+        };
+        let stretch = self.floor.closed_form(self.t);
+        // NaN included: a closed form that does not end after t cannot be followed.
+        if stretch.until.partial_cmp(&self.t) != Some(std::cmp::Ordering::Greater) {
+            return Err(self.failed(
+                self.t,
+                format!(
+                    "the floor motion's closed form at t = {} s ends at {} s, not after it",
+                    self.t, stretch.until
+                ),
+            ));
+        }
+        let flow = Flow::new(
+            &linear,
+            &stretch,
+            self.t,
+            self.t_lo,
+            self.q,
+            self.v,
+            stretch.until.min(end),
+        );
+        self.flows += 1;
+        budget
+            .step(self.t, self.flows)
+            .map_err(|m| self.failed(self.t, m))?;
+        let guards: Vec<Guard> = automaton
+            .guards(self.mode)
+            .iter()
+            .map(|&slot| automaton.guard(self.mode, slot))
+            .collect();
+        let mut watch = self.watch(&guards);
+        let start = flow.point(self.t);
+        if self.first {
+            // The run's first state is a sample.
+            self.emit(&flow, self.t, true);
+            self.first = false;
+        }
+        let finish = scan::evaluate(&flow, flow.until, &mut watch);
+        let found = finish.and_then(|stop| first_crossing(&flow, start, stop, &guards, &mut watch));
+        self.evaluations += watch.evaluations;
+        self.unresolved += watch.unresolved;
+        let found = match found {
+            Ok(found) => found,
+            Err(ScanError::NotFinite(t)) => {
+                return Err(self.failed(
+                    t,
+                    format!(
+                        "the closed-form state is not finite (floor acceleration {} m/s^2)",
+                        self.floor.acceleration(t)
+                    ),
+                ))
+            }
+            Err(ScanError::TooMuchWork(t)) => {
+                return Err(self.failed(
+                    t,
+                    format!(
+                        "more than {} evaluations of one closed form: the run would not end in \
+                         a useful time",
+                        scan::MAX_EVALUATIONS
+                    ),
+                ))
+            }
+        };
+        Ok(Some(Planned {
+            flow,
+            found,
+            extrema: watch.extrema,
+        }))
+    }
+
+    /// Takes `planned` up to its stop: its guard crossing (the event booked, the reset applied)
+    /// or its end. False when the run has reached `end`.
+    pub(crate) fn commit(
+        &mut self,
+        planned: Planned,
+        end: f64,
+        budget: &mut RunBudget,
+    ) -> Result<bool, SolverError> {
+        let Planned {
+            flow,
+            found,
+            extrema,
+        } = planned;
+        let stop = found.map_or(flow.until, |(p, _)| p.t);
+        for extremum in &extrema {
+            self.peak(&flow, extremum);
+        }
+        self.emit(&flow, stop, true);
+        match found {
+            Some((p, guard)) => {
+                self.event(&flow, p, guard);
+                budget.event(p.t).map_err(|m| self.failed(p.t, m))?;
+                Ok(true)
+            }
+            None => {
+                self.advance_work(&flow, flow.until);
+                let (q, v) = flow.state(flow.until);
+                self.q = q;
+                self.v = v;
+                self.t = flow.until;
+                self.t_lo = 0.0;
+                self.peak(&flow, &flow.point(flow.until));
+                Ok(self.t < end)
+            }
+        }
+    }
+
+    /// Takes `planned` up to `t` (before its stop) and stays there, re-anchored at the state
+    /// the flow reaches: where a contact between columns interrupts the column's own motion.
+    pub(crate) fn cut(&mut self, planned: Planned, t: f64) {
+        let Planned { flow, extrema, .. } = planned;
+        for extremum in extrema.iter().filter(|p| p.t <= t) {
+            self.peak(&flow, extremum);
+        }
+        self.emit(&flow, t, false);
+        self.advance_work(&flow, t);
+        let (q, v) = flow.state(t);
+        self.q = q;
+        self.v = v;
+        self.t = t;
+        self.t_lo = 0.0;
+        self.peak(&flow, &flow.point(t));
+    }
+
+    /// The run's time, mode, q and q' (q' to twice the precision).
+    pub(crate) fn state(&self) -> (f64, Mode, f64, Dd) {
+        (self.t, self.mode, self.q.value(), self.v)
+    }
+
+    /// A neighbour's impulse at the current time: q' becomes `after`, the mode stays; booked as
+    /// an impact event, counted against `budget`. `time_error` is the error of the contact's
+    /// time, s.
+    pub(crate) fn impact(
+        &mut self,
+        after: Dd,
+        time_error: f64,
+        budget: &mut RunBudget,
+    ) -> Result<(), SolverError> {
+        let (t, q) = (self.t, self.q.value());
+        self.event_errors.push(time_error);
+        self.recorder.event(
+            t,
+            EventKind::Impact,
+            self.mode,
+            self.mode,
+            q,
+            self.v.value(),
+            after.value(),
+            self.floor.acceleration(t),
+            self.work.input,
+            self.work.damping,
+        );
+        self.v = after;
+        budget.event(t).map_err(|m| self.failed(t, m))
     }
 
     /// The levels that matter in this mode's flows.

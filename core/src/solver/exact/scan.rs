@@ -22,16 +22,49 @@ use crate::automaton::Guard;
 
 use super::flow::{Flow, Point};
 
+/// A smooth function of time searched for crossings: q along one flow, or the gap between two
+/// columns of a row along theirs. Its [`Point`]s hold the value and three derivatives.
+pub(crate) trait Smooth {
+    /// The value and its first three derivatives at `t`.
+    fn point(&self, t: f64) -> Point;
+    /// Bounds on the second, third and fourth derivatives over `[p.t, p.t + h]`.
+    fn derivative_bounds(&self, p: &Point, h: f64) -> (f64, f64, f64);
+    /// A bound on the distance from [`Smooth::equilibrium`] over the rest of the function from
+    /// `t0` on, where one is known.
+    fn envelope(&self, _t0: f64) -> Option<f64> {
+        None
+    }
+    /// The centre of [`Smooth::envelope`].
+    fn equilibrium(&self) -> f64 {
+        0.0
+    }
+}
+
+impl Smooth for Flow {
+    fn point(&self, t: f64) -> Point {
+        Flow::point(self, t)
+    }
+    fn derivative_bounds(&self, p: &Point, h: f64) -> (f64, f64, f64) {
+        Flow::derivative_bounds(self, p, h)
+    }
+    fn envelope(&self, t0: f64) -> Option<f64> {
+        Flow::envelope(self, t0)
+    }
+    fn equilibrium(&self) -> f64 {
+        Flow::equilibrium(self)
+    }
+}
+
 /// Halvings of one interval before it is taken as monotone: far beyond what any extremum of a
 /// closed form needs (a simple root of q' is isolated after a few), reached only at a double
 /// root of q' (an inflection with zero slope).
 const MAX_DEPTH: usize = 60;
 /// Evaluations of the closed form allowed in one flow: a run that needs more is not well posed.
-pub(super) const MAX_EVALUATIONS: usize = 1_000_000;
+pub(crate) const MAX_EVALUATIONS: usize = 1_000_000;
 
 /// The levels of q that matter in a flow: the guards, and the extremes recorded so far.
 #[derive(Debug, Clone)]
-pub(super) struct Watch {
+pub(crate) struct Watch {
     /// Lowest guard crossed rising, highest crossed falling.
     pub guard_up: f64,
     pub guard_down: f64,
@@ -62,7 +95,7 @@ impl Watch {
 
 /// Why a scan stopped early.
 #[derive(Debug)]
-pub(super) enum ScanError {
+pub(crate) enum ScanError {
     /// The closed form is not finite at t.
     NotFinite(f64),
     /// More than [`MAX_EVALUATIONS`].
@@ -71,8 +104,8 @@ pub(super) enum ScanError {
 
 /// The first guard of `guards` that q crosses in its direction on the flow over `[a.t, b.t]`,
 /// with the state there; extrema are booked in `watch`.
-pub(super) fn first_crossing(
-    flow: &Flow,
+pub(crate) fn first_crossing<F: Smooth>(
+    flow: &F,
     a: Point,
     b: Point,
     guards: &[Guard],
@@ -141,7 +174,7 @@ pub(super) fn first_crossing(
 }
 
 /// The flow's point at t, counted and checked.
-pub(super) fn evaluate(flow: &Flow, t: f64, watch: &mut Watch) -> Result<Point, ScanError> {
+pub(crate) fn evaluate<F: Smooth>(flow: &F, t: f64, watch: &mut Watch) -> Result<Point, ScanError> {
     watch.evaluations += 1;
     if watch.evaluations > MAX_EVALUATIONS {
         return Err(ScanError::TooMuchWork(t));
@@ -155,13 +188,18 @@ pub(super) fn evaluate(flow: &Flow, t: f64, watch: &mut Watch) -> Result<Point, 
 }
 
 /// The root of q' between a and b, where q' changes sign and q'' keeps its sign.
-fn extremum(flow: &Flow, a: Point, b: Point, watch: &mut Watch) -> Result<Point, ScanError> {
+fn extremum<F: Smooth>(
+    flow: &F,
+    a: Point,
+    b: Point,
+    watch: &mut Watch,
+) -> Result<Point, ScanError> {
     refine(flow, a, b, watch, |p| p.v, |p| p.acc)
 }
 
 /// The time in (a, b] at which q reaches the guard, q monotone there; q is put on the guard.
-fn crossing(
-    flow: &Flow,
+fn crossing<F: Smooth>(
+    flow: &F,
     a: Point,
     b: Point,
     guard: &Guard,
@@ -183,8 +221,8 @@ fn crossing(
 /// The root of `g` between a and b (where g changes sign, monotone) by Newton steps from the
 /// better end, kept inside the bracket and replaced by halving where they leave it, until the
 /// bracket is a few ulps wide or a step is below 2 ulps.
-fn refine(
-    flow: &Flow,
+fn refine<F: Smooth>(
+    flow: &F,
     a: Point,
     b: Point,
     watch: &mut Watch,
@@ -227,7 +265,7 @@ fn refine(
 }
 
 /// The spacing of doubles at |t|.
-pub(super) fn ulp(t: f64) -> f64 {
+pub(crate) fn ulp(t: f64) -> f64 {
     let t = t.abs().max(f64::MIN_POSITIVE);
     f64::from_bits(t.to_bits() + 1) - t
 }

@@ -1,0 +1,244 @@
+//! The model file of a row of columns (book/src/row.md): a `[row]` table with the gaps and the
+//! restitution, one `[[column]]` table per column (left to right) with the keys of `[body]` and
+//! the column's `q0` and `qdot0`, and the `[excitation]`, `[simulation]` and `[solver]` tables of
+//! a single body's file. Keys in messages: `row.gaps[0]`, `column[1].width`, `column[0].q0`.
+
+use std::path::{Path, PathBuf};
+
+use serde::{Deserialize, Serialize};
+
+use super::excitation_section::{floor_from_section, RecordCache};
+use super::solver_section::solver_from_section;
+use super::{
+    body_from_section, check_stands_up, initial_from_section, parse_table, read_model_text,
+    BodySection, ExcitationSection, SimulationSection, SolverSection, MAX_DURATION, MODEL_TEXT,
+};
+use crate::body::{positive, Body};
+use crate::constants::Constants;
+use crate::error::{Error, Result};
+use crate::excitation::FloorMotion;
+use crate::row::{ColumnSpec, Row};
+use crate::solver::exact::ExactSettings;
+use crate::solver::SolverSettings;
+
+/// The `[row]` table.
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct RowSection {
+    /// Clear gaps between neighbours at rest, m, left to right (one fewer than the columns).
+    pub gaps: Vec<f64>,
+    /// Newton's coefficient of restitution at every contact, in [0, 1].
+    pub restitution: f64,
+}
+
+/// The `[simulation]` table of a row: its duration (each column has its own q0 and qdot0).
+#[derive(Debug, Clone, Default, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct RowSimulationSection {
+    /// Simulated time, s (required except for records and pulses with a tail).
+    pub duration: Option<f64>,
+}
+
+/// A row model, validated and ready to run.
+pub struct RowModel {
+    /// The file it came from, if any.
+    pub path: Option<PathBuf>,
+    /// The row: columns, contacts, restitution.
+    pub row: Row,
+    /// Each column's body, left to right.
+    pub bodies: Vec<Body>,
+    /// The `[row]` table as read.
+    pub section: RowSection,
+    /// The floor motion all columns stand on.
+    pub floor: Box<dyn FloorMotion>,
+    /// Simulated time, s.
+    pub duration: f64,
+    /// The exact solver's settings.
+    pub settings: ExactSettings,
+}
+
+/// True when a model file's table describes a row (it has a `[row]` table).
+pub fn is_row_table(table: &toml::Table) -> bool {
+    table.contains_key("row")
+}
+
+impl RowModel {
+    /// Reads and validates a row model file; `duration` overrides `simulation.duration`.
+    pub fn load(path: &Path, duration: Option<f64>) -> Result<RowModel> {
+        let text = read_model_text(path)?;
+        let base_dir = path.parent().unwrap_or(Path::new("."));
+        let mut model = RowModel::from_text(&text, path, base_dir, duration).map_err(|e| {
+            match e {
+                e @ (Error::ParseModel { .. } | Error::ReadModel { .. }) => e,
+                // A duration given from outside the file is not the file's fault.
+                e @ Error::InvalidParameter { .. } if duration.is_some() => e,
+                other => Error::InModel {
+                    path: path.to_path_buf(),
+                    source: Box::new(other),
+                },
+            }
+        })?;
+        model.path = Some(path.to_path_buf());
+        Ok(model)
+    }
+
+    /// Validates the text of a row model file; record paths are relative to the current
+    /// directory.
+    pub fn from_toml_str(text: &str) -> Result<RowModel> {
+        RowModel::from_text(text, Path::new(MODEL_TEXT), Path::new("."), None)
+    }
+
+    fn from_text(
+        text: &str,
+        source: &Path,
+        base_dir: &Path,
+        duration: Option<f64>,
+    ) -> Result<RowModel> {
+        let table = parse_table(text, source)?;
+        let parse_error = |message: String| Error::ParseModel {
+            path: source.to_path_buf(),
+            message,
+        };
+        for key in table.keys() {
+            if !["row", "column", "excitation", "simulation", "solver"].contains(&key.as_str()) {
+                return Err(parse_error(format!(
+                    "unknown table `{key}` in a row model: expected `row`, `column` (one \
+                     [[column]] per column), `excitation`, `simulation` or `solver`"
+                )));
+            }
+        }
+        let part = |key: &str| table.get(key).cloned();
+        let section: RowSection = match part("row") {
+            Some(value) => value
+                .try_into()
+                .map_err(|e: toml::de::Error| parse_error(format!("[row]: {}", e.message())))?,
+            None => return Err(parse_error("a row model needs a [row] table".to_string())),
+        };
+        let excitation: ExcitationSection = match part("excitation") {
+            Some(value) => value.try_into().map_err(|e: toml::de::Error| {
+                parse_error(format!("[excitation]: {}", e.message()))
+            })?,
+            None => return Err(parse_error("missing table [excitation]".to_string())),
+        };
+        let simulation: RowSimulationSection = match part("simulation") {
+            Some(value) => value.try_into().map_err(|e: toml::de::Error| {
+                parse_error(format!(
+                    "[simulation]: {} (a row's initial state is given per column, as \
+                     column q0 and qdot0)",
+                    e.message()
+                ))
+            })?,
+            None => RowSimulationSection::default(),
+        };
+        let solver: SolverSection = match part("solver") {
+            Some(value) => value
+                .try_into()
+                .map_err(|e: toml::de::Error| parse_error(format!("[solver]: {}", e.message())))?,
+            None => SolverSection::default(),
+        };
+        let columns = match part("column") {
+            Some(toml::Value::Array(items)) => items,
+            Some(_) => {
+                return Err(parse_error(
+                    "`column` must be an array of tables: one [[column]] per column".to_string(),
+                ))
+            }
+            None => {
+                return Err(parse_error(
+                    "a row model needs its columns: one [[column]] table each, left to right"
+                        .to_string(),
+                ))
+            }
+        };
+        let mut specs = Vec::with_capacity(columns.len());
+        let mut bodies = Vec::with_capacity(columns.len());
+        for (i, item) in columns.into_iter().enumerate() {
+            let toml::Value::Table(mut fields) = item else {
+                return Err(parse_error(format!("column[{i}] must be a table")));
+            };
+            let number = |value: Option<toml::Value>, key: &str| -> Result<Option<f64>> {
+                match value {
+                    None => Ok(None),
+                    Some(toml::Value::Float(x)) => Ok(Some(x)),
+                    Some(toml::Value::Integer(n)) => Ok(Some(n as f64)),
+                    Some(other) => Err(parse_error(format!(
+                        "column[{i}].{key}: expected a number, found {}",
+                        other.type_str()
+                    ))),
+                }
+            };
+            let initial = SimulationSection {
+                duration: None,
+                q0: number(fields.remove("q0"), "q0")?,
+                qdot0: number(fields.remove("qdot0"), "qdot0")?,
+            };
+            let body_section: BodySection =
+                toml::Value::Table(fields)
+                    .try_into()
+                    .map_err(|e: toml::de::Error| {
+                        parse_error(format!("column[{i}]: {}", e.message()))
+                    })?;
+            let in_column = |e: Error| e.in_column(i);
+            let body = body_from_section(&body_section).map_err(in_column)?;
+            let constants = Constants::new(&body).map_err(|e| in_column(e.into()))?;
+            check_stands_up(&body_section, &body, &constants).map_err(in_column)?;
+            let initial = initial_from_section(&initial, &body).map_err(in_column)?;
+            specs.push(ColumnSpec {
+                body: body.clone(),
+                initial,
+            });
+            bodies.push(body);
+        }
+        let row = Row::new(&specs, &section.gaps, section.restitution)?;
+        let (floor, natural_duration) =
+            floor_from_section(&excitation, base_dir, &RecordCache::default())?;
+        let duration = match (duration.or(simulation.duration), natural_duration) {
+            (Some(d), _) | (None, Some(d)) => d,
+            (None, None) => {
+                return Err(Error::invalid(
+                    "simulation.duration",
+                    "(missing)",
+                    &format!(
+                        "required for kind = \"{}\" (records, and sine pulses with \
+                         excitation.tail, have a natural length)",
+                        excitation.kind
+                    ),
+                ))
+            }
+        };
+        positive("simulation.duration", duration)?;
+        if duration > MAX_DURATION {
+            return Err(Error::invalid(
+                "simulation.duration",
+                duration,
+                &format!("must be at most {MAX_DURATION:e} s"),
+            ));
+        }
+        if let Some(method) = solver.method.as_deref().filter(|&m| m != "exact") {
+            return Err(Error::invalid(
+                "solver.method",
+                format!("\"{method}\""),
+                "a row is solved by the exact method only: leave solver.method out or set it to \
+                 \"exact\"",
+            ));
+        }
+        let exact = SolverSection {
+            method: Some("exact".to_string()),
+            ..solver.clone()
+        };
+        // The exact method has no step, so the body's frequency and width play no part here.
+        let SolverSettings::Exact(settings) = solver_from_section(&exact, duration, 1.0, 1.0)?
+        else {
+            unreachable!("method = \"exact\" gives the exact settings");
+        };
+        Ok(RowModel {
+            path: None,
+            row,
+            bodies,
+            section,
+            floor,
+            duration,
+            settings,
+        })
+    }
+}

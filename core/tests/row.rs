@@ -1,0 +1,365 @@
+//! Rows of columns that strike each other: checked against what does not depend on the row's
+//! code. Gaps that never close give each column's run alone to the last digit; identical
+//! columns under one floor motion never touch; one impact of two free columns, and a symmetric
+//! simultaneous impact of three, against Newton's law solved by hand with masses and
+//! frequencies from the body's closed forms; impacts that accumulate are stopped; bad rows are
+//! refused by name.
+
+use flexrock_core::automaton::Automaton;
+use flexrock_core::automaton::{EventKind, Mode};
+use flexrock_core::body::{
+    prism_mass, solid_section_flexural_rigidity, Body, ConstantSet, SelfWeight,
+};
+use flexrock_core::constants::Constants;
+use flexrock_core::excitation::{FloorMotion, Free, PaperSine, PulseShape, SinePulse};
+use flexrock_core::row::{solve_row, ColumnSpec, Row};
+use flexrock_core::solution::Solution;
+use flexrock_core::solver::exact::{self, ExactSettings};
+use flexrock_core::solver::{History, InitialState};
+
+/// The first root of cos L cosh L = -1 and sigma of the cantilever mode, from their closed
+/// forms (book/src/model.md §2), for the hand calculations.
+const L: f64 = 1.875_104_068_711_961;
+
+fn sigma() -> f64 {
+    (L.cosh() + L.cos()) / (L.sinh() + L.sin())
+}
+
+/// U(xi) of the first cantilever mode, U(1) = 1, written out here.
+fn mode_shape(xi: f64) -> f64 {
+    let z = L * xi;
+    (z.cosh() - z.cos() - sigma() * (z.sinh() - z.sin())) / 2.0
+}
+
+fn body(height: f64, width: f64, density: f64, youngs: f64, damping: f64) -> Body {
+    Body {
+        height,
+        width,
+        depth: 1.0,
+        mass: prism_mass(density, height, width, 1.0),
+        flexural_rigidity: solid_section_flexural_rigidity(youngs, width, 1.0),
+        damping_ratio: damping,
+        gravity: 9.81,
+        constant_set: ConstantSet::Exact,
+        self_weight: SelfWeight::Paper,
+    }
+}
+
+fn at_rest(body: Body) -> ColumnSpec {
+    ColumnSpec {
+        body,
+        initial: InitialState { q: 0.0, qdot: 0.0 },
+    }
+}
+
+const SETTINGS: ExactSettings = ExactSettings { output_dt: 0.01 };
+
+/// The run of one column alone, as `flexrock run` makes it.
+fn alone(spec: &ColumnSpec, floor: &dyn FloorMotion, duration: f64) -> Solution {
+    let automaton = Automaton::new(&Constants::new(&spec.body).unwrap());
+    exact::solve(
+        &automaton,
+        floor,
+        spec.initial,
+        duration,
+        &SETTINGS,
+        History::Sampled,
+    )
+    .unwrap()
+}
+
+fn same_digits(row: &Solution, single: &Solution, what: &str) {
+    assert_eq!(row.events, single.events, "{what}: events");
+    assert_eq!(row.samples, single.samples, "{what}: samples");
+    assert_eq!(
+        format!("{:?}", row.max_q),
+        format!("{:?}", single.max_q),
+        "{what}: max q"
+    );
+    assert_eq!(
+        format!("{:?}", row.min_q),
+        format!("{:?}", single.min_q),
+        "{what}: min q"
+    );
+    assert_eq!(row.final_time, single.final_time, "{what}: final time");
+}
+
+#[test]
+fn gaps_that_never_close_give_each_column_alone_to_the_last_digit() {
+    // Three different columns (one of the consistent variant), rocking under the paper's sine
+    // and under a one-sine pulse, 10 m apart.
+    let mut consistent = body(3.0, 0.8, 500.0, 2e7, 0.03);
+    consistent.self_weight = SelfWeight::Consistent;
+    let specs = [
+        at_rest(body(4.0, 0.7, 600.0, 5e6, 0.05)),
+        at_rest(consistent),
+        ColumnSpec {
+            body: body(2.5, 0.9, 700.0, 1e8, 0.02),
+            initial: InitialState {
+                q: 0.01,
+                qdot: -0.05,
+            },
+        },
+    ];
+    let floors: [(Box<dyn FloorMotion>, f64); 2] = [
+        (Box::new(PaperSine::new(4.0, 1.0, 0.412)), 6.0),
+        (
+            Box::new(SinePulse::new(3.5, 0.8, 1.0, PulseShape::Antisymmetric)),
+            5.0,
+        ),
+    ];
+    for (floor, duration) in &floors {
+        let row = Row::new(&specs, &[10.0, 10.0], 0.5).unwrap();
+        let solved =
+            solve_row(&row, floor.as_ref(), *duration, &SETTINGS, History::Sampled).unwrap();
+        assert!(solved.impacts.is_empty());
+        assert_eq!(solved.overturned, None);
+        let uplifts: usize = solved
+            .columns
+            .iter()
+            .map(|c| {
+                c.events
+                    .iter()
+                    .filter(|e| e.kind == EventKind::Uplift)
+                    .count()
+            })
+            .sum();
+        assert!(uplifts >= 2, "the case should rock: {uplifts} uplifts");
+        for (i, spec) in specs.iter().enumerate() {
+            same_digits(
+                &solved.columns[i],
+                &alone(spec, floor.as_ref(), *duration),
+                &format!("column {i}"),
+            );
+        }
+    }
+}
+
+#[test]
+fn identical_columns_under_one_floor_motion_never_touch() {
+    let spec = at_rest(body(4.0, 0.7, 600.0, 5e6, 0.05));
+    let specs = [spec.clone(), spec.clone(), spec.clone()];
+    let floor = PaperSine::new(5.0, 1.0, 0.412);
+    let row = Row::new(&specs, &[1e-4, 1e-4], 0.3).unwrap();
+    let solved = solve_row(&row, &floor, 6.0, &SETTINGS, History::Sampled).unwrap();
+    assert!(solved.impacts.is_empty());
+    let single = alone(&spec, &floor, 6.0);
+    assert!(single.events.len() >= 4, "the columns should rock");
+    for column in &solved.columns {
+        same_digits(column, &single, "identical column");
+    }
+}
+
+/// Mass M and circular frequency omega = L^2 (EI / (M H^3))^(1/2) of a body, from its size.
+fn mass_and_frequency(b: &Body) -> (f64, f64) {
+    let m = b.mass;
+    let ei = b.flexural_rigidity;
+    (m, L * L * (ei / (m * b.height.powi(3))).sqrt())
+}
+
+/// Two columns, free of any floor motion: the left one starts swaying towards the right one at
+/// rest and strikes it before it lifts off. Undamped, q_left = (v0 / omega) sin(omega t), so the
+/// impact is at asin(g omega / v0) / omega, closing at v0 cos(omega t_c); the contact point of
+/// the shorter (left) column is its top (slope 1), that of the taller one at height xi has the
+/// slope U(xi); kinetic masses are M/4 (int U^2 = 1/4); J = (1 + e) w / (1/m_l + U^2/m_r).
+#[test]
+fn one_impact_of_two_free_columns_is_newtons_law() {
+    for (left_height, e) in [(4.0, 0.6), (3.0, 0.6), (3.0, 0.0), (3.0, 1.0)] {
+        let left = body(left_height, 0.7, 600.0, 5e6, 0.0);
+        let right = body(4.0, 0.7, 900.0, 8e6, 0.0);
+        let (v0, gap) = (0.05, 0.002);
+        let specs = [
+            ColumnSpec {
+                body: left.clone(),
+                initial: InitialState { q: 0.0, qdot: v0 },
+            },
+            at_rest(right.clone()),
+        ];
+        let row = Row::new(&specs, &[gap], e).unwrap();
+        let solved = solve_row(&row, &Free, 0.2, &SETTINGS, History::Sampled);
+        let solved = match solved {
+            Ok(s) => s,
+            Err(err) => panic!("e = {e}: {err}"),
+        };
+        let (m_l, w_l) = mass_and_frequency(&left);
+        let (m_r, _) = mass_and_frequency(&right);
+        let t_c = (gap * w_l / v0).asin() / w_l;
+        let w = v0 * (w_l * t_c).cos();
+        let xi = left_height / 4.0;
+        let u = mode_shape(xi);
+        let (k_l, k_r) = (m_l / 4.0, m_r / 4.0);
+        let a = 1.0 / k_l + u * u / k_r;
+        let j = (1.0 + e) * w / a;
+        let first = solved.impacts.first().expect("an impact");
+        let close = |x: f64, y: f64, tol: f64, what: &str| {
+            assert!(
+                (x - y).abs() <= tol * y.abs().max(w.min(j / k_l)),
+                "h = {left_height}, e = {e}: {what} {x} vs {y}"
+            )
+        };
+        close(first.t, t_c, 1e-13, "impact time");
+        close(first.closing_velocity, w, 1e-12, "closing velocity");
+        close(first.impulse, j, 1e-12, "impulse");
+        close(
+            first.separating_velocity,
+            e * w,
+            1e-11,
+            "separating velocity",
+        );
+        // Each column's q' jumps by its share; the body's kinetic energy lost is
+        // (1 - e^2) w^2 / (2 A).
+        let jump_l = solved.columns[0]
+            .events
+            .iter()
+            .find(|ev| ev.kind == EventKind::Impact)
+            .unwrap();
+        close(
+            jump_l.qdot_after - jump_l.qdot_before,
+            -j / k_l,
+            1e-12,
+            "left jump",
+        );
+        let jump_r = solved.columns[1]
+            .events
+            .iter()
+            .find(|ev| ev.kind == EventKind::Impact)
+            .unwrap();
+        close(jump_r.qdot_after, u * j / k_r, 1e-12, "right jump");
+        let loss = solved.impact_energy_loss[0].1;
+        if e < 1.0 {
+            close(
+                loss,
+                (1.0 - e * e) * w * w / (2.0 * a),
+                1e-10,
+                "energy lost",
+            );
+        } else {
+            assert!(
+                loss.abs() < 1e-12 * w * w / a,
+                "an elastic impact loses {loss} J"
+            );
+        }
+        // Nothing lifts off, and each column's energy books close through the impact.
+        for c in &solved.columns {
+            assert!(
+                c.max_energy_residual <= 1e-12 * c.energy_scale,
+                "energy residual {} of {}",
+                c.max_energy_residual,
+                c.energy_scale
+            );
+            assert!(c.events.iter().all(|ev| ev.kind == EventKind::Impact));
+            assert_eq!(c.final_mode, Mode::PreUplift);
+        }
+    }
+}
+
+/// Three equal columns, the outer two swaying towards the middle one at rest with equal and
+/// opposite speeds over equal gaps: both contacts close at one instant. By symmetry the two
+/// impulses are equal and the middle column is pushed both ways at once, so it stays at rest and
+/// each outer column leaves at e times its closing speed: J = (1 + e) w M/4.
+#[test]
+fn a_simultaneous_impact_of_three_columns_is_resolved_together() {
+    let b = body(4.0, 0.7, 600.0, 5e6, 0.0);
+    let (v0, gap, e) = (0.05, 0.002, 0.5);
+    let specs = [
+        ColumnSpec {
+            body: b.clone(),
+            initial: InitialState { q: 0.0, qdot: v0 },
+        },
+        at_rest(b.clone()),
+        ColumnSpec {
+            body: b.clone(),
+            initial: InitialState { q: 0.0, qdot: -v0 },
+        },
+    ];
+    let row = Row::new(&specs, &[gap, gap], e).unwrap();
+    let solved = solve_row(&row, &Free, 0.1, &SETTINGS, History::Sampled).unwrap();
+    let (m, w0) = mass_and_frequency(&b);
+    let t_c = (gap * w0 / v0).asin() / w0;
+    let w = v0 * (w0 * t_c).cos();
+    assert!(solved.impacts.len() >= 2, "{:?}", solved.impacts);
+    let (a, b2) = (solved.impacts[0], solved.impacts[1]);
+    assert_eq!(a.t, b2.t, "one instant");
+    assert!((a.t - t_c).abs() < 1e-13);
+    for impact in [a, b2] {
+        let j = (1.0 + e) * w * m / 4.0;
+        assert!(
+            (impact.impulse - j).abs() < 1e-12 * j,
+            "{impact:?} vs J = {j}"
+        );
+    }
+    let middle = solved.columns[1]
+        .events
+        .iter()
+        .find(|ev| ev.kind == EventKind::Impact)
+        .unwrap();
+    assert!(middle.qdot_after.abs() < 1e-14, "{middle:?}");
+    let outer = solved.columns[0]
+        .events
+        .iter()
+        .find(|ev| ev.kind == EventKind::Impact)
+        .unwrap();
+    assert!((outer.qdot_after + e * w).abs() < 1e-13, "{outer:?}");
+}
+
+/// A soft column leaning on a stiff one under a slow floor motion: each bounce is shorter than
+/// the last, so the impacts would accumulate. The run stops with an error that says so, long
+/// before its event budget.
+#[test]
+fn impacts_that_accumulate_are_stopped_with_a_message() {
+    let soft = body(4.0, 0.7, 600.0, 5e6, 0.05);
+    let stiff = body(4.0, 0.7, 600.0, 5e9, 0.05);
+    // The floor accelerates to the right, so the columns lean to the left: the soft one, on the
+    // right, onto the stiff one.
+    let specs = [at_rest(stiff), at_rest(soft)];
+    for e in [0.0, 0.5] {
+        let row = Row::new(&specs, &[0.003], e).unwrap();
+        // A slow sine: the soft column (omega^2 = 16.4 s^-2) leans by beta1 A / omega^2, up to
+        // 0.076 m, well short of its uplift at 0.15 m and far beyond the gap.
+        let floor = SinePulse::new(0.8, 20.0, 1.0, PulseShape::Antisymmetric);
+        let err = match solve_row(&row, &floor, 10.0, &SETTINGS, History::Sampled) {
+            Ok(s) => panic!(
+                "e = {e}: no error; {} impacts, min q {:?} {:?}, final {}",
+                s.impacts.len(),
+                s.columns[1].min_q,
+                s.columns[0].max_q,
+                s.final_time
+            ),
+            Err(err) => err,
+        };
+        let message = err.to_string();
+        assert!(
+            message.contains("accumulate") && message.contains("columns 0 and 1"),
+            "e = {e}: {message}"
+        );
+    }
+}
+
+#[test]
+fn bad_rows_are_refused_by_name() {
+    let spec = at_rest(body(4.0, 0.7, 600.0, 5e6, 0.05));
+    let two = [spec.clone(), spec.clone()];
+    let message = |r: Result<Row, flexrock_core::InvalidParameter>| r.unwrap_err().to_string();
+    assert!(message(Row::new(&two[..1], &[], 0.5)).contains("at least 2 columns"));
+    assert!(message(Row::new(&two, &[0.1, 0.1], 0.5)).contains("row.gaps"));
+    for gap in [0.0, -0.01, f64::NAN, f64::INFINITY] {
+        let m = message(Row::new(&two, &[gap], 0.5));
+        assert!(m.starts_with("row.gaps[0] = "), "{m}");
+    }
+    for e in [-0.1, 1.5, f64::NAN] {
+        let m = message(Row::new(&two, &[0.01], e));
+        assert!(m.starts_with("row.restitution = "), "{m}");
+    }
+    let mut thin = spec.clone();
+    thin.body.width = -1.0;
+    let m = message(Row::new(&[spec.clone(), thin], &[0.01], 0.5));
+    assert!(m.starts_with("column[1].width = -1"), "{m}");
+    // Columns that start overlapping: the left one leaning 2 cm into a 1 cm gap.
+    let mut leaning = spec.clone();
+    leaning.initial.q = 0.02;
+    let m = message(Row::new(&[leaning, spec.clone()], &[0.01], 0.5));
+    assert!(
+        m.starts_with("row.gaps[0] = 0.01") && m.contains("overlap"),
+        "{m}"
+    );
+}

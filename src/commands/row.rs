@@ -1,0 +1,104 @@
+//! `flexrock run` on a row model (a file with a `[row]` table): every column's history, events
+//! and episodes, the impacts, summary.json and the figure, written as one atomic set.
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+use crate::error::Result;
+use crate::writers;
+use flexrock_core::automaton::EventKind;
+use flexrock_core::columns::fields;
+use flexrock_core::model::RowModel;
+use flexrock_core::row::RowSolution;
+use flexrock_core::row_results::{impact_rows, row_summary, IMPACT_COLUMNS, IMPACT_COLUMN_NAMES};
+use flexrock_core::simulate::{simulate_row, VERSION};
+
+/// What `flexrock run` on a row returns.
+pub struct RowReport {
+    /// The solution.
+    pub solution: RowSolution,
+    /// The files written.
+    pub files: Vec<PathBuf>,
+}
+
+/// Solves a row and writes, for each column i (from 0, left to right), `history-i.csv`,
+/// `events-i.csv` and `episodes-i.csv` (the columns of a single body's files), and
+/// `impacts.csv`, `summary.json` and, with `plots`, `row_motion.svg` and `row_motion.png`, as
+/// one atomic set. Nothing in them depends on the machine: the same row gives the same bytes.
+pub fn run_row_to_dir(model: &RowModel, out_dir: &Path, plots: bool) -> Result<RowReport> {
+    let solution = simulate_row(model)?;
+    let mut files: Vec<(String, Vec<u8>)> = Vec::new();
+    for (i, column) in solution.columns.iter().enumerate() {
+        files.push((
+            format!("history-{i}.csv"),
+            writers::history_csv(&column.samples),
+        ));
+        files.push((
+            format!("events-{i}.csv"),
+            writers::events_csv(&column.events),
+        ));
+        files.push((
+            format!("episodes-{i}.csv"),
+            writers::episodes_csv(&column.episodes, model.bodies[i].height),
+        ));
+    }
+    let mut impacts = writers::Table::new(&IMPACT_COLUMN_NAMES);
+    for row in impact_rows(model, &solution) {
+        impacts.row(fields(&IMPACT_COLUMNS, &row));
+    }
+    files.push(("impacts.csv".to_string(), impacts.into_bytes()));
+    files.push((
+        "summary.json".to_string(),
+        writers::json_bytes(&row_summary(model, &solution)),
+    ));
+    if plots {
+        files.extend(crate::figures::row::figures(model, &solution)?);
+    }
+    let named: Vec<(&str, Vec<u8>)> = files
+        .iter()
+        .map(|(name, bytes)| (name.as_str(), bytes.clone()))
+        .collect();
+    let files = writers::write_atomically(out_dir, &named)?;
+    Ok(RowReport { solution, files })
+}
+
+/// The short human summary printed after a row's run.
+pub fn row_report_text(model: &RowModel, report: &RowReport) -> String {
+    let s = &report.solution;
+    let mut t = String::new();
+    let _ = writeln!(
+        t,
+        "flexrock {VERSION}: exact solution of a row of {} columns over {} s",
+        s.columns.len(),
+        model.duration
+    );
+    for (i, c) in s.columns.iter().enumerate() {
+        let _ = writeln!(
+            t,
+            "  column {i}: max q = {:.9} m at t = {:.9} s; min q = {:.9} m at t = {:.9} s; {}, {}, {}",
+            c.max_q.value,
+            c.max_q.t,
+            c.min_q.value,
+            c.min_q.t,
+            writers::count(c.count(EventKind::Uplift), "uplift", "uplifts"),
+            writers::count(c.count(EventKind::Landing), "landing", "landings"),
+            writers::count(c.count(EventKind::Impact), "impact", "impacts"),
+        );
+    }
+    let lost: f64 = s.impact_energy_loss.iter().map(|(_, e)| e).sum();
+    let _ = writeln!(
+        t,
+        "  {} at {}, taking {} J; {}",
+        writers::count(s.impacts.len(), "impact", "impacts"),
+        writers::count(s.impact_energy_loss.len(), "instant", "instants"),
+        writers::significant(lost, 6),
+        match s.overturned {
+            Some((i, at)) => format!("column {i} overturned at t = {at:.9} s (the run ends there)"),
+            None => "no overturning".to_string(),
+        }
+    );
+    for f in &report.files {
+        let _ = writeln!(t, "  wrote {}", f.display());
+    }
+    t
+}

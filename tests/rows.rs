@@ -1,0 +1,223 @@
+//! `flexrock run` on a row model: the files it writes, the same bytes twice, each column of a
+//! row whose gaps never close written exactly as the column's own run writes it, and bad row
+//! files refused by key with no output.
+
+use crate::common::{flexrock, refused, repo, scratch_dir};
+
+fn run(model: &std::path::Path, out: &std::path::Path, extra: &[&str]) -> std::process::Output {
+    let mut args = vec![
+        "run",
+        model.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ];
+    args.extend_from_slice(extra);
+    flexrock(&args)
+}
+
+#[test]
+fn a_row_run_writes_every_column_and_the_impacts_the_same_twice() {
+    let dir = scratch_dir("rows-pair");
+    let model = repo("models/row-pair.toml");
+    let (a, b) = (dir.join("a"), dir.join("b"));
+    for out in [&a, &b] {
+        let o = run(&model, out, &["--plot"]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    }
+    let mut names: Vec<String> = std::fs::read_dir(&a)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().to_string())
+        .collect();
+    names.sort();
+    assert_eq!(
+        names,
+        [
+            "episodes-0.csv",
+            "episodes-1.csv",
+            "events-0.csv",
+            "events-1.csv",
+            "history-0.csv",
+            "history-1.csv",
+            "impacts.csv",
+            "row_motion.png",
+            "row_motion.svg",
+            "summary.json"
+        ]
+    );
+    for name in &names {
+        assert_eq!(
+            std::fs::read(a.join(name)).unwrap(),
+            std::fs::read(b.join(name)).unwrap(),
+            "{name} differs between two runs"
+        );
+    }
+    let impacts = std::fs::read_to_string(a.join("impacts.csv")).unwrap();
+    let rows: Vec<&str> = impacts.lines().collect();
+    assert_eq!(
+        rows[0],
+        "instant,t,contact,left,right,height,closing_velocity,separating_velocity,impulse,\
+         instant_energy_lost"
+    );
+    assert!(rows.len() > 1, "the pair should strike: {impacts}");
+    // Every impact is an event of both columns, at the same time.
+    let events = |i: usize| std::fs::read_to_string(a.join(format!("events-{i}.csv"))).unwrap();
+    for row in &rows[1..] {
+        let t = row.split(',').nth(1).unwrap();
+        for i in 0..2 {
+            assert!(
+                events(i)
+                    .lines()
+                    .any(|e| e.contains(&format!(",{t},impact,"))),
+                "column {i} has no impact at {t}"
+            );
+        }
+    }
+    let summary: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(a.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["method"], "exact");
+    assert_eq!(summary["n_impacts"], rows.len() - 1);
+    assert_eq!(summary["columns"].as_array().unwrap().len(), 2);
+}
+
+/// A row whose gaps never close: each column's history.csv, events.csv and episodes.csv are the
+/// bytes `flexrock run` writes for that column alone with the exact method.
+#[test]
+fn far_apart_columns_are_written_as_their_own_runs() {
+    let dir = scratch_dir("rows-apart");
+    let bodies = [
+        "height = 4.0\nwidth = 0.7\ndensity = 600.0\nyoungs_modulus = 5.0e6\ndamping_ratio = 0.05\n",
+        "height = 3.0\nwidth = 0.8\ndensity = 500.0\nyoungs_modulus = 2.0e7\ndamping_ratio = 0.03\nself_weight = \"consistent\"\n",
+    ];
+    let excitation = "[excitation]\nkind = \"record\"\npath = \"RECORD\"\nformat = \"peer-at2\"\nunits = \"g\"\nscale = 1.5\ntail = 2.0\n\n[solver]\nmethod = \"exact\"\noutput_dt = 0.01\n"
+        .replace("RECORD", repo("validation/records/elCentro.AT2").to_str().unwrap());
+    let mut row = "[row]\ngaps = [50.0]\nrestitution = 0.5\n\n".to_string();
+    for body in bodies {
+        row += &format!("[[column]]\n{body}\n");
+    }
+    row += &excitation;
+    std::fs::write(dir.join("row.toml"), &row).unwrap();
+    let o = run(&dir.join("row.toml"), &dir.join("row"), &[]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    for (i, body) in bodies.iter().enumerate() {
+        let single = format!("[body]\n{body}\n{excitation}");
+        let path = dir.join(format!("single-{i}.toml"));
+        std::fs::write(&path, single).unwrap();
+        let out = dir.join(format!("single-{i}"));
+        let o = run(&path, &out, &[]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        for (row_name, single_name) in [
+            (format!("history-{i}.csv"), "history.csv"),
+            (format!("events-{i}.csv"), "events.csv"),
+            (format!("episodes-{i}.csv"), "episodes.csv"),
+        ] {
+            let a = std::fs::read(dir.join("row").join(&row_name)).unwrap();
+            let b = std::fs::read(out.join(single_name)).unwrap();
+            assert!(a == b, "column {i}: {row_name} differs from the run alone");
+        }
+        let events = std::fs::read_to_string(out.join("events.csv")).unwrap();
+        assert!(events.lines().count() > 3, "column {i} should rock");
+    }
+}
+
+const ROW: &str = "[row]\ngaps = [0.02]\nrestitution = 0.5\n\n\
+    [[column]]\nheight = 4.0\nwidth = 0.7\ndensity = 600.0\nyoungs_modulus = 5.0e6\n\n\
+    [[column]]\nheight = 4.0\nwidth = 0.7\ndensity = 600.0\nyoungs_modulus = 5.0e7\n\n\
+    [excitation]\nkind = \"paper-sine\"\namplitude = 4.0\nperiod = 1.0\nramp = 0.412\n\n\
+    [simulation]\nduration = 2.0\n";
+
+#[test]
+fn bad_row_files_are_refused_by_key_with_no_output() {
+    let cases: [(&str, String, &str); 9] = [
+        (
+            "gaps",
+            ROW.replace("gaps = [0.02]", "gaps = [0.02, 0.01]"),
+            "row.gaps = 2 gaps",
+        ),
+        (
+            "gap-zero",
+            ROW.replace("gaps = [0.02]", "gaps = [0.0]"),
+            "row.gaps[0] = 0",
+        ),
+        (
+            "restitution",
+            ROW.replace("restitution = 0.5", "restitution = 1.2"),
+            "row.restitution = 1.2",
+        ),
+        (
+            "width",
+            ROW.replacen("width = 0.7", "width = -0.7", 2).replacen(
+                "width = -0.7",
+                "width = 0.7",
+                1,
+            ),
+            "column[1].width = -0.7",
+        ),
+        (
+            "q0",
+            ROW.replace(
+                "youngs_modulus = 5.0e7\n",
+                "youngs_modulus = 5.0e7\nq0 = 0.9\n",
+            ),
+            "column[1].q0 = 0.9",
+        ),
+        (
+            "unknown-key",
+            ROW.replace(
+                "youngs_modulus = 5.0e7\n",
+                "youngs_modulus = 5.0e7\nheigth = 2\n",
+            ),
+            "column[1]: unknown field `heigth`",
+        ),
+        (
+            "method",
+            ROW.to_string() + "[solver]\nmethod = \"bdf\"\n",
+            "solver.method = \"bdf\"",
+        ),
+        (
+            "table",
+            ROW.to_string() + "[body]\nheight = 4.0\n",
+            "unknown table `body`",
+        ),
+        (
+            "overlap",
+            ROW.replace(
+                "youngs_modulus = 5.0e6\n",
+                "youngs_modulus = 5.0e6\nq0 = 0.05\n",
+            ),
+            "overlap",
+        ),
+    ];
+    for (name, text, expected) in cases {
+        let message = refused("run", &format!("row-{name}"), &text);
+        assert!(message.contains(expected), "{name}: {message}");
+    }
+}
+
+#[test]
+fn solver_flags_are_refused_for_a_row() {
+    let dir = scratch_dir("rows-flags");
+    let model = dir.join("row.toml");
+    std::fs::write(&model, ROW).unwrap();
+    for (flags, expected) in [
+        (vec!["--method", "bdf"], "--method = bdf"),
+        (vec!["--check"], "--check = true"),
+        (vec!["--rtol", "1e-8"], "--rtol = "),
+        (vec!["--set", "row.restitution=0.3"], "--set"),
+    ] {
+        let out = dir.join("out");
+        let o = run(&model, &out, &flags);
+        assert_eq!(o.status.code(), Some(2), "{flags:?}");
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        assert!(stderr.contains(expected), "{flags:?}: {stderr}");
+        assert!(!out.exists(), "{flags:?} left output");
+    }
+    // --duration applies, and is checked as the flag.
+    let o = run(&model, &dir.join("short"), &["--duration", "1.5"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let summary: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(dir.join("short/summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["duration"], 1.5);
+    let o = run(&model, &dir.join("negative"), &["--duration=-1"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("--duration = -1"));
+}
