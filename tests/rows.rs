@@ -221,3 +221,50 @@ fn solver_flags_are_refused_for_a_row() {
     assert_eq!(o.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&o.stderr).contains("--duration = -1"));
 }
+
+/// Three columns a millimetre apart under El Centro: impacts accumulate, and the columns are held
+/// together in stretches (summary.json lists them), pairs and all three at once; every column's
+/// energy books still close, and the gaps never open negative beyond rounding.
+#[test]
+fn columns_pressed_together_under_a_record_are_held_and_their_books_close() {
+    let dir = scratch_dir("rows-held");
+    let text = std::fs::read_to_string(repo("models/row-record.toml"))
+        .unwrap()
+        .replace("gaps = [0.015, 0.01]", "gaps = [0.001, 0.001]")
+        .replace("restitution = 0.6", "restitution = 0.3")
+        .replace(
+            "../validation/records/elCentro.AT2",
+            repo("validation/records/elCentro.AT2").to_str().unwrap(),
+        );
+    let model = dir.join("row.toml");
+    std::fs::write(&model, text).unwrap();
+    let o = run(&model, &dir.join("out"), &[]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(stdout.contains("of persistent contact"), "{stdout}");
+    let summary: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(dir.join("out/summary.json")).unwrap()).unwrap();
+    let held = summary["held_contacts"].as_array().unwrap();
+    assert!(held.len() > 5, "{held:?}");
+    for stretch in held {
+        let (start, end) = (
+            stretch["t_start"].as_f64().unwrap(),
+            stretch["t_end"].as_f64().unwrap(),
+        );
+        assert!(end > start, "{stretch}");
+    }
+    // Both contacts held at once at some instant: all three columns moving as one.
+    let overlapping = held.iter().any(|a| {
+        held.iter().any(|b| {
+            a["contact"] != b["contact"]
+                && a["t_start"].as_f64() < b["t_end"].as_f64()
+                && b["t_start"].as_f64() < a["t_end"].as_f64()
+        })
+    });
+    assert!(overlapping, "no instant with all three held");
+    for column in summary["columns"].as_array().unwrap() {
+        let residual = column["max_energy_residual"].as_f64().unwrap();
+        let scale = column["energy_scale"].as_f64().unwrap();
+        assert!(residual <= 1e-12 * scale, "{residual} of {scale}");
+    }
+}

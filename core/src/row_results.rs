@@ -10,7 +10,7 @@ use crate::format::number;
 use crate::automaton::EventKind;
 use crate::body::Body;
 use crate::model::{RowModel, RowSection};
-use crate::row::RowSolution;
+use crate::row::{HeldContact, RowSolution};
 use crate::simulate::VERSION;
 use crate::solver::exact::ExactSettings;
 use crate::solver::InitialState;
@@ -44,6 +44,10 @@ pub struct RowSummary<'a> {
     pub n_impact_instants: usize,
     /// The body kinetic energy the impacts took, J, summed over the run.
     pub impact_energy_lost: f64,
+    /// Every stretch of persistent contact (impacts that accumulated, after which the pair was
+    /// held together until its contact force fell to zero): contact, t_start, t_end (s; null
+    /// if held to the end).
+    pub held_contacts: Vec<HeldContact>,
     /// Each column, left to right.
     pub columns: Vec<ColumnSummary<'a>>,
 }
@@ -119,6 +123,7 @@ pub fn row_summary<'a>(model: &'a RowModel, solution: &RowSolution) -> RowSummar
         n_impacts: solution.impacts.len(),
         n_impact_instants: solution.impact_energy_loss.len(),
         impact_energy_lost: solution.impact_energy_loss.iter().map(|(_, e)| e).sum(),
+        held_contacts: solution.held.clone(),
         columns,
     }
 }

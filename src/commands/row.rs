@@ -97,6 +97,14 @@ pub fn row_report_text(model: &RowModel, report: &RowReport) -> String {
             None => "no overturning".to_string(),
         }
     );
+    if !s.held.is_empty() {
+        let _ = writeln!(
+            t,
+            "  {} of persistent contact (impacts that accumulated: the pair held together until \
+             its contact force fell to zero), listed in summary.json",
+            writers::count(s.held.len(), "stretch", "stretches"),
+        );
+    }
     for f in &report.files {
         let _ = writeln!(t, "  wrote {}", f.display());
     }

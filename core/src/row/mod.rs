@@ -55,7 +55,7 @@ mod solve;
 
 pub use contact::Contact;
 pub use impact::{impulses, ImpactError, MAX_SIMULTANEOUS};
-pub use solve::{solve_row, ImpactRecord, RowSolution, ACCUMULATION_SHARE};
+pub use solve::{solve_row, HeldContact, ImpactRecord, RowSolution, ACCUMULATION_SHARE};
 
 use crate::automaton::Automaton;
 use crate::body::Body;

@@ -14,14 +14,23 @@
 //! column, the runs of the columns alone to the last digit.
 //!
 //! Impacts that accumulate (a pair pressed together bounces ever shorter) are detected when a
-//! closing velocity falls below [`ACCUMULATION_SHARE`] of the largest the pair has had: the run
-//! stops there with an error, since persistent contact is not part of the row model yet. The
-//! run budget of each column counts its impacts as events, so no run takes more than its budget.
+//! closing velocity falls below [`ACCUMULATION_SHARE`] of the largest the pair has had: that
+//! impact is taken as plastic and the pair is held in contact from then on (persistent
+//! contact). Columns held together form a cluster that moves with one degree of freedom: each
+//! column's q is affine in the leftmost one's (the gaps held closed), and the members'
+//! equations summed with the weights of their virtual displacements (the contact forces do no
+//! work on the cluster) are one linear equation with constant coefficients, which each member
+//! follows as an exact flow of its own. The force of each held contact is affine in the
+//! leader's q, q' and q'' along that flow; the contact is let go where the force would become
+//! tensile, found by the same search as a guard. An uplift or landing of a member disturbs the
+//! cluster: its reset is applied, and a plastic impact among the held contacts makes the
+//! velocities agree again. The run budget of each column counts its impacts and releases as
+//! events, so no run takes more than its budget.
 
 use std::time::Instant;
 
 use super::{impulses, Contact, Row};
-use crate::automaton::{Automaton, EventKind, Guard, Mode};
+use crate::automaton::{Automaton, EventKind, Guard, LinearForm, Mode};
 use crate::solver::exact::flow::{Flow, Point};
 use crate::solver::exact::scan::{self, first_crossing, ScanError, Smooth, Watch};
 use crate::solver::exact::{ExactSettings, Planned, Run, NAME};
@@ -54,6 +63,17 @@ pub struct ImpactRecord {
     pub impulse: f64,
 }
 
+/// A stretch of persistent contact: two neighbours held together.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct HeldContact {
+    /// The contact: between columns `contact` and `contact + 1`.
+    pub contact: usize,
+    /// When the pair was first held together, s.
+    pub t_start: f64,
+    /// When it was let go (its contact force fell to zero), s; None if held to the end.
+    pub t_end: Option<f64>,
+}
+
 /// What the row's run returns.
 #[derive(Debug, Clone)]
 pub struct RowSolution {
@@ -66,6 +86,8 @@ pub struct RowSolution {
     pub impact_energy_loss: Vec<(f64, f64)>,
     /// The column that overturned and when, if one did: the row's run ends there.
     pub overturned: Option<(usize, f64)>,
+    /// Every stretch of persistent contact: the contact, when it was formed and when let go.
+    pub held: Vec<HeldContact>,
     /// The time the run ended, s.
     pub final_time: f64,
 }
@@ -107,6 +129,57 @@ impl Smooth for Gap<'_> {
     }
 }
 
+/// A smooth function of time along a cluster leader's flow: a held contact's force,
+/// P = alpha q + gamma q' + delta q'' + epsilon (N) in the leader's q. Its point gives P and
+/// its rate; the higher derivatives are left at zero with no bound on the third, so the search
+/// cuts it into monotone pieces by its rate and the bound on its second derivative alone.
+struct Force<'f> {
+    flow: &'f Flow,
+    coefficients: [f64; 4],
+}
+
+impl Smooth for Force<'_> {
+    fn point(&self, t: f64) -> Point {
+        let p = self.flow.point(t);
+        let [alpha, gamma, delta, epsilon] = self.coefficients;
+        Point {
+            t,
+            q: alpha * p.q + gamma * p.v + delta * p.acc + epsilon,
+            v: alpha * p.v + gamma * p.acc + delta * p.jerk,
+            acc: 0.0,
+            jerk: 0.0,
+        }
+    }
+
+    fn derivative_bounds(&self, p: &Point, h: f64) -> (f64, f64, f64) {
+        let leader = self.flow.point(p.t);
+        let (m2, m3, m4) = self.flow.derivative_bounds(&leader, h);
+        let [alpha, gamma, delta, _] = self.coefficients;
+        (
+            alpha.abs() * m2 + gamma.abs() * m3 + delta.abs() * m4,
+            f64::INFINITY,
+            f64::INFINITY,
+        )
+    }
+}
+
+/// A cluster of columns held together, planned from one instant: each member's linear form,
+/// and each held contact's force in the leader's q, q', q''.
+struct Cluster {
+    first: usize,
+    forms: Vec<LinearForm>,
+    forces: Vec<[f64; 4]>,
+}
+
+/// What ends a window early.
+#[derive(Debug, Clone, Copy)]
+enum Interrupt {
+    /// A gap closes.
+    Closing,
+    /// A held contact's force falls to zero.
+    Release,
+}
+
 /// Solves `row` on `floor` exactly over [0, duration].
 pub fn solve_row(
     row: &Row,
@@ -117,17 +190,9 @@ pub fn solve_row(
 ) -> Result<RowSolution, SolverError> {
     let started = Instant::now();
     let energy = history == History::Sampled;
-    let columns = row.columns();
-    let n = columns.len();
-    let in_column = |i: usize, e: SolverError| match e {
-        SolverError::Failed { method, t, message } => SolverError::Failed {
-            method,
-            t,
-            message: format!("column {i}: {message}"),
-        },
-        other => other,
-    };
-    let mut runs: Vec<Run> = columns
+    let n = row.columns().len();
+    let runs: Vec<Run> = row
+        .columns()
         .iter()
         .map(|c| {
             Run::new(
@@ -141,201 +206,27 @@ pub fn solve_row(
             )
         })
         .collect();
-    let mut budgets: Vec<RunBudget> = (0..n).map(|_| RunBudget::new()).collect();
-    let mut plans: Vec<Option<Planned>> = Vec::with_capacity(n);
-    for i in 0..n {
-        let plan = runs[i]
-            .plan(duration, &mut budgets[i])
-            .map_err(|e| in_column(i, e))?;
-        plans.push(plan);
-    }
-    let mut impacts = Vec::new();
-    let mut losses = Vec::new();
-    let mut largest_closing = vec![0.0_f64; n.saturating_sub(1)];
-    let mut now = 0.0_f64;
-    let mut overturned = None;
-    loop {
-        if let Some(i) = (0..n).find(|&i| runs[i].state().1 == Mode::Overturned) {
-            // A column fell: what it falls onto is beyond the model; the row's run ends.
-            let t = runs[i].state().0;
-            overturned = Some((i, t));
-            for (j, plan) in plans.iter_mut().enumerate() {
-                if let Some(plan) = plan.take() {
-                    runs[j].cut(plan, t);
-                }
-            }
-            now = t;
-            break;
-        }
-        let Some(window_end) = plans
-            .iter()
-            .flatten()
-            .map(Planned::stop)
-            .min_by(f64::total_cmp)
-        else {
-            break;
-        };
-        // The first closing of each contact within the window.
-        let mut closings: Vec<(usize, f64)> = Vec::new();
-        for contact in row.contacts() {
-            let c = contact.index;
-            let (Some(left), Some(right)) = (&plans[c], &plans[c + 1]) else {
-                continue;
-            };
-            let automata = (&columns[c].automaton, &columns[c + 1].automaton);
-            let modes = (runs[c].state().1, runs[c + 1].state().1);
-            let gap = Gap {
-                contact,
-                automata,
-                modes,
-                flows: (left.flow(), right.flow()),
-                slopes: contact.slopes(automata, modes),
-            };
-            if let Some(t) = first_closing(&gap, now, window_end).map_err(|e| scan_failed(e, c))? {
-                closings.push((c, t));
-            }
-        }
-        let Some(first) = closings.iter().map(|&(_, t)| t).min_by(f64::total_cmp) else {
-            // No closing: the columns whose own stop ends the window take their flow.
-            for i in 0..n {
-                if plans[i].as_ref().is_some_and(|p| p.stop() == window_end) {
-                    let plan = plans[i].take().expect("checked");
-                    let going = runs[i]
-                        .commit(plan, duration, &mut budgets[i])
-                        .map_err(|e| in_column(i, e))?;
-                    if going {
-                        plans[i] = runs[i]
-                            .plan(duration, &mut budgets[i])
-                            .map_err(|e| in_column(i, e))?;
-                    }
-                }
-            }
-            now = window_end;
-            continue;
-        };
-        let t = first;
-        let active: Vec<usize> = closings
-            .iter()
-            .filter(|&&(_, tc)| tc <= t + SIMULTANEOUS * t.max(1.0))
-            .map(|&(c, _)| c)
-            .collect();
-        let mut involved: Vec<usize> = active.iter().flat_map(|&c| [c, c + 1]).collect();
-        involved.sort_unstable();
-        involved.dedup();
-        for &i in &involved {
-            // A column whose own event falls at the very instant takes it first.
-            if plans[i].as_ref().is_some_and(|p| p.stop() <= t) {
-                let plan = plans[i].take().expect("checked");
-                runs[i]
-                    .commit(plan, duration, &mut budgets[i])
-                    .map_err(|e| in_column(i, e))?;
-                plans[i] = runs[i]
-                    .plan(duration, &mut budgets[i])
-                    .map_err(|e| in_column(i, e))?;
-            }
-            if let Some(plan) = plans[i].take() {
-                runs[i].cut(plan, t);
-            }
-        }
-        now = t;
-        // The contacts' closing velocities, slopes and masses at t.
-        let states: Vec<(f64, Mode, f64, Dd)> = runs.iter().map(Run::state).collect();
-        let state = |i: usize| states[i];
-        let k = active.len();
-        let mut closing = vec![0.0; k];
-        let mut matrix = vec![0.0; k * k];
-        let mut shares: Vec<(f64, f64)> = Vec::with_capacity(k);
-        for (a, &c) in active.iter().enumerate() {
-            let contact = &row.contacts()[c];
-            let automata = (&columns[c].automaton, &columns[c + 1].automaton);
-            let (sl, ml, vl) = (state(c).1, automata.0.kinetic_mass(state(c).1), state(c).3);
-            let (sr, mr, vr) = (
-                state(c + 1).1,
-                automata.1.kinetic_mass(state(c + 1).1),
-                state(c + 1).3,
-            );
-            let (pl, pr) = contact.slopes(automata, (sl, sr));
-            closing[a] = pl * vl.value() - pr * vr.value();
-            matrix[a * k + a] = pl * pl / ml + pr * pr / mr;
-            shares.push((pl / ml, pr / mr));
-        }
-        for a in 0..k.saturating_sub(1) {
-            if active[a + 1] == active[a] + 1 {
-                // Contacts a and a + 1 share column active[a] + 1: its right share at contact a
-                // times its left slope at contact a + 1.
-                let shared = active[a] + 1;
-                let contact_next = &row.contacts()[active[a + 1]];
-                let automata = (&columns[shared].automaton, &columns[shared + 1].automaton);
-                let (p_next, _) =
-                    contact_next.slopes(automata, (state(shared).1, state(shared + 1).1));
-                let value = -shares[a].1 * p_next;
-                matrix[a * k + a + 1] = value;
-                matrix[(a + 1) * k + a] = value;
-            }
-        }
-        for (a, &c) in active.iter().enumerate() {
-            let w = closing[a];
-            if w <= ACCUMULATION_SHARE * largest_closing[c] || w <= 0.0 {
-                return Err(SolverError::Failed {
-                    method: NAME.to_string(),
-                    t,
-                    message: format!(
-                        "impacts between columns {c} and {} accumulate (closing at {w:e} m/s, \
-                         after closings up to {:e} m/s): the columns would stay in contact, \
-                         which the row model does not include yet",
-                        c + 1,
-                        largest_closing[c]
-                    ),
-                });
-            }
-            largest_closing[c] = largest_closing[c].max(w);
-        }
-        let j =
-            impulses(&closing, &matrix, row.restitution()).map_err(|e| SolverError::Failed {
-                method: NAME.to_string(),
-                t,
-                message: e.to_string(),
-            })?;
-        // Each column's jump of q': the sum of its shares of the impulses on either side.
-        let mut jumps = vec![0.0; n];
-        for (a, &c) in active.iter().enumerate() {
-            let automata = (&columns[c].automaton, &columns[c + 1].automaton);
-            let (pl, pr) = row.contacts()[c].slopes(automata, (state(c).1, state(c + 1).1));
-            jumps[c] -= pl * j[a] / automata.0.kinetic_mass(state(c).1);
-            jumps[c + 1] += pr * j[a] / automata.1.kinetic_mass(state(c + 1).1);
-        }
-        let mut loss = 0.0;
-        for &i in &involved {
-            let (_, mode, _, v) = runs[i].state();
-            let after = v + jumps[i];
-            let automaton = &columns[i].automaton;
-            loss += automaton.body_kinetic_energy(mode, v.value())
-                - automaton.body_kinetic_energy(mode, after.value());
-            let error = 2.0 * scan::ulp(t) + SIMULTANEOUS * t.max(1.0);
-            runs[i]
-                .impact(after, error, &mut budgets[i])
-                .map_err(|e| in_column(i, e))?;
-        }
-        losses.push((t, loss));
-        let after: Vec<Dd> = runs.iter().map(|r| r.state().3).collect();
-        for (a, &c) in active.iter().enumerate() {
-            let automata = (&columns[c].automaton, &columns[c + 1].automaton);
-            let (pl, pr) = row.contacts()[c].slopes(automata, (state(c).1, state(c + 1).1));
-            impacts.push(ImpactRecord {
-                t,
-                contact: c,
-                closing_velocity: closing[a],
-                separating_velocity: pr * after[c + 1].value() - pl * after[c].value(),
-                impulse: j[a],
-            });
-        }
-        for &i in &involved {
-            plans[i] = runs[i]
-                .plan(duration, &mut budgets[i])
-                .map_err(|e| in_column(i, e))?;
-        }
-    }
-    let solutions = runs
+    let mut state = RowRun {
+        row,
+        duration,
+        runs,
+        budgets: (0..n).map(|_| RunBudget::new()).collect(),
+        plans: (0..n).map(|_| None).collect(),
+        held: vec![false; n - 1],
+        clusters: Vec::new(),
+        largest_closing: vec![0.0; n - 1],
+        impacts: Vec::new(),
+        losses: Vec::new(),
+        stretches: Vec::new(),
+        released_at: vec![None; n - 1],
+        now: 0.0,
+    };
+    let everyone: Vec<usize> = (0..n).collect();
+    state.replan(&everyone)?;
+    let overturned = state.go()?;
+    let now = state.now;
+    let solutions = state
+        .runs
         .into_iter()
         .map(|run| {
             let t = run.state().0;
@@ -344,15 +235,596 @@ pub fn solve_row(
         .collect();
     Ok(RowSolution {
         columns: solutions,
-        impacts,
-        impact_energy_loss: losses,
+        impacts: state.impacts,
+        impact_energy_loss: state.losses,
         overturned,
-        final_time: now.min(duration).max(now),
+        held: state.stretches,
+        final_time: now,
     })
 }
 
+struct RowRun<'a> {
+    row: &'a Row,
+    duration: f64,
+    runs: Vec<Run<'a>>,
+    budgets: Vec<RunBudget>,
+    plans: Vec<Option<Planned>>,
+    /// Per contact: held closed (persistent contact).
+    held: Vec<bool>,
+    /// The clusters of held columns as last planned.
+    clusters: Vec<Cluster>,
+    largest_closing: Vec<f64>,
+    impacts: Vec<ImpactRecord>,
+    losses: Vec<(f64, f64)>,
+    stretches: Vec<HeldContact>,
+    /// Per contact: when it was last let go.
+    released_at: Vec<Option<f64>>,
+    now: f64,
+}
+
+fn in_column(i: usize, e: SolverError) -> SolverError {
+    match e {
+        SolverError::Failed { method, t, message } => SolverError::Failed {
+            method,
+            t,
+            message: format!("column {i}: {message}"),
+        },
+        other => other,
+    }
+}
+
+fn failed(t: f64, message: String) -> SolverError {
+    SolverError::Failed {
+        method: NAME.to_string(),
+        t,
+        message,
+    }
+}
+
+impl<'a> RowRun<'a> {
+    /// The columns held together with column `i`, first and last.
+    fn cluster_of(&self, i: usize) -> (usize, usize) {
+        let mut first = i;
+        while first > 0 && self.held[first - 1] {
+            first -= 1;
+        }
+        let mut last = i;
+        while last + 1 < self.runs.len() && self.held[last] {
+            last += 1;
+        }
+        (first, last)
+    }
+
+    /// Every column of the clusters of `columns`, in order.
+    fn with_clusters(&self, columns: &[usize]) -> Vec<usize> {
+        let mut all: Vec<usize> = columns
+            .iter()
+            .flat_map(|&i| {
+                let (a, b) = self.cluster_of(i);
+                a..=b
+            })
+            .collect();
+        all.sort_unstable();
+        all.dedup();
+        all
+    }
+
+    /// The held contacts between columns of `columns`.
+    fn held_within(&self, columns: &[usize]) -> Vec<usize> {
+        columns
+            .iter()
+            .filter(|&&i| i + 1 < self.runs.len() && self.held[i] && columns.contains(&(i + 1)))
+            .copied()
+            .collect()
+    }
+
+    /// Cuts every column of `columns` that has a plan at `t`.
+    fn cut(&mut self, columns: &[usize], t: f64) {
+        for &i in columns {
+            if let Some(plan) = self.plans[i].take() {
+                self.runs[i].cut(plan, t);
+            }
+        }
+    }
+
+    /// Plans `columns` (whole clusters, all at the same instant) anew: each free column by its
+    /// own mode, each cluster by its combined linear form.
+    fn replan(&mut self, columns: &[usize]) -> Result<(), SolverError> {
+        let columns = self.with_clusters(columns);
+        self.clusters.retain(|c| !columns.contains(&c.first));
+        let mut i = 0;
+        while i < columns.len() {
+            let (first, last) = self.cluster_of(columns[i]);
+            if first == last {
+                self.runs[first].set_bond(None);
+            } else {
+                let cluster = self.cluster(first, last)?;
+                for (j, form) in (first..=last).zip(&cluster.forms) {
+                    self.runs[j].set_bond(Some(*form));
+                }
+                self.clusters.push(cluster);
+            }
+            for j in first..=last {
+                if self.runs[j].state().1 == Mode::Overturned {
+                    continue;
+                }
+                self.plans[j] = self.runs[j]
+                    .plan(self.duration, &mut self.budgets[j])
+                    .map_err(|e| in_column(j, e))?;
+            }
+            i = columns
+                .iter()
+                .position(|&c| c > last)
+                .unwrap_or(columns.len());
+        }
+        Ok(())
+    }
+
+    /// The combined motion of the held columns first..=last from their current states.
+    fn cluster(&self, first: usize, last: usize) -> Result<Cluster, SolverError> {
+        let t = self.runs[first].state().0;
+        let contacts = self.row.contacts();
+        let size = last - first + 1;
+        // Each member's q = rho q_leader + kappa; its kinetic mass and its own linear form.
+        let mut rho = vec![1.0; size];
+        let mut kappa = vec![0.0; size];
+        let q_leader = self.runs[first].state().2;
+        let mut own = Vec::with_capacity(size);
+        for k in 0..size {
+            let j = first + k;
+            let (_, mode, q, _) = self.runs[j].state();
+            let a = self.runs[j].automaton();
+            let Some(form) = a.linear_form(mode) else {
+                return Err(failed(t, format!("column {j} has overturned while held")));
+            };
+            own.push((a.kinetic_mass(mode), form));
+            if k > 0 {
+                let c = j - 1;
+                let automata = (self.runs[c].automaton(), a);
+                let (left, right) = contacts[c].slopes(automata, (self.runs[c].state().1, mode));
+                rho[k] = rho[k - 1] * left / right;
+                kappa[k] = q - rho[k] * q_leader;
+            }
+        }
+        let mu: f64 = (0..size).map(|k| rho[k] * rho[k] * own[k].0).sum();
+        let sum = |f: &dyn Fn(usize) -> f64| (0..size).map(f).sum::<f64>() / mu;
+        let damping = sum(&|k| rho[k] * rho[k] * own[k].0 * own[k].1.damping);
+        let stiffness = sum(&|k| rho[k] * rho[k] * own[k].0 * own[k].1.stiffness);
+        let participation = sum(&|k| rho[k] * own[k].0 * own[k].1.participation);
+        let stiffness_equilibrium =
+            sum(&|k| rho[k] * own[k].0 * own[k].1.stiffness * (own[k].1.equilibrium - kappa[k]));
+        let scale = sum(&|k| (rho[k] * rho[k] * own[k].0 * own[k].1.stiffness).abs());
+        if stiffness.abs() <= 1e-9 * scale {
+            return Err(failed(
+                t,
+                format!(
+                    "columns {first} to {last} held together have no net stiffness (their \
+                     rocking and swaying cancel): their held motion is not modelled"
+                ),
+            ));
+        }
+        let equilibrium = stiffness_equilibrium / stiffness;
+        let forms = (0..size)
+            .map(|k| LinearForm {
+                stiffness,
+                damping,
+                equilibrium: rho[k] * equilibrium + kappa[k],
+                participation: rho[k] * participation,
+            })
+            .collect();
+        // Each member's share of the contact forces, m (q_j'' - f_j), in the leader's q, q',
+        // q'' (the floor eliminated by the combined equation, beta a = -(q'' + C q' + K (q - e))).
+        let r = |k: usize| {
+            let (m, f) = own[k];
+            let b = f.participation / participation;
+            [
+                m * (f.stiffness * rho[k] - b * stiffness),
+                m * (f.damping * rho[k] - b * damping),
+                m * (rho[k] - b),
+                m * (f.stiffness * (kappa[k] - f.equilibrium) + b * stiffness * equilibrium),
+            ]
+        };
+        // The force of the contact right of member k: (Phi_left P_before - R_k) / Phi_right.
+        let mut forces = Vec::with_capacity(size - 1);
+        let mut before = [0.0; 4];
+        for k in 0..size - 1 {
+            let j = first + k;
+            let automata = (self.runs[j].automaton(), self.runs[j + 1].automaton());
+            let modes = (self.runs[j].state().1, self.runs[j + 1].state().1);
+            let (right_slope, _) = contacts[j].slopes(automata, modes);
+            let left_slope = if k == 0 {
+                0.0
+            } else {
+                let c = j - 1;
+                let automata = (self.runs[c].automaton(), self.runs[j].automaton());
+                contacts[c]
+                    .slopes(automata, (self.runs[c].state().1, self.runs[j].state().1))
+                    .1
+            };
+            let rk = r(k);
+            let p: [f64; 4] =
+                std::array::from_fn(|x| (left_slope * before[x] - rk[x]) / right_slope);
+            forces.push(p);
+            before = p;
+        }
+        Ok(Cluster {
+            first,
+            forms,
+            forces,
+        })
+    }
+
+    /// Runs the windows to the end; the column that overturned, if one did.
+    fn go(&mut self) -> Result<Option<(usize, f64)>, SolverError> {
+        let n = self.runs.len();
+        loop {
+            if let Some(i) = (0..n).find(|&i| self.runs[i].state().1 == Mode::Overturned) {
+                // A column fell: what it falls onto is beyond the model; the row's run ends.
+                let t = self.runs[i].state().0;
+                let all: Vec<usize> = (0..n).collect();
+                self.cut(&all, t);
+                self.now = t;
+                self.end_stretches(t);
+                return Ok(Some((i, t)));
+            }
+            let Some(window_end) = self
+                .plans
+                .iter()
+                .flatten()
+                .map(Planned::stop)
+                .min_by(f64::total_cmp)
+            else {
+                return Ok(None);
+            };
+            let mut found = self.closings(window_end)?;
+            found.extend(self.releases(window_end)?);
+            let Some(t) = found.iter().map(|f| f.1).min_by(f64::total_cmp) else {
+                self.take_window(window_end)?;
+                continue;
+            };
+            let tolerance = SIMULTANEOUS * t.max(1.0);
+            let now: Vec<(usize, Interrupt)> = found
+                .iter()
+                .filter(|f| f.1 <= t + tolerance)
+                .map(|f| (f.0, f.2))
+                .collect();
+            let releases: Vec<usize> = now
+                .iter()
+                .filter(|f| matches!(f.1, Interrupt::Release))
+                .map(|f| f.0)
+                .collect();
+            if !releases.is_empty() {
+                self.release(&releases, t)?;
+                continue;
+            }
+            let closing: Vec<usize> = now.iter().map(|f| f.0).collect();
+            self.strike(&closing, t)?;
+        }
+    }
+
+    /// Ends the stretches of persistent contact still open at `t` (a column overturned).
+    fn end_stretches(&mut self, t: f64) {
+        for s in self.stretches.iter_mut().filter(|s| s.t_end.is_none()) {
+            s.t_end = Some(t);
+        }
+    }
+
+    /// The first closing of each open contact within (now, window_end].
+    fn closings(&self, window_end: f64) -> Result<Vec<(usize, f64, Interrupt)>, SolverError> {
+        let mut out = Vec::new();
+        for contact in self.row.contacts() {
+            let c = contact.index;
+            if self.held[c] {
+                continue;
+            }
+            let (Some(left), Some(right)) = (&self.plans[c], &self.plans[c + 1]) else {
+                continue;
+            };
+            let automata = (self.runs[c].automaton(), self.runs[c + 1].automaton());
+            let modes = (self.runs[c].state().1, self.runs[c + 1].state().1);
+            let gap = Gap {
+                contact,
+                automata,
+                modes,
+                flows: (left.flow(), right.flow()),
+                slopes: contact.slopes(automata, modes),
+            };
+            // A contact let go at this instant starts at zero gap and opens (its force fell
+            // through zero): its gap is not put on the guard, so that rounding there is no
+            // closing.
+            let snap = self.released_at[c] != Some(self.now);
+            if let Some(t) =
+                first_closing(&gap, self.now, window_end, snap).map_err(|e| scan_failed(e, c))?
+            {
+                out.push((c, t, Interrupt::Closing));
+            }
+        }
+        Ok(out)
+    }
+
+    /// The first time each held contact's force falls to zero within [now, window_end]: at
+    /// once where it is not compressive now.
+    fn releases(&self, window_end: f64) -> Result<Vec<(usize, f64, Interrupt)>, SolverError> {
+        let mut out = Vec::new();
+        for cluster in &self.clusters {
+            let Some(leader) = &self.plans[cluster.first] else {
+                continue;
+            };
+            for (k, coefficients) in cluster.forces.iter().enumerate() {
+                let c = cluster.first + k;
+                let force = Force {
+                    flow: leader.flow(),
+                    coefficients: *coefficients,
+                };
+                if force.point(self.now).q <= 0.0 {
+                    out.push((c, self.now, Interrupt::Release));
+                    continue;
+                }
+                if let Some(t) =
+                    first_zero(&force, self.now, window_end).map_err(|e| scan_failed(e, c))?
+                {
+                    out.push((c, t, Interrupt::Release));
+                }
+            }
+        }
+        Ok(out)
+    }
+
+    /// No closing and no release within the window: the columns whose own stop ends it take
+    /// their flow; a cluster one of whose members had an event is settled.
+    fn take_window(&mut self, window_end: f64) -> Result<(), SolverError> {
+        let n = self.runs.len();
+        let mut stopped = Vec::new();
+        let mut disturbed = Vec::new();
+        for i in 0..n {
+            if self.plans[i]
+                .as_ref()
+                .is_some_and(|p| p.stop() == window_end)
+            {
+                let plan = self.plans[i].take().expect("checked");
+                let events_before = self.runs[i].event_count();
+                let going = self.runs[i]
+                    .commit(plan, self.duration, &mut self.budgets[i])
+                    .map_err(|e| in_column(i, e))?;
+                if self.runs[i].event_count() > events_before {
+                    disturbed.push(i);
+                }
+                if going {
+                    stopped.push(i);
+                }
+            }
+        }
+        self.now = window_end;
+        if (0..n).any(|i| self.runs[i].state().1 == Mode::Overturned) {
+            return Ok(());
+        }
+        // Free columns plan on; held ones plan with their cluster, from one instant.
+        let members = self.with_clusters(&stopped);
+        let others: Vec<usize> = members
+            .iter()
+            .copied()
+            .filter(|i| !stopped.contains(i))
+            .collect();
+        self.cut(&others, window_end);
+        let disturbed = self.with_clusters(&disturbed);
+        let held = self.held_within(&disturbed);
+        if !held.is_empty() {
+            // A member's reset broke the agreement of the held velocities: a plastic impact
+            // among the held contacts restores it (those that open are let go).
+            let restitution = vec![0.0; held.len()];
+            self.impulses(&held, &restitution, window_end)?;
+        }
+        self.replan(&members)
+    }
+
+    /// Lets go of held contacts `contacts` at `t`.
+    fn release(&mut self, contacts: &[usize], t: f64) -> Result<(), SolverError> {
+        let ends: Vec<usize> = contacts.iter().flat_map(|&c| [c, c + 1]).collect();
+        let members = self.with_clusters(&ends);
+        self.cut(&members, t);
+        self.now = t;
+        for &c in contacts {
+            self.held[c] = false;
+            self.released_at[c] = Some(t);
+            self.end_stretch(c, t);
+            for i in [c, c + 1] {
+                self.budgets[i]
+                    .event(t)
+                    .map_err(|m| in_column(i, failed(t, m)))?;
+            }
+        }
+        self.replan(&members)
+    }
+
+    /// Ends the open stretch of `contact` at `t`; one that ends the instant it began (a plastic
+    /// impact whose pair is not pressed together) was no stretch and is dropped.
+    fn end_stretch(&mut self, contact: usize, t: f64) {
+        if let Some(i) = self
+            .stretches
+            .iter()
+            .rposition(|s| s.contact == contact && s.t_end.is_none())
+        {
+            if self.stretches[i].t_start == t {
+                self.stretches.remove(i);
+            } else {
+                self.stretches[i].t_end = Some(t);
+            }
+        }
+    }
+
+    /// Contacts `closing` close at `t`: the impacts, with every held contact of the columns
+    /// involved, resolved together.
+    fn strike(&mut self, closing: &[usize], t: f64) -> Result<(), SolverError> {
+        let ends: Vec<usize> = closing.iter().flat_map(|&c| [c, c + 1]).collect();
+        let members = self.with_clusters(&ends);
+        for &i in &members {
+            // A column whose own event falls at the very instant takes it first.
+            if self.plans[i].as_ref().is_some_and(|p| p.stop() <= t) {
+                let plan = self.plans[i].take().expect("checked");
+                self.runs[i]
+                    .commit(plan, self.duration, &mut self.budgets[i])
+                    .map_err(|e| in_column(i, e))?;
+                if self.runs[i].state().1 != Mode::Overturned {
+                    self.plans[i] = self.runs[i]
+                        .plan(self.duration, &mut self.budgets[i])
+                        .map_err(|e| in_column(i, e))?;
+                }
+            }
+        }
+        self.cut(&members, t);
+        self.now = t;
+        if members
+            .iter()
+            .any(|&i| self.runs[i].state().1 == Mode::Overturned)
+        {
+            return Ok(());
+        }
+        let mut contacts: Vec<usize> = closing.to_vec();
+        contacts.extend(self.held_within(&members));
+        contacts.sort_unstable();
+        contacts.dedup();
+        let restitution: Vec<f64> = contacts
+            .iter()
+            .map(|&c| {
+                if self.held[c] {
+                    0.0
+                } else {
+                    self.row.restitution()
+                }
+            })
+            .collect();
+        self.impulses(&contacts, &restitution, t)?;
+        self.replan(&members)
+    }
+
+    /// The impulses at `contacts` (each with its restitution) at `t`, applied to the columns'
+    /// velocities and booked: an impact event of every column struck, a row of the impacts
+    /// for every contact that carries an impulse. A closing too slow against the pair's earlier
+    /// ones is taken as plastic and the pair held together; a held contact stays held unless
+    /// it opens.
+    fn impulses(
+        &mut self,
+        contacts: &[usize],
+        restitution: &[f64],
+        t: f64,
+    ) -> Result<(), SolverError> {
+        let n = self.runs.len();
+        let states: Vec<(f64, Mode, f64, Dd)> = self.runs.iter().map(Run::state).collect();
+        let k = contacts.len();
+        let mut slopes = Vec::with_capacity(k);
+        let mut masses = Vec::with_capacity(k);
+        let mut closing = vec![0.0; k];
+        for (a, &c) in contacts.iter().enumerate() {
+            let automata = (self.runs[c].automaton(), self.runs[c + 1].automaton());
+            let (pl, pr) = self.row.contacts()[c].slopes(automata, (states[c].1, states[c + 1].1));
+            closing[a] = pl * states[c].3.value() - pr * states[c + 1].3.value();
+            slopes.push((pl, pr));
+            masses.push((
+                automata.0.kinetic_mass(states[c].1),
+                automata.1.kinetic_mass(states[c + 1].1),
+            ));
+        }
+        // Accumulating impacts are taken as plastic, and their pair is held.
+        let mut e: Vec<f64> = restitution.to_vec();
+        let mut hold = vec![false; k];
+        for (a, &c) in contacts.iter().enumerate() {
+            if self.held[c] {
+                hold[a] = true;
+                continue;
+            }
+            let w = closing[a];
+            if w <= ACCUMULATION_SHARE * self.largest_closing[c] || w <= 0.0 {
+                e[a] = 0.0;
+                hold[a] = true;
+            }
+            self.largest_closing[c] = self.largest_closing[c].max(w);
+        }
+        let mut matrix = vec![0.0; k * k];
+        for a in 0..k {
+            matrix[a * k + a] =
+                slopes[a].0 * slopes[a].0 / masses[a].0 + slopes[a].1 * slopes[a].1 / masses[a].1;
+            if a + 1 < k && contacts[a + 1] == contacts[a] + 1 {
+                // Contacts a and a + 1 share a column: its slopes at both over its mass.
+                let value = -slopes[a].1 * slopes[a + 1].0 / masses[a].1;
+                matrix[a * k + a + 1] = value;
+                matrix[(a + 1) * k + a] = value;
+            }
+        }
+        let targets: Vec<f64> = (0..k).map(|a| (1.0 + e[a]) * closing[a]).collect();
+        // Newton's law with each contact's own restitution: impulses() with e = 0 on the
+        // targets (1 + e_c) w_c.
+        let j = impulses(&targets, &matrix, 0.0).map_err(|m| failed(t, m.to_string()))?;
+        let mut jumps = vec![0.0; n];
+        for (a, &c) in contacts.iter().enumerate() {
+            jumps[c] -= slopes[a].0 * j[a] / masses[a].0;
+            jumps[c + 1] += slopes[a].1 * j[a] / masses[a].1;
+        }
+        let mut involved: Vec<usize> = contacts.iter().flat_map(|&c| [c, c + 1]).collect();
+        involved.sort_unstable();
+        involved.dedup();
+        let mut loss = 0.0;
+        // The columns struck: those at a contact that carries an impulse (a middle column
+        // pushed equally both ways among them, its velocity unchanged).
+        let struck: Vec<bool> = (0..n)
+            .map(|i| {
+                contacts
+                    .iter()
+                    .zip(&j)
+                    .any(|(&c, &x)| x > 0.0 && (c == i || c + 1 == i))
+            })
+            .collect();
+        for &i in &involved {
+            if !struck[i] {
+                continue;
+            }
+            let (_, mode, _, v) = states[i];
+            let after = v + jumps[i];
+            let automaton = self.runs[i].automaton();
+            loss += automaton.body_kinetic_energy(mode, v.value())
+                - automaton.body_kinetic_energy(mode, after.value());
+            let error = 2.0 * scan::ulp(t) + SIMULTANEOUS * t.max(1.0);
+            self.runs[i]
+                .impact(after, error, &mut self.budgets[i])
+                .map_err(|e| in_column(i, e))?;
+        }
+        if j.iter().any(|&x| x > 0.0) {
+            self.losses.push((t, loss));
+        }
+        let after: Vec<Dd> = self.runs.iter().map(|r| r.state().3).collect();
+        for (a, &c) in contacts.iter().enumerate() {
+            let separating = slopes[a].1 * after[c + 1].value() - slopes[a].0 * after[c].value();
+            if j[a] > 0.0 {
+                self.impacts.push(ImpactRecord {
+                    t,
+                    contact: c,
+                    closing_velocity: closing[a],
+                    separating_velocity: separating,
+                    impulse: j[a],
+                });
+            }
+            let scale = closing[a]
+                .abs()
+                .max(self.largest_closing[c])
+                .max(f64::MIN_POSITIVE);
+            let opens = separating > 1e-9 * scale;
+            let was_held = self.held[c];
+            self.held[c] = hold[a] && !opens;
+            if self.held[c] && !was_held {
+                self.stretches.push(HeldContact {
+                    contact: c,
+                    t_start: t,
+                    t_end: None,
+                });
+            } else if was_held && !self.held[c] {
+                self.end_stretch(c, t);
+            }
+        }
+        Ok(())
+    }
+}
+
 /// The first time in (from, to] at which the gap closes (falls through 0), if it does.
-fn first_closing(gap: &Gap, from: f64, to: f64) -> Result<Option<f64>, ScanError> {
+fn first_closing(gap: &Gap, from: f64, to: f64, snap: bool) -> Result<Option<f64>, ScanError> {
     if to <= from {
         return Ok(None);
     }
@@ -372,7 +844,7 @@ fn first_closing(gap: &Gap, from: f64, to: f64) -> Result<Option<f64>, ScanError
         unresolved: 0,
     };
     let mut a = scan::evaluate(gap, from, &mut watch)?;
-    if a.q < 0.0 {
+    if a.q < 0.0 && snap {
         // Closed at the start: a contact just struck, whose gap the rounding of the two
         // states leaves a hair below zero. It is on the guard, so that closing on from there is
         // found at once (and the impacts accumulate), while opening is no crossing.
@@ -380,6 +852,31 @@ fn first_closing(gap: &Gap, from: f64, to: f64) -> Result<Option<f64>, ScanError
     }
     let b = scan::evaluate(gap, to, &mut watch)?;
     Ok(first_crossing(gap, a, b, &[closing], &mut watch)?.map(|(p, _)| p.t))
+}
+
+/// The first time in (from, to] at which a held contact's force falls through zero.
+fn first_zero(force: &Force, from: f64, to: f64) -> Result<Option<f64>, ScanError> {
+    if to <= from {
+        return Ok(None);
+    }
+    let release = Guard {
+        level: 0.0,
+        direction: -1.0,
+        kind: EventKind::Impact,
+        to: Mode::PreUplift,
+    };
+    let mut watch = Watch {
+        guard_up: f64::INFINITY,
+        guard_down: 0.0,
+        max: f64::INFINITY,
+        min: f64::NEG_INFINITY,
+        extrema: Vec::new(),
+        evaluations: 0,
+        unresolved: 0,
+    };
+    let a = scan::evaluate(force, from, &mut watch)?;
+    let b = scan::evaluate(force, to, &mut watch)?;
+    Ok(first_crossing(force, a, b, &[release], &mut watch)?.map(|(p, _)| p.t))
 }
 
 fn scan_failed(e: ScanError, contact: usize) -> SolverError {

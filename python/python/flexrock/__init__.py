@@ -231,8 +231,7 @@ def simulate_row(path, duration: Optional[float] = None) -> RowResult:
     ------
     FlexrockError
         On a bad file or argument (the message names the key, e.g. ``column[1].width``, or
-        ``duration (sets simulation.duration)``), or a row that cannot be solved (impacts that
-        accumulate: persistent contact is not modelled).
+        ``duration (sets simulation.duration)``), or a row that cannot be solved.
 
     Examples
     --------

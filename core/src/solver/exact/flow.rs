@@ -29,6 +29,10 @@ const SERIES_REACH: f64 = 0.5;
 /// Largest growth exponent (|sigma| + mu) tau of a flow of the oscillator form before it is
 /// re-anchored: e^30 keeps every term far from overflow.
 const OSCILLATOR_REACH: f64 = 30.0;
+/// How much smaller the oscillator form's bound on the derivatives (free motion and steady
+/// state apart) must be than the bound on the whole state to be used instead
+/// ([`Flow::derivative_bounds`]).
+pub(crate) const STEADY_BOUND_GAIN: f64 = 1e3;
 /// A sinusoid whose steady state amplifies it by more than this (|k - Omega^2 + i c Omega| below
 /// this share of max(|k|, Omega^2)) is integrated in series form instead: at resonance the steady
 /// state and the free motion cancel.
@@ -599,6 +603,15 @@ impl Flow {
     /// Bounds on |x''| and |x'''| over `[t0, t0 + h]` from the state at t0: the free motion
     /// grows at most as e^((|k|^(1/2) + |c|) h) in the energy norm, and the forcing adds at most
     /// h max|f| to it.
+    ///
+    /// In the oscillator form a second bound holds: the steady state's derivatives are known
+    /// exactly (a sinusoid of amplitude A_p, |x_p^(n)| <= A_p Omega^n), so the growth bound need
+    /// apply to the free motion alone. Where the steady state dominates (a stiff body under a
+    /// slow floor: a quasi-static lean far larger than its free motion), the first bound would
+    /// make the body look as fast as its own frequency times the whole state, and the search
+    /// would cut its monotone pieces a million times too short. Both bounds hold; the second is
+    /// taken where it is at least [`STEADY_BOUND_GAIN`] times smaller, so that elsewhere the
+    /// search (and the last bits of the event times it finds) stays as it was.
     pub fn derivative_bounds(&self, p: &Point, h: f64) -> (f64, f64, f64) {
         let (k, c) = (self.k, self.c);
         let w = k.abs().sqrt();
@@ -610,6 +623,26 @@ impl Flow {
         // The fourth derivative is f'' - k x'' - c x''' by the equation.
         let m4 = w * w * m2 + c.abs() * m3 + self.force_curvature_bound;
         let safe = 1.0 + 1e-9;
+        if let Form::Oscillator(o) = &self.form {
+            let [xh, vh, _, _] = o.free(k, self.local(p.t));
+            let zh = ((w + c.abs()) * h).exp() * (w * w * xh * xh + vh * vh).sqrt();
+            let amplitude = (o.xs * o.xs + o.xc * o.xc).sqrt();
+            let big_omega = 2.0 * PI / o.period;
+            let steady = |n: i32| amplitude * big_omega.powi(n);
+            let h2 = (w + c.abs()) * zh;
+            let h3 = w * w * zh + c.abs() * h2;
+            let h4 = w * w * h2 + c.abs() * h3;
+            // Plus the rounding of the sum of the two parts: a few ulps of each.
+            let split = |free: f64, steady: f64| (free + steady) * (1.0 + 16.0 * f64::EPSILON);
+            let (s2, s3, s4) = (
+                split(h2, steady(2)),
+                split(h3, steady(3)),
+                split(h4, steady(4)),
+            );
+            if s2 * STEADY_BOUND_GAIN <= m2 && s2.is_finite() && s3.is_finite() && s4.is_finite() {
+                return (s2 * safe, s3 * safe, s4 * safe);
+            }
+        }
         (m2 * safe, m3 * safe, m4 * safe)
     }
 

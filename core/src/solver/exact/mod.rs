@@ -41,7 +41,7 @@ use std::time::Instant;
 use serde::Serialize;
 
 use super::budget::RunBudget;
-use crate::automaton::{Automaton, EventKind, Guard, Mode};
+use crate::automaton::{Automaton, EventKind, Guard, LinearForm, Mode};
 use crate::double_double::DoubleDouble as Dd;
 use crate::excitation::FloorMotion;
 use crate::solution::{Recorder, RoundingEstimate, Solution, SolverStats};
@@ -193,6 +193,9 @@ struct Work {
     t: f64,
     input: f64,
     damping: f64,
+    /// The work of a neighbour's contact force while the column is held against it (a row's
+    /// persistent contact), J.
+    contact: f64,
 }
 
 /// Error estimates of the recorded peaks: of the value (m) and of its time (s).
@@ -230,6 +233,9 @@ pub(crate) struct Run<'a> {
     unresolved: usize,
     /// True until the run's first state has been sampled.
     first: bool,
+    /// While the column is held against a neighbour (a row's persistent contact): the linear
+    /// form its flows follow instead of its mode's own.
+    bond: Option<LinearForm>,
 }
 
 /// A flow planned by [`Run::plan`]: its first guard crossing, if any, and the extrema of q the
@@ -298,6 +304,7 @@ impl<'a> Run<'a> {
             evaluations: 0,
             unresolved: 0,
             first: true,
+            bond: None,
         }
     }
 
@@ -354,7 +361,7 @@ impl<'a> Run<'a> {
         if self.mode == Mode::Overturned {
             return Ok(None);
         }
-        let Some(linear) = automaton.linear_form(self.mode) else {
+        let Some(linear) = self.bond.or_else(|| automaton.linear_form(self.mode)) else {
             return Ok(None);
         };
         let stretch = self.floor.closed_form(self.t);
@@ -478,6 +485,11 @@ impl<'a> Run<'a> {
         self.t = t;
         self.t_lo = 0.0;
         self.peak(&flow, &flow.point(t));
+    }
+
+    /// Events booked so far.
+    pub(crate) fn event_count(&self) -> usize {
+        self.event_errors.len()
     }
 
     /// The run's time, mode, q and q' (q' to twice the precision).
@@ -631,7 +643,51 @@ impl<'a> Run<'a> {
             t,
             input: self.work.input + input,
             damping: self.work.damping + damping,
+            contact: self.work.contact,
         };
+        if self.bond.is_some() {
+            self.advance_contact_work(flow, from, t, pieces, rule);
+        }
+    }
+
+    /// Integrates the power of the contact force over [from, t] while the column is held
+    /// against a neighbour: Me times the flow's acceleration less the column's own, times q'.
+    fn advance_contact_work(
+        &mut self,
+        flow: &Flow,
+        from: f64,
+        t: f64,
+        pieces: usize,
+        rule: &[(f64, f64)],
+    ) {
+        let (a, mode) = (self.automaton, self.mode);
+        let me = a.generalised_mass();
+        let h = (t - from) / pieces as f64;
+        let mut contact = 0.0;
+        for i in 0..pieces {
+            let middle = from + (i as f64 + 0.5) * h;
+            for &(node, weight) in rule {
+                for side in [-1.0, 1.0] {
+                    let tau = middle + side * node * 0.5 * h;
+                    let p = flow.point(tau);
+                    let own = a.acceleration(mode, p.q, p.v, self.floor.acceleration(tau));
+                    contact += weight * 0.5 * h * me * (p.acc - own) * p.v;
+                }
+            }
+        }
+        self.work.contact += contact;
+        self.recorder.set_contact_work(self.work.contact);
+    }
+
+    /// Holds the column against a neighbour (`Some`: its flows follow that linear form from
+    /// the next plan on) or lets it go (`None`).
+    pub(crate) fn set_bond(&mut self, bond: Option<LinearForm>) {
+        self.bond = bond;
+    }
+
+    /// The column's automaton.
+    pub(crate) fn automaton(&self) -> &'a Automaton {
+        self.automaton
     }
 
     /// The event at `p` through `guard`: booked, reset applied, mode changed.
