@@ -234,7 +234,8 @@ pub fn run(
                        uplift at 1.1226 g B/H)",
         ishiyama: IshiyamaLines {
             reference: "Ishiyama (1982), Earthquake Eng. Struct. Dyn. 10, 635-650: A > g B/H \
-                        and V > 10 B/sqrt(H) cm/s (B, H in cm)",
+                        and V > 10 B/sqrt(H) cm/s (B, H in cm), the velocity constant as \
+                        commonly quoted (not confirmed from the paper)",
             acceleration_m_per_s2: ishiyama_acceleration(
                 geometry.width,
                 geometry.height,
