@@ -339,6 +339,43 @@ fn overturning_without_impact_matches_the_linearised_closed_form() {
     }
 }
 
+/// Under the other convention of overturning, that the block has overturned only if it cannot
+/// come back (the linearised block still above psi = 1, or beyond it and moving away, when
+/// the pulse ends), the smallest one-sine pulse that overturns it without impact has an
+/// explicit closed form: with psi + psi' = 1 + C omega + (c1 + c2) e^(T - t0) at the pulse's
+/// end T = 2 pi/omega, overturning needs (sqrt(beta^2 - 1) - omega) e^((2 pi - asin(1/beta))/
+/// omega) > beta (derived here). Its root lies well above the minimum of flexrock's convention
+/// (overturned when theta reaches alpha), by 4.5 % at omega_p/p = 1 and 14 % to 24 % at 2 to 8:
+/// at that root the block passes theta = alpha during the pulse and is brought back by its
+/// second half. Measured roots: 1.41832, 2.34990, 5.23896, 9.41697, 14.87135 at omega_p/p = 1,
+/// 2, 4, 6, 8 (against 1.35690, 2.05640, 4.25027, 7.58934, 12.13864).
+#[test]
+fn the_end_of_pulse_convention_gives_a_higher_minimum() {
+    let end_condition = |beta: f64, omega: f64| {
+        ((beta * beta - 1.0).sqrt() - omega) * ((2.0 * PI - (1.0 / beta).asin()) / omega).exp()
+            > beta
+    };
+    for (ratio, at_least) in [(1.0, 0.04), (2.0, 0.1), (4.0, 0.2), (6.0, 0.2), (8.0, 0.2)] {
+        let scan = grid(1.0 + 1e-9, 30.0, 2901);
+        let end = first_transition(scan.clone(), 1e-9, |beta| end_condition(beta, ratio)).unwrap();
+        let alpha_reached = first_transition(scan, 1e-7, |beta| {
+            linearised_overturns_without_impact(beta, ratio)
+        })
+        .unwrap();
+        eprintln!(
+            "omega_p/p {ratio}: end-of-pulse convention {end:.5}, theta = alpha {alpha_reached:.5} \
+             ({:+.3})",
+            end / alpha_reached - 1.0
+        );
+        assert!(
+            end > (1.0 + at_least) * alpha_reached,
+            "omega_p/p {ratio}: {end} against {alpha_reached}"
+        );
+        // At the end-of-pulse root the block does pass theta = alpha during the pulse.
+        assert!(linearised_overturns_without_impact(end, ratio));
+    }
+}
+
 /// Zhang and Makris' findings on a block of alpha = 0.25 (Housner's restitution, e = 0.908),
 /// as the paper states them: under a one-sine pulse the block overturns in two modes, after one
 /// or more impacts and without any impact; at the smaller frequency ratios the smallest
