@@ -107,6 +107,10 @@ pub(crate) enum Command {
         /// Output directory.
         #[arg(long)]
         out: PathBuf,
+        /// Another slenderness B/H of the body (its width over its height, the height and every
+        /// other property kept), studied beside the model's own; may be repeated.
+        #[arg(long, value_name = "B/H")]
+        slenderness: Vec<f64>,
         /// A record (PEER AT2, in g) used for the fit; may be repeated.
         #[arg(long)]
         record: Vec<PathBuf>,

@@ -12,6 +12,7 @@ fn the_elastic_criterion_tends_to_the_rigid_limit_decade_by_decade() {
     // (small-angle Housner equation, uplift at 1.1226 g B/H), searched on the same interval.
     let model = Path::new(env!("CARGO_MANIFEST_DIR")).join("../models/pulse-map.toml");
     let study = Study {
+        slendernesses: Vec::new(),
         youngs_moduli: vec![5e6, 5e7, 5e8, 5e9, 5e10],
         self_weights: vec!["paper".into()],
         periods: vec![0.5, 2.0],
