@@ -97,10 +97,10 @@ pub(crate) enum Command {
     /// records (excitation.path) against excitation.scale or excitation.amplitude an
     /// incremental dynamic analysis (ida.svg). Re-running the same command resumes an interrupted sweep.
     Sweep(SweepArgs),
-    /// Overturning criteria of elastic bodies of the model's geometry, E from near-rigid to
-    /// beyond the paper's body, under sines, one-sine and one-cosine pulses and records, beside
-    /// Housner's block: writes criteria.csv, continuity.csv, fit.json, criteria.json and
-    /// figures (SVG and PNG).
+    /// Overturning criteria of elastic bodies of the model's geometry (and of other
+    /// slendernesses B/H), E from near-rigid to beyond the paper's body, under sines, one-sine
+    /// and one-cosine pulses and records, beside Housner's block: writes criteria.csv,
+    /// continuity.csv, fit.json, criteria.json and figures (SVG and PNG).
     Criteria {
         /// Model file (TOML); only its [body] table is used.
         model: PathBuf,

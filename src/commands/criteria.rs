@@ -369,7 +369,13 @@ pub fn report_text(report: &CriteriaReport) -> String {
     let _ = writeln!(
         t,
         "  {:<11} {:>6} {:<7} {:>9} {:>8} {:>22} {:>22}",
-        "self_weight", "B/H", "motions", "E (Pa)", "phi", "max|d| rigid limit", "max|d| Housner full"
+        "self_weight",
+        "B/H",
+        "motions",
+        "E (Pa)",
+        "phi",
+        "max|d| rigid limit",
+        "max|d| Housner full"
     );
     for d in &report.decades {
         let _ = writeln!(

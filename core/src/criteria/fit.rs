@@ -284,9 +284,9 @@ pub fn fit(points: &[Point], self_weight: &str, held_out: &[String], s0: f64, gr
                 velocity_margin: velocity
                     .as_ref()
                     .and_then(|q| Some(p.critical_pgv()? / (q.at(phi, s) * v_scale))),
-                ratio_error: ratio.as_ref().and_then(|q| {
-                    Some(q.at(phi, s) * p.rigid_full_pga? / p.critical_pga? - 1.0)
-                }),
+                ratio_error: ratio
+                    .as_ref()
+                    .and_then(|q| Some(q.at(phi, s) * p.rigid_full_pga? / p.critical_pga? - 1.0)),
             }
         })
         .collect();
@@ -338,7 +338,9 @@ mod tests {
         let s0 = 0.175;
         let f = |phi: f64, s: f64| {
             let d = s - s0;
-            (0..3).map(|i| (a[i] + b[i] * d) * phi.powi(i as i32)).sum::<f64>()
+            (0..3)
+                .map(|i| (a[i] + b[i] * d) * phi.powi(i as i32))
+                .sum::<f64>()
         };
         let mut pts = Vec::new();
         for s in [0.1, 0.175, 0.25] {
@@ -348,8 +350,16 @@ mod tests {
         }
         let q = Surface::fit(&pts, s0).unwrap();
         for i in 0..3 {
-            assert!((q.coefficients[i] - a[i]).abs() < 1e-9, "{:?}", q.coefficients);
-            assert!((q.slenderness_slopes[i] - b[i]).abs() < 1e-8, "{:?}", q.slenderness_slopes);
+            assert!(
+                (q.coefficients[i] - a[i]).abs() < 1e-9,
+                "{:?}",
+                q.coefficients
+            );
+            assert!(
+                (q.slenderness_slopes[i] - b[i]).abs() < 1e-8,
+                "{:?}",
+                q.slenderness_slopes
+            );
         }
         assert!(q.max_abs_error < 1e-10, "{}", q.max_abs_error);
         let bent: Vec<(f64, f64, f64)> = pts
