@@ -242,6 +242,12 @@ impl Point {
         self.excitation == Excitation::Sine.name() || self.excitation == Excitation::OneSine.name()
     }
 
+    /// True when the body overturned at the bottom of the searched interval (its first scanned
+    /// value): the critical value is then only an upper bound of the true one.
+    pub fn at_interval_bottom(&self) -> bool {
+        self.critical_pga.is_some() && self.safe_below_pga.is_none()
+    }
+
     /// critical / reference - 1, when both are known.
     pub fn relative_difference(&self, reference: Option<f64>) -> Option<f64> {
         Some(self.critical_pga? / reference? - 1.0)
