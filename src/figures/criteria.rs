@@ -115,12 +115,12 @@ pub fn plane(points: &[Point], g: Geometry) -> Vec<Panel> {
 /// consistent one dashed; and the largest relative difference from the rigid blocks against phi.
 pub fn against_flexibility(points: &[Point], fits: &[Fit], g: Geometry) -> Vec<Panel> {
     let mut acc = Panel::new(
-        "Acceleration condition (●/▼ computed, lines fitted, × held-out records)",
+        "Acceleration condition (lines: the fit)",
         "flexibility φ = p T",
         "smallest critical PGA / (g B/H)",
     );
     let mut vel = Panel::new(
-        "Velocity condition (●/▼ computed, lines fitted, × held-out records)",
+        "Velocity condition (lines: the fit)",
         "flexibility φ = p T",
         "smallest critical PGV / (c B/√H)",
     );
@@ -192,17 +192,20 @@ pub fn against_flexibility(points: &[Point], fits: &[Fit], g: Geometry) -> Vec<P
                     Some((p.flexibility, p.critical_pgv()? / v_i))
                 })
                 .collect();
-            acc = acc.with(Series::markers("", a_pts, color, Marker::Cross));
-            vel = vel.with(Series::markers("", v_pts, color, Marker::Cross));
+            // Held-out records: one legend entry per slenderness.
+            let label = if k == 0 {
+                format!("held-out records, B/H = {}", shortest(s))
+            } else {
+                String::new()
+            };
+            acc = acc.with(Series::markers(&label, a_pts, color, Marker::Cross));
+            vel = vel.with(Series::markers(&label, v_pts, color, Marker::Cross));
         }
     }
     let own = g.slenderness();
     let decades = continuity::decades(points);
     let mut cont = Panel::new(
-        &format!(
-            "Continuity with the rigid block (sines and one-sine pulses), B/H = {}",
-            shortest(own)
-        ),
+        &format!("Continuity with the rigid block, B/H = {}", shortest(own)),
         "flexibility φ = p T",
         "largest |critical / rigid − 1|",
     );
