@@ -35,7 +35,7 @@ pub fn plane(points: &[Point], g: Geometry) -> Vec<Panel> {
         }
         let mut panel = Panel::new(
             &format!(
-                "{sw} self-weight, B/H = {}: one-sine pulses (line), other motions (×)",
+                "{sw} self-weight, B/H = {}: one-sine (line), others (×)",
                 shortest(own)
             ),
             "floor peak velocity (m/s)",
