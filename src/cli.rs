@@ -99,16 +99,20 @@ pub(crate) enum Command {
     /// records (excitation.path) against excitation.scale or excitation.amplitude an
     /// incremental dynamic analysis (ida.svg). Re-running the same command resumes an interrupted sweep.
     Sweep(SweepArgs),
-    /// Overturning criteria of elastic bodies of the model's geometry, E from near-rigid to
-    /// beyond the paper's body, under sines, one-sine and one-cosine pulses and records, beside
-    /// Housner's block: writes criteria.csv, continuity.csv, fit.json, criteria.json and
-    /// figures (SVG and PNG).
+    /// Overturning criteria of elastic bodies of the model's geometry (and of other
+    /// slendernesses B/H), E from near-rigid to beyond the paper's body, under sines, one-sine
+    /// and one-cosine pulses and records, beside Housner's block: writes criteria.csv,
+    /// continuity.csv, fit.json, criteria.json and figures (SVG and PNG).
     Criteria {
         /// Model file (TOML); only its [body] table is used.
         model: PathBuf,
         /// Output directory.
         #[arg(long)]
         out: PathBuf,
+        /// Another slenderness B/H of the body (its width over its height, the height and every
+        /// other property kept), studied beside the model's own; may be repeated.
+        #[arg(long, value_name = "B/H")]
+        slenderness: Vec<f64>,
         /// A record (PEER AT2, in g) used for the fit; may be repeated.
         #[arg(long)]
         record: Vec<PathBuf>,

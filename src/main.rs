@@ -196,11 +196,18 @@ fn execute(command: Command) -> flexrock::Result<Output> {
         Command::Criteria {
             model,
             out,
+            slenderness,
             record,
             check_record,
         } => {
             flexrock::writers::check_creatable(&out)?;
-            let report = flexrock::commands::criteria::run(&model, &record, &check_record, &out)?;
+            let report = flexrock::commands::criteria::run(
+                &model,
+                &slenderness,
+                &record,
+                &check_record,
+                &out,
+            )?;
             Ok(Output {
                 stdout: flexrock::commands::criteria::report_text(&report).into_bytes(),
                 warnings: Vec::new(),

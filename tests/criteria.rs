@@ -39,3 +39,23 @@ fn the_committed_results_have_the_columns_the_command_writes() {
         assert_eq!(text.lines().next().unwrap(), columns.join(","), "{file}");
     }
 }
+
+#[test]
+fn a_slenderness_out_of_range_is_refused_by_name_and_nothing_is_written() {
+    let dir = scratch_dir("criteria-bad-slenderness");
+    let out = dir.join("out");
+    for bad in ["0", "-0.2", "1.5"] {
+        let o = flexrock(&[
+            "criteria",
+            repo("models/pulse-map.toml").to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+            &format!("--slenderness={bad}"),
+        ]);
+        assert_eq!(o.status.code(), Some(2), "{bad}");
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(err.contains("--slenderness"), "{err}");
+        assert!(err.contains("at most 1"), "{err}");
+        assert!(!out.exists(), "an output directory was made");
+    }
+}

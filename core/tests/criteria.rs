@@ -12,6 +12,7 @@ fn the_elastic_criterion_tends_to_the_rigid_limit_decade_by_decade() {
     // (small-angle Housner equation, uplift at 1.1226 g B/H), searched on the same interval.
     let model = Path::new(env!("CARGO_MANIFEST_DIR")).join("../models/pulse-map.toml");
     let study = Study {
+        slendernesses: Vec::new(),
         youngs_moduli: vec![5e6, 5e7, 5e8, 5e9, 5e10],
         self_weights: vec!["paper".into()],
         periods: vec![0.5, 2.0],
@@ -45,5 +46,59 @@ fn the_elastic_criterion_tends_to_the_rigid_limit_decade_by_decade() {
             let r = w[0].flexibility / w[1].flexibility;
             assert!((r - 10f64.sqrt()).abs() < 0.05, "{r}");
         }
+    }
+}
+
+#[test]
+fn each_slenderness_is_a_body_of_the_models_height_and_that_width() {
+    // The reference body (H = 4 m) made 0.4 m and 1 m wide, near-rigid (E = 50 GPa), under
+    // one-sine pulses of 2 s. Independent expectations: p = sqrt(3 g/(4 R)) with R the
+    // half-diagonal of that width, and the critical acceleration within 1 % of the rigid limit
+    // block's of that width (uplift at 1.1226 g B/H), which is not the reference width's.
+    let model = Path::new(env!("CARGO_MANIFEST_DIR")).join("../models/pulse-map.toml");
+    let study = Study {
+        slendernesses: vec![0.25, 0.1],
+        youngs_moduli: vec![5e10],
+        self_weights: vec!["paper".into()],
+        periods: vec![2.0],
+        excitations: vec![Excitation::OneSine],
+        scan: criteria::SCAN,
+        tol_share: criteria::TOL_SHARE,
+    };
+    let points = criteria::run(&model, &study).unwrap();
+    assert_eq!(points.len(), 2);
+    let g = flexrock_core::Model::load(&model, &Default::default())
+        .unwrap()
+        .body
+        .gravity;
+    for (p, s) in points.iter().zip([0.1, 0.25]) {
+        assert_eq!(p.slenderness, s);
+        assert_eq!(p.height, 4.0);
+        assert!((p.width - 4.0 * s).abs() < 1e-15, "{}", p.width);
+        let r = 0.5 * (4.0f64.powi(2) + p.width.powi(2)).sqrt();
+        assert!((p.p - (0.75 * g / r).sqrt()).abs() < 1e-9, "{} {}", p.p, r);
+        let rigid = p.rigid_limit_pga.unwrap();
+        assert!(
+            (p.critical_pga.unwrap() / rigid - 1.0).abs() < 0.01,
+            "B/H {s}: {:?} against {rigid}",
+            p.critical_pga
+        );
+        // The rigid limit itself lies above the uplift of that width, not the reference's.
+        assert!(rigid > 1.1226 * g * s, "B/H {s}: {rigid}");
+        assert!(rigid < 2.0 * 1.1226 * g * s, "B/H {s}: {rigid}");
+    }
+}
+
+#[test]
+fn a_slenderness_out_of_range_is_refused_by_name() {
+    let model = Path::new(env!("CARGO_MANIFEST_DIR")).join("../models/pulse-map.toml");
+    for bad in [0.0, -0.1, 1.5, f64::NAN] {
+        let study = Study {
+            slendernesses: vec![0.175, bad],
+            ..Study::standard(Vec::new(), Vec::new())
+        };
+        let err = criteria::run(&model, &study).unwrap_err().to_string();
+        assert!(err.contains("slenderness"), "{err}");
+        assert!(err.contains(criteria::SLENDERNESS_RULE), "{err}");
     }
 }

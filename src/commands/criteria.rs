@@ -19,8 +19,9 @@ use flexrock_core::rigid_criteria::{
 };
 
 /// Column names of criteria.csv (a contract), units in the names.
-pub const CRITERIA_COLUMNS: [&str; 24] = [
+pub const CRITERIA_COLUMNS: [&str; 25] = [
     "self_weight",
+    "B_over_H",
     "excitation",
     "Tp_s",
     "E_Pa",
@@ -47,8 +48,9 @@ pub const CRITERIA_COLUMNS: [&str; 24] = [
 ];
 
 /// Column names of continuity.csv.
-pub const CONTINUITY_COLUMNS: [&str; 7] = [
+pub const CONTINUITY_COLUMNS: [&str; 8] = [
     "self_weight",
+    "B_over_H",
     "excitations",
     "E_Pa",
     "phi_pT",
@@ -57,7 +59,8 @@ pub const CONTINUITY_COLUMNS: [&str; 7] = [
     "points",
 ];
 
-/// The body's height, width and gravity (from the first point's model file).
+/// The model file's body: its height, width and gravity (the study's other slendernesses
+/// keep its height and gravity).
 #[derive(Debug, Clone, Copy, Serialize)]
 pub struct Geometry {
     /// H, m.
@@ -68,17 +71,25 @@ pub struct Geometry {
     pub gravity: f64,
 }
 
+impl Geometry {
+    /// B/H of the model file's body.
+    pub fn slenderness(&self) -> f64 {
+        self.width / self.height
+    }
+}
+
 fn opt(x: Option<f64>) -> String {
     x.map(shortest).unwrap_or_default()
 }
 
 fn criteria_csv(points: &[Point], g: Geometry) -> Vec<u8> {
-    let a_i = ishiyama_acceleration(g.width, g.height, g.gravity);
-    let v_i = ishiyama_velocity(g.width, g.height);
     let mut table = Table::new(&CRITERIA_COLUMNS);
     for p in points {
+        let a_i = ishiyama_acceleration(p.width, p.height, g.gravity);
+        let v_i = ishiyama_velocity(p.width, p.height);
         table.row([
             p.self_weight.clone(),
+            shortest(p.slenderness),
             p.excitation.clone(),
             opt(p.period),
             shortest(p.youngs_modulus),
@@ -116,6 +127,7 @@ fn continuity_csv(decades: &[continuity::Decade]) -> Vec<u8> {
     for d in decades {
         table.row([
             d.self_weight.clone(),
+            shortest(d.slenderness),
             d.excitations.to_string(),
             shortest(d.youngs_modulus),
             shortest(d.flexibility),
@@ -140,9 +152,18 @@ struct Summary<'a> {
     ishiyama: IshiyamaLines,
     study: &'a Study,
     held_out: &'a [String],
-    rigid_limit_within_5_percent_up_to_phi: Vec<(String, Option<f64>)>,
-    housner_full_within_5_percent_up_to_phi: Vec<(String, Option<f64>)>,
+    rigid_limit_within_5_percent_up_to_phi: Vec<Holds>,
+    housner_full_within_5_percent_up_to_phi: Vec<Holds>,
     below_rigid_full: Vec<Unconservative>,
+}
+
+/// The flexibility up to which a rigid criterion holds within 5 %, for one self-weight variant
+/// and slenderness.
+#[derive(Serialize)]
+struct Holds {
+    self_weight: String,
+    slenderness: f64,
+    phi: Option<f64>,
 }
 
 #[derive(Serialize)]
@@ -156,6 +177,7 @@ struct IshiyamaLines {
 #[derive(Serialize)]
 struct Unconservative {
     self_weight: String,
+    slenderness: f64,
     excitation: String,
     period_s: Option<f64>,
     youngs_modulus_pa: f64,
@@ -177,26 +199,49 @@ pub struct CriteriaReport {
     pub files: Vec<PathBuf>,
 }
 
-/// Runs the study on the body of `model` with the sines and pulses and the records `fitted`
-/// (used for the fit) and `held_out` (only checked against it); writes everything into `out`
-/// (all files or none).
+/// Runs the study on the body of `model`, at its own slenderness and at `slendernesses` (B/H,
+/// the model's height kept), with the sines and pulses and the records `fitted` (used for the
+/// fit) and `held_out` (only checked against it); writes everything into `out` (all files or
+/// none).
 pub fn run(
     model: &Path,
+    slendernesses: &[f64],
     fitted: &[PathBuf],
     held_out: &[PathBuf],
     out: &Path,
 ) -> Result<CriteriaReport> {
     let start = std::time::Instant::now();
-    // Relative record paths are relative to the current directory (as typed).
-    let records: Vec<PathBuf> = fitted.iter().chain(held_out).cloned().collect();
-    let study = Study::standard(records);
-    let points = criteria::run(model, &study)?;
+    if let Some(bad) = slendernesses
+        .iter()
+        .find(|s| !criteria::valid_slenderness(**s))
+    {
+        return Err(crate::error::Error::invalid(
+            "--slenderness",
+            *bad,
+            criteria::SLENDERNESS_RULE,
+        ));
+    }
     let base = flexrock_core::Model::load(model, &Default::default())?;
     let geometry = Geometry {
         height: base.body.height,
         width: base.body.width,
         gravity: base.body.gravity,
     };
+    // Relative record paths are relative to the current directory (as typed).
+    let records: Vec<PathBuf> = fitted.iter().chain(held_out).cloned().collect();
+    let list = if slendernesses.is_empty() {
+        Vec::new()
+    } else {
+        let mut list = slendernesses.to_vec();
+        list.push(geometry.slenderness());
+        list
+    };
+    let study = Study::standard(records, list);
+    let points = criteria::run(model, &study)?;
+    let own = geometry.slenderness();
+    let mut all_slendernesses: Vec<f64> = points.iter().map(|p| p.slenderness).collect();
+    all_slendernesses.sort_by(f64::total_cmp);
+    all_slendernesses.dedup();
     let held: Vec<String> = held_out
         .iter()
         .map(|p| criteria::Excitation::Record(p.clone()).name())
@@ -205,15 +250,21 @@ pub fn run(
     let fits: Vec<fit::Fit> = study
         .self_weights
         .iter()
-        .map(|sw| {
-            fit::fit(
-                &points,
-                sw,
-                &held,
-                (geometry.height, geometry.width, geometry.gravity),
-            )
-        })
+        .map(|sw| fit::fit(&points, sw, &held, own, geometry.gravity))
         .collect();
+    let holds = |housner: bool| -> Vec<Holds> {
+        let mut out = Vec::new();
+        for sw in &study.self_weights {
+            for s in &all_slendernesses {
+                out.push(Holds {
+                    self_weight: sw.clone(),
+                    slenderness: *s,
+                    phi: continuity::rigid_holds_below(&decades, sw, *s, 0.05, housner),
+                });
+            }
+        }
+        out
+    };
     let summary = Summary {
         flexrock_version: VERSION,
         model_file: model.display().to_string(),
@@ -234,7 +285,8 @@ pub fn run(
                        uplift at 1.1226 g B/H)",
         ishiyama: IshiyamaLines {
             reference: "Ishiyama (1982), Earthquake Eng. Struct. Dyn. 10, 635-650: A > g B/H \
-                        and V > 10 B/sqrt(H) cm/s (B, H in cm)",
+                        and V > 10 B/sqrt(H) cm/s (B, H in cm), the velocity constant as \
+                        commonly quoted (not confirmed from the paper)",
             acceleration_m_per_s2: ishiyama_acceleration(
                 geometry.width,
                 geometry.height,
@@ -245,26 +297,13 @@ pub fn run(
         },
         study: &study,
         held_out: &held,
-        rigid_limit_within_5_percent_up_to_phi: study
-            .self_weights
-            .iter()
-            .map(|sw| {
-                let phi = continuity::rigid_holds_below(&decades, sw, 0.05, false);
-                (sw.clone(), phi)
-            })
-            .collect(),
-        housner_full_within_5_percent_up_to_phi: study
-            .self_weights
-            .iter()
-            .map(|sw| {
-                let phi = continuity::rigid_holds_below(&decades, sw, 0.05, true);
-                (sw.clone(), phi)
-            })
-            .collect(),
+        rigid_limit_within_5_percent_up_to_phi: holds(false),
+        housner_full_within_5_percent_up_to_phi: holds(true),
         below_rigid_full: continuity::unconservative(&points, 0.0)
             .into_iter()
             .map(|p| Unconservative {
                 self_weight: p.self_weight.clone(),
+                slenderness: p.slenderness,
                 excitation: p.excitation.clone(),
                 period_s: p.period,
                 youngs_modulus_pa: p.youngs_modulus,
@@ -329,14 +368,21 @@ pub fn report_text(report: &CriteriaReport) -> String {
     );
     let _ = writeln!(
         t,
-        "  {:<11} {:<7} {:>9} {:>8} {:>22} {:>22}",
-        "self_weight", "motions", "E (Pa)", "phi", "max|d| rigid limit", "max|d| Housner full"
+        "  {:<11} {:>6} {:<7} {:>9} {:>8} {:>22} {:>22}",
+        "self_weight",
+        "B/H",
+        "motions",
+        "E (Pa)",
+        "phi",
+        "max|d| rigid limit",
+        "max|d| Housner full"
     );
     for d in &report.decades {
         let _ = writeln!(
             t,
-            "  {:<11} {:<7} {:>9.2e} {:>8.4} {:>22} {:>22}",
+            "  {:<11} {:>6} {:<7} {:>9.2e} {:>8.4} {:>22} {:>22}",
             d.self_weight,
+            shortest(d.slenderness),
             d.excitations,
             d.youngs_modulus,
             d.flexibility,

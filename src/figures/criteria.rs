@@ -4,17 +4,26 @@
 
 use crate::commands::criteria::Geometry;
 use crate::figures::plot::{Legend, Marker, Panel, Series, VerticalLine};
-use flexrock_core::criteria::{continuity, fit::Fit, Point};
+use flexrock_core::criteria::fit::{Fit, Surface};
+use flexrock_core::criteria::{continuity, Point};
+use flexrock_core::format::shortest;
 use flexrock_core::rigid_criteria::{ishiyama_acceleration, ishiyama_velocity};
 
 const SELF_WEIGHTS: [&str; 2] = ["paper", "consistent"];
 
-/// One panel per self-weight variant: each body's critical (PGV, PGA) under the one-sine pulses
-/// (a line across Tp), the sines and one-cosine pulses (markers), Housner's full-equation block
-/// (black), and Ishiyama's lines.
+/// One panel per self-weight variant, for the model file's own slenderness: each body's
+/// critical (PGV, PGA) under the one-sine pulses (a line across Tp), the sines and one-cosine
+/// pulses (markers), Housner's full-equation block (black), and Ishiyama's lines.
 pub fn plane(points: &[Point], g: Geometry) -> Vec<Panel> {
     let a_i = ishiyama_acceleration(g.width, g.height, g.gravity);
     let v_i = ishiyama_velocity(g.width, g.height);
+    let own = g.slenderness();
+    let points: Vec<Point> = points
+        .iter()
+        .filter(|p| p.slenderness == own)
+        .cloned()
+        .collect();
+    let points = &points[..];
     let mut moduli: Vec<f64> = points.iter().map(|p| p.youngs_modulus).collect();
     moduli.sort_by(|a, b| b.total_cmp(a));
     moduli.dedup();
@@ -25,7 +34,10 @@ pub fn plane(points: &[Point], g: Geometry) -> Vec<Panel> {
             continue;
         }
         let mut panel = Panel::new(
-            &format!("{sw} self-weight: one-sine pulses (line), other motions (×)"),
+            &format!(
+                "{sw} self-weight, B/H = {}: one-sine (line), others (×)",
+                shortest(own)
+            ),
             "floor peak velocity (m/s)",
             "floor peak acceleration (m/s²)",
         );
@@ -98,18 +110,17 @@ pub fn plane(points: &[Point], g: Geometry) -> Vec<Panel> {
 }
 
 /// Three panels: the smallest critical PGA over g B/H and the smallest critical PGV over
-/// c B/sqrt(H) against phi, with the fits and the held-out records; and the largest relative
-/// difference from the rigid blocks against phi.
+/// c B/sqrt(H) against phi, with the fits (a line per slenderness, over its range of phi) and
+/// the held-out records, a colour per slenderness, the paper's self-weight solid and the
+/// consistent one dashed; and the largest relative difference from the rigid blocks against phi.
 pub fn against_flexibility(points: &[Point], fits: &[Fit], g: Geometry) -> Vec<Panel> {
-    let a_i = ishiyama_acceleration(g.width, g.height, g.gravity);
-    let v_i = ishiyama_velocity(g.width, g.height);
     let mut acc = Panel::new(
-        "Acceleration condition",
+        "Acceleration condition (lines: the fit)",
         "flexibility φ = p T",
         "smallest critical PGA / (g B/H)",
     );
     let mut vel = Panel::new(
-        "Velocity condition",
+        "Velocity condition (lines: the fit)",
         "flexibility φ = p T",
         "smallest critical PGV / (c B/√H)",
     );
@@ -119,68 +130,82 @@ pub fn against_flexibility(points: &[Point], fits: &[Fit], g: Geometry) -> Vec<P
         panel.reference_lines.push((1.0, "Ishiyama (rigid)".into()));
     }
     for (k, f) in fits.iter().enumerate() {
-        let color = 2 * k + 1;
-        let smooth = |q: &flexrock_core::criteria::fit::Quadratic| -> Vec<(f64, f64)> {
-            let (lo, hi) = f.flexibility_range;
-            (0..=60)
-                .map(|i| {
-                    let phi = lo * (hi / lo).powf(i as f64 / 60.0);
-                    (phi, q.at(phi))
+        let marker = if k == 0 {
+            Marker::Circle
+        } else {
+            Marker::TriangleDown
+        };
+        for (j, v) in f.validity.iter().enumerate() {
+            let (s, color) = (v.slenderness, j + 1);
+            let smooth = |q: &Surface| -> Vec<(f64, f64)> {
+                let (lo, hi) = v.flexibility_range;
+                (0..=60)
+                    .map(|i| {
+                        let phi = lo * (hi / lo).powf(i as f64 / 60.0);
+                        (phi, q.at(phi, s))
+                    })
+                    .collect()
+            };
+            // The computed points of one condition and its fitted curve at this slenderness.
+            let with_fit = |panel: Panel, q: &Surface| {
+                let pts = q
+                    .errors
+                    .iter()
+                    .filter(|e| e.slenderness == s)
+                    .map(|e| (e.flexibility, e.value))
+                    .collect();
+                let mut line = Series::line("", smooth(q), color);
+                if k > 0 {
+                    line = line.dashed();
+                }
+                panel
+                    .with(Series::markers(
+                        &format!("{}, B/H = {}", f.self_weight, shortest(s)),
+                        pts,
+                        color,
+                        marker,
+                    ))
+                    .with(line)
+            };
+            if let Some(q) = &f.acceleration {
+                acc = with_fit(acc, q);
+            }
+            if let Some(q) = &f.velocity {
+                vel = with_fit(vel, q);
+            }
+            let held: Vec<&Point> = points
+                .iter()
+                .filter(|p| p.self_weight == f.self_weight && p.slenderness == s)
+                .filter(|p| f.checks.iter().any(|c| c.excitation == p.excitation))
+                .collect();
+            let a_pts = held
+                .iter()
+                .filter_map(|p| {
+                    let a_i = ishiyama_acceleration(p.width, p.height, g.gravity);
+                    Some((p.flexibility, p.critical_pga? / a_i))
                 })
-                .collect()
-        };
-        // The computed points of one condition and its fitted curve, in the fit's colour.
-        let with_fit = |panel: Panel, q: &flexrock_core::criteria::fit::Quadratic| {
-            let pts = q.errors.iter().map(|e| (e.0, e.1)).collect();
-            panel
-                .with(Series::markers(
-                    &format!("computed, {}", f.self_weight),
-                    pts,
-                    color,
-                    Marker::Circle,
-                ))
-                .with(Series::line(
-                    &format!("fit, {}", f.self_weight),
-                    smooth(q),
-                    color,
-                ))
-        };
-        if let Some(q) = &f.acceleration {
-            acc = with_fit(acc, q);
+                .collect();
+            let v_pts = held
+                .iter()
+                .filter_map(|p| {
+                    let v_i = ishiyama_velocity(p.width, p.height);
+                    Some((p.flexibility, p.critical_pgv()? / v_i))
+                })
+                .collect();
+            // Held-out records: one legend entry per slenderness.
+            let label = if k == 0 {
+                format!("held-out records, B/H = {}", shortest(s))
+            } else {
+                String::new()
+            };
+            acc = acc.with(Series::markers(&label, a_pts, color, Marker::Cross));
+            vel = vel.with(Series::markers(&label, v_pts, color, Marker::Cross));
         }
-        if let Some(q) = &f.velocity {
-            vel = with_fit(vel, q);
-        }
-        let held: Vec<&Point> = points
-            .iter()
-            .filter(|p| p.self_weight == f.self_weight)
-            .filter(|p| f.checks.iter().any(|c| c.excitation == p.excitation))
-            .collect();
-        let a_pts = held
-            .iter()
-            .filter_map(|p| Some((p.flexibility, p.critical_pga? / a_i)))
-            .collect();
-        let v_pts = held
-            .iter()
-            .filter_map(|p| Some((p.flexibility, p.critical_pgv()? / v_i)))
-            .collect();
-        let label = format!("held-out records, {}", f.self_weight);
-        acc = acc.with(Series::markers(
-            &label,
-            a_pts,
-            color + 1,
-            Marker::TriangleUp,
-        ));
-        vel = vel.with(Series::markers(
-            &label,
-            v_pts,
-            color + 1,
-            Marker::TriangleUp,
-        ));
     }
+    let own = g.slenderness();
     let decades = continuity::decades(points);
     let mut cont = Panel::new(
-        "Continuity with the rigid block (sines and one-sine pulses)",
+        &format!("Continuity with the rigid block, B/H = {}", shortest(own)),
         "flexibility φ = p T",
         "largest |critical / rigid − 1|",
     );
@@ -190,7 +215,7 @@ pub fn against_flexibility(points: &[Point], fits: &[Fit], g: Geometry) -> Vec<P
     for (k, sw) in SELF_WEIGHTS.iter().enumerate() {
         let mine: Vec<&continuity::Decade> = decades
             .iter()
-            .filter(|d| d.self_weight == *sw && d.excitations == "smooth")
+            .filter(|d| d.self_weight == *sw && d.slenderness == own && d.excitations == "smooth")
             .collect();
         let limit = mine
             .iter()

@@ -6,12 +6,14 @@ use serde::Serialize;
 
 use super::Point;
 
-/// One Young's modulus of one self-weight variant: the largest |critical / rigid - 1| over the
-/// excitations where both overturned.
+/// One Young's modulus of one self-weight variant and slenderness: the largest |critical /
+/// rigid - 1| over the excitations where both overturned.
 #[derive(Debug, Clone, Serialize)]
 pub struct Decade {
     /// `body.self_weight`.
     pub self_weight: String,
+    /// B/H.
+    pub slenderness: f64,
     /// Which excitations: "smooth" ([`Point::is_smooth`]) or "all".
     pub excitations: &'static str,
     /// E, Pa.
@@ -31,7 +33,7 @@ fn max_abs(values: impl Iterator<Item = Option<f64>>) -> Option<f64> {
 }
 
 /// The decades over the smooth excitations ([`Point::is_smooth`]) and over all, stiffest first
-/// within each self-weight variant.
+/// within each self-weight variant and slenderness.
 pub fn decades(points: &[Point]) -> Vec<Decade> {
     let smooth: Vec<Point> = points.iter().filter(|p| p.is_smooth()).cloned().collect();
     let mut out = decades_of(&smooth, "smooth");
@@ -41,19 +43,23 @@ pub fn decades(points: &[Point]) -> Vec<Decade> {
 
 fn decades_of(points: &[Point], excitations: &'static str) -> Vec<Decade> {
     let mut out: Vec<Decade> = Vec::new();
+    let body = |p: &Point, q: &Point| {
+        q.self_weight == p.self_weight
+            && q.slenderness == p.slenderness
+            && q.youngs_modulus == p.youngs_modulus
+    };
     for p in points {
-        if out
-            .iter()
-            .any(|d| d.self_weight == p.self_weight && d.youngs_modulus == p.youngs_modulus)
-        {
+        if out.iter().any(|d| {
+            d.self_weight == p.self_weight
+                && d.slenderness == p.slenderness
+                && d.youngs_modulus == p.youngs_modulus
+        }) {
             continue;
         }
-        let same: Vec<&Point> = points
-            .iter()
-            .filter(|q| q.self_weight == p.self_weight && q.youngs_modulus == p.youngs_modulus)
-            .collect();
+        let same: Vec<&Point> = points.iter().filter(|q| body(p, q)).collect();
         out.push(Decade {
             self_weight: p.self_weight.clone(),
+            slenderness: p.slenderness,
             excitations,
             youngs_modulus: p.youngs_modulus,
             flexibility: p.flexibility,
@@ -68,26 +74,28 @@ fn decades_of(points: &[Point], excitations: &'static str) -> Vec<Decade> {
         });
     }
     out.sort_by(|a, b| {
-        (a.self_weight.cmp(&b.self_weight)).then(a.flexibility.total_cmp(&b.flexibility))
+        (a.self_weight.cmp(&b.self_weight))
+            .then(a.slenderness.total_cmp(&b.slenderness))
+            .then(a.flexibility.total_cmp(&b.flexibility))
     });
     out
 }
 
-/// The largest flexibility of `self_weight` up to which (from the stiffest body on) every
-/// smooth excitation's critical peak acceleration is within `share` of the rigid block's
-/// (Housner's full-equation block with `housner`, else the model's rigid limit); None when not
-/// even the stiffest body is.
+/// The largest flexibility of `self_weight` at `slenderness` up to which (from the stiffest
+/// body on) every smooth excitation's critical peak acceleration is within `share` of the rigid
+/// block's (Housner's full-equation block with `housner`, else the model's rigid limit); None
+/// when not even the stiffest body is.
 pub fn rigid_holds_below(
     decades: &[Decade],
     self_weight: &str,
+    slenderness: f64,
     share: f64,
     housner: bool,
 ) -> Option<f64> {
     let mut last = None;
-    for d in decades
-        .iter()
-        .filter(|d| d.self_weight == self_weight && d.excitations == "smooth")
-    {
+    for d in decades.iter().filter(|d| {
+        d.self_weight == self_weight && d.slenderness == slenderness && d.excitations == "smooth"
+    }) {
         let diff = if housner {
             d.max_abs_difference_rigid_full
         } else {

@@ -1,6 +1,6 @@
 //! Overturning criteria of the elastic body, beside the rigid block's: the smallest floor peak
 //! acceleration (and the peak velocity of the same floor motion) that overturns bodies of one
-//! geometry and a range of flexibilities, under sines of a few cycles, one-sine and one-cosine
+//! height, a few slendernesses B/H and a range of flexibilities, under sines of a few cycles, one-sine and one-cosine
 //! pulses across period, and records scaled; with Housner's rigid block of the same geometry
 //! (full and small-angle equations) and the elastic model's own rigid limit at the same points.
 //!
@@ -141,6 +141,9 @@ pub fn record_name(path: &Path) -> String {
 /// What to compute.
 #[derive(Debug, Clone, Serialize)]
 pub struct Study {
+    /// Slendernesses B/H: the model's body with its width set to B/H times its height (every
+    /// other property kept); empty for the model's own width only.
+    pub slendernesses: Vec<f64>,
     /// Young's moduli, Pa.
     pub youngs_moduli: Vec<f64>,
     /// `body.self_weight` variants: "paper", "consistent".
@@ -156,12 +159,14 @@ pub struct Study {
 }
 
 impl Study {
-    /// The standard study: [`YOUNGS_MODULI`], both self-weight variants, [`PERIODS`], sines,
-    /// one-sine and one-cosine pulses, and the given records.
-    pub fn standard(records: Vec<PathBuf>) -> Study {
+    /// The standard study: the slendernesses given (none: the model's own width only),
+    /// [`YOUNGS_MODULI`], both self-weight variants, [`PERIODS`], sines, one-sine and one-cosine
+    /// pulses, and the given records.
+    pub fn standard(records: Vec<PathBuf>, slendernesses: Vec<f64>) -> Study {
         let mut excitations = vec![Excitation::Sine, Excitation::OneSine, Excitation::OneCosine];
         excitations.extend(records.into_iter().map(Excitation::Record));
         Study {
+            slendernesses,
             youngs_moduli: YOUNGS_MODULI.to_vec(),
             self_weights: vec!["paper".into(), "consistent".into()],
             periods: PERIODS.to_vec(),
@@ -177,6 +182,12 @@ impl Study {
 pub struct Point {
     /// `body.self_weight`.
     pub self_weight: String,
+    /// B/H.
+    pub slenderness: f64,
+    /// B, m.
+    pub width: f64,
+    /// H, m.
+    pub height: f64,
     /// The excitation's family ([`Excitation::name`]).
     pub excitation: String,
     /// Tp, s (sines and pulses).
@@ -231,6 +242,12 @@ impl Point {
         self.excitation == Excitation::Sine.name() || self.excitation == Excitation::OneSine.name()
     }
 
+    /// True when the body overturned at the bottom of the searched interval (its first scanned
+    /// value): the critical value is then only an upper bound of the true one.
+    pub fn at_interval_bottom(&self) -> bool {
+        self.critical_pga.is_some() && self.safe_below_pga.is_none()
+    }
+
     /// critical / reference - 1, when both are known.
     pub fn relative_difference(&self, reference: Option<f64>) -> Option<f64> {
         Some(self.critical_pga? / reference? - 1.0)
@@ -260,8 +277,29 @@ fn list_axis(key: &str, values: &[f64]) -> Result<Axis> {
     Axis::parse(&format!("{key}={text}"), Path::new("."))
 }
 
+/// The rule a slenderness B/H of the study must follow.
+pub const SLENDERNESS_RULE: &str = "a slenderness B/H must be finite, above 0 and at most 1";
+
+/// Whether `s` is a slenderness the study accepts ([`SLENDERNESS_RULE`]).
+pub fn valid_slenderness(s: f64) -> bool {
+    s.is_finite() && s > 0.0 && s <= 1.0
+}
+
+/// The slendernesses a study runs: its list, sorted and without repeats, or the model's own.
+pub fn slendernesses(study: &Study, own: f64) -> Vec<f64> {
+    let mut list = if study.slendernesses.is_empty() {
+        vec![own]
+    } else {
+        study.slendernesses.clone()
+    };
+    list.sort_by(f64::total_cmp);
+    list.dedup();
+    list
+}
+
 /// Runs the study on the body of the model file `model` (its `[body]` table; its excitation and
-/// solver are replaced). Record paths are taken as given (make them absolute).
+/// solver are replaced, and its width for each slenderness of the study). Record paths are
+/// taken as given (make them absolute).
 pub fn run(model: &Path, study: &Study) -> Result<Vec<Point>> {
     let (_, table) = crate::model::read_model_table(model)?;
     let body = match table.get("body") {
@@ -274,11 +312,37 @@ pub fn run(model: &Path, study: &Study) -> Result<Vec<Point>> {
             ))
         }
     };
+    if let Some(bad) = study.slendernesses.iter().find(|s| !valid_slenderness(**s)) {
+        return Err(Error::invalid("slenderness", *bad, SLENDERNESS_RULE));
+    }
+    let base = Model::load(model, &Overrides::default())?;
+    let height = base.body.height;
+    let mut points = Vec::new();
+    for slenderness in slendernesses(study, base.body.width / height) {
+        let mut body = body.clone();
+        let width = if study.slendernesses.is_empty() {
+            base.body.width
+        } else {
+            slenderness * height
+        };
+        body.insert("width".into(), width.into());
+        points.extend(run_body(&body, study, (slenderness, width, height))?);
+    }
+    Ok(points)
+}
+
+/// The study's points of one body (its `[body]` table), of slenderness, width and height
+/// `geometry`.
+fn run_body(
+    body: &toml::Table,
+    study: &Study,
+    (slenderness, width, height): (f64, f64, f64),
+) -> Result<Vec<Point>> {
     let here = Path::new(".");
     let mut points = Vec::new();
     for self_weight in &study.self_weights {
         for excitation in &study.excitations {
-            let base = model_table(&body, self_weight, excitation);
+            let base = model_table(body, self_weight, excitation);
             let text = toml::to_string(&base)
                 .map_err(|e| Error::invalid("body", e.to_string(), "not TOML"))?;
             let is_record = matches!(excitation, Excitation::Record(_));
@@ -339,6 +403,9 @@ pub fn run(model: &Path, study: &Study) -> Result<Vec<Point>> {
                 let to_pga = |x: Option<f64>| x.map(|v| v * pga_unit);
                 let mut point = Point {
                     self_weight: self_weight.clone(),
+                    slenderness,
+                    width,
+                    height,
                     excitation: excitation.name(),
                     period: periods[ip],
                     youngs_modulus: study.youngs_moduli[ie],
