@@ -73,6 +73,9 @@ enum Form {
         lo: [f64; SERIES_TERMS],
         /// Terms summed: the rest lie below 2^-70 of the state over the flow.
         terms: usize,
+        /// The forcing f as a polynomial in the time since the anchor, and its degree.
+        forcing: [f64; MAX_DEGREE + 1],
+        degree: usize,
     },
 }
 
@@ -476,6 +479,8 @@ impl Flow {
                 hi: recurrence(x.hi, v.hi, true),
                 lo: recurrence(x.lo, v.lo, false),
                 terms,
+                forcing: f,
+                degree,
             },
         }
     }
@@ -494,7 +499,7 @@ impl Flow {
     pub fn state(&self, t: f64) -> (Dd, Dd) {
         let u = self.local(t);
         match &self.form {
-            Form::Series { hi, lo, terms } => {
+            Form::Series { hi, lo, terms, .. } => {
                 let n = *terms;
                 let mut dhi = [0.0; SERIES_TERMS - 1];
                 let mut dlo = [0.0; SERIES_TERMS - 1];
@@ -541,6 +546,13 @@ impl Flow {
 
     /// q, q', q'' and q''' at `t`.
     pub fn point(&self, t: f64) -> Point {
+        self.point_with_force(t).0
+    }
+
+    /// The point at `t`, and the forcing f and f' there for the oscillator form (zero for the
+    /// series form, whose forcing is a polynomial the work integrals read directly).
+    #[inline]
+    pub fn point_with_force(&self, t: f64) -> (Point, [f64; 2]) {
         let u = self.local(t);
         let (k, c) = (self.k, self.c);
         match &self.form {
@@ -550,15 +562,18 @@ impl Flow {
                 let x = xh + xp;
                 let v = vh + vp;
                 let acc = f - k * x - c * v;
-                Point {
-                    t,
-                    q: x + self.q_eq,
-                    v,
-                    acc,
-                    jerk: df - k * v - c * acc,
-                }
+                (
+                    Point {
+                        t,
+                        q: x + self.q_eq,
+                        v,
+                        acc,
+                        jerk: df - k * v - c * acc,
+                    },
+                    [f, df],
+                )
             }
-            Form::Series { hi, lo, terms } => {
+            Form::Series { hi, lo, terms, .. } => {
                 // x and its first three derivatives by Horner, hi and lo together.
                 let mut d = [0.0; 4];
                 for n in (0..*terms).rev() {
@@ -571,15 +586,102 @@ impl Flow {
                 // x itself from its hi part with the anchor's lo part added apart, so that the
                 // anchor's extra precision is not lost in the sum.
                 let x = horner(&hi[..*terms], u) + horner(&lo[..*terms], u);
-                Point {
-                    t,
-                    q: x + self.q_eq,
-                    v: d[1],
-                    acc: d[2],
-                    jerk: d[3],
+                (
+                    Point {
+                        t,
+                        q: x + self.q_eq,
+                        v: d[1],
+                        acc: d[2],
+                        jerk: d[3],
+                    },
+                    [0.0; 2],
+                )
+            }
+        }
+    }
+
+    /// The integrals of f x' and of x'^2 over `[end.t - h, end.t]`, from the Taylor series of the
+    /// motion about `end` (the point at the end, with the forcing there as
+    /// [`Flow::point_with_force`] gives it): the coefficients follow from x and x' there by the
+    /// equation, a_(n+2) = (f_n - k a_n - c (n+1) a_(n+1)) / ((n+1)(n+2)), and the products are
+    /// integrated term by term. No closed form is evaluated inside the piece, and the series is
+    /// cut where its terms fall below 1e-17 of the state (h times the flow's rate at most
+    /// [`WORK_REACH`]).
+    pub fn work_integrals(&self, end: &Point, force: [f64; 2], h: f64) -> (f64, f64) {
+        let (k, c) = (self.k, self.c);
+        // The series' terms shrink as (lambda h)^n / n!, lambda the free motion's rates
+        // (|lambda| <= |c|/2 + (c^2/4 + |k|)^(1/2)) or the forcing's.
+        let free = 0.5 * c.abs() + (0.25 * c * c + k.abs()).sqrt();
+        let rho = match &self.form {
+            Form::Oscillator(o) => free.max(2.0 * PI / o.period),
+            Form::Series { .. } => free,
+        } * h;
+        let mut terms = 4;
+        let mut tail = rho.powi(4) / 24.0;
+        while terms < WORK_TERMS && tail > 1e-17 {
+            terms += 1;
+            tail *= rho / terms as f64;
+        }
+        // The forcing's Taylor coefficients about the end, scaled by (-h)^n.
+        let mut f = [0.0; WORK_TERMS];
+        match &self.form {
+            Form::Oscillator(o) => {
+                let big_omega = 2.0 * PI / o.period;
+                // f^(2m) = (-W^2)^m f, f^(2m+1) = (-W^2)^m f'.
+                let (mut even, mut odd) = (force[0], force[1] * -h);
+                let step = -(big_omega * h) * (big_omega * h);
+                for n in (0..terms).step_by(2) {
+                    f[n] = even;
+                    f[n + 1] = odd;
+                    even *= step * RECIPROCAL_PAIRS[n];
+                    odd *= step * RECIPROCAL_PAIRS[n + 1];
+                }
+            }
+            Form::Series {
+                forcing, degree, ..
+            } => {
+                // Taylor shift of the polynomial from the anchor to the end.
+                let u = self.local(end.t);
+                let mut shifted = *forcing;
+                for i in 0..*degree {
+                    for j in (i..*degree).rev() {
+                        shifted[j] += u * shifted[j + 1];
+                    }
+                }
+                let mut scale = 1.0;
+                for n in 0..=(*degree).min(terms - 1) {
+                    f[n] = shifted[n] * scale;
+                    scale *= -h;
                 }
             }
         }
+        // x's coefficients scaled by (-h)^n: a_(n+2) h^2 from the equation, and x' scaled by
+        // -h, (n+1) a_(n+1).
+        let (kh2, ch, h2) = (k * h * h, c * -h, h * h);
+        let mut v = [0.0; WORK_TERMS];
+        let (mut a0, mut a1) = (end.q - self.q_eq, end.v * -h);
+        v[0] = a1;
+        for n in 0..terms - 1 {
+            let a2 = (f[n] * h2 - kh2 * a0 - ch * (n + 1) as f64 * a1) * RECIPROCAL_PAIRS[n];
+            v[n + 1] = (n + 2) as f64 * a2;
+            (a0, a1) = (a1, a2);
+        }
+        // Integrate over sigma in [0, 1] (s = -h sigma): sum of v_i w_j / (i + j + 1).
+        let (mut force_work, mut square) = (0.0, 0.0);
+        let (f, v) = (&f[..terms], &v[..terms]);
+        for (i, (&fi, &vi)) in f.iter().zip(v).enumerate() {
+            let fv: f64 = v.iter().zip(&RECIPROCALS[i..]).map(|(&vj, &w)| vj * w).sum();
+            // v_i v_j twice for j > i, once for j = i.
+            let vv: f64 = v[i..]
+                .iter()
+                .zip(&RECIPROCALS[2 * i..])
+                .map(|(&vj, &w)| vj * w)
+                .sum();
+            force_work += fi * fv;
+            square += vi * (2.0 * vv - vi * RECIPROCALS[2 * i]);
+        }
+        // v was scaled by -h (x' = v / -h), and ds = h d sigma.
+        (-force_work, square / h)
     }
 
     /// The fastest rate of the flow, 1/s: of its free motion and of its forcing.
@@ -656,6 +758,32 @@ impl Flow {
         ROUNDING_ULPS * f64::EPSILON * size + forcing
     }
 }
+
+/// Most terms of the series of the work integrals.
+const WORK_TERMS: usize = 24;
+/// 1 / (n + 1).
+const RECIPROCALS: [f64; 2 * WORK_TERMS] = {
+    let mut r = [0.0; 2 * WORK_TERMS];
+    let mut n = 0;
+    while n < r.len() {
+        r[n] = 1.0 / (n + 1) as f64;
+        n += 1;
+    }
+    r
+};
+/// 1 / ((n + 1)(n + 2)).
+const RECIPROCAL_PAIRS: [f64; WORK_TERMS + 1] = {
+    let mut r = [0.0; WORK_TERMS + 1];
+    let mut n = 0;
+    while n < r.len() {
+        r[n] = 1.0 / ((n + 1) * (n + 2)) as f64;
+        n += 1;
+    }
+    r
+};
+/// Longest piece of a work integral, in units of 1 / (the flow's fastest rate): with
+/// |lambda| h <= 1 the series' 19th term is below 1e-17.
+pub(super) const WORK_REACH: f64 = 0.5;
 
 /// Multiple of the unit roundoff per summed term that the rounding estimate books.
 const ROUNDING_ULPS: f64 = 8.0;

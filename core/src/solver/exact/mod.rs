@@ -28,10 +28,11 @@
 //! (the error of q over |q'|) and of each peak (of q, and of its time, the error of q' over
 //! |q''|). The estimate also covers a relative error of a few ulps in the model's constants.
 //!
-//! Energy books: the input and damping work are integrated along each flow by Gauss-Legendre
-//! quadrature (4 to 8 points) on pieces short against the flow's rates, which is exact to
-//! rounding for these smooth integrands; the energy residual therefore checks the quadrature
-//! and the resets, not the solution.
+//! Energy books: the input and damping work are integrated along each flow on pieces short
+//! against the flow's rates (one per sample of the history), each from the Taylor series of the
+//! motion and of the forcing about its end, whose products are integrated term by term to
+//! rounding; the energy residual therefore checks these integrals and the resets, not the
+//! solution.
 
 mod flow;
 mod scan;
@@ -60,38 +61,6 @@ pub struct ExactSettings {
     pub output_dt: f64,
 }
 
-/// Gauss-Legendre rules on [-1, 1] with 4, 6 and 8 points: the positive nodes and their
-/// weights (each node is used with both signs).
-const GAUSS_4: [(f64, f64); 2] = [
-    (0.339_981_043_584_856_3, 0.652_145_154_862_546_2),
-    (0.861_136_311_594_052_6, 0.347_854_845_137_453_9),
-];
-const GAUSS_6: [(f64, f64); 3] = [
-    (0.238_619_186_083_196_9, 0.467_913_934_572_691),
-    (0.661_209_386_466_264_5, 0.360_761_573_048_138_6),
-    (0.932_469_514_203_152, 0.171_324_492_379_170_3),
-];
-const GAUSS_8: [(f64, f64); 4] = [
-    (0.183_434_642_495_649_8, 0.362_683_783_378_362),
-    (0.525_532_409_916_329, 0.313_706_645_877_887_3),
-    (0.796_666_477_413_626_7, 0.222_381_034_453_374_5),
-    (0.960_289_856_497_536_3, 0.101_228_536_290_376_3),
-];
-
-/// The Gauss-Legendre rule for a piece of `reach` = length times the flow's fastest rate: an
-/// n-point rule errs by about reach^(2n) / (2n)! of the integrand's scale, which each rule
-/// keeps below 1e-17 over the reach it is given.
-fn gauss_rule(reach: f64) -> &'static [(f64, f64)] {
-    if reach <= 0.02 {
-        &GAUSS_4
-    } else if reach <= 0.15 {
-        &GAUSS_6
-    } else {
-        &GAUSS_8
-    }
-}
-/// Longest quadrature piece, in units of 1 / (the flow's fastest rate).
-const QUADRATURE_REACH: f64 = 0.5;
 /// Safety factor on the first-order error estimate.
 const ESTIMATE_SAFETY: f64 = 4.0;
 
@@ -455,8 +424,8 @@ impl<'a> Run<'a> {
             if t > until || (!inclusive && t == until) {
                 break;
             }
-            let p = flow.point(t);
-            self.advance_work(flow, t);
+            let (p, force) = flow.point_with_force(t);
+            self.advance_work_to(flow, &p, force);
             self.recorder.sample(
                 t,
                 self.mode,
@@ -472,40 +441,52 @@ impl<'a> Run<'a> {
 
     /// Integrates the input and damping power along `flow` up to `t`.
     fn advance_work(&mut self, flow: &Flow, t: f64) {
+        if !self.energy || t <= self.work.t {
+            return;
+        }
+        let (p, force) = flow.point_with_force(t);
+        self.advance_work_to(flow, &p, force);
+    }
+
+    /// Integrates the input and damping power along `flow` up to the point `end` (with the
+    /// forcing there): in pieces short against the flow's rates, each from the Taylor series of
+    /// the motion about its end ([`Flow::work_integrals`]).
+    fn advance_work_to(&mut self, flow: &Flow, end: &Point, force: [f64; 2]) {
         if !self.energy {
             return;
         }
         let from = self.work.t;
-        let span = t - from;
+        let span = end.t - from;
         if span <= 0.0 {
             return;
         }
-        let pieces = (span * flow.rate() / QUADRATURE_REACH)
+        let pieces = (span * flow.rate() / flow::WORK_REACH)
             .ceil()
             .clamp(1.0, 1e7) as usize;
         let h = span / pieces as f64;
         let (a, mode) = (self.automaton, self.mode);
-        let power = |tau: f64| {
-            let p = flow.point(tau);
-            let floor = self.floor.acceleration(tau);
-            (a.input_power(mode, p.v, floor), a.damping_power(mode, p.v))
-        };
-        let (mut input, mut damping) = (0.0, 0.0);
-        let rule = gauss_rule(h * flow.rate());
-        for i in 0..pieces {
-            let middle = from + (i as f64 + 0.5) * h;
-            for &(node, weight) in rule {
-                for side in [-1.0, 1.0] {
-                    let (pi, pd) = power(middle + side * node * 0.5 * h);
-                    input += weight * 0.5 * h * pi;
-                    damping += weight * 0.5 * h * pd;
-                }
-            }
+        let (mut force_work, mut square) = (0.0, 0.0);
+        for i in 1..=pieces {
+            let (fv, vv) = if i == pieces {
+                flow.work_integrals(end, force, end.t - (from + (i - 1) as f64 * h))
+            } else {
+                let (p, force) = flow.point_with_force(from + i as f64 * h);
+                flow.work_integrals(&p, force, h)
+            };
+            force_work += fv;
+            square += vv;
         }
+        // The input power -beta Me a q' is Me f q' with f = -beta a, the flow's forcing.
+        let beta = a.participation(mode);
+        let input = if beta != 0.0 {
+            a.input_power(mode, 1.0, 1.0) / -beta * force_work
+        } else {
+            0.0
+        };
         self.work = Work {
-            t,
+            t: end.t,
             input: self.work.input + input,
-            damping: self.work.damping + damping,
+            damping: self.work.damping + a.damping_power(mode, 1.0) * square,
         };
     }
 
