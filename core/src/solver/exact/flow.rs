@@ -47,11 +47,14 @@ pub(super) struct Point {
 
 /// sum c_n u^n by compensated Horner (Graillat, Langlois and Louvet 2005): as if in twice the
 /// working precision.
-fn compensated_horner(coefficients: &[f64], u: f64) -> Dd {
-    let mut iter = coefficients.iter().rev();
-    let mut s = *iter.next().unwrap_or(&0.0);
+fn compensated_horner<I>(coefficients: I, u: f64) -> Dd
+where
+    I: DoubleEndedIterator<Item = f64>,
+{
+    let mut iter = coefficients.rev();
+    let mut s = iter.next().unwrap_or(0.0);
     let mut correction = 0.0;
-    for &c in iter {
+    for c in iter {
         let (p, pe) = two_product(s, u);
         let (sum, se) = two_sum(p, c);
         s = sum;
@@ -443,17 +446,16 @@ impl Flow {
             tail *= rho / terms as f64;
         }
         let terms = terms.min(SERIES_TERMS);
-        let recurrence = |a0: f64, a1: f64, forced: bool| {
-            let mut a = [0.0; SERIES_TERMS];
-            a[0] = a0;
-            a[1] = a1;
-            for n in 0..terms - 2 {
-                let forcing = if forced && n <= degree { f[n] } else { 0.0 };
-                a[n + 2] = (forcing - k * a[n] - c * (n + 1) as f64 * a[n + 1])
-                    / ((n + 1) * (n + 2)) as f64;
-            }
-            a
-        };
+        // The coefficients of the anchor's hi part with the forcing, and of its lo part without,
+        // in one loop: the two chains of divisions overlap.
+        let (mut hi, mut lo) = ([0.0; SERIES_TERMS], [0.0; SERIES_TERMS]);
+        (hi[0], hi[1], lo[0], lo[1]) = (x.hi, v.hi, x.lo, v.lo);
+        for n in 0..terms - 2 {
+            let forcing = if n <= degree { f[n] } else { 0.0 };
+            let (cn, pair) = (c * (n + 1) as f64, ((n + 1) * (n + 2)) as f64);
+            hi[n + 2] = (forcing - k * hi[n] - cn * hi[n + 1]) / pair;
+            lo[n + 2] = (0.0 - k * lo[n] - cn * lo[n + 1]) / pair;
+        }
         let force_bound = f[..=degree]
             .iter()
             .rev()
@@ -476,8 +478,8 @@ impl Flow {
             force_curvature_bound,
             force_error,
             form: Form::Series {
-                hi: recurrence(x.hi, v.hi, true),
-                lo: recurrence(x.lo, v.lo, false),
+                hi,
+                lo,
                 terms,
                 forcing: f,
                 degree,
@@ -501,16 +503,10 @@ impl Flow {
         match &self.form {
             Form::Series { hi, lo, terms, .. } => {
                 let n = *terms;
-                let mut dhi = [0.0; SERIES_TERMS - 1];
-                let mut dlo = [0.0; SERIES_TERMS - 1];
-                for i in 1..n {
-                    dhi[i - 1] = i as f64 * hi[i];
-                    dlo[i - 1] = i as f64 * lo[i];
-                }
-                let x = compensated_horner(&hi[..n], u);
+                let x = compensated_horner(hi[..n].iter().copied(), u);
                 let xl = horner(&lo[..n], u);
-                let v = compensated_horner(&dhi[..n - 1], u);
-                let vl = horner(&dlo[..n - 1], u);
+                let v = compensated_horner(derivative(&hi[..n]), u);
+                let vl = derivative(&lo[..n]).rev().fold(0.0, |acc, value| acc * u + value);
                 let (q_hi, q_e) = two_sum(x.hi, self.q_eq);
                 (Dd::new(q_hi, q_e + x.lo + xl), Dd::new(v.hi, v.lo + vl))
             }
@@ -811,6 +807,14 @@ fn phase(t: f64, t_lo: f64, frequency: Dd) -> (f64, f64) {
     let angle = TWO_PI * fraction;
     let (s, c) = angle.hi.sin_cos();
     (s + c * angle.lo, c - s * angle.lo)
+}
+
+/// The coefficients i a_i of the derivative of sum a_i u^i.
+fn derivative(a: &[f64]) -> impl DoubleEndedIterator<Item = f64> + '_ {
+    a.iter()
+        .enumerate()
+        .skip(1)
+        .map(|(i, &value)| i as f64 * value)
 }
 
 fn horner(coefficients: &[f64], u: f64) -> f64 {

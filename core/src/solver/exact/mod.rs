@@ -182,6 +182,7 @@ fn solve_once(
         flows: 0,
         evaluations: 0,
         unresolved: 0,
+        spare: (Vec::new(), Vec::new()),
     };
     let final_time = run.go(duration)?;
     let stats = SolverStats {
@@ -246,6 +247,8 @@ struct Run<'a> {
     flows: usize,
     evaluations: usize,
     unresolved: usize,
+    /// Buffers of the scans (extrema found, intervals to search), kept from flow to flow.
+    spare: (Vec<Point>, Vec<scan::Interval>),
 }
 
 impl<'a> Run<'a> {
@@ -290,12 +293,14 @@ impl<'a> Run<'a> {
             budget
                 .step(self.t, self.flows)
                 .map_err(|m| self.failed(self.t, m))?;
-            let guards: Vec<Guard> = automaton
-                .guards(self.mode)
-                .iter()
-                .map(|&slot| automaton.guard(self.mode, slot))
-                .collect();
-            let mut watch = self.watch(&guards);
+            // At most two guards per mode, kept on the stack.
+            let slots = automaton.guards(self.mode);
+            let mut buffer = [automaton.guard(self.mode, slots[0]); 2];
+            for (guard, &slot) in buffer.iter_mut().zip(slots) {
+                *guard = automaton.guard(self.mode, slot);
+            }
+            let guards = &buffer[..slots.len()];
+            let mut watch = self.watch(guards);
             let start = flow.point(self.t);
             if first {
                 // The run's first state is a sample.
@@ -304,7 +309,7 @@ impl<'a> Run<'a> {
             }
             let finish = scan::evaluate(&flow, flow.until, &mut watch);
             let found =
-                finish.and_then(|stop| first_crossing(&flow, start, stop, &guards, &mut watch));
+                finish.and_then(|stop| first_crossing(&flow, start, stop, guards, &mut watch));
             self.evaluations += watch.evaluations;
             self.unresolved += watch.unresolved;
             let found = match found {
@@ -333,6 +338,9 @@ impl<'a> Run<'a> {
             for extremum in &watch.extrema {
                 self.peak(&flow, extremum);
             }
+            // The watch's buffers serve the next flow.
+            watch.extrema.clear();
+            self.spare = (watch.extrema, watch.stack);
             self.emit(&flow, stop, true);
             match found {
                 Some((p, guard)) => {
@@ -357,7 +365,7 @@ impl<'a> Run<'a> {
     }
 
     /// The levels that matter in this mode's flows.
-    fn watch(&self, guards: &[Guard]) -> Watch {
+    fn watch(&mut self, guards: &[Guard]) -> Watch {
         let guard_up = guards
             .iter()
             .filter(|g| g.direction > 0.0)
@@ -373,12 +381,14 @@ impl<'a> Run<'a> {
             Mode::RockLeft => (self.max_q, (-self.episode_peak).max(self.min_q)),
             _ => (self.max_q, self.min_q),
         };
+        let (extrema, stack) = std::mem::take(&mut self.spare);
         Watch {
             guard_up,
             guard_down,
             max,
             min,
-            extrema: Vec::new(),
+            extrema,
+            stack,
             evaluations: 0,
             unresolved: 0,
         }

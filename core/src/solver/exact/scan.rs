@@ -40,6 +40,8 @@ pub(super) struct Watch {
     pub min: f64,
     /// Extrema of q found, in time order.
     pub extrema: Vec<Point>,
+    /// The intervals still to search (a buffer kept from flow to flow).
+    pub stack: Vec<Interval>,
     /// Evaluations of the closed form.
     pub evaluations: usize,
     /// Intervals taken as monotone after [`MAX_DEPTH`] halvings.
@@ -60,6 +62,9 @@ impl Watch {
     }
 }
 
+/// An interval of a flow still to search: its ends and the halvings that made it.
+pub(super) type Interval = (Point, Point, usize);
+
 /// Why a scan stopped early.
 #[derive(Debug)]
 pub(super) enum ScanError {
@@ -78,7 +83,21 @@ pub(super) fn first_crossing(
     guards: &[Guard],
     watch: &mut Watch,
 ) -> Result<Option<(Point, Guard)>, ScanError> {
-    let mut stack = vec![(a, b, 0usize)];
+    let mut stack = std::mem::take(&mut watch.stack);
+    stack.clear();
+    stack.push((a, b, 0usize));
+    let found = search(flow, &mut stack, guards, watch);
+    watch.stack = stack;
+    found
+}
+
+/// The search of [`first_crossing`] over the intervals in `stack`.
+fn search(
+    flow: &Flow,
+    stack: &mut Vec<Interval>,
+    guards: &[Guard],
+    watch: &mut Watch,
+) -> Result<Option<(Point, Guard)>, ScanError> {
     while let Some((a, b, depth)) = stack.pop() {
         let h = b.t - a.t;
         if h <= 0.0 {
