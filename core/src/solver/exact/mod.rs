@@ -171,6 +171,7 @@ fn solve_once(
         q: Dd::exact(initial.q),
         v: Dd::exact(initial.qdot),
         energy,
+        estimate: history == History::Sampled,
         recorder,
         grid: OutputGrid::for_history(history, duration, settings.output_dt),
         work: Work::default(),
@@ -235,6 +236,9 @@ struct Run<'a> {
     v: Dd,
     /// Whether the energy books are kept.
     energy: bool,
+    /// Whether the local rounding is booked (a run with a history: the shadow runs and runs
+    /// without one leave their estimate unread).
+    estimate: bool,
     recorder: Recorder<'a>,
     grid: OutputGrid,
     work: Work,
@@ -307,12 +311,12 @@ impl<'a> Run<'a> {
                 self.emit(&flow, self.t, true);
                 first = false;
             }
-            let finish = scan::evaluate(&flow, flow.until, &mut watch);
-            let found =
-                finish.and_then(|stop| first_crossing(&flow, start, stop, guards, &mut watch));
+            let found = scan::evaluate(&flow, flow.until, &mut watch).and_then(|finish| {
+                first_crossing(&flow, start, finish, guards, &mut watch).map(|f| (f, finish))
+            });
             self.evaluations += watch.evaluations;
             self.unresolved += watch.unresolved;
-            let found = match found {
+            let (found, finish) = match found {
                 Ok(found) => found,
                 Err(ScanError::NotFinite(t)) => {
                     return Err(self.failed(
@@ -354,7 +358,7 @@ impl<'a> Run<'a> {
                     self.v = v;
                     self.t = flow.until;
                     self.t_lo = 0.0;
-                    self.peak(&flow, &flow.point(flow.until));
+                    self.peak(&flow, &finish);
                     if self.t >= end {
                         break;
                     }
@@ -396,6 +400,26 @@ impl<'a> Run<'a> {
 
     /// Offers a state where q may be extremal to the recorder and to the peak trackers.
     fn peak(&mut self, flow: &Flow, p: &Point) {
+        if p.q > self.max_q {
+            self.max_q = p.q;
+            if self.estimate {
+                (self.peak_errors.max_q, self.peak_errors.t_max_q) = self.peak_error(flow, p);
+            }
+        }
+        if p.q < self.min_q {
+            self.min_q = p.q;
+            if self.estimate {
+                (self.peak_errors.min_q, self.peak_errors.t_min_q) = self.peak_error(flow, p);
+            }
+        }
+        if matches!(self.mode, Mode::RockRight | Mode::RockLeft) {
+            self.episode_peak = self.episode_peak.max(p.q.abs());
+        }
+        self.recorder.peak_candidate(p.t, p.q);
+    }
+
+    /// The error estimate of a peak at `p`: of its value (m) and of its time (s).
+    fn peak_error(&self, flow: &Flow, p: &Point) -> (f64, f64) {
         let (error_q, error_v) = self.local_error(flow, p.t);
         let t_error = if p.acc != 0.0 {
             error_v / p.acc.abs()
@@ -404,20 +428,7 @@ impl<'a> Run<'a> {
         };
         let t_error = t_error + 2.0 * scan::ulp(p.t);
         let error_q = error_q + 4.0 * f64::EPSILON * (p.q.abs() + flow.equilibrium().abs());
-        if p.q > self.max_q {
-            self.max_q = p.q;
-            self.peak_errors.max_q = error_q;
-            self.peak_errors.t_max_q = t_error;
-        }
-        if p.q < self.min_q {
-            self.min_q = p.q;
-            self.peak_errors.min_q = error_q;
-            self.peak_errors.t_min_q = t_error;
-        }
-        if matches!(self.mode, Mode::RockRight | Mode::RockLeft) {
-            self.episode_peak = self.episode_peak.max(p.q.abs());
-        }
-        self.recorder.peak_candidate(p.t, p.q);
+        (error_q, t_error)
     }
 
     /// The rounding of the closed form at `t` in `flow`, with a safety factor, as an error of
@@ -503,15 +514,17 @@ impl<'a> Run<'a> {
     /// The event at `p` through `guard`: booked, reset applied, mode changed.
     fn event(&mut self, flow: &Flow, p: Point, guard: Guard) {
         let automaton = self.automaton;
-        let (error_q, _) = self.local_error(flow, p.t);
-        // The guard's level carries the rounding of the constants it is made of, and q at the
-        // point the rounding of its evaluation.
-        let level_error = 4.0 * f64::EPSILON * (guard.level.abs() + flow.equilibrium().abs());
-        let speed = p.v.abs().max(f64::MIN_POSITIVE);
-        // The transverse error of q becomes an error of the time q reaches the guard.
-        let crossing_time =
-            (error_q + ESTIMATE_SAFETY * level_error) / speed + 2.0 * scan::ulp(p.t);
-        self.event_errors.push(crossing_time);
+        if self.estimate {
+            let (error_q, _) = self.local_error(flow, p.t);
+            // The guard's level carries the rounding of the constants it is made of, and q at
+            // the point the rounding of its evaluation.
+            let level_error = 4.0 * f64::EPSILON * (guard.level.abs() + flow.equilibrium().abs());
+            let speed = p.v.abs().max(f64::MIN_POSITIVE);
+            // The transverse error of q becomes an error of the time q reaches the guard.
+            let crossing_time =
+                (error_q + ESTIMATE_SAFETY * level_error) / speed + 2.0 * scan::ulp(p.t);
+            self.event_errors.push(crossing_time);
+        }
         self.advance_work(flow, p.t);
         // The crossing lies between doubles: the rest of it, from q at the double found. Taken
         // into the next flow's anchor, it keeps the rounding of event times (biased to the side
