@@ -83,38 +83,60 @@ pub fn solve(
     let started = Instant::now();
     // A run without a history keeps no energy books (Recorder::without_energy_books).
     let energy = history == History::Sampled;
-    let (mut solution, local) = solve_once(
-        automaton, floor, initial, duration, settings, history, energy,
-    )?;
-    if history == History::Sampled {
-        let mut estimate = local;
-        let size = automaton.constants_uncertainty();
-        for pattern in 0..SHADOW_RUNS {
-            let nudged = automaton.nudged(pattern as u64 + 1, size);
-            let moved = InitialState {
-                q: initial.q * (1.0 + size * crate::automaton::nudge_sign(pattern as u64 + 1, 100)),
-                qdot: initial.qdot
-                    * (1.0 + size * crate::automaton::nudge_sign(pattern as u64 + 1, 101)),
-            };
-            let (shadow, _) = solve_once(
-                &nudged,
-                floor,
-                moved,
-                duration,
-                settings,
-                History::PeaksOnly,
-                false,
-            )?;
-            spread_into(&mut estimate, &solution, &shadow, duration);
-        }
-        solution.rounding = Some(estimate);
+    let run = || solve_once(automaton, floor, initial, duration, settings, history, energy);
+    if history != History::Sampled {
+        let (mut solution, _) = run()?;
+        solution.stats.wall_time_s = started.elapsed().as_secs_f64();
+        return Ok(solution);
     }
+    let size = automaton.constants_uncertainty();
+    let shadow = |pattern: usize| {
+        let nudged = automaton.nudged(pattern as u64 + 1, size);
+        let moved = InitialState {
+            q: initial.q * (1.0 + size * crate::automaton::nudge_sign(pattern as u64 + 1, 100)),
+            qdot: initial.qdot * (1.0 + size * crate::automaton::nudge_sign(pattern as u64 + 1, 101)),
+        };
+        solve_once(
+            &nudged,
+            floor,
+            moved,
+            duration,
+            settings,
+            History::PeaksOnly,
+            false,
+        )
+        .map(|(shadow, _)| shadow)
+    };
+    // The shadow runs are independent of the run: with the `parallel` feature they run beside
+    // it on other cores (the same results, in less time on a machine with cores to spare).
+    let (main, (first, second)) = both(run, || both(|| shadow(0), || shadow(1)));
+    let (mut solution, mut estimate) = main?;
+    for shadow in [first?, second?] {
+        spread_into(&mut estimate, &solution, &shadow, duration);
+    }
+    solution.rounding = Some(estimate);
     solution.stats.wall_time_s = started.elapsed().as_secs_f64();
     Ok(solution)
 }
 
+/// `a()` and `b()`, on two threads with the `parallel` feature.
+#[cfg(feature = "parallel")]
+fn both<A: Send, B: Send>(
+    a: impl FnOnce() -> A + Send,
+    b: impl FnOnce() -> B + Send,
+) -> (A, B) {
+    rayon::join(a, b)
+}
+
+/// `a()` and `b()`.
+#[cfg(not(feature = "parallel"))]
+fn both<A, B>(a: impl FnOnce() -> A, b: impl FnOnce() -> B) -> (A, B) {
+    (a(), b())
+}
+
 /// Runs that estimate the error of a run with a history.
 pub const SHADOW_RUNS: usize = 2;
+const _: () = assert!(SHADOW_RUNS == 2, "solve runs two shadow runs");
 
 /// Adds to `estimate` the safety factor times the distance of the shadow run from the run.
 /// From the first event whose kind differs (or that one run lacks) on, the event sequence itself
