@@ -571,6 +571,21 @@ impl Flow {
                     [f, df],
                 )
             }
+            Form::Series { hi, lo, .. } if u == 0.0 => {
+                // At the anchor (a flow that starts on a record's sample): the first
+                // coefficients, as the sums below give them there.
+                let a = |n: usize| hi[n] + lo[n];
+                (
+                    Point {
+                        t,
+                        q: (hi[0] + lo[0]) + self.q_eq,
+                        v: a(1),
+                        acc: 2.0 * a(2),
+                        jerk: 3.0 * (2.0 * a(3)),
+                    },
+                    [0.0; 2],
+                )
+            }
             Form::Series { hi, lo, terms, .. } => {
                 // x and its first three derivatives by Horner, hi and lo together.
                 let mut d = [0.0; 4];
