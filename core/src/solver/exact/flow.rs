@@ -508,7 +508,9 @@ impl Flow {
                 let x = compensated_horner(hi[..n].iter().copied(), u);
                 let xl = horner(&lo[..n], u);
                 let v = compensated_horner(derivative(&hi[..n]), u);
-                let vl = derivative(&lo[..n]).rev().fold(0.0, |acc, value| acc * u + value);
+                let vl = derivative(&lo[..n])
+                    .rev()
+                    .fold(0.0, |acc, value| acc * u + value);
                 let (q_hi, q_e) = two_sum(x.hi, self.q_eq);
                 (Dd::new(q_hi, q_e + x.lo + xl), Dd::new(v.hi, v.lo + vl))
             }
@@ -683,7 +685,11 @@ impl Flow {
         let (mut force_work, mut square) = (0.0, 0.0);
         let (f, v) = (&f[..terms], &v[..terms]);
         for (i, (&fi, &vi)) in f.iter().zip(v).enumerate() {
-            let fv: f64 = v.iter().zip(&RECIPROCALS[i..]).map(|(&vj, &w)| vj * w).sum();
+            let fv: f64 = v
+                .iter()
+                .zip(&RECIPROCALS[i..])
+                .map(|(&vj, &w)| vj * w)
+                .sum();
             // v_i v_j twice for j > i, once for j = i.
             let vv: f64 = v[i..]
                 .iter()

@@ -83,7 +83,11 @@ pub fn solve(
     let started = Instant::now();
     // A run without a history keeps no energy books (Recorder::without_energy_books).
     let energy = history == History::Sampled;
-    let run = || solve_once(automaton, floor, initial, duration, settings, history, energy);
+    let run = || {
+        solve_once(
+            automaton, floor, initial, duration, settings, history, energy,
+        )
+    };
     if history != History::Sampled {
         let (mut solution, _) = run()?;
         solution.stats.wall_time_s = started.elapsed().as_secs_f64();
@@ -94,7 +98,8 @@ pub fn solve(
         let nudged = automaton.nudged(pattern as u64 + 1, size);
         let moved = InitialState {
             q: initial.q * (1.0 + size * crate::automaton::nudge_sign(pattern as u64 + 1, 100)),
-            qdot: initial.qdot * (1.0 + size * crate::automaton::nudge_sign(pattern as u64 + 1, 101)),
+            qdot: initial.qdot
+                * (1.0 + size * crate::automaton::nudge_sign(pattern as u64 + 1, 101)),
         };
         solve_once(
             &nudged,
@@ -121,10 +126,7 @@ pub fn solve(
 
 /// `a()` and `b()`, on two threads with the `parallel` feature.
 #[cfg(feature = "parallel")]
-fn both<A: Send, B: Send>(
-    a: impl FnOnce() -> A + Send,
-    b: impl FnOnce() -> B + Send,
-) -> (A, B) {
+fn both<A: Send, B: Send>(a: impl FnOnce() -> A + Send, b: impl FnOnce() -> B + Send) -> (A, B) {
     rayon::join(a, b)
 }
 
