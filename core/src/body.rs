@@ -9,7 +9,7 @@ use crate::invalid::InvalidParameter;
 type Result<T> = std::result::Result<T, InvalidParameter>;
 
 /// Which set of mode-shape constants to use (book/src/model.md §2, constants).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum ConstantSet {
     /// Constants computed exactly from the cantilever mode shape.
@@ -29,7 +29,7 @@ impl ConstantSet {
 }
 
 /// How the model treats the body's own weight in bending (`[body] self_weight`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum SelfWeight {
     /// As the paper: the weight's moment about the toe, but no weight in the bending

@@ -266,6 +266,40 @@ fn the_multiprecision_references_to_1e_13() {
 }
 
 /// (t, kind, to) of each row of a reference events.csv.
+/// The energy books of the exact method close: on every case of the multiprecision references
+/// (sines, pulses, the ramp's cubic, a Ricker wavelet, a record, free motion, grazing), the
+/// energy at each sample equals the initial energy plus the floor's work minus the damping's
+/// and the impacts' losses to 1e-13 of the run's energy scale. The work integrals are summed
+/// from Taylor series of the motion about each sample, apart from the closed form the energy is
+/// evaluated from, so a wrong or truncated series shows here.
+#[test]
+fn the_energy_books_close_to_1e_13_on_every_reference_case() {
+    let dir = common::workspace_file("validation/exact/reference");
+    let mut cases = 0;
+    for entry in std::fs::read_dir(&dir).expect("validation/exact/reference") {
+        let name = entry
+            .expect("entry")
+            .file_name()
+            .to_string_lossy()
+            .to_string();
+        let file = common::workspace_file(&format!("validation/exact/cases/{name}.toml"));
+        let overrides = Overrides {
+            method: Some("exact".to_string()),
+            ..Overrides::default()
+        };
+        let model = Model::load(&file, &overrides).expect("the case loads");
+        let sol = flexrock_core::simulate::simulate(&model).expect("solves");
+        assert!(sol.energy_scale > 0.0, "{name}: no energy booked");
+        let share = sol.max_energy_residual / sol.energy_scale;
+        assert!(
+            share < 1e-13,
+            "{name}: energy residual {share:e} of the scale"
+        );
+        cases += 1;
+    }
+    assert!(cases >= 10, "only {cases} reference cases");
+}
+
 fn read_events(path: &std::path::Path) -> Vec<(f64, String, String)> {
     let text = std::fs::read_to_string(path).expect("reference events");
     let mut lines = text.lines();

@@ -5,7 +5,8 @@ use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
 
 use super::ExcitationSection;
-use crate::body::positive;
+use crate::body::{positive, Body, ConstantSet, SelfWeight};
+use crate::constants::Constants;
 use crate::error::{Error, Result};
 use crate::excitation::{
     floor_limit_rule, within_floor_limit, FloorMotion, Free, Harmonic, PaperSine, PulseShape,
@@ -22,6 +23,47 @@ type RecordMap = HashMap<RecordKey, Arc<Record>>;
 #[derive(Debug, Default)]
 pub struct RecordCache {
     records: Mutex<RecordMap>,
+    /// The constants of the bodies met so far: a sweep that varies the excitation derives
+    /// them once instead of at every point (they are a pure function of the body).
+    constants: Mutex<HashMap<BodyKey, Constants>>,
+}
+
+/// A body known by the bits of its numbers and its variants.
+type BodyKey = ([u64; 7], ConstantSet, SelfWeight);
+
+/// Bodies whose constants a cache keeps at most (a sweep over the body itself would otherwise
+/// keep one per point).
+const MAX_CACHED_BODIES: usize = 256;
+
+impl RecordCache {
+    /// `Constants::new(body)`, from the cache when this body was met before.
+    pub(crate) fn constants(&self, body: &Body) -> Result<Constants> {
+        let key = (
+            [
+                body.height,
+                body.width,
+                body.depth,
+                body.mass,
+                body.flexural_rigidity,
+                body.damping_ratio,
+                body.gravity,
+            ]
+            .map(f64::to_bits),
+            body.constant_set,
+            body.self_weight,
+        );
+        let lock = || self.constants.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some(constants) = lock().get(&key) {
+            return Ok(constants.clone());
+        }
+        let constants = Constants::new(body)?;
+        let mut cache = lock();
+        if cache.len() >= MAX_CACHED_BODIES {
+            cache.clear();
+        }
+        cache.insert(key, constants.clone());
+        Ok(constants)
+    }
 }
 
 impl RecordCache {

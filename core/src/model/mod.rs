@@ -496,7 +496,7 @@ impl Model {
         }
 
         let body = body_from_section(&file.body)?;
-        let constants = Constants::new(&body)?;
+        let constants = records.constants(&body)?;
         check_stands_up(&file.body, &body, &constants)?;
         let (floor, natural_duration) = floor_from_section(&file.excitation, base_dir, records)?;
         let duration = match (file.simulation.duration, natural_duration) {

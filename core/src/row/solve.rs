@@ -840,6 +840,7 @@ fn first_closing(gap: &Gap, from: f64, to: f64, snap: bool) -> Result<Option<f64
         max: f64::INFINITY,
         min: f64::NEG_INFINITY,
         extrema: Vec::new(),
+        stack: Vec::new(),
         evaluations: 0,
         unresolved: 0,
     };
@@ -871,6 +872,7 @@ fn first_zero(force: &Force, from: f64, to: f64) -> Result<Option<f64>, ScanErro
         max: f64::INFINITY,
         min: f64::NEG_INFINITY,
         extrema: Vec::new(),
+        stack: Vec::new(),
         evaluations: 0,
         unresolved: 0,
     };

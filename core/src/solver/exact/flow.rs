@@ -51,11 +51,14 @@ pub(crate) struct Point {
 
 /// sum c_n u^n by compensated Horner (Graillat, Langlois and Louvet 2005): as if in twice the
 /// working precision.
-fn compensated_horner(coefficients: &[f64], u: f64) -> Dd {
-    let mut iter = coefficients.iter().rev();
-    let mut s = *iter.next().unwrap_or(&0.0);
+fn compensated_horner<I>(coefficients: I, u: f64) -> Dd
+where
+    I: DoubleEndedIterator<Item = f64>,
+{
+    let mut iter = coefficients.rev();
+    let mut s = iter.next().unwrap_or(0.0);
     let mut correction = 0.0;
-    for &c in iter {
+    for c in iter {
         let (p, pe) = two_product(s, u);
         let (sum, se) = two_sum(p, c);
         s = sum;
@@ -77,6 +80,9 @@ enum Form {
         lo: [f64; SERIES_TERMS],
         /// Terms summed: the rest lie below 2^-70 of the state over the flow.
         terms: usize,
+        /// The forcing f as a polynomial in the time since the anchor, and its degree.
+        forcing: [f64; MAX_DEGREE + 1],
+        degree: usize,
     },
 }
 
@@ -438,23 +444,24 @@ impl Flow {
         // rho^n / n! below 2^-70 beyond the forcing's own terms, rho = the flow's reach.
         let rho = k.abs().sqrt().max(c.abs()) * span;
         let mut terms = degree + 3;
-        let mut tail = (1..=terms).fold(1.0, |acc, n| acc * rho / n as f64);
+        let mut tail = (1..=terms).fold(1.0, |acc, n| acc * rho * RECIPROCALS[n - 1]);
         while terms < SERIES_TERMS && tail > 2f64.powi(-70) {
             terms += 1;
-            tail *= rho / terms as f64;
+            tail *= rho * RECIPROCALS[terms - 1];
         }
         let terms = terms.min(SERIES_TERMS);
-        let recurrence = |a0: f64, a1: f64, forced: bool| {
-            let mut a = [0.0; SERIES_TERMS];
-            a[0] = a0;
-            a[1] = a1;
-            for n in 0..terms - 2 {
-                let forcing = if forced && n <= degree { f[n] } else { 0.0 };
-                a[n + 2] = (forcing - k * a[n] - c * (n + 1) as f64 * a[n + 1])
-                    / ((n + 1) * (n + 2)) as f64;
-            }
-            a
-        };
+        // The coefficients of the anchor's hi part with the forcing, and of its lo part without,
+        // in one loop; 1 / ((n+1)(n+2)) from a table (a division per term was most of the
+        // flow's cost). The extra rounding, an ulp of each coefficient, lies within the
+        // rounding the estimate books per term.
+        let (mut hi, mut lo) = ([0.0; SERIES_TERMS], [0.0; SERIES_TERMS]);
+        (hi[0], hi[1], lo[0], lo[1]) = (x.hi, v.hi, x.lo, v.lo);
+        for n in 0..terms - 2 {
+            let forcing = if n <= degree { f[n] } else { 0.0 };
+            let (cn, pair) = (c * (n + 1) as f64, RECIPROCAL_PAIRS[n]);
+            hi[n + 2] = (forcing - k * hi[n] - cn * hi[n + 1]) * pair;
+            lo[n + 2] = (0.0 - k * lo[n] - cn * lo[n + 1]) * pair;
+        }
         let force_bound = f[..=degree]
             .iter()
             .rev()
@@ -477,9 +484,11 @@ impl Flow {
             force_curvature_bound,
             force_error,
             form: Form::Series {
-                hi: recurrence(x.hi, v.hi, true),
-                lo: recurrence(x.lo, v.lo, false),
+                hi,
+                lo,
                 terms,
+                forcing: f,
+                degree,
             },
         }
     }
@@ -498,18 +507,14 @@ impl Flow {
     pub fn state(&self, t: f64) -> (Dd, Dd) {
         let u = self.local(t);
         match &self.form {
-            Form::Series { hi, lo, terms } => {
+            Form::Series { hi, lo, terms, .. } => {
                 let n = *terms;
-                let mut dhi = [0.0; SERIES_TERMS - 1];
-                let mut dlo = [0.0; SERIES_TERMS - 1];
-                for i in 1..n {
-                    dhi[i - 1] = i as f64 * hi[i];
-                    dlo[i - 1] = i as f64 * lo[i];
-                }
-                let x = compensated_horner(&hi[..n], u);
+                let x = compensated_horner(hi[..n].iter().copied(), u);
                 let xl = horner(&lo[..n], u);
-                let v = compensated_horner(&dhi[..n - 1], u);
-                let vl = horner(&dlo[..n - 1], u);
+                let v = compensated_horner(derivative(&hi[..n]), u);
+                let vl = derivative(&lo[..n])
+                    .rev()
+                    .fold(0.0, |acc, value| acc * u + value);
                 let (q_hi, q_e) = two_sum(x.hi, self.q_eq);
                 (Dd::new(q_hi, q_e + x.lo + xl), Dd::new(v.hi, v.lo + vl))
             }
@@ -545,6 +550,13 @@ impl Flow {
 
     /// q, q', q'' and q''' at `t`.
     pub fn point(&self, t: f64) -> Point {
+        self.point_with_force(t).0
+    }
+
+    /// The point at `t`, and the forcing f and f' there for the oscillator form (zero for the
+    /// series form, whose forcing is a polynomial the work integrals read directly).
+    #[inline]
+    pub fn point_with_force(&self, t: f64) -> (Point, [f64; 2]) {
         let u = self.local(t);
         let (k, c) = (self.k, self.c);
         match &self.form {
@@ -554,15 +566,33 @@ impl Flow {
                 let x = xh + xp;
                 let v = vh + vp;
                 let acc = f - k * x - c * v;
-                Point {
-                    t,
-                    q: x + self.q_eq,
-                    v,
-                    acc,
-                    jerk: df - k * v - c * acc,
-                }
+                (
+                    Point {
+                        t,
+                        q: x + self.q_eq,
+                        v,
+                        acc,
+                        jerk: df - k * v - c * acc,
+                    },
+                    [f, df],
+                )
             }
-            Form::Series { hi, lo, terms } => {
+            Form::Series { hi, lo, .. } if u == 0.0 => {
+                // At the anchor (a flow that starts on a record's sample): the first
+                // coefficients, as the sums below give them there.
+                let a = |n: usize| hi[n] + lo[n];
+                (
+                    Point {
+                        t,
+                        q: (hi[0] + lo[0]) + self.q_eq,
+                        v: a(1),
+                        acc: 2.0 * a(2),
+                        jerk: 3.0 * (2.0 * a(3)),
+                    },
+                    [0.0; 2],
+                )
+            }
+            Form::Series { hi, lo, terms, .. } => {
                 // x and its first three derivatives by Horner, hi and lo together.
                 let mut d = [0.0; 4];
                 for n in (0..*terms).rev() {
@@ -575,15 +605,106 @@ impl Flow {
                 // x itself from its hi part with the anchor's lo part added apart, so that the
                 // anchor's extra precision is not lost in the sum.
                 let x = horner(&hi[..*terms], u) + horner(&lo[..*terms], u);
-                Point {
-                    t,
-                    q: x + self.q_eq,
-                    v: d[1],
-                    acc: d[2],
-                    jerk: d[3],
+                (
+                    Point {
+                        t,
+                        q: x + self.q_eq,
+                        v: d[1],
+                        acc: d[2],
+                        jerk: d[3],
+                    },
+                    [0.0; 2],
+                )
+            }
+        }
+    }
+
+    /// The integrals of f x' and of x'^2 over `[end.t - h, end.t]`, from the Taylor series of the
+    /// motion about `end` (the point at the end, with the forcing there as
+    /// [`Flow::point_with_force`] gives it): the coefficients follow from x and x' there by the
+    /// equation, a_(n+2) = (f_n - k a_n - c (n+1) a_(n+1)) / ((n+1)(n+2)), and the products are
+    /// integrated term by term. No closed form is evaluated inside the piece, and the series is
+    /// cut where its terms fall below 1e-17 of the state (h times the flow's rate at most
+    /// [`WORK_REACH`]).
+    pub fn work_integrals(&self, end: &Point, force: [f64; 2], h: f64) -> (f64, f64) {
+        let (k, c) = (self.k, self.c);
+        // The series' terms shrink as (lambda h)^n / n!, lambda the free motion's rates
+        // (|lambda| <= |c|/2 + (c^2/4 + |k|)^(1/2)) or the forcing's.
+        let free = 0.5 * c.abs() + (0.25 * c * c + k.abs()).sqrt();
+        let rho = match &self.form {
+            Form::Oscillator(o) => free.max(2.0 * PI / o.period),
+            Form::Series { .. } => free,
+        } * h;
+        let mut terms = 4;
+        let mut tail = rho.powi(4) / 24.0;
+        while terms < WORK_TERMS && tail > 1e-17 {
+            terms += 1;
+            tail *= rho * RECIPROCALS[terms - 1];
+        }
+        // The forcing's Taylor coefficients about the end, scaled by (-h)^n.
+        let mut f = [0.0; WORK_TERMS];
+        match &self.form {
+            Form::Oscillator(o) => {
+                let big_omega = 2.0 * PI / o.period;
+                // f^(2m) = (-W^2)^m f, f^(2m+1) = (-W^2)^m f'.
+                let (mut even, mut odd) = (force[0], force[1] * -h);
+                let step = -(big_omega * h) * (big_omega * h);
+                for n in (0..terms).step_by(2) {
+                    f[n] = even;
+                    f[n + 1] = odd;
+                    even *= step * RECIPROCAL_PAIRS[n];
+                    odd *= step * RECIPROCAL_PAIRS[n + 1];
+                }
+            }
+            Form::Series {
+                forcing, degree, ..
+            } => {
+                // Taylor shift of the polynomial from the anchor to the end.
+                let u = self.local(end.t);
+                let mut shifted = *forcing;
+                for i in 0..*degree {
+                    for j in (i..*degree).rev() {
+                        shifted[j] += u * shifted[j + 1];
+                    }
+                }
+                let mut scale = 1.0;
+                for n in 0..=(*degree).min(terms - 1) {
+                    f[n] = shifted[n] * scale;
+                    scale *= -h;
                 }
             }
         }
+        // x's coefficients scaled by (-h)^n: a_(n+2) h^2 from the equation, and x' scaled by
+        // -h, (n+1) a_(n+1).
+        let (kh2, ch, h2) = (k * h * h, c * -h, h * h);
+        let mut v = [0.0; WORK_TERMS];
+        let (mut a0, mut a1) = (end.q - self.q_eq, end.v * -h);
+        v[0] = a1;
+        for n in 0..terms - 1 {
+            let a2 = (f[n] * h2 - kh2 * a0 - ch * (n + 1) as f64 * a1) * RECIPROCAL_PAIRS[n];
+            v[n + 1] = (n + 2) as f64 * a2;
+            (a0, a1) = (a1, a2);
+        }
+        // Integrate over sigma in [0, 1] (s = -h sigma): sum of v_i w_j / (i + j + 1).
+        let (mut force_work, mut square) = (0.0, 0.0);
+        let (f, v) = (&f[..terms], &v[..terms]);
+        for (i, (&fi, &vi)) in f.iter().zip(v).enumerate() {
+            let fv: f64 = v
+                .iter()
+                .zip(&RECIPROCALS[i..])
+                .map(|(&vj, &w)| vj * w)
+                .sum();
+            // v_i v_j twice for j > i, once for j = i.
+            let vv: f64 = v[i..]
+                .iter()
+                .zip(&RECIPROCALS[2 * i..])
+                .map(|(&vj, &w)| vj * w)
+                .sum();
+            force_work += fi * fv;
+            square += vi * (2.0 * vv - vi * RECIPROCALS[2 * i]);
+        }
+        // v was scaled by -h (x' = v / -h), and ds = h d sigma.
+        (-force_work, square / h)
     }
 
     /// The fastest rate of the flow, 1/s: of its free motion and of its forcing.
@@ -690,6 +811,32 @@ impl Flow {
     }
 }
 
+/// Most terms of the series of the work integrals.
+const WORK_TERMS: usize = 24;
+/// 1 / (n + 1).
+const RECIPROCALS: [f64; 2 * SERIES_TERMS] = {
+    let mut r = [0.0; 2 * SERIES_TERMS];
+    let mut n = 0;
+    while n < r.len() {
+        r[n] = 1.0 / (n + 1) as f64;
+        n += 1;
+    }
+    r
+};
+/// 1 / ((n + 1)(n + 2)).
+const RECIPROCAL_PAIRS: [f64; SERIES_TERMS] = {
+    let mut r = [0.0; SERIES_TERMS];
+    let mut n = 0;
+    while n < r.len() {
+        r[n] = 1.0 / ((n + 1) * (n + 2)) as f64;
+        n += 1;
+    }
+    r
+};
+/// Longest piece of a work integral, in units of 1 / (the flow's fastest rate): with
+/// |lambda| h <= 1 the series' 19th term is below 1e-17.
+pub(super) const WORK_REACH: f64 = 0.5;
+
 /// Multiple of the unit roundoff per summed term that the rounding estimate books.
 const ROUNDING_ULPS: f64 = 8.0;
 
@@ -716,6 +863,14 @@ fn phase(t: f64, t_lo: f64, frequency: Dd) -> (f64, f64) {
     let angle = TWO_PI * fraction;
     let (s, c) = angle.hi.sin_cos();
     (s + c * angle.lo, c - s * angle.lo)
+}
+
+/// The coefficients i a_i of the derivative of sum a_i u^i.
+fn derivative(a: &[f64]) -> impl DoubleEndedIterator<Item = f64> + '_ {
+    a.iter()
+        .enumerate()
+        .skip(1)
+        .map(|(i, &value)| i as f64 * value)
 }
 
 fn horner(coefficients: &[f64], u: f64) -> f64 {

@@ -28,10 +28,11 @@
 //! (the error of q over |q'|) and of each peak (of q, and of its time, the error of q' over
 //! |q''|). The estimate also covers a relative error of a few ulps in the model's constants.
 //!
-//! Energy books: the input and damping work are integrated along each flow by Gauss-Legendre
-//! quadrature (4 to 8 points) on pieces short against the flow's rates, which is exact to
-//! rounding for these smooth integrands; the energy residual therefore checks the quadrature
-//! and the resets, not the solution.
+//! Energy books: the input and damping work are integrated along each flow on pieces short
+//! against the flow's rates (one per sample of the history), each from the Taylor series of the
+//! motion and of the forcing about its end, whose products are integrated term by term to
+//! rounding; the energy residual therefore checks these integrals and the resets, not the
+//! solution.
 
 pub(crate) mod flow;
 pub(crate) mod scan;
@@ -60,38 +61,6 @@ pub struct ExactSettings {
     pub output_dt: f64,
 }
 
-/// Gauss-Legendre rules on [-1, 1] with 4, 6 and 8 points: the positive nodes and their
-/// weights (each node is used with both signs).
-const GAUSS_4: [(f64, f64); 2] = [
-    (0.339_981_043_584_856_3, 0.652_145_154_862_546_2),
-    (0.861_136_311_594_052_6, 0.347_854_845_137_453_9),
-];
-const GAUSS_6: [(f64, f64); 3] = [
-    (0.238_619_186_083_196_9, 0.467_913_934_572_691),
-    (0.661_209_386_466_264_5, 0.360_761_573_048_138_6),
-    (0.932_469_514_203_152, 0.171_324_492_379_170_3),
-];
-const GAUSS_8: [(f64, f64); 4] = [
-    (0.183_434_642_495_649_8, 0.362_683_783_378_362),
-    (0.525_532_409_916_329, 0.313_706_645_877_887_3),
-    (0.796_666_477_413_626_7, 0.222_381_034_453_374_5),
-    (0.960_289_856_497_536_3, 0.101_228_536_290_376_3),
-];
-
-/// The Gauss-Legendre rule for a piece of `reach` = length times the flow's fastest rate: an
-/// n-point rule errs by about reach^(2n) / (2n)! of the integrand's scale, which each rule
-/// keeps below 1e-17 over the reach it is given.
-fn gauss_rule(reach: f64) -> &'static [(f64, f64)] {
-    if reach <= 0.02 {
-        &GAUSS_4
-    } else if reach <= 0.15 {
-        &GAUSS_6
-    } else {
-        &GAUSS_8
-    }
-}
-/// Longest quadrature piece, in units of 1 / (the flow's fastest rate).
-const QUADRATURE_REACH: f64 = 0.5;
 /// Safety factor on the first-order error estimate.
 const ESTIMATE_SAFETY: f64 = 4.0;
 
@@ -114,38 +83,62 @@ pub fn solve(
     let started = Instant::now();
     // A run without a history keeps no energy books (Recorder::without_energy_books).
     let energy = history == History::Sampled;
-    let (mut solution, local) = solve_once(
-        automaton, floor, initial, duration, settings, history, energy,
-    )?;
-    if history == History::Sampled {
-        let mut estimate = local;
-        let size = automaton.constants_uncertainty();
-        for pattern in 0..SHADOW_RUNS {
-            let nudged = automaton.nudged(pattern as u64 + 1, size);
-            let moved = InitialState {
-                q: initial.q * (1.0 + size * crate::automaton::nudge_sign(pattern as u64 + 1, 100)),
-                qdot: initial.qdot
-                    * (1.0 + size * crate::automaton::nudge_sign(pattern as u64 + 1, 101)),
-            };
-            let (shadow, _) = solve_once(
-                &nudged,
-                floor,
-                moved,
-                duration,
-                settings,
-                History::PeaksOnly,
-                false,
-            )?;
-            spread_into(&mut estimate, &solution, &shadow, duration);
-        }
-        solution.rounding = Some(estimate);
+    let run = || {
+        solve_once(
+            automaton, floor, initial, duration, settings, history, energy,
+        )
+    };
+    if history != History::Sampled {
+        let (mut solution, _) = run()?;
+        solution.stats.wall_time_s = started.elapsed().as_secs_f64();
+        return Ok(solution);
     }
+    let size = automaton.constants_uncertainty();
+    let shadow = |pattern: usize| {
+        let nudged = automaton.nudged(pattern as u64 + 1, size);
+        let moved = InitialState {
+            q: initial.q * (1.0 + size * crate::automaton::nudge_sign(pattern as u64 + 1, 100)),
+            qdot: initial.qdot
+                * (1.0 + size * crate::automaton::nudge_sign(pattern as u64 + 1, 101)),
+        };
+        solve_once(
+            &nudged,
+            floor,
+            moved,
+            duration,
+            settings,
+            History::PeaksOnly,
+            false,
+        )
+        .map(|(shadow, _)| shadow)
+    };
+    // The shadow runs are independent of the run: with the `parallel` feature they run beside
+    // it on other cores (the same results, in less time on a machine with cores to spare).
+    let (main, (first, second)) = both(run, || both(|| shadow(0), || shadow(1)));
+    let (mut solution, mut estimate) = main?;
+    for shadow in [first?, second?] {
+        spread_into(&mut estimate, &solution, &shadow, duration);
+    }
+    solution.rounding = Some(estimate);
     solution.stats.wall_time_s = started.elapsed().as_secs_f64();
     Ok(solution)
 }
 
+/// `a()` and `b()`, on two threads with the `parallel` feature.
+#[cfg(feature = "parallel")]
+fn both<A: Send, B: Send>(a: impl FnOnce() -> A + Send, b: impl FnOnce() -> B + Send) -> (A, B) {
+    rayon::join(a, b)
+}
+
+/// `a()` and `b()`.
+#[cfg(not(feature = "parallel"))]
+fn both<A, B>(a: impl FnOnce() -> A, b: impl FnOnce() -> B) -> (A, B) {
+    (a(), b())
+}
+
 /// Runs that estimate the error of a run with a history.
 pub const SHADOW_RUNS: usize = 2;
+const _: () = assert!(SHADOW_RUNS == 2, "solve runs two shadow runs");
 
 /// Adds to `estimate` the safety factor times the distance of the shadow run from the run.
 /// From the first event whose kind differs (or that one run lacks) on, the event sequence itself
@@ -219,6 +212,9 @@ pub(crate) struct Run<'a> {
     v: Dd,
     /// Whether the energy books are kept.
     energy: bool,
+    /// Whether the local rounding is booked (a run with a history: the shadow runs and runs
+    /// without one leave their estimate unread).
+    estimate: bool,
     recorder: Recorder<'a>,
     grid: OutputGrid,
     work: Work,
@@ -236,6 +232,8 @@ pub(crate) struct Run<'a> {
     /// While the column is held against a neighbour (a row's persistent contact): the linear
     /// form its flows follow instead of its mode's own.
     bond: Option<LinearForm>,
+    /// Buffers of the scans (extrema found, intervals to search), kept from flow to flow.
+    spare: (Vec<Point>, Vec<scan::Interval>),
 }
 
 /// A flow planned by [`Run::plan`]: its first guard crossing, if any, and the extrema of q the
@@ -243,6 +241,8 @@ pub(crate) struct Run<'a> {
 pub(crate) struct Planned {
     flow: Flow,
     found: Option<(Point, Guard)>,
+    /// The flow's point at its end.
+    finish: Point,
     extrema: Vec<Point>,
 }
 
@@ -292,6 +292,7 @@ impl<'a> Run<'a> {
             q: Dd::exact(initial.q),
             v: Dd::exact(initial.qdot),
             energy,
+            estimate: history == History::Sampled,
             recorder,
             grid: OutputGrid::for_history(history, duration, settings.output_dt),
             work: Work::default(),
@@ -305,6 +306,7 @@ impl<'a> Run<'a> {
             unresolved: 0,
             first: true,
             bond: None,
+            spare: (Vec::new(), Vec::new()),
         }
     }
 
@@ -388,23 +390,28 @@ impl<'a> Run<'a> {
         budget
             .step(self.t, self.flows)
             .map_err(|m| self.failed(self.t, m))?;
-        let guards: Vec<Guard> = automaton
-            .guards(self.mode)
-            .iter()
-            .map(|&slot| automaton.guard(self.mode, slot))
-            .collect();
-        let mut watch = self.watch(&guards);
+        // At most two guards per mode, kept on the stack.
+        let slots = automaton.guards(self.mode);
+        let mut buffer = [automaton.guard(self.mode, slots[0]); 2];
+        for (guard, &slot) in buffer.iter_mut().zip(slots) {
+            *guard = automaton.guard(self.mode, slot);
+        }
+        let guards = &buffer[..slots.len()];
+        let mut watch = self.watch(guards);
         let start = flow.point(self.t);
         if self.first {
             // The run's first state is a sample.
             self.emit(&flow, self.t, true);
             self.first = false;
         }
-        let finish = scan::evaluate(&flow, flow.until, &mut watch);
-        let found = finish.and_then(|stop| first_crossing(&flow, start, stop, &guards, &mut watch));
+        let found = scan::evaluate(&flow, flow.until, &mut watch).and_then(|finish| {
+            first_crossing(&flow, start, finish, guards, &mut watch).map(|f| (f, finish))
+        });
         self.evaluations += watch.evaluations;
         self.unresolved += watch.unresolved;
-        let found = match found {
+        // The search's buffer serves the next flow; the extrema go with the plan.
+        self.spare.1 = std::mem::take(&mut watch.stack);
+        let (found, finish) = match found {
             Ok(found) => found,
             Err(ScanError::NotFinite(t)) => {
                 return Err(self.failed(
@@ -429,6 +436,7 @@ impl<'a> Run<'a> {
         Ok(Some(Planned {
             flow,
             found,
+            finish,
             extrema: watch.extrema,
         }))
     }
@@ -444,12 +452,15 @@ impl<'a> Run<'a> {
         let Planned {
             flow,
             found,
-            extrema,
+            finish,
+            mut extrema,
         } = planned;
         let stop = found.map_or(flow.until, |(p, _)| p.t);
         for extremum in &extrema {
             self.peak(&flow, extremum);
         }
+        extrema.clear();
+        self.spare.0 = extrema;
         self.emit(&flow, stop, true);
         match found {
             Some((p, guard)) => {
@@ -464,7 +475,7 @@ impl<'a> Run<'a> {
                 self.v = v;
                 self.t = flow.until;
                 self.t_lo = 0.0;
-                self.peak(&flow, &flow.point(flow.until));
+                self.peak(&flow, &finish);
                 Ok(self.t < end)
             }
         }
@@ -525,7 +536,7 @@ impl<'a> Run<'a> {
     }
 
     /// The levels that matter in this mode's flows.
-    fn watch(&self, guards: &[Guard]) -> Watch {
+    fn watch(&mut self, guards: &[Guard]) -> Watch {
         let guard_up = guards
             .iter()
             .filter(|g| g.direction > 0.0)
@@ -541,12 +552,14 @@ impl<'a> Run<'a> {
             Mode::RockLeft => (self.max_q, (-self.episode_peak).max(self.min_q)),
             _ => (self.max_q, self.min_q),
         };
+        let (extrema, stack) = std::mem::take(&mut self.spare);
         Watch {
             guard_up,
             guard_down,
             max,
             min,
-            extrema: Vec::new(),
+            extrema,
+            stack,
             evaluations: 0,
             unresolved: 0,
         }
@@ -554,6 +567,26 @@ impl<'a> Run<'a> {
 
     /// Offers a state where q may be extremal to the recorder and to the peak trackers.
     fn peak(&mut self, flow: &Flow, p: &Point) {
+        if p.q > self.max_q {
+            self.max_q = p.q;
+            if self.estimate {
+                (self.peak_errors.max_q, self.peak_errors.t_max_q) = self.peak_error(flow, p);
+            }
+        }
+        if p.q < self.min_q {
+            self.min_q = p.q;
+            if self.estimate {
+                (self.peak_errors.min_q, self.peak_errors.t_min_q) = self.peak_error(flow, p);
+            }
+        }
+        if matches!(self.mode, Mode::RockRight | Mode::RockLeft) {
+            self.episode_peak = self.episode_peak.max(p.q.abs());
+        }
+        self.recorder.peak_candidate(p.t, p.q);
+    }
+
+    /// The error estimate of a peak at `p`: of its value (m) and of its time (s).
+    fn peak_error(&self, flow: &Flow, p: &Point) -> (f64, f64) {
         let (error_q, error_v) = self.local_error(flow, p.t);
         let t_error = if p.acc != 0.0 {
             error_v / p.acc.abs()
@@ -562,20 +595,7 @@ impl<'a> Run<'a> {
         };
         let t_error = t_error + 2.0 * scan::ulp(p.t);
         let error_q = error_q + 4.0 * f64::EPSILON * (p.q.abs() + flow.equilibrium().abs());
-        if p.q > self.max_q {
-            self.max_q = p.q;
-            self.peak_errors.max_q = error_q;
-            self.peak_errors.t_max_q = t_error;
-        }
-        if p.q < self.min_q {
-            self.min_q = p.q;
-            self.peak_errors.min_q = error_q;
-            self.peak_errors.t_min_q = t_error;
-        }
-        if matches!(self.mode, Mode::RockRight | Mode::RockLeft) {
-            self.episode_peak = self.episode_peak.max(p.q.abs());
-        }
-        self.recorder.peak_candidate(p.t, p.q);
+        (error_q, t_error)
     }
 
     /// The rounding of the closed form at `t` in `flow`, with a safety factor, as an error of
@@ -592,8 +612,8 @@ impl<'a> Run<'a> {
             if t > until || (!inclusive && t == until) {
                 break;
             }
-            let p = flow.point(t);
-            self.advance_work(flow, t);
+            let (p, force) = flow.point_with_force(t);
+            self.advance_work_to(flow, &p, force);
             self.recorder.sample(
                 t,
                 self.mode,
@@ -609,74 +629,77 @@ impl<'a> Run<'a> {
 
     /// Integrates the input and damping power along `flow` up to `t`.
     fn advance_work(&mut self, flow: &Flow, t: f64) {
+        if !self.energy || t <= self.work.t {
+            return;
+        }
+        let (p, force) = flow.point_with_force(t);
+        self.advance_work_to(flow, &p, force);
+    }
+
+    /// Integrates the input and damping power along `flow` up to the point `end` (with the
+    /// forcing there): in pieces short against the flow's rates, each from the Taylor series of
+    /// the motion about its end ([`Flow::work_integrals`]).
+    fn advance_work_to(&mut self, flow: &Flow, end: &Point, force: [f64; 2]) {
         if !self.energy {
             return;
         }
         let from = self.work.t;
-        let span = t - from;
+        let span = end.t - from;
         if span <= 0.0 {
             return;
         }
-        let pieces = (span * flow.rate() / QUADRATURE_REACH)
+        let pieces = (span * flow.rate() / flow::WORK_REACH)
             .ceil()
             .clamp(1.0, 1e7) as usize;
         let h = span / pieces as f64;
         let (a, mode) = (self.automaton, self.mode);
-        let power = |tau: f64| {
-            let p = flow.point(tau);
-            let floor = self.floor.acceleration(tau);
-            (a.input_power(mode, p.v, floor), a.damping_power(mode, p.v))
-        };
-        let (mut input, mut damping) = (0.0, 0.0);
-        let rule = gauss_rule(h * flow.rate());
-        for i in 0..pieces {
-            let middle = from + (i as f64 + 0.5) * h;
-            for &(node, weight) in rule {
-                for side in [-1.0, 1.0] {
-                    let (pi, pd) = power(middle + side * node * 0.5 * h);
-                    input += weight * 0.5 * h * pi;
-                    damping += weight * 0.5 * h * pd;
-                }
-            }
+        let (mut force_work, mut square) = (0.0, 0.0);
+        for i in 1..=pieces {
+            let (fv, vv) = if i == pieces {
+                flow.work_integrals(end, force, end.t - (from + (i - 1) as f64 * h))
+            } else {
+                let (p, force) = flow.point_with_force(from + i as f64 * h);
+                flow.work_integrals(&p, force, h)
+            };
+            force_work += fv;
+            square += vv;
         }
+        // The flow's forcing is f = -beta_flow a: the column's own beta, or a held cluster's.
+        let beta_flow = self.bond.map_or(a.participation(mode), |f| f.participation);
+        let floor_power = if beta_flow != 0.0 {
+            -force_work / beta_flow
+        } else {
+            0.0
+        };
+        // The input power -beta Me a q' with the column's own beta.
+        let input = a.input_power(mode, 1.0, 1.0) * floor_power;
+        let damping = a.damping_power(mode, 1.0) * square;
+        let contact = match (self.bond, a.linear_form(mode)) {
+            (Some(held), Some(own)) => {
+                // Me (q'' - q''_own) q' integrated: with q'' from the held form and q''_own
+                // from the column's, (c - C) q'^2 + (k (q - e) - K (q - E)) q' + (beta - B) a q',
+                // whose middle term is an exact differential.
+                let me = a.generalised_mass();
+                let q0 = flow.point(from).q;
+                let potential = |q: f64| {
+                    own.stiffness * (q - own.equilibrium).powi(2)
+                        - held.stiffness * (q - held.equilibrium).powi(2)
+                };
+                me * ((own.damping - held.damping) * square
+                    + 0.5 * (potential(end.q) - potential(q0))
+                    + (own.participation - held.participation) * floor_power)
+            }
+            _ => 0.0,
+        };
         self.work = Work {
-            t,
+            t: end.t,
             input: self.work.input + input,
             damping: self.work.damping + damping,
-            contact: self.work.contact,
+            contact: self.work.contact + contact,
         };
         if self.bond.is_some() {
-            self.advance_contact_work(flow, from, t, pieces, rule);
+            self.recorder.set_contact_work(self.work.contact);
         }
-    }
-
-    /// Integrates the power of the contact force over [from, t] while the column is held
-    /// against a neighbour: Me times the flow's acceleration less the column's own, times q'.
-    fn advance_contact_work(
-        &mut self,
-        flow: &Flow,
-        from: f64,
-        t: f64,
-        pieces: usize,
-        rule: &[(f64, f64)],
-    ) {
-        let (a, mode) = (self.automaton, self.mode);
-        let me = a.generalised_mass();
-        let h = (t - from) / pieces as f64;
-        let mut contact = 0.0;
-        for i in 0..pieces {
-            let middle = from + (i as f64 + 0.5) * h;
-            for &(node, weight) in rule {
-                for side in [-1.0, 1.0] {
-                    let tau = middle + side * node * 0.5 * h;
-                    let p = flow.point(tau);
-                    let own = a.acceleration(mode, p.q, p.v, self.floor.acceleration(tau));
-                    contact += weight * 0.5 * h * me * (p.acc - own) * p.v;
-                }
-            }
-        }
-        self.work.contact += contact;
-        self.recorder.set_contact_work(self.work.contact);
     }
 
     /// Holds the column against a neighbour (`Some`: its flows follow that linear form from
@@ -693,15 +716,17 @@ impl<'a> Run<'a> {
     /// The event at `p` through `guard`: booked, reset applied, mode changed.
     fn event(&mut self, flow: &Flow, p: Point, guard: Guard) {
         let automaton = self.automaton;
-        let (error_q, _) = self.local_error(flow, p.t);
-        // The guard's level carries the rounding of the constants it is made of, and q at the
-        // point the rounding of its evaluation.
-        let level_error = 4.0 * f64::EPSILON * (guard.level.abs() + flow.equilibrium().abs());
-        let speed = p.v.abs().max(f64::MIN_POSITIVE);
-        // The transverse error of q becomes an error of the time q reaches the guard.
-        let crossing_time =
-            (error_q + ESTIMATE_SAFETY * level_error) / speed + 2.0 * scan::ulp(p.t);
-        self.event_errors.push(crossing_time);
+        if self.estimate {
+            let (error_q, _) = self.local_error(flow, p.t);
+            // The guard's level carries the rounding of the constants it is made of, and q at
+            // the point the rounding of its evaluation.
+            let level_error = 4.0 * f64::EPSILON * (guard.level.abs() + flow.equilibrium().abs());
+            let speed = p.v.abs().max(f64::MIN_POSITIVE);
+            // The transverse error of q becomes an error of the time q reaches the guard.
+            let crossing_time =
+                (error_q + ESTIMATE_SAFETY * level_error) / speed + 2.0 * scan::ulp(p.t);
+            self.event_errors.push(crossing_time);
+        }
         self.advance_work(flow, p.t);
         // The crossing lies between doubles: the rest of it, from q at the double found. Taken
         // into the next flow's anchor, it keeps the rounding of event times (biased to the side

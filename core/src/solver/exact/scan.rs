@@ -73,6 +73,8 @@ pub(crate) struct Watch {
     pub min: f64,
     /// Extrema of q found, in time order.
     pub extrema: Vec<Point>,
+    /// The intervals still to search (a buffer kept from flow to flow).
+    pub stack: Vec<Interval>,
     /// Evaluations of the closed form.
     pub evaluations: usize,
     /// Intervals taken as monotone after [`MAX_DEPTH`] halvings.
@@ -93,6 +95,9 @@ impl Watch {
     }
 }
 
+/// An interval of a flow still to search: its ends and the halvings that made it.
+pub(crate) type Interval = (Point, Point, usize);
+
 /// Why a scan stopped early.
 #[derive(Debug)]
 pub(crate) enum ScanError {
@@ -111,7 +116,21 @@ pub(crate) fn first_crossing<F: Smooth>(
     guards: &[Guard],
     watch: &mut Watch,
 ) -> Result<Option<(Point, Guard)>, ScanError> {
-    let mut stack = vec![(a, b, 0usize)];
+    let mut stack = std::mem::take(&mut watch.stack);
+    stack.clear();
+    stack.push((a, b, 0usize));
+    let found = search(flow, &mut stack, guards, watch);
+    watch.stack = stack;
+    found
+}
+
+/// The search of [`first_crossing`] over the intervals in `stack`.
+fn search<F: Smooth>(
+    flow: &F,
+    stack: &mut Vec<Interval>,
+    guards: &[Guard],
+    watch: &mut Watch,
+) -> Result<Option<(Point, Guard)>, ScanError> {
     while let Some((a, b, depth)) = stack.pop() {
         let h = b.t - a.t;
         if h <= 0.0 {
