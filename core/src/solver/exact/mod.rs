@@ -671,8 +671,13 @@ impl<'a> Run<'a> {
         } else {
             0.0
         };
-        // The input power -beta Me a q' with the column's own beta.
-        let input = a.input_power(mode, 1.0, 1.0) * floor_power;
+        // The input power -beta Me a q' with the column's own beta: Me times the integral of
+        // f q' for a column on its own (f = -beta a).
+        let input = match self.bond {
+            None if beta_flow != 0.0 => a.input_power(mode, 1.0, 1.0) / -beta_flow * force_work,
+            None => 0.0,
+            Some(_) => a.input_power(mode, 1.0, 1.0) * floor_power,
+        };
         let damping = a.damping_power(mode, 1.0) * square;
         let contact = match (self.bond, a.linear_form(mode)) {
             (Some(held), Some(own)) => {
