@@ -2,18 +2,7 @@
 //! row whose gaps never close written exactly as the column's own run writes it, and bad row
 //! files refused by key with no output.
 
-use crate::common::{flexrock, refused, repo, scratch_dir};
-
-fn run(model: &std::path::Path, out: &std::path::Path, extra: &[&str]) -> std::process::Output {
-    let mut args = vec![
-        "run",
-        model.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-    ];
-    args.extend_from_slice(extra);
-    flexrock(&args)
-}
+use crate::common::{refused, repo, run_model as run, scratch_dir};
 
 #[test]
 fn a_row_run_writes_every_column_and_the_impacts_the_same_twice() {

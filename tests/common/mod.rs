@@ -40,7 +40,15 @@ pub fn reference_model() -> std::path::PathBuf {
 
 /// Runs the paper's example, `flexrock run models/ichinose1986.toml --out OUT EXTRA...`.
 pub fn run_reference(out: &std::path::Path, extra: &[&str]) -> std::process::Output {
-    let model = reference_model();
+    run_model(&reference_model(), out, extra)
+}
+
+/// `flexrock run MODEL --out OUT EXTRA...`.
+pub fn run_model(
+    model: &std::path::Path,
+    out: &std::path::Path,
+    extra: &[&str],
+) -> std::process::Output {
     let mut args = vec![
         "run",
         model.to_str().unwrap(),

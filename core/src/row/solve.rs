@@ -534,7 +534,7 @@ impl<'a> RowRun<'a> {
             // closing.
             let snap = self.released_at[c] != Some(self.now);
             if let Some(t) =
-                first_closing(&gap, self.now, window_end, snap).map_err(|e| scan_failed(e, c))?
+                first_fall(&gap, self.now, window_end, snap).map_err(|e| scan_failed(e, c))?
             {
                 out.push((c, t, Interrupt::Closing));
             }
@@ -560,8 +560,8 @@ impl<'a> RowRun<'a> {
                     out.push((c, self.now, Interrupt::Release));
                     continue;
                 }
-                if let Some(t) =
-                    first_zero(&force, self.now, window_end).map_err(|e| scan_failed(e, c))?
+                if let Some(t) = first_fall(&force, self.now, window_end, false)
+                    .map_err(|e| scan_failed(e, c))?
                 {
                     out.push((c, t, Interrupt::Release));
                 }
@@ -823,12 +823,16 @@ impl<'a> RowRun<'a> {
     }
 }
 
-/// The first time in (from, to] at which the gap closes (falls through 0), if it does.
-fn first_closing(gap: &Gap, from: f64, to: f64, snap: bool) -> Result<Option<f64>, ScanError> {
+/// The first time in (from, to] at which `f` falls through zero (a gap closing, a held
+/// contact's force vanishing), if it does. With `snap`, a start a hair below zero is taken as
+/// on zero: a contact just struck, whose gap the rounding of the two states leaves there, so
+/// that closing on from there is found at once (and the impacts accumulate) while opening is
+/// no crossing.
+fn first_fall<F: Smooth>(f: &F, from: f64, to: f64, snap: bool) -> Result<Option<f64>, ScanError> {
     if to <= from {
         return Ok(None);
     }
-    let closing = Guard {
+    let zero = Guard {
         level: 0.0,
         direction: -1.0,
         kind: EventKind::Impact,
@@ -844,41 +848,12 @@ fn first_closing(gap: &Gap, from: f64, to: f64, snap: bool) -> Result<Option<f64
         evaluations: 0,
         unresolved: 0,
     };
-    let mut a = scan::evaluate(gap, from, &mut watch)?;
+    let mut a = scan::evaluate(f, from, &mut watch)?;
     if a.q < 0.0 && snap {
-        // Closed at the start: a contact just struck, whose gap the rounding of the two
-        // states leaves a hair below zero. It is on the guard, so that closing on from there is
-        // found at once (and the impacts accumulate), while opening is no crossing.
         a.q = 0.0;
     }
-    let b = scan::evaluate(gap, to, &mut watch)?;
-    Ok(first_crossing(gap, a, b, &[closing], &mut watch)?.map(|(p, _)| p.t))
-}
-
-/// The first time in (from, to] at which a held contact's force falls through zero.
-fn first_zero(force: &Force, from: f64, to: f64) -> Result<Option<f64>, ScanError> {
-    if to <= from {
-        return Ok(None);
-    }
-    let release = Guard {
-        level: 0.0,
-        direction: -1.0,
-        kind: EventKind::Impact,
-        to: Mode::PreUplift,
-    };
-    let mut watch = Watch {
-        guard_up: f64::INFINITY,
-        guard_down: 0.0,
-        max: f64::INFINITY,
-        min: f64::NEG_INFINITY,
-        extrema: Vec::new(),
-        stack: Vec::new(),
-        evaluations: 0,
-        unresolved: 0,
-    };
-    let a = scan::evaluate(force, from, &mut watch)?;
-    let b = scan::evaluate(force, to, &mut watch)?;
-    Ok(first_crossing(force, a, b, &[release], &mut watch)?.map(|(p, _)| p.t))
+    let b = scan::evaluate(f, to, &mut watch)?;
+    Ok(first_crossing(f, a, b, &[zero], &mut watch)?.map(|(p, _)| p.t))
 }
 
 fn scan_failed(e: ScanError, contact: usize) -> SolverError {
