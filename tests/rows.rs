@@ -209,6 +209,16 @@ fn solver_flags_are_refused_for_a_row() {
     let o = run(&model, &dir.join("negative"), &["--duration=-1"]);
     assert_eq!(o.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&o.stderr).contains("--duration = -1"));
+    // A mistake in the file is still the file's when --duration is given.
+    let bad = dir.join("bad.toml");
+    std::fs::write(&bad, ROW.replacen("width = 0.7", "width = -0.7", 1)).unwrap();
+    let o = run(&bad, &dir.join("bad-out"), &["--duration", "1.5"]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains("bad.toml") && stderr.contains("column[0].width = -0.7"),
+        "{stderr}"
+    );
 }
 
 /// Three columns a millimetre apart under El Centro: impacts accumulate, and the columns are held

@@ -71,7 +71,11 @@ impl RowModel {
             match e {
                 e @ (Error::ParseModel { .. } | Error::ReadModel { .. }) => e,
                 // A duration given from outside the file is not the file's fault.
-                e @ Error::InvalidParameter { .. } if duration.is_some() => e,
+                Error::InvalidParameter { ref key, .. }
+                    if duration.is_some() && key == "simulation.duration" =>
+                {
+                    e
+                }
                 other => Error::InModel {
                     path: path.to_path_buf(),
                     source: Box::new(other),
