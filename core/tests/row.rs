@@ -388,3 +388,83 @@ fn bad_rows_are_refused_by_name() {
         "{m}"
     );
 }
+
+/// Writes a row model file under the build's temporary directory and loads it for `duration`.
+fn row_model_file(name: &str, text: &str, duration: f64) -> flexrock_core::model::RowModel {
+    let dir = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("row-models");
+    std::fs::create_dir_all(&dir).expect("temporary directory");
+    let path = dir.join(name);
+    std::fs::write(&path, text).expect("model file written");
+    flexrock_core::model::RowModel::load(&path, Some(duration)).expect("a valid row")
+}
+
+/// Three columns 1 mm apart under a record at twice its scale. The middle column is stiff and
+/// the right one soft; they are held together from 7.4229 s, and at 7.4073 s an earlier held
+/// stretch of the same pair ends where its force falls through zero. There the pair's gap, its
+/// rate and its acceleration are all zero up to rounding (the force is zero, so the held motion
+/// is the free one), and only the third derivative opens it: rounding of the states made that
+/// instant look like a new closing, struck plastically and held again, whose force was falling
+/// and let go at once, fifty times over, until the run was stopped as a chatter of events.
+#[test]
+fn a_held_contact_let_go_where_its_force_vanishes_is_not_struck_again_by_rounding() {
+    let records = concat!(env!("CARGO_MANIFEST_DIR"), "/../validation/records");
+    let text = format!(
+        r#"
+[row]
+gaps = [0.001, 0.001]
+restitution = 0.3
+[[column]]
+height = 2.0
+width = 0.7
+density = 600.0
+youngs_modulus = 5.0e9
+damping_ratio = 0.05
+self_weight = "consistent"
+[[column]]
+height = 4.0
+width = 0.9
+density = 600.0
+youngs_modulus = 5.0e9
+damping_ratio = 0.02
+[[column]]
+height = 3.2
+width = 0.9
+density = 600.0
+youngs_modulus = 5.0e7
+damping_ratio = 0.0
+[excitation]
+kind = "record"
+path = "{records}/A-ELC180.AT2"
+format = "peer-at2"
+units = "g"
+scale = 2.0
+[solver]
+output_dt = 0.01
+"#
+    );
+    let model = row_model_file("release-by-rounding.toml", &text, 7.5);
+    let solution = flexrock_core::simulate::simulate_row(&model).expect("the run ends normally");
+    assert_eq!(solution.final_time, 7.5);
+    let released = solution
+        .held
+        .iter()
+        .find(|s| s.contact == 1 && s.t_end.is_some_and(|t| (7.40..7.41).contains(&t)))
+        .expect("a held stretch of the right pair ends near 7.4073 s");
+    let t_release = released.t_end.expect("ended");
+    // Let go, the pair opens: nothing strikes it at that instant.
+    assert!(
+        !solution
+            .impacts
+            .iter()
+            .any(|i| i.contact == 1 && (i.t - t_release).abs() < 1e-9),
+        "the pair let go at {t_release} s was struck again at once"
+    );
+    // Every column's energy books still close.
+    for (i, column) in solution.columns.iter().enumerate() {
+        let share = column.energy_residual_share();
+        assert!(
+            share < 1e-9,
+            "column {i}: energy residual {share} of its scale"
+        );
+    }
+}

@@ -58,6 +58,23 @@ impl Contact {
         self.clearance - u_left + u_right
     }
 
+    /// The size of the terms the gap is summed from, m: the gap at rest plus both columns'
+    /// displacements at the contact. The gap's rounding is a few ulps of it.
+    pub fn gap_size(
+        &self,
+        automata: (&Automaton, &Automaton),
+        left: (Mode, f64),
+        right: (Mode, f64),
+    ) -> f64 {
+        let u_left = automata
+            .0
+            .displacement_at(left.0, left.1, self.left.0, self.left.1);
+        let u_right = automata
+            .1
+            .displacement_at(right.0, right.1, self.right.0, self.right.1);
+        self.clearance.abs() + u_left.abs() + u_right.abs()
+    }
+
     /// du/dq of the left and the right column at the contact, in their modes: the closing
     /// velocity is `slopes.0` q'_left - `slopes.1` q'_right.
     pub fn slopes(&self, automata: (&Automaton, &Automaton), modes: (Mode, Mode)) -> (f64, f64) {

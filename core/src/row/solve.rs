@@ -47,6 +47,12 @@ pub const ACCUMULATION_SHARE: f64 = 1e-6;
 /// Contacts whose closings lie within this many seconds (relative to max(1, t)) of the first are
 /// one simultaneous impact.
 const SIMULTANEOUS: f64 = 1e-12;
+/// A held contact let go opens from a gap, a closing velocity and a closing acceleration that
+/// are all zero (its force is zero there, so the held motion is the free one): only the third
+/// derivative opens it, and the rounding of the states can make the first instants look like a
+/// new closing. Until it is struck again, such a contact closes only when its gap falls this
+/// many ulps of the gap's size (the gap at rest plus both displacements) below zero.
+pub const LET_GO_ROUNDING_ULPS: f64 = 64.0;
 
 /// One impact at one contact.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
@@ -99,6 +105,8 @@ struct Gap<'f> {
     modes: (Mode, Mode),
     flows: (&'f Flow, &'f Flow),
     slopes: (f64, f64),
+    /// Added to the gap: the rounding allowed below zero for a contact let go (0 otherwise).
+    allowance: f64,
 }
 
 impl Smooth for Gap<'_> {
@@ -109,7 +117,8 @@ impl Smooth for Gap<'_> {
             t,
             q: self
                 .contact
-                .gap(self.automata, (self.modes.0, l.q), (self.modes.1, r.q)),
+                .gap(self.automata, (self.modes.0, l.q), (self.modes.1, r.q))
+                + self.allowance,
             v: sr * r.v - sl * l.v,
             acc: sr * r.acc - sl * l.acc,
             jerk: sr * r.jerk - sl * l.jerk,
@@ -218,7 +227,7 @@ pub fn solve_row(
         impacts: Vec::new(),
         losses: Vec::new(),
         stretches: Vec::new(),
-        released_at: vec![None; n - 1],
+        let_go: vec![None; n - 1],
         now: 0.0,
     };
     let everyone: Vec<usize> = (0..n).collect();
@@ -257,8 +266,9 @@ struct RowRun<'a> {
     impacts: Vec<ImpactRecord>,
     losses: Vec<(f64, f64)>,
     stretches: Vec<HeldContact>,
-    /// Per contact: when it was last let go.
-    released_at: Vec<Option<f64>>,
+    /// Per contact let go and not struck since: the rounding its gap may fall below zero
+    /// before it counts as closed ([`LET_GO_ROUNDING_ULPS`]).
+    let_go: Vec<Option<f64>>,
     now: f64,
 }
 
@@ -528,11 +538,12 @@ impl<'a> RowRun<'a> {
                 modes,
                 flows: (left.flow(), right.flow()),
                 slopes: contact.slopes(automata, modes),
+                allowance: self.let_go[c].unwrap_or(0.0),
             };
-            // A contact let go at this instant starts at zero gap and opens (its force fell
-            // through zero): its gap is not put on the guard, so that rounding there is no
-            // closing.
-            let snap = self.released_at[c] != Some(self.now);
+            // A contact let go starts at zero gap and opens (its force fell through zero): its
+            // gap is not put on the guard but given its rounding, so that rounding there is no
+            // closing. A contact struck earlier starts a hair below zero and is put on it.
+            let snap = self.let_go[c].is_none();
             if let Some(t) =
                 first_fall(&gap, self.now, window_end, snap).map_err(|e| scan_failed(e, c))?
             {
@@ -625,7 +636,11 @@ impl<'a> RowRun<'a> {
         self.now = t;
         for &c in contacts {
             self.held[c] = false;
-            self.released_at[c] = Some(t);
+            let automata = (self.runs[c].automaton(), self.runs[c + 1].automaton());
+            let (left, right) = (self.runs[c].state(), self.runs[c + 1].state());
+            let size =
+                self.row.contacts()[c].gap_size(automata, (left.1, left.2), (right.1, right.2));
+            self.let_go[c] = Some(LET_GO_ROUNDING_ULPS * scan::ulp(size));
             self.end_stretch(c, t);
             for i in [c, c + 1] {
                 self.budgets[i]
@@ -678,6 +693,9 @@ impl<'a> RowRun<'a> {
             .any(|&i| self.runs[i].state().1 == Mode::Overturned)
         {
             return Ok(());
+        }
+        for &c in closing {
+            self.let_go[c] = None;
         }
         let mut contacts: Vec<usize> = closing.to_vec();
         contacts.extend(self.held_within(&members));
