@@ -285,6 +285,49 @@ fn a_run_that_cannot_replace_one_file_leaves_the_others_as_they_were() {
     );
 }
 
+/// A row writes one file per column besides its own: all of them are one set, replaced whole
+/// or not at all.
+#[test]
+fn a_row_that_cannot_replace_one_file_leaves_every_columns_files_as_they_were() {
+    let dir = scratch_dir("hostile-row-set");
+    let out = dir.join("out");
+    let model = common::repo("models/row-pair.toml");
+    let run = |duration: &str| {
+        common::flexrock(&[
+            "run",
+            model.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+            "--duration",
+            duration,
+        ])
+    };
+    let first = run("2.0");
+    assert!(first.status.success(), "{}", stderr_of(&first));
+    let names = common::file_names(&out);
+    let before: Vec<(String, Vec<u8>)> = names
+        .iter()
+        .filter(|n| n.as_str() != "summary.json")
+        .map(|n| (n.clone(), std::fs::read(out.join(n)).unwrap()))
+        .collect();
+    assert!(before.len() >= 7, "{names:?}");
+    std::fs::remove_file(out.join("summary.json")).unwrap();
+    std::fs::create_dir(out.join("summary.json")).unwrap();
+    let o = run("3.0");
+    let stderr = stderr_of(&o);
+    assert_eq!(o.status.code(), Some(2), "{stderr}");
+    assert_mentions(&stderr, &["summary.json", "is a directory"]);
+    for (name, bytes) in before {
+        assert_eq!(
+            std::fs::read(out.join(&name)).unwrap(),
+            bytes,
+            "{name} changed"
+        );
+    }
+    // No temporary left behind.
+    assert_eq!(common::file_names(&out), names);
+}
+
 // --- 4. temporaries of a killed run ----------------------------------------------------------
 
 /// The pid of a process that has ended.
