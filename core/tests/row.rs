@@ -468,3 +468,51 @@ output_dt = 0.01
         );
     }
 }
+
+/// Four columns under a record at twice its scale; the stiff short third column and the soft
+/// fourth bounce ever faster (e = 0.9) towards an accumulation point at 0.29774 s. After one of
+/// those impacts the pair separates at 1.1e-8 m/s from a gap that rounding leaves at -2e-19 m:
+/// its gap is opening, and comes back to zero only 6e-9 s later. Read as closing at once, that
+/// instant was struck again with no impulse half a million times, until the step cap stopped
+/// the run.
+#[test]
+fn a_pair_separating_slowly_from_a_gap_rounded_below_zero_is_not_struck_again_at_once() {
+    let records = concat!(env!("CARGO_MANIFEST_DIR"), "/../validation/records");
+    let column = |h: f64, b: f64, e: f64, z: f64, sw: &str| {
+        format!(
+            "[[column]]\nheight = {h}\nwidth = {b}\ndensity = 600.0\nyoungs_modulus = {e:e}\n\
+             damping_ratio = {z}\nself_weight = \"{sw}\"\n"
+        )
+    };
+    let text = format!(
+        "[row]\ngaps = [0.05, 0.01, 0.001]\nrestitution = 0.9\n{}{}{}{}\
+         [excitation]\nkind = \"record\"\npath = \"{records}/elCentro.AT2\"\nformat = \"peer-at2\"\n\
+         units = \"g\"\nscale = 2.0\n[solver]\noutput_dt = 0.01\n",
+        column(5.0, 0.7, 5e7, 0.0, "paper"),
+        column(5.0, 0.5, 5e6, 0.02, "paper"),
+        column(2.0, 0.5, 5e9, 0.0, "paper"),
+        column(5.0, 0.7, 5e6, 0.02, "consistent"),
+    );
+    let model = row_model_file("slow-separation.toml", &text, 0.5);
+    let solution = flexrock_core::simulate::simulate_row(&model).expect("the run ends normally");
+    assert_eq!(solution.final_time, 0.5);
+    // The bounces accumulate and the pair is held (from the bounce whose closing velocity falls
+    // below 1e-6 of the pair's largest), before 0.2978 s.
+    let held = solution
+        .held
+        .iter()
+        .find(|s| s.contact == 2)
+        .expect("the third pair is held");
+    assert!(
+        (0.2977..0.2978).contains(&held.t_start),
+        "held from {}",
+        held.t_start
+    );
+    // Every impact carries an impulse; no instant is struck twice.
+    let mut instants: Vec<(usize, f64)> =
+        solution.impacts.iter().map(|i| (i.contact, i.t)).collect();
+    let n = instants.len();
+    instants.dedup();
+    assert_eq!(instants.len(), n, "an instant struck twice");
+    assert!(solution.impacts.iter().all(|i| i.impulse > 0.0));
+}

@@ -47,12 +47,14 @@ pub const ACCUMULATION_SHARE: f64 = 1e-6;
 /// Contacts whose closings lie within this many seconds (relative to max(1, t)) of the first are
 /// one simultaneous impact.
 const SIMULTANEOUS: f64 = 1e-12;
-/// A held contact let go opens from a gap, a closing velocity and a closing acceleration that
-/// are all zero (its force is zero there, so the held motion is the free one): only the third
-/// derivative opens it, and the rounding of the states can make the first instants look like a
-/// new closing. Until it is struck again, such a contact closes only when its gap falls this
-/// many ulps of the gap's size (the gap at rest plus both displacements) below zero.
-pub const LET_GO_ROUNDING_ULPS: f64 = 64.0;
+/// After an impact, or where a held contact is let go, the two states leave the gap at zero up
+/// to rounding, and it may open very slowly: a pair separating at 1e-8 m/s after the last
+/// bounces of a series, or a held contact let go, which opens only at third order (its force is
+/// zero there, so the held motion is the free one). Read from a gap rounded below zero, its
+/// first instants look like a new closing. So a contact that has been struck or let go closes
+/// only when its gap falls this many ulps of the gap's size (the gap at rest plus both
+/// displacements) below zero: 1e-16 m for a gap of 1 cm.
+pub const GAP_ROUNDING_ULPS: f64 = 64.0;
 
 /// One impact at one contact.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
@@ -227,7 +229,7 @@ pub fn solve_row(
         impacts: Vec::new(),
         losses: Vec::new(),
         stretches: Vec::new(),
-        let_go: vec![None; n - 1],
+        rounding: vec![None; n - 1],
         now: 0.0,
     };
     let everyone: Vec<usize> = (0..n).collect();
@@ -266,9 +268,9 @@ struct RowRun<'a> {
     impacts: Vec<ImpactRecord>,
     losses: Vec<(f64, f64)>,
     stretches: Vec<HeldContact>,
-    /// Per contact let go and not struck since: the rounding its gap may fall below zero
-    /// before it counts as closed ([`LET_GO_ROUNDING_ULPS`]).
-    let_go: Vec<Option<f64>>,
+    /// Per contact struck or let go: the rounding its gap may fall below zero before it counts
+    /// as closed ([`GAP_ROUNDING_ULPS`]), from the states when it was last struck or let go.
+    rounding: Vec<Option<f64>>,
     now: f64,
 }
 
@@ -538,14 +540,10 @@ impl<'a> RowRun<'a> {
                 modes,
                 flows: (left.flow(), right.flow()),
                 slopes: contact.slopes(automata, modes),
-                allowance: self.let_go[c].unwrap_or(0.0),
+                allowance: self.rounding[c].unwrap_or(0.0),
             };
-            // A contact let go starts at zero gap and opens (its force fell through zero): its
-            // gap is not put on the guard but given its rounding, so that rounding there is no
-            // closing. A contact struck earlier starts a hair below zero and is put on it.
-            let snap = self.let_go[c].is_none();
             if let Some(t) =
-                first_fall(&gap, self.now, window_end, snap).map_err(|e| scan_failed(e, c))?
+                first_fall(&gap, self.now, window_end).map_err(|e| scan_failed(e, c))?
             {
                 out.push((c, t, Interrupt::Closing));
             }
@@ -571,8 +569,8 @@ impl<'a> RowRun<'a> {
                     out.push((c, self.now, Interrupt::Release));
                     continue;
                 }
-                if let Some(t) = first_fall(&force, self.now, window_end, false)
-                    .map_err(|e| scan_failed(e, c))?
+                if let Some(t) =
+                    first_fall(&force, self.now, window_end).map_err(|e| scan_failed(e, c))?
                 {
                     out.push((c, t, Interrupt::Release));
                 }
@@ -636,11 +634,7 @@ impl<'a> RowRun<'a> {
         self.now = t;
         for &c in contacts {
             self.held[c] = false;
-            let automata = (self.runs[c].automaton(), self.runs[c + 1].automaton());
-            let (left, right) = (self.runs[c].state(), self.runs[c + 1].state());
-            let size =
-                self.row.contacts()[c].gap_size(automata, (left.1, left.2), (right.1, right.2));
-            self.let_go[c] = Some(LET_GO_ROUNDING_ULPS * scan::ulp(size));
+            self.rounding[c] = Some(self.gap_rounding(c));
             self.end_stretch(c, t);
             for i in [c, c + 1] {
                 self.budgets[i]
@@ -649,6 +643,14 @@ impl<'a> RowRun<'a> {
             }
         }
         self.replan(&members)
+    }
+
+    /// The rounding of contact `c`'s gap in the columns' current states, m.
+    fn gap_rounding(&self, c: usize) -> f64 {
+        let automata = (self.runs[c].automaton(), self.runs[c + 1].automaton());
+        let (left, right) = (self.runs[c].state(), self.runs[c + 1].state());
+        let size = self.row.contacts()[c].gap_size(automata, (left.1, left.2), (right.1, right.2));
+        GAP_ROUNDING_ULPS * scan::ulp(size)
     }
 
     /// Ends the open stretch of `contact` at `t`; one that ends the instant it began (a plastic
@@ -693,9 +695,6 @@ impl<'a> RowRun<'a> {
             .any(|&i| self.runs[i].state().1 == Mode::Overturned)
         {
             return Ok(());
-        }
-        for &c in closing {
-            self.let_go[c] = None;
         }
         let mut contacts: Vec<usize> = closing.to_vec();
         contacts.extend(self.held_within(&members));
@@ -827,6 +826,7 @@ impl<'a> RowRun<'a> {
             let opens = separating > 1e-9 * scale;
             let was_held = self.held[c];
             self.held[c] = hold[a] && !opens;
+            self.rounding[c] = Some(self.gap_rounding(c));
             if self.held[c] && !was_held {
                 self.stretches.push(HeldContact {
                     contact: c,
@@ -842,11 +842,8 @@ impl<'a> RowRun<'a> {
 }
 
 /// The first time in (from, to] at which `f` falls through zero (a gap closing, a held
-/// contact's force vanishing), if it does. With `snap`, a start a hair below zero is taken as
-/// on zero: a contact just struck, whose gap the rounding of the two states leaves there, so
-/// that closing on from there is found at once (and the impacts accumulate) while opening is
-/// no crossing.
-fn first_fall<F: Smooth>(f: &F, from: f64, to: f64, snap: bool) -> Result<Option<f64>, ScanError> {
+/// contact's force vanishing), if it does.
+fn first_fall<F: Smooth>(f: &F, from: f64, to: f64) -> Result<Option<f64>, ScanError> {
     if to <= from {
         return Ok(None);
     }
@@ -866,10 +863,7 @@ fn first_fall<F: Smooth>(f: &F, from: f64, to: f64, snap: bool) -> Result<Option
         evaluations: 0,
         unresolved: 0,
     };
-    let mut a = scan::evaluate(f, from, &mut watch)?;
-    if a.q < 0.0 && snap {
-        a.q = 0.0;
-    }
+    let a = scan::evaluate(f, from, &mut watch)?;
     let b = scan::evaluate(f, to, &mut watch)?;
     Ok(first_crossing(f, a, b, &[zero], &mut watch)?.map(|(p, _)| p.t))
 }
