@@ -53,8 +53,14 @@ const SIMULTANEOUS: f64 = 1e-12;
 /// zero there, so the held motion is the free one). Read from a gap rounded below zero, its
 /// first instants look like a new closing. So a contact that has been struck or let go closes
 /// only when its gap falls this many ulps of the gap's size (the gap at rest plus both
-/// displacements) below zero: 1e-16 m for a gap of 1 cm.
+/// displacements) below zero, or below where the gap is if it is below zero already: 1e-16 m
+/// for a gap of 1 cm.
 pub const GAP_ROUNDING_ULPS: f64 = 64.0;
+/// Each bounce of a pair resting on each other is found that rounding allowance lower, so its
+/// closing velocity cannot fall below sqrt(2 |g''| allowance): a closing within this factor of
+/// that speed (4.5e-7 m/s for 1e-16 m under 1 m/s^2) also marks impacts that accumulate. Bounces
+/// that decay by e settle at 1/sqrt(1 - e^2) of it, below the factor for any e up to 0.9995.
+pub const ROUNDING_SPEED_FACTOR: f64 = 32.0;
 
 /// One impact at one contact.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
@@ -185,8 +191,9 @@ struct Cluster {
 /// What ends a window early.
 #[derive(Debug, Clone, Copy)]
 enum Interrupt {
-    /// A gap closes.
-    Closing,
+    /// A gap closes; `rounding_speed` is the closing velocity that falling through its
+    /// rounding allowance alone would give there, m/s (0 for a contact never struck).
+    Closing { rounding_speed: f64 },
     /// A held contact's force falls to zero.
     Release,
 }
@@ -230,6 +237,7 @@ pub fn solve_row(
         losses: Vec::new(),
         stretches: Vec::new(),
         rounding: vec![None; n - 1],
+        rounding_speed: vec![0.0; n - 1],
         now: 0.0,
     };
     let everyone: Vec<usize> = (0..n).collect();
@@ -271,6 +279,9 @@ struct RowRun<'a> {
     /// Per contact struck or let go: the rounding its gap may fall below zero before it counts
     /// as closed ([`GAP_ROUNDING_ULPS`]), from the states when it was last struck or let go.
     rounding: Vec<Option<f64>>,
+    /// Per contact: the closing velocity that falling through its rounding allowance alone
+    /// gives at the closing being struck, m/s.
+    rounding_speed: Vec<f64>,
     now: f64,
 }
 
@@ -509,6 +520,11 @@ impl<'a> RowRun<'a> {
                 self.release(&releases, t)?;
                 continue;
             }
+            for &(c, interrupt) in &now {
+                if let Interrupt::Closing { rounding_speed } = interrupt {
+                    self.rounding_speed[c] = rounding_speed;
+                }
+            }
             let closing: Vec<usize> = now.iter().map(|f| f.0).collect();
             self.strike(&closing, t)?;
         }
@@ -545,7 +561,8 @@ impl<'a> RowRun<'a> {
             if let Some(t) =
                 first_fall(&gap, self.now, window_end).map_err(|e| scan_failed(e, c))?
             {
-                out.push((c, t, Interrupt::Closing));
+                let rounding_speed = (2.0 * gap.point(t).acc.abs() * gap.allowance).sqrt();
+                out.push((c, t, Interrupt::Closing { rounding_speed }));
             }
         }
         Ok(out)
@@ -645,12 +662,16 @@ impl<'a> RowRun<'a> {
         self.replan(&members)
     }
 
-    /// The rounding of contact `c`'s gap in the columns' current states, m.
+    /// How far below zero contact `c`'s gap may fall before it counts as closing, m, from the
+    /// columns' current states: its rounding, below where the gap is now if that is already
+    /// below zero (a pair struck at a gap a hair below zero and held there keeps that gap).
     fn gap_rounding(&self, c: usize) -> f64 {
         let automata = (self.runs[c].automaton(), self.runs[c + 1].automaton());
         let (left, right) = (self.runs[c].state(), self.runs[c + 1].state());
-        let size = self.row.contacts()[c].gap_size(automata, (left.1, left.2), (right.1, right.2));
-        GAP_ROUNDING_ULPS * scan::ulp(size)
+        let (left, right) = ((left.1, left.2), (right.1, right.2));
+        let contact = &self.row.contacts()[c];
+        let rounding = GAP_ROUNDING_ULPS * scan::ulp(contact.gap_size(automata, left, right));
+        rounding + (-contact.gap(automata, left, right)).max(0.0)
     }
 
     /// Ends the open stretch of `contact` at `t`; one that ends the instant it began (a plastic
@@ -750,7 +771,11 @@ impl<'a> RowRun<'a> {
                 continue;
             }
             let w = closing[a];
-            if w <= ACCUMULATION_SHARE * self.largest_closing[c] || w <= 0.0 {
+            // A closing no faster than a fall through the rounding below the gap gives (the
+            // bounces of a pair resting on each other) accumulates as well.
+            let resting = w <= ROUNDING_SPEED_FACTOR * self.rounding_speed[c];
+            self.rounding_speed[c] = 0.0;
+            if w <= ACCUMULATION_SHARE * self.largest_closing[c] || resting || w <= 0.0 {
                 e[a] = 0.0;
                 hold[a] = true;
             }
