@@ -298,10 +298,10 @@ def fr_summary(fr):
 # Figure (plain SVG; PNG by rsvg-convert)
 # --------------------------------------------------------------------------------------------
 
-def svg_figure(path, title, t_os, q_os, t_fr, q_fr, contacts_os, contacts_fr, labels):
+def svg_figure(path, title, t_os, q_os, t_fr, q_fr, contacts_os, contacts_fr, labels, extra=None):
     W, Hp, L, R, T, G = 900, 220, 70, 20, 40, 50
     n = len(q_os)
-    Ht = T + n * Hp + (n - 1) * G + 45
+    Ht = T + n * Hp + (n - 1) * G + 70
     tmax = max(t_os[-1], t_fr[-1])
     out = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{W}" height="{Ht}" viewBox="0 0 {W} {Ht}" '
            f'font-family="sans-serif" font-size="12">',
@@ -324,18 +324,24 @@ def svg_figure(path, title, t_os, q_os, t_fr, q_fr, contacts_os, contacts_fr, la
             out.append(f'<line x1="{X(tc):.1f}" x2="{X(tc):.1f}" y1="{y0}" y2="{y0 + 8}" stroke="#1f77b4"/>')
         for tc in contacts_fr:
             out.append(f'<line x1="{X(tc):.1f}" x2="{X(tc):.1f}" y1="{y0 + Hp - 8}" y2="{y0 + Hp}" stroke="#d62728"/>')
-        for t, q, col, dash in ((t_os, q_os[p], "#1f77b4", ""), (t_fr, q_fr[p], "#d62728", ' stroke-dasharray="5,3"')):
+        series = [(t_os, q_os[p], "#1f77b4", ""), (t_fr, q_fr[p], "#d62728", ' stroke-dasharray="5,3"')]
+        if extra is not None:
+            series.append((extra[0], extra[1][p], "#2ca02c", ' stroke-dasharray="1.5,2.5"'))
+        for t, q, col, dash in series:
             pts = " ".join(f"{X(a):.1f},{Y(b):.1f}" for a, b in zip(t, q))
             out.append(f'<polyline points="{pts}" fill="none" stroke="{col}" stroke-width="1.3"{dash}/>')
         step = 1 if tmax <= 10 else 5
         for k in range(0, int(tmax) + 1, step):
             out.append(f'<text x="{X(k)}" y="{y0 + Hp + 15}" text-anchor="middle">{k}</text>')
-    yb = Ht - 12
-    out.append(f'<text x="{W / 2}" y="{yb - 14}" text-anchor="middle">t (s)</text>')
+    yb = Ht - 10
+    out.append(f'<text x="{W / 2}" y="{Ht - 32}" text-anchor="middle">t (s)</text>')
     out.append(f'<line x1="{L}" x2="{L + 30}" y1="{yb - 4}" y2="{yb - 4}" stroke="#1f77b4" stroke-width="1.3"/>'
-               f'<text x="{L + 36}" y="{yb}">OpenSees beam-columns (ticks at top: contact episodes)</text>')
-    out.append(f'<line x1="{L + 420}" x2="{L + 450}" y1="{yb - 4}" y2="{yb - 4}" stroke="#d62728" stroke-width="1.3" '
-               f'stroke-dasharray="5,3"/><text x="{L + 456}" y="{yb}">flexrock row, consistent (ticks at bottom: impacts)</text>')
+               f'<text x="{L + 36}" y="{yb}">OpenSees (ticks at top: contact episodes)</text>')
+    out.append(f'<line x1="{L + 300}" x2="{L + 330}" y1="{yb - 4}" y2="{yb - 4}" stroke="#d62728" stroke-width="1.3" '
+               f'stroke-dasharray="5,3"/><text x="{L + 336}" y="{yb}">flexrock, e = {RESTITUTION:g} (ticks at bottom: impacts)</text>')
+    if extra is not None:
+        out.append(f'<line x1="{L + 650}" x2="{L + 680}" y1="{yb - 4}" y2="{yb - 4}" stroke="#2ca02c" stroke-width="1.3" '
+                   f'stroke-dasharray="1.5,2.5"/><text x="{L + 686}" y="{yb}">flexrock, e = 0</text>')
     out.append("</svg>")
     with open(path, "w") as f:
         f.write("\n".join(out) + "\n")
@@ -353,7 +359,7 @@ SUM_COLS = ["case", "program", "gap", "k_contact", "dt", "t_first_contact", "n_i
             "e_apparent_median", "runtime_s"]
 CONTACT_COLS = ["impact", "start", "end", "duration", "closing_velocity", "separating_velocity", "peak_force"]
 HIST_COLS = ["t", "q0_opensees", "q1_opensees", "gap_opensees", "contact_force_opensees", "q0_flexrock",
-             "q1_flexrock"]
+             "q1_flexrock", "q0_flexrock_e0", "q1_flexrock_e0"]
 
 
 def cases(b0):
@@ -411,6 +417,18 @@ def main(argv=None):
                      RESTITUTION if fs["n_impacts"] else "", time.time() - t0])
         print(f"flexrock {case}: " + ", ".join(f"{k}={v:.6g}" if isinstance(v, float) else f"{k}={v}"
                                                for k, v in fs.items()), flush=True)
+        # the same row with plastic impacts (e = 0): the OpenSees contact points hardly bounce
+        model0 = os.path.join(out, "models", f"{case}-e0.toml")
+        flexrock_model(model0, b0, b1, gap, exc, dur, e=0.0)
+        t0 = time.time()
+        fr0 = run_flexrock(a.flexrock, model0, os.path.join(out, "flexrock", f"{case}-e0"))
+        f0 = fr_summary(fr0)
+        rows.append([case, "flexrock_e0", gap, "", "", f0["t_first_contact"], f0["n_impacts"], "",
+                     f0["peak_q0"], f0["peak_q0_pos"], f0["peak_q0_neg"], f0["peak_q1"], f0["peak_q1_pos"],
+                     f0["peak_q1_neg"], f0["n_uplifts0"], f0["n_uplifts1"], f0["overturned"], f0["t_overturn"],
+                     0.0 if f0["n_impacts"] else "", time.time() - t0])
+        print(f"flexrock e=0 {case}: " + ", ".join(f"{k}={v:.6g}" if isinstance(v, float) else f"{k}={v}"
+                                                   for k, v in f0.items()), flush=True)
         # contacts and histories
         crow = []
         idx = 0
@@ -422,13 +440,15 @@ def main(argv=None):
         bc.write_csv(os.path.join(out, f"contacts_{case}.csv"), CONTACT_COLS, crow)
         h = res["hist"]
         fq = [np.interp(h[:, 0], fr["hist"][i]["t"], fr["hist"][i]["q"]) for i in (0, 1)]
+        fq0 = [np.interp(h[:, 0], fr0["hist"][i]["t"], fr0["hist"][i]["q"]) for i in (0, 1)]
         bc.write_csv(os.path.join(out, f"history_{case}.csv"), HIST_COLS,
-                     np.column_stack([h, fq[0], fq[1]]), digits=6)
+                     np.column_stack([h, fq[0], fq[1], fq0[0], fq0[1]]), digits=6)
         t_fr_imp = list(np.atleast_1d(fr["impacts"]["t"])) if fs["n_impacts"] else []
         svg_figure(os.path.join(out, f"row_{case}.svg"),
                    f"Two columns (H = 4 m left, 3.2 m right), gap {gap:g} m, {case}: q of each column",
                    h[:, 0], [h[:, 1], h[:, 2]], fr["hist"][0]["t"], [fr["hist"][0]["q"], fr["hist"][1]["q"]],
-                   [m["start"] for m in imp], t_fr_imp, ["H = 4 m", "H = 3.2 m"])
+                   [m["start"] for m in imp], t_fr_imp, ["H = 4 m", "H = 3.2 m"],
+                   extra=(fr0["hist"][0]["t"], [fr0["hist"][0]["q"], fr0["hist"][1]["q"]]))
         m = res["mdl"]
         meta["cases"][case] = dict(excitation=exc, gap_m=gap, duration_s=dur, dt_s=DT, runtime_s=res["runtime"],
                                    n_failed_steps=res["n_fail"], T_fixed_base_s=[m["T0"], m["T1"]],
