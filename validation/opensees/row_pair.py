@@ -353,10 +353,10 @@ def svg_figure(path, title, t_os, q_os, t_fr, q_fr, contacts_os, contacts_fr, la
 # Driver
 # --------------------------------------------------------------------------------------------
 
-SUM_COLS = ["case", "program", "gap", "k_contact", "dt", "t_first_contact", "n_impacts",
+SUM_COLS = ["case", "program", "gap", "k_contact", "e_contact", "dt", "t_first_contact", "n_impacts",
             "n_contact_episodes", "peak_q0", "peak_q0_pos", "peak_q0_neg", "peak_q1", "peak_q1_pos",
             "peak_q1_neg", "n_uplifts0", "n_uplifts1", "overturned", "t_overturn",
-            "e_apparent_median", "runtime_s"]
+            "e_apparent_median", "completed", "t_end", "n_failed_steps", "runtime_s"]
 CONTACT_COLS = ["impact", "start", "end", "duration", "closing_velocity", "separating_velocity", "peak_force"]
 HIST_COLS = ["t", "q0_opensees", "q1_opensees", "gap_opensees", "contact_force_opensees", "q0_flexrock",
              "q1_flexrock", "q0_flexrock_e0", "q1_flexrock_e0"]
@@ -378,14 +378,16 @@ RECORD = "elCentro.AT2"
 RECORD_SCALE = 2.0
 RECORD_GAP = 0.05
 RECORD_CASE = "elcentro-x2"
-SWEEP = [(1e7, DT), (1e8, DT / 2), (1e9, DT), (1e9, DT / 2)]   # plus the reference (1e8, DT)
+# (k_contact, dt, e of the contact dashpot); the reference run is (K_CONTACT, DT, RESTITUTION)
+SWEEP = [(1e7, DT, RESTITUTION), (1e8, DT / 2, RESTITUTION), (1e9, DT, RESTITUTION),
+         (1e9, DT / 2, RESTITUTION), (1e8, DT, 1.0), (1e8, DT, 0.0)]
 
 
-def os_row(case, gap, k_c, dt, res, s):
-    return [case, "opensees", gap, k_c, dt, s["t_first_contact"], s["n_impacts"], s["n_contact_episodes"],
+def os_row(case, gap, k_c, e, dt, res, s):
+    return [case, "opensees", gap, k_c, e, dt, s["t_first_contact"], s["n_impacts"], s["n_contact_episodes"],
             s["peak_q0"], s["peak_q0_pos"], s["peak_q0_neg"], s["peak_q1"], s["peak_q1_pos"], s["peak_q1_neg"],
             s["n_uplifts0"], s["n_uplifts1"], s["overturned"], s["t_overturn"], s["e_apparent_median"],
-            res["runtime"]]
+            res["completed"], float(res["rec"]["t"][-1]), res["n_fail"], res["runtime"]]
 
 
 def main(argv=None):
@@ -403,7 +405,7 @@ def main(argv=None):
     for case, exc, gap, acc_dt, acc, dur in cases(b0):
         res = run_pair(b0, b1, gap, acc_dt, acc, dur)
         s, eps, imp = os_summary(res)
-        rows.append(os_row(case, gap, K_CONTACT, DT, res, s))
+        rows.append(os_row(case, gap, K_CONTACT, RESTITUTION, DT, res, s))
         print(f"opensees {case}: " + ", ".join(f"{k}={v:.6g}" if isinstance(v, float) else f"{k}={v}"
                                                for k, v in s.items()) + f", {res['runtime']:.1f} s", flush=True)
         model = os.path.join(out, "models", f"{case}.toml")
@@ -411,10 +413,10 @@ def main(argv=None):
         t0 = time.time()
         fr = run_flexrock(a.flexrock, model, os.path.join(out, "flexrock", case))
         fs = fr_summary(fr)
-        rows.append([case, "flexrock", gap, "", "", fs["t_first_contact"], fs["n_impacts"], "",
+        rows.append([case, "flexrock", gap, "", RESTITUTION, "", fs["t_first_contact"], fs["n_impacts"], "",
                      fs["peak_q0"], fs["peak_q0_pos"], fs["peak_q0_neg"], fs["peak_q1"], fs["peak_q1_pos"],
                      fs["peak_q1_neg"], fs["n_uplifts0"], fs["n_uplifts1"], fs["overturned"], fs["t_overturn"],
-                     RESTITUTION if fs["n_impacts"] else "", time.time() - t0])
+                     "", True, fr["summary"]["final_time"], "", time.time() - t0])
         print(f"flexrock {case}: " + ", ".join(f"{k}={v:.6g}" if isinstance(v, float) else f"{k}={v}"
                                                for k, v in fs.items()), flush=True)
         # the same row with plastic impacts (e = 0): the OpenSees contact points hardly bounce
@@ -423,10 +425,10 @@ def main(argv=None):
         t0 = time.time()
         fr0 = run_flexrock(a.flexrock, model0, os.path.join(out, "flexrock", f"{case}-e0"))
         f0 = fr_summary(fr0)
-        rows.append([case, "flexrock_e0", gap, "", "", f0["t_first_contact"], f0["n_impacts"], "",
+        rows.append([case, "flexrock_e0", gap, "", 0.0, "", f0["t_first_contact"], f0["n_impacts"], "",
                      f0["peak_q0"], f0["peak_q0_pos"], f0["peak_q0_neg"], f0["peak_q1"], f0["peak_q1_pos"],
                      f0["peak_q1_neg"], f0["n_uplifts0"], f0["n_uplifts1"], f0["overturned"], f0["t_overturn"],
-                     0.0 if f0["n_impacts"] else "", time.time() - t0])
+                     "", True, fr0["summary"]["final_time"], "", time.time() - t0])
         print(f"flexrock e=0 {case}: " + ", ".join(f"{k}={v:.6g}" if isinstance(v, float) else f"{k}={v}"
                                                    for k, v in f0.items()), flush=True)
         # contacts and histories
@@ -478,14 +480,15 @@ def main(argv=None):
     if not a.no_sweep:
         srows = [r for r in rows if r[0] == "paper" and r[1] == "opensees"]
         case, exc, gap, acc_dt, acc, dur = next(cases(b0))
-        for k_c, dt in SWEEP:
-            res = run_pair(b0, b1, gap, acc_dt, acc, dur, dt=dt, k_c=k_c)
+        for k_c, dt, e in SWEEP:
+            res = run_pair(b0, b1, gap, acc_dt, acc, dur, dt=dt, k_c=k_c, e=e)
             s, _, _ = os_summary(res)
-            srows.append(os_row(case, gap, k_c, dt, res, s))
-            print(f"sweep k={k_c:g} dt={dt:g}: " + ", ".join(f"{k}={v:.6g}" if isinstance(v, float) else f"{k}={v}"
+            srows.append(os_row(case, gap, k_c, e, dt, res, s))
+            print(f"sweep k={k_c:g} dt={dt:g} e={e:g} completed={res['completed']} t_end={res['rec']['t'][-1]:.4f}: " + ", ".join(f"{k}={v:.6g}" if isinstance(v, float) else f"{k}={v}"
                                                              for k, v in s.items()), flush=True)
         bc.write_csv(os.path.join(out, "stiffness_sweep.csv"), SUM_COLS, srows)
-        meta["sweep"] = [dict(k_contact_N_per_m=k, dt_s=d) for k, d in [(K_CONTACT, DT)] + SWEEP]
+        meta["sweep"] = [dict(k_contact_N_per_m=k, dt_s=d, e_contact=e, zeta=contact_zeta(e))
+                         for k, d, e in [(K_CONTACT, DT, RESTITUTION)] + SWEEP]
     import scipy
     from importlib.metadata import version
     meta["versions"] = dict(python=sys.version.split()[0], openseespy=version("openseespy"),

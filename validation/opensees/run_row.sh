@@ -21,5 +21,7 @@ mkdir -p "$here/row_results"
 cd "$here"
 "$PYTHON" row_pair.py run --out row_results --flexrock "$FLEXROCK" 2>row_results/row.stderr | tee row_results/row.log
 # OpenSees prints its warnings on stderr; keep only a count
+# (and the steps that failed to converge, whole)
 echo "$(grep -c -i warning row_results/row.stderr || true) warning lines in row.stderr" > row_results/stderr-summary.txt
+grep -i "no convergence" row_results/row.stderr >> row_results/stderr-summary.txt || true
 rm row_results/row.stderr
