@@ -276,6 +276,11 @@ def run_flexrock(binary, model, out):
     for i in (0, 1):
         with open(os.path.join(out, f"events-{i}.csv")) as f:
             ev.append(list(csv.DictReader(f)))
+    # flexrock's histories are large (every column of the energy books); their q is kept in
+    # history_<case>.csv and the rest is one `flexrock run` of models/<case>.toml away
+    for i in (0, 1):
+        for stem in ("history", "episodes"):
+            os.remove(os.path.join(out, f"{stem}-{i}.csv"))
     return dict(summary=summ, hist=hist, impacts=imp, events=ev, stdout=p.stdout)
 
 
