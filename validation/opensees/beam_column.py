@@ -71,10 +71,11 @@ def U(xi):
 
 
 class Body:
-    def __init__(self, path=MODEL_FILE, e_factor=1.0):
+    def __init__(self, path=MODEL_FILE, e_factor=1.0, **overrides):
+        """overrides: [body] keys of the model file replaced (e.g. height=3.2)."""
         with open(path, "rb") as f:
             doc = tomllib.load(f)
-        b = doc["body"]
+        b = dict(doc["body"], **overrides)
         self.H = float(b["height"])
         self.B = float(b["width"])
         self.D = float(b.get("depth", 1.0))
@@ -100,46 +101,66 @@ class Body:
 
 
 def build(body, nel=80, pdelta=True, k_toe=1e10, rotary=True):
-    """Build the model and run the gravity stage. Returns a dict of model data."""
-    H, B, m = body.H, body.B, body.m
-    dy = H / nel
+    """Build the model of one column and run the gravity stage. Returns a dict of model data."""
     ops.wipe()
     ops.model("basic", "-ndm", 2, "-ndf", 3)
+    mdl = build_column(body, nel=nel, pdelta=pdelta, k_toe=k_toe, rotary=rotary)
+    gravity(mdl["weights"])
+    return mdl
+
+
+def build_column(body, nel=80, pdelta=True, k_toe=1e10, rotary=True, tag0=0, x0=0.0):
+    """Add one column to the current (2-D, 3 dof) model, with every node, element, material and
+    transformation tag offset by tag0 and the column's axis at x = x0; no loads yet (gravity()
+    applies the weights). Returns a dict of model data, tags included."""
+    H, B, m = body.H, body.B, body.m
+    dy = H / nel
+    base = tag0 + BASE
+    toe_l, toe_r = tag0 + TOE_L, tag0 + TOE_R
+    gnd_l, gnd_r = tag0 + GND_L, tag0 + GND_R
+    spr_l, spr_r = tag0 + SPR_L, tag0 + SPR_R
+    mat = tag0 + MAT_ENT
     ys = np.linspace(0.0, H, nel + 1)
     for i, y in enumerate(ys):
-        ops.node(BASE + i, 0.0, float(y))
-    top = BASE + nel
-    ops.node(TOE_L, -B / 2, 0.0)
-    ops.node(TOE_R, +B / 2, 0.0)
-    ops.node(GND_L, -B / 2, 0.0)
-    ops.node(GND_R, +B / 2, 0.0)
-    ops.fix(GND_L, 1, 1, 1)
-    ops.fix(GND_R, 1, 1, 1)
-    ops.fix(BASE, 1, 0, 0)                    # no sliding
-    ops.uniaxialMaterial("ENT", MAT_ENT, k_toe)
-    ops.element("zeroLength", SPR_L, GND_L, TOE_L, "-mat", MAT_ENT, "-dir", 2)
-    ops.element("zeroLength", SPR_R, GND_R, TOE_R, "-mat", MAT_ENT, "-dir", 2)
-    ops.geomTransf("PDelta" if pdelta else "Linear", 1)
+        ops.node(base + i, x0, float(y))
+    top = base + nel
+    ops.node(toe_l, x0 - B / 2, 0.0)
+    ops.node(toe_r, x0 + B / 2, 0.0)
+    ops.node(gnd_l, x0 - B / 2, 0.0)
+    ops.node(gnd_r, x0 + B / 2, 0.0)
+    ops.fix(gnd_l, 1, 1, 1)
+    ops.fix(gnd_r, 1, 1, 1)
+    ops.fix(base, 1, 0, 0)                    # no sliding
+    ops.uniaxialMaterial("ENT", mat, k_toe)
+    ops.element("zeroLength", spr_l, gnd_l, toe_l, "-mat", mat, "-dir", 2)
+    ops.element("zeroLength", spr_r, gnd_r, toe_r, "-mat", mat, "-dir", 2)
+    ops.geomTransf("PDelta" if pdelta else "Linear", tag0 + 1)
     # the rigid base plate: two elastic links, 1e4 times the column's E (a rigidLink with the
     # Transformation handler made DisplacementControl fail to converge in OpenSees 3.7.1)
-    ops.geomTransf("Linear", 2)
-    ops.element("elasticBeamColumn", LINK_L, BASE, TOE_L, body.A, body.E * LINK_FACTOR, body.I, 2)
-    ops.element("elasticBeamColumn", LINK_R, BASE, TOE_R, body.A, body.E * LINK_FACTOR, body.I, 2)
+    ops.geomTransf("Linear", tag0 + 2)
+    ops.element("elasticBeamColumn", tag0 + LINK_L, base, toe_l, body.A, body.E * LINK_FACTOR, body.I, tag0 + 2)
+    ops.element("elasticBeamColumn", tag0 + LINK_R, base, toe_r, body.A, body.E * LINK_FACTOR, body.I, tag0 + 2)
     for e in range(nel):
-        ops.element("elasticBeamColumn", e + 1, BASE + e, BASE + e + 1, body.A, body.E, body.I, 1)
+        ops.element("elasticBeamColumn", tag0 + e + 1, base + e, base + e + 1, body.A, body.E, body.I, tag0 + 1)
     # lumped masses: m dy at interior nodes, m dy/2 at the top; the base node's share is only loaded
     weights = {}
     lateral = {}
     for i in range(nel + 1):
-        node = BASE + i
+        node = base + i
         mi = m * dy * (0.5 if i in (0, nel) else 1.0)
         weights[node] = mi * body.g
         lateral[node] = mi * float(U(ys[i] / H))
         if i > 0:
             ops.mass(node, mi, mi, mi * B ** 2 / 12.0 if rotary else 0.0)
-    # gravity stage
-    ops.timeSeries("Linear", 1)
-    ops.pattern("Plain", 1, 1)
+    return dict(nel=nel, top=top, ys=ys, weights=weights, lateral=lateral, pdelta=pdelta, k_toe=k_toe,
+                base=base, toe_l=toe_l, toe_r=toe_r, spr_l=spr_l, spr_r=spr_r,
+                ele_first=tag0 + 1, ele_last=tag0 + nel, H=H)
+
+
+def gravity(weights, series=1, pattern=1):
+    """The gravity stage: the nodal weights in 10 load steps, then loadConst (time reset to 0)."""
+    ops.timeSeries("Linear", series)
+    ops.pattern("Plain", pattern, series)
     for node, w in weights.items():
         ops.load(node, 0.0, -w, 0.0)
     ops.constraints("Plain")
@@ -154,7 +175,6 @@ def build(body, nel=80, pdelta=True, k_toe=1e10, rotary=True):
         raise RuntimeError("gravity stage failed")
     ops.loadConst("-time", 0.0)
     ops.wipeAnalysis()
-    return dict(nel=nel, top=top, ys=ys, weights=weights, lateral=lateral, pdelta=pdelta, k_toe=k_toe)
 
 
 def fixed_base_period(nmodes=1):
@@ -165,10 +185,11 @@ def fixed_base_period(nmodes=1):
 
 def state(body, mdl):
     """q, r, s, toe uplifts (vertical displacements of the toes, > 0 = up)."""
-    q = ops.nodeDisp(mdl["top"], 1) - ops.nodeDisp(BASE, 1)
-    theta = ops.nodeDisp(BASE, 3)
+    base = mdl.get("base", BASE)
+    q = ops.nodeDisp(mdl["top"], 1) - ops.nodeDisp(base, 1)
+    theta = ops.nodeDisp(base, 3)
     r = -theta * body.H
-    return q, r, q - r, ops.nodeDisp(TOE_L, 2), ops.nodeDisp(TOE_R, 2)
+    return q, r, q - r, ops.nodeDisp(mdl.get("toe_l", TOE_L), 2), ops.nodeDisp(mdl.get("toe_r", TOE_R), 2)
 
 
 # --------------------------------------------------------------------------------------------
