@@ -1,6 +1,7 @@
 //! Random rows of two to four columns under the shipped records at random scales, gaps and
 //! restitutions: every run ends (at its duration, or where a column overturns), every impact
-//! carries an impulse and strikes its instant once, held stretches end after they begin, and
+//! carries an impulse (in a chain one may also fall on a contact that is not closing, pushed by
+//! its neighbour's) and strikes its instant once, held stretches end after they begin, and
 //! every column's energy books close. Catches chatter and stuck contact logic in corners no
 //! case names (the three- and four-column cases of `row.rs` were found this way).
 
@@ -68,7 +69,6 @@ proptest! {
         let mut struck: Vec<(usize, f64)> = Vec::new();
         for impact in &solution.impacts {
             prop_assert!(impact.impulse > 0.0, "impact without impulse {:?}\n{}", impact, text);
-            prop_assert!(impact.closing_velocity >= 0.0, "{:?}\n{}", impact, text);
             prop_assert!(!struck.contains(&(impact.contact, impact.t)), "instant struck twice {:?}\n{}", impact, text);
             struck.push((impact.contact, impact.t));
         }
