@@ -21,3 +21,4 @@ mod recorded_motion;
 mod rigid;
 mod rigid_forms;
 mod row;
+mod row_compliant;

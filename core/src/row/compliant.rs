@@ -122,11 +122,7 @@ impl Model<'_> {
     /// delta = -gap, m.
     fn penetration(&self, c: usize, modes: &[Mode], x: &[f64]) -> f64 {
         let automata = (self.automaton(c), self.automaton(c + 1));
-        -self.row.contacts()[c].gap(
-            automata,
-            (modes[c], x[2 * c]),
-            (modes[c + 1], x[2 * c + 2]),
-        )
+        -self.row.contacts()[c].gap(automata, (modes[c], x[2 * c]), (modes[c + 1], x[2 * c + 2]))
     }
 
     /// delta' = Phi_l q'_l - Phi_r q'_r, m/s.
@@ -476,9 +472,7 @@ impl<'d> Driver<'d> {
         if solver.state().h > stops[0] {
             *solver.state_mut().h = stops[0];
         }
-        solver
-            .set_stop_time(stops[0])
-            .map_err(|e| failed(0.0, e))?;
+        solver.set_stop_time(stops[0]).map_err(|e| failed(0.0, e))?;
         let y0 = values(solver.state().y, 2 * n);
         {
             let cfg = self.cfg.borrow();
@@ -543,9 +537,7 @@ impl<'d> Driver<'d> {
                         }
                         *state.h = 0.25 * (step_end - start.t);
                     }
-                    solver
-                        .set_stop_time(stop)
-                        .map_err(|e| failed(start.t, e))?;
+                    solver.set_stop_time(stop).map_err(|e| failed(start.t, e))?;
                     continue;
                 }
                 Crossing::At(t, what) => {
@@ -715,7 +707,10 @@ impl<'d> Driver<'d> {
             Ok((vec![(t0, tp, d0.signum()), (tp, t1, d1.signum())], Some(tp)))
         } else {
             let d = if d1 != 0.0 { d1 } else { d0 };
-            Ok((vec![(t0, t1, if d == 0.0 { 0.0 } else { d.signum() })], None))
+            Ok((
+                vec![(t0, t1, if d == 0.0 { 0.0 } else { d.signum() })],
+                None,
+            ))
         }
     }
 
@@ -736,9 +731,8 @@ impl<'d> Driver<'d> {
         S: OdeSolverMethod<'a, Eqn>,
     {
         let (pieces, _) = self.pieces(solver, t0, t1, what)?;
-        let over = |t: f64| -> Result<f64> {
-            Ok(direction * (self.function(solver, t, what)?.0 - level))
-        };
+        let over =
+            |t: f64| -> Result<f64> { Ok(direction * (self.function(solver, t, what)?.0 - level)) };
         for (from, to, moving) in pieces {
             if moving != direction || over(to)? <= 0.0 {
                 continue;

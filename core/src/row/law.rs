@@ -140,7 +140,10 @@ mod tests {
         }
         for e in [1e-3, 0.05, 0.1353, 0.3, 0.6, 0.9, 0.999] {
             let zeta = damping_ratio_for(e);
-            assert!((restitution_of(zeta) - e).abs() < 1e-13 * e.max(1e-3), "e = {e}");
+            assert!(
+                (restitution_of(zeta) - e).abs() < 1e-13 * e.max(1e-3),
+                "e = {e}"
+            );
             // Releasing at zero force needs more damping than releasing at zero penetration:
             // the force falls to zero first, before the dashpot has taken as much.
             assert!(zeta > damping_ratio_released_at_zero_penetration(e));
