@@ -319,7 +319,10 @@ fn bad_contact_keys_are_refused_by_name() {
             "contact = \"compliant\"\nstiffness = -1e7\n",
             "row.stiffness = -1e7: must be",
         ),
-        ("stiffness = 1e7\n", "row.stiffness = 1e7: is a key of the compliant law"),
+        (
+            "stiffness = 1e7\n",
+            "row.stiffness = 1e7: is a key of the compliant law",
+        ),
         (
             "contact = \"impact\"\nstiffness = 1e7\n",
             "row.stiffness = 1e7: is a key",
