@@ -173,8 +173,13 @@ fn an_isolated_contact_restitutes_e() {
         );
         let w = s.closing_velocity;
         let restitution = s.separating_velocity.unwrap() / w;
+        eprintln!(
+            "isolated contact, e = {e}: restitutes {restitution}, lasts {} s, takes {} J",
+            s.t_end.unwrap() - s.t_start,
+            s.energy_dissipated
+        );
         assert!(
-            (restitution - e).abs() < 2e-6,
+            (restitution - e).abs() < 5e-8,
             "e = {e}: restitutes {restitution}"
         );
         // The dashpot's damping ratio, and the contact's length from it.
@@ -230,8 +235,12 @@ fn energy_books_close_with_the_contact_work() {
     assert!(solved.contacts.len() >= 3, "{:?}", solved.contacts);
     let taken: f64 = solved.contacts.iter().map(|s| s.energy_dissipated).sum();
     for (i, c) in solved.columns.iter().enumerate() {
+        eprintln!(
+            "paper's sine, column {i}: energy residual {} of {} J; contacts took {taken} J",
+            c.max_energy_residual, c.energy_scale
+        );
         assert!(
-            c.max_energy_residual <= 1e-7 * c.energy_scale,
+            c.max_energy_residual <= 2e-8 * c.energy_scale,
             "column {i}: energy residual {} of {}",
             c.max_energy_residual,
             c.energy_scale
@@ -275,14 +284,22 @@ fn energy_books_close_with_the_contact_work() {
         })
         .expect("contacts");
     let end = longest.t_end.unwrap();
-    // The spring's static compression moves the release by (P / k) in the gap: a few ms here.
+    eprintln!(
+        "leaning: in contact from {} s to {end} s, quasi-statically let go at {t_release} s",
+        longest.t_start
+    );
+    // The spring's static compression (P / k, a fraction of a millimetre) moves the release a little.
     assert!(
-        (end - t_release).abs() < 2e-2,
+        (end - t_release).abs() < 5e-3,
         "let go at {end} s, quasi-statically at {t_release} s"
     );
     for (i, c) in solved.columns.iter().enumerate() {
+        eprintln!(
+            "leaning, column {i}: energy residual {} of {} J",
+            c.max_energy_residual, c.energy_scale
+        );
         assert!(
-            c.max_energy_residual <= 1e-7 * c.energy_scale,
+            c.max_energy_residual <= 2e-8 * c.energy_scale,
             "leaning, column {i}: energy residual {} of {}",
             c.max_energy_residual,
             c.energy_scale
