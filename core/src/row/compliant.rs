@@ -344,11 +344,7 @@ pub fn solve_row_compliant(
             },
             // The work integrals are quadratures of the accepted steps: an explicit method asks
             // for no derivative of them.
-            |_x, _p, _t, _v, y| {
-                for i in 0..nout {
-                    y[i] = 0.0;
-                }
-            },
+            |_x, _p, _t, _v, y| (0..nout).for_each(|i| y[i] = 0.0),
             nout,
         )
         .integrate_out(true)
@@ -1009,15 +1005,13 @@ impl<'d> Driver<'d> {
                 }
             }
             if next.is_none() {
-                for c in 0..n - 1 {
-                    if cfg.active[c]
-                        && !started_now[c]
-                        && self.model.force_with(c, &cfg.modes, cfg.damping[c], &y) <= 0.0
-                    {
-                        next = Some(What::End(c));
-                        break;
-                    }
-                }
+                next = (0..n - 1)
+                    .find(|&c| {
+                        cfg.active[c]
+                            && !started_now[c]
+                            && self.model.force_with(c, &cfg.modes, cfg.damping[c], &y) <= 0.0
+                    })
+                    .map(What::End);
             }
             if next.is_none() {
                 self.set_state(solver, t, &y);
