@@ -376,3 +376,28 @@ fn bad_contact_keys_are_refused_by_name() {
     let settings = compliant.compliant.unwrap();
     assert_eq!((settings.rtol, settings.atol), (1e-9, 1e-9));
 }
+
+/// A column that overturns ends the row's run there, as under the impact law: the pair of
+/// models/row-compliant.toml under the paper's sine at 9 m/s^2.
+#[test]
+fn an_overturning_column_ends_the_run() {
+    let specs = [
+        at_rest(body(4.0, 0.7, 600.0, 5e6, 0.05)),
+        at_rest(body(4.0, 0.7, 600.0, 5e7, 0.05)),
+    ];
+    let row = Row::new(&specs, &[0.02], 0.5)
+        .unwrap()
+        .compliant(1e7)
+        .unwrap();
+    let floor = PaperSine::new(9.0, 1.0, 0.412);
+    let solved = solve_row_compliant(&row, &floor, 6.0, &TIGHT, History::Sampled).unwrap();
+    let (i, t) = solved.overturned.expect("a column overturns");
+    assert!(!solved.contacts.is_empty());
+    assert_eq!(solved.final_time, t);
+    assert!(solved.columns[i].overturned);
+    assert_eq!(solved.columns[i].t_overturn, Some(t));
+    for c in &solved.columns {
+        assert_eq!(c.final_time, t);
+        assert!(c.samples.iter().all(|s| s.t <= t));
+    }
+}

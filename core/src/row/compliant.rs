@@ -953,6 +953,12 @@ impl<'d> Driver<'d> {
                     self.budgets[i].event(t).map_err(|m| failed(t, m))?;
                     self.cfg.borrow_mut().modes[i] = guard.to;
                     if guard.to == Mode::Overturned {
+                        // The run ends here for every column: the state here may be a peak.
+                        for (j, r) in self.recorders.iter_mut().enumerate() {
+                            if j != i {
+                                r.peak_candidate(t, y[2 * j]);
+                            }
+                        }
                         self.overturned = Some((i, t));
                         self.close_open(&g);
                         return Ok(true);
