@@ -182,6 +182,91 @@ fn bad_row_files_are_refused_by_key_with_no_output() {
     }
 }
 
+/// The compliant contact law end to end: models/row-compliant.toml writes the same set of files
+/// as the impact law, the same bytes twice; summary.json names the law, k and zeta and lists the
+/// stretches of contact, each of which is a contact-start and a contact-end event of both
+/// columns; impacts.csv has its header only.
+#[test]
+fn a_compliant_row_runs_end_to_end() {
+    let dir = scratch_dir("rows-compliant");
+    let model = repo("models/row-compliant.toml");
+    let (a, b) = (dir.join("a"), dir.join("b"));
+    for out in [&a, &b] {
+        let o = run(&model, out, &[]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let stdout = String::from_utf8_lossy(&o.stdout);
+        assert!(
+            stdout.contains("compliant contacts (k = 1e7 N/m"),
+            "{stdout}"
+        );
+    }
+    let names = crate::common::file_names(&a);
+    assert_eq!(names.len(), 8, "{names:?}");
+    for name in &names {
+        assert_eq!(
+            std::fs::read(a.join(name)).unwrap(),
+            std::fs::read(b.join(name)).unwrap(),
+            "{name} differs between two runs"
+        );
+    }
+    let summary: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(a.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["method"], "tsit45");
+    assert_eq!(summary["contact_law"]["law"], "compliant");
+    assert_eq!(summary["contact_law"]["stiffness"], 1e7);
+    let zeta = summary["contact_law"]["damping_ratio"].as_f64().unwrap();
+    assert!(zeta > 0.2 && zeta < 0.3, "{zeta}");
+    assert_eq!(summary["tolerances"]["rtol"], 1e-10);
+    let stretches = summary["contact_stretches"].as_array().unwrap();
+    assert!(stretches.len() >= 3, "{stretches:?}");
+    for i in 0..2 {
+        let events = std::fs::read_to_string(a.join(format!("events-{i}.csv"))).unwrap();
+        for s in stretches {
+            for (key, kind) in [("t_start", "contact-start"), ("t_end", "contact-end")] {
+                let t = s[key].as_f64().unwrap();
+                assert!(
+                    events.contains(&format!(",{t},{kind},")),
+                    "column {i} has no {kind} at {t}"
+                );
+            }
+        }
+    }
+    let impacts = std::fs::read_to_string(a.join("impacts.csv")).unwrap();
+    assert_eq!(impacts.lines().count(), 1, "{impacts}");
+}
+
+#[test]
+fn bad_contact_laws_are_refused_naming_the_stiffness() {
+    let compliant =
+        |keys: &str| ROW.replace("restitution = 0.5\n", &format!("restitution = 0.5\n{keys}"));
+    for (name, keys, expected) in [
+        (
+            "missing",
+            "contact = \"compliant\"\n",
+            "row.stiffness = (missing)",
+        ),
+        (
+            "zero",
+            "contact = \"compliant\"\nstiffness = 0.0\n",
+            "row.stiffness = 0",
+        ),
+        (
+            "negative",
+            "contact = \"compliant\"\nstiffness = -5e6\n",
+            "row.stiffness = -5e6",
+        ),
+        (
+            "impact",
+            "contact = \"impact\"\nstiffness = 1e7\n",
+            "row.stiffness = 1e7",
+        ),
+        ("default", "stiffness = 1e7\n", "row.stiffness = 1e7"),
+    ] {
+        let message = refused("run", &format!("row-stiffness-{name}"), &compliant(keys));
+        assert!(message.contains(expected), "{name}: {message}");
+    }
+}
+
 #[test]
 fn solver_flags_are_refused_for_a_row() {
     let dir = scratch_dir("rows-flags");

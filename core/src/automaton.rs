@@ -57,6 +57,11 @@ pub enum EventKind {
     /// A neighbouring column of a row strikes the body: q' jumps by the contact's impulse and
     /// the mode stays. Never an event of a body alone.
     Impact,
+    /// A neighbouring column of a row comes into contact under the compliant law: its contact
+    /// force acts from here on; q' and the mode stay. Never an event of a body alone.
+    ContactStart,
+    /// That contact's force falls to zero and it ends; q' and the mode stay.
+    ContactEnd,
 }
 
 impl EventKind {
@@ -67,6 +72,8 @@ impl EventKind {
             EventKind::Landing => "landing",
             EventKind::Overturn => "overturn",
             EventKind::Impact => "impact",
+            EventKind::ContactStart => "contact-start",
+            EventKind::ContactEnd => "contact-end",
         }
     }
 }
@@ -289,7 +296,10 @@ impl Automaton {
             EventKind::Uplift => qdot * self.zeta_uplift,
             EventKind::Landing => qdot / self.zeta_landing,
             // No reset of the body's own: a row's impact law gives the jump.
-            EventKind::Overturn | EventKind::Impact => qdot,
+            EventKind::Overturn
+            | EventKind::Impact
+            | EventKind::ContactStart
+            | EventKind::ContactEnd => qdot,
         }
     }
 

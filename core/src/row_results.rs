@@ -10,7 +10,7 @@ use crate::format::number;
 use crate::automaton::EventKind;
 use crate::body::Body;
 use crate::model::{RowModel, RowSection};
-use crate::row::{HeldContact, RowSolution};
+use crate::row::{CompliantSettings, ContactLaw, ContactStretch, HeldContact, RowSolution};
 use crate::simulate::VERSION;
 use crate::solver::exact::ExactSettings;
 use crate::solver::InitialState;
@@ -22,10 +22,18 @@ pub struct RowSummary<'a> {
     pub flexrock_version: &'static str,
     /// The model file read, if any.
     pub model_file: Option<String>,
-    /// The method: the exact solution, always, for a row.
+    /// The method: the exact solution under the impact law, Tsit45 under the compliant law.
     pub method: &'static str,
     /// Its settings.
     pub solver: ExactSettings,
+    /// The compliant law's integration settings (rtol, atol, output_dt); absent under the
+    /// impact law.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub tolerances: Option<CompliantSettings>,
+    /// The contact law and its constants: k (N/m) and the damping ratio zeta that restitutes
+    /// e; absent under the impact law (each stretch's dashpot c is in `contact_stretches`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub contact_law: Option<ContactLaw>,
     /// The `[row]` table as read.
     pub row: &'a RowSection,
     /// The floor motion as understood.
@@ -48,6 +56,11 @@ pub struct RowSummary<'a> {
     /// held together until its contact force fell to zero): contact, t_start, t_end (s; null
     /// if held to the end).
     pub held_contacts: Vec<HeldContact>,
+    /// Under the compliant law, every stretch of contact: contact, t_start, t_end, the reduced
+    /// mass and the dashpot c, the closing and separating velocities, the peak force and when,
+    /// the energy taken. Absent under the impact law.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub contact_stretches: Option<Vec<ContactStretch>>,
     /// Each column, left to right.
     pub columns: Vec<ColumnSummary<'a>>,
 }
@@ -112,8 +125,14 @@ pub fn row_summary<'a>(model: &'a RowModel, solution: &RowSolution) -> RowSummar
     RowSummary {
         flexrock_version: VERSION,
         model_file: model.path.as_ref().map(|p| p.display().to_string()),
-        method: crate::solver::exact::NAME,
+        method: if model.compliant.is_some() {
+            crate::row::METHOD
+        } else {
+            crate::solver::exact::NAME
+        },
         solver: model.settings,
+        tolerances: model.compliant,
+        contact_law: model.compliant.map(|_| model.row.law()),
         row: &model.section,
         excitation: model.floor.parameters(),
         duration: model.duration,
@@ -124,6 +143,7 @@ pub fn row_summary<'a>(model: &'a RowModel, solution: &RowSolution) -> RowSummar
         n_impact_instants: solution.impact_energy_loss.len(),
         impact_energy_lost: solution.impact_energy_loss.iter().map(|(_, e)| e).sum(),
         held_contacts: solution.held.clone(),
+        contact_stretches: model.compliant.map(|_| solution.contacts.clone()),
         columns,
     }
 }

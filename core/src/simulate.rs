@@ -26,8 +26,18 @@ pub fn simulate_with(model: &Model, settings: &SolverSettings) -> Result<Solutio
     solve(model, settings, History::Sampled)
 }
 
-/// Solves a row of columns (its own exact method) keeping every column's history.
+/// Solves a row of columns (its own exact method, or Tsit45 under the compliant contact law)
+/// keeping every column's history.
 pub fn simulate_row(model: &crate::model::RowModel) -> Result<crate::row::RowSolution> {
+    if let Some(settings) = &model.compliant {
+        return Ok(crate::row::solve_row_compliant(
+            &model.row,
+            model.floor.as_ref(),
+            model.duration,
+            settings,
+            History::Sampled,
+        )?);
+    }
     Ok(crate::row::solve_row(
         &model.row,
         model.floor.as_ref(),

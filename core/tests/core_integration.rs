@@ -21,4 +21,5 @@ mod recorded_motion;
 mod rigid;
 mod rigid_forms;
 mod row;
+mod row_compliant;
 mod row_random;

@@ -21,19 +21,19 @@ use flexrock_core::solver::{History, InitialState};
 
 /// The first root of cos L cosh L = -1 and sigma of the cantilever mode, from their closed
 /// forms (book/src/model.md §2), for the hand calculations.
-const L: f64 = 1.875_104_068_711_961;
+pub(crate) const L: f64 = 1.875_104_068_711_961;
 
-fn sigma() -> f64 {
+pub(crate) fn sigma() -> f64 {
     (L.cosh() + L.cos()) / (L.sinh() + L.sin())
 }
 
 /// U(xi) of the first cantilever mode, U(1) = 1, written out here.
-fn mode_shape(xi: f64) -> f64 {
+pub(crate) fn mode_shape(xi: f64) -> f64 {
     let z = L * xi;
     (z.cosh() - z.cos() - sigma() * (z.sinh() - z.sin())) / 2.0
 }
 
-fn body(height: f64, width: f64, density: f64, youngs: f64, damping: f64) -> Body {
+pub(crate) fn body(height: f64, width: f64, density: f64, youngs: f64, damping: f64) -> Body {
     Body {
         height,
         width,
@@ -47,17 +47,17 @@ fn body(height: f64, width: f64, density: f64, youngs: f64, damping: f64) -> Bod
     }
 }
 
-fn at_rest(body: Body) -> ColumnSpec {
+pub(crate) fn at_rest(body: Body) -> ColumnSpec {
     ColumnSpec {
         body,
         initial: InitialState { q: 0.0, qdot: 0.0 },
     }
 }
 
-const SETTINGS: ExactSettings = ExactSettings { output_dt: 0.01 };
+pub(crate) const SETTINGS: ExactSettings = ExactSettings { output_dt: 0.01 };
 
 /// The run of one column alone, as `flexrock run` makes it.
-fn alone(spec: &ColumnSpec, floor: &dyn FloorMotion, duration: f64) -> Solution {
+pub(crate) fn alone(spec: &ColumnSpec, floor: &dyn FloorMotion, duration: f64) -> Solution {
     let automaton = Automaton::new(&Constants::new(&spec.body).unwrap());
     exact::solve(
         &automaton,
@@ -153,7 +153,7 @@ fn identical_columns_under_one_floor_motion_never_touch() {
 }
 
 /// Mass M and circular frequency omega = L^2 (EI / (M H^3))^(1/2) of a body, from its size.
-fn mass_and_frequency(b: &Body) -> (f64, f64) {
+pub(crate) fn mass_and_frequency(b: &Body) -> (f64, f64) {
     let m = b.mass;
     let ei = b.flexural_rigidity;
     (m, L * L * (ei / (m * b.height.powi(3))).sqrt())

@@ -9,7 +9,7 @@ use crate::writers;
 use flexrock_core::automaton::EventKind;
 use flexrock_core::columns::fields;
 use flexrock_core::model::RowModel;
-use flexrock_core::row::RowSolution;
+use flexrock_core::row::{ContactLaw, RowSolution, METHOD};
 use flexrock_core::row_results::{impact_rows, row_summary, IMPACT_COLUMNS, IMPACT_COLUMN_NAMES};
 use flexrock_core::simulate::{simulate_row, VERSION};
 
@@ -66,12 +66,30 @@ pub fn run_row_to_dir(model: &RowModel, out_dir: &Path, plots: bool) -> Result<R
 pub fn row_report_text(model: &RowModel, report: &RowReport) -> String {
     let s = &report.solution;
     let mut t = String::new();
-    let _ = writeln!(
-        t,
-        "flexrock {VERSION}: exact solution of a row of {} columns over {} s",
-        s.columns.len(),
-        model.duration
-    );
+    match model.row.law() {
+        ContactLaw::Compliant {
+            stiffness,
+            damping_ratio,
+        } => {
+            let _ = writeln!(
+                t,
+                "flexrock {VERSION}: {METHOD} solution of a row of {} columns over {} s, compliant \
+                 contacts (k = {} N/m, zeta = {})",
+                s.columns.len(),
+                model.duration,
+                writers::significant(stiffness, 6),
+                writers::significant(damping_ratio, 6),
+            );
+        }
+        ContactLaw::Impact => {
+            let _ = writeln!(
+                t,
+                "flexrock {VERSION}: exact solution of a row of {} columns over {} s",
+                s.columns.len(),
+                model.duration
+            );
+        }
+    }
     for (i, c) in s.columns.iter().enumerate() {
         let _ = writeln!(
             t,
@@ -82,10 +100,32 @@ pub fn row_report_text(model: &RowModel, report: &RowReport) -> String {
             c.min_q.t,
             writers::count(c.count(EventKind::Uplift), "uplift", "uplifts"),
             writers::count(c.count(EventKind::Landing), "landing", "landings"),
-            writers::count(c.count(EventKind::Impact), "impact", "impacts"),
+            if let ContactLaw::Compliant { .. } = model.row.law() {
+                writers::count(c.count(EventKind::ContactStart), "contact", "contacts")
+            } else {
+                writers::count(c.count(EventKind::Impact), "impact", "impacts")
+            },
         );
     }
     let lost: f64 = s.impact_energy_loss.iter().map(|(_, e)| e).sum();
+    if let ContactLaw::Compliant { .. } = model.row.law() {
+        let taken: f64 = s.contacts.iter().map(|c| c.energy_dissipated).sum();
+        let _ = writeln!(
+            t,
+            "  {} of contact, taking {} J; {}",
+            writers::count(s.contacts.len(), "stretch", "stretches"),
+            writers::significant(taken, 6),
+            match s.overturned {
+                Some((i, at)) =>
+                    format!("column {i} overturned at t = {at:.9} s (the run ends there)"),
+                None => "no overturning".to_string(),
+            }
+        );
+        for f in &report.files {
+            let _ = writeln!(t, "  wrote {}", f.display());
+        }
+        return t;
+    }
     let _ = writeln!(
         t,
         "  {} at {}, taking {} J; {}",

@@ -9,6 +9,7 @@ use serde::{Deserialize, Serialize};
 
 use super::excitation_section::{floor_from_section, RecordCache};
 use super::solver_section::solver_from_section;
+use super::solver_section::{check_atol, check_rtol};
 use super::{
     body_from_section, check_stands_up, initial_from_section, parse_table, read_model_text,
     BodySection, ExcitationSection, SimulationSection, SolverSection, MAX_DURATION, MODEL_TEXT,
@@ -17,7 +18,7 @@ use crate::body::{positive, Body};
 use crate::constants::Constants;
 use crate::error::{Error, Result};
 use crate::excitation::FloorMotion;
-use crate::row::{ColumnSpec, Row};
+use crate::row::{ColumnSpec, CompliantSettings, Row, DEFAULT_TOLERANCE, METHOD};
 use crate::solver::exact::ExactSettings;
 use crate::solver::SolverSettings;
 
@@ -29,6 +30,13 @@ pub struct RowSection {
     pub gaps: Vec<f64>,
     /// Newton's coefficient of restitution at every contact, in [0, 1].
     pub restitution: f64,
+    /// The contact law: "impact" (the default) or "compliant".
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub contact: Option<String>,
+    /// The compliant law's contact stiffness k, N/m (required with contact = "compliant" and
+    /// refused with the impact law).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stiffness: Option<f64>,
 }
 
 /// The `[simulation]` table of a row: its duration (each column has its own q0 and qdot0).
@@ -53,8 +61,10 @@ pub struct RowModel {
     pub floor: Box<dyn FloorMotion>,
     /// Simulated time, s.
     pub duration: f64,
-    /// The exact solver's settings.
+    /// The exact solver's settings (its output_dt serves the compliant law's run too).
     pub settings: ExactSettings,
+    /// The compliant law's integration settings; None under the impact law.
+    pub compliant: Option<CompliantSettings>,
 }
 
 /// True when a model file's table describes a row (it has a `[row]` table).
@@ -194,6 +204,39 @@ impl RowModel {
             bodies.push(body);
         }
         let row = Row::new(&specs, &section.gaps, section.restitution)?;
+        let compliant = match section.contact.as_deref().unwrap_or("impact") {
+            "impact" => {
+                if let Some(k) = section.stiffness {
+                    return Err(Error::invalid(
+                        "row.stiffness",
+                        k,
+                        "is a key of the compliant law: leave it out with contact = \"impact\" \
+                         (or set contact = \"compliant\")",
+                    ));
+                }
+                false
+            }
+            "compliant" => true,
+            other => {
+                return Err(Error::invalid(
+                    "row.contact",
+                    format!("\"{other}\""),
+                    "must be \"impact\" or \"compliant\"",
+                ))
+            }
+        };
+        let row = if compliant {
+            let Some(k) = section.stiffness else {
+                return Err(Error::invalid(
+                    "row.stiffness",
+                    "(missing)",
+                    "required with contact = \"compliant\": the contact stiffness k > 0, N/m",
+                ));
+            };
+            row.compliant(k)?
+        } else {
+            row
+        };
         let (floor, natural_duration) =
             floor_from_section(&excitation, base_dir, &RecordCache::default())?;
         let duration = match (duration.or(simulation.duration), natural_duration) {
@@ -217,6 +260,60 @@ impl RowModel {
                 duration,
                 &format!("must be at most {MAX_DURATION:e} s"),
             ));
+        }
+        if compliant {
+            if let Some(method) = solver.method.as_deref().filter(|&m| m != METHOD) {
+                return Err(Error::invalid(
+                    "solver.method",
+                    format!("\"{method}\""),
+                    &format!(
+                        "a row with contact = \"compliant\" is integrated by \"{METHOD}\": leave \
+                         solver.method out or set it to \"{METHOD}\""
+                    ),
+                ));
+            }
+            let rtol = solver.rtol.unwrap_or(DEFAULT_TOLERANCE);
+            let atol = solver.atol.unwrap_or(DEFAULT_TOLERANCE);
+            check_rtol("solver.rtol", rtol)?;
+            let narrowest = bodies.iter().map(|b| b.width).fold(f64::INFINITY, f64::min);
+            check_atol("solver.atol", atol, narrowest)?;
+            for (key, given) in [
+                ("dt", solver.dt.is_some()),
+                ("newmark_beta", solver.newmark_beta.is_some()),
+                ("newmark_gamma", solver.newmark_gamma.is_some()),
+                ("newmark_variant", solver.newmark_variant.is_some()),
+            ] {
+                if given {
+                    return Err(Error::invalid(
+                        &format!("solver.{key}"),
+                        "(given)",
+                        &format!("a key of Newmark's method; a compliant row is integrated by \"{METHOD}\""),
+                    ));
+                }
+            }
+            let exact = SolverSection {
+                method: Some("exact".to_string()),
+                output_dt: solver.output_dt,
+                ..SolverSection::default()
+            };
+            let SolverSettings::Exact(settings) = solver_from_section(&exact, duration, 1.0, 1.0)?
+            else {
+                unreachable!("method = \"exact\" gives the exact settings");
+            };
+            return Ok(RowModel {
+                path: None,
+                row,
+                bodies,
+                section,
+                floor,
+                duration,
+                compliant: Some(CompliantSettings {
+                    rtol,
+                    atol,
+                    output_dt: settings.output_dt,
+                }),
+                settings,
+            });
         }
         if let Some(method) = solver.method.as_deref().filter(|&m| m != "exact") {
             return Err(Error::invalid(
@@ -243,6 +340,7 @@ impl RowModel {
             floor,
             duration,
             settings,
+            compliant: None,
         })
     }
 }

@@ -49,10 +49,15 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+mod compliant;
 mod contact;
 mod impact;
+pub mod law;
 mod solve;
 
+pub use compliant::{
+    solve_row_compliant, CompliantSettings, ContactStretch, DEFAULT_TOLERANCE, METHOD,
+};
 pub use contact::Contact;
 pub use impact::{impulses, ImpactError, MAX_SIMULTANEOUS};
 pub use solve::{solve_row, HeldContact, ImpactRecord, RowSolution, ACCUMULATION_SHARE};
@@ -85,12 +90,29 @@ pub struct Column {
     pub initial: InitialState,
 }
 
+/// How two neighbours that touch act on each other (book/src/row.md §3 and §4a).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+#[serde(tag = "law", rename_all = "kebab-case")]
+pub enum ContactLaw {
+    /// Newton's restitution over an instant, solved by the exact method.
+    Impact,
+    /// A linear spring and dashpot between the faces, P = k delta + c delta', let go where P
+    /// falls through zero; c gives Newton's restitution to two contact points alone.
+    Compliant {
+        /// k, N/m.
+        stiffness: f64,
+        /// zeta = c / (2 sqrt(k m_red)), from the restitution ([`law::damping_ratio_for`]).
+        damping_ratio: f64,
+    },
+}
+
 /// A row of N >= 2 columns, left to right, with the contacts between neighbours.
 #[derive(Debug, Clone)]
 pub struct Row {
     columns: Vec<Column>,
     contacts: Vec<Contact>,
     restitution: f64,
+    law: ContactLaw,
 }
 
 impl Row {
@@ -196,7 +218,35 @@ impl Row {
             columns: built,
             contacts,
             restitution,
+            law: ContactLaw::Impact,
         })
+    }
+
+    /// The row with the compliant contact law of stiffness `stiffness` (N/m) at every contact,
+    /// its dashpot chosen so that two contact points alone restitute the row's restitution.
+    /// Errors name `row.stiffness`, or `row.restitution` when it is 0 (that needs an infinite
+    /// dashpot).
+    pub fn compliant(mut self, stiffness: f64) -> Result<Self, Error> {
+        if !(stiffness.is_finite() && stiffness > 0.0) {
+            return Err(Error::new(
+                "row.stiffness",
+                stiffness,
+                "must be a finite contact stiffness > 0 N/m",
+            ));
+        }
+        if self.restitution <= 0.0 {
+            return Err(Error::new(
+                "row.restitution",
+                self.restitution,
+                "must be > 0 with contact = \"compliant\": a contact let go where its force \
+                 falls to zero restitutes e = 0 only with an infinite dashpot",
+            ));
+        }
+        self.law = ContactLaw::Compliant {
+            stiffness,
+            damping_ratio: law::damping_ratio_for(self.restitution),
+        };
+        Ok(self)
     }
 
     /// The columns, left to right.
@@ -212,5 +262,10 @@ impl Row {
     /// Newton's coefficient of restitution.
     pub fn restitution(&self) -> f64 {
         self.restitution
+    }
+
+    /// The contact law.
+    pub fn law(&self) -> ContactLaw {
+        self.law
     }
 }

@@ -29,7 +29,7 @@
 
 use std::time::Instant;
 
-use super::{impulses, Contact, Row};
+use super::{impulses, CompliantSettings, Contact, ContactLaw, ContactStretch, Row};
 use crate::automaton::{Automaton, EventKind, Guard, LinearForm, Mode};
 use crate::solver::exact::flow::{Flow, Point};
 use crate::solver::exact::scan::{self, first_crossing, ScanError, Smooth, Watch};
@@ -102,6 +102,8 @@ pub struct RowSolution {
     pub overturned: Option<(usize, f64)>,
     /// Every stretch of persistent contact: the contact, when it was formed and when let go.
     pub held: Vec<HeldContact>,
+    /// Every stretch of contact under the compliant law (empty under the impact law).
+    pub contacts: Vec<ContactStretch>,
     /// The time the run ended, s.
     pub final_time: f64,
 }
@@ -198,7 +200,9 @@ enum Interrupt {
     Release,
 }
 
-/// Solves `row` on `floor` exactly over [0, duration].
+/// Solves `row` on `floor` exactly over [0, duration]. A row with the compliant contact law is
+/// integrated instead ([`super::solve_row_compliant`]) at rtol = atol =
+/// [`super::DEFAULT_TOLERANCE`].
 pub fn solve_row(
     row: &Row,
     floor: &dyn FloorMotion,
@@ -206,6 +210,14 @@ pub fn solve_row(
     settings: &ExactSettings,
     history: History,
 ) -> Result<RowSolution, SolverError> {
+    if let ContactLaw::Compliant { .. } = row.law() {
+        let compliant = CompliantSettings {
+            rtol: super::DEFAULT_TOLERANCE,
+            atol: super::DEFAULT_TOLERANCE,
+            output_dt: settings.output_dt,
+        };
+        return super::solve_row_compliant(row, floor, duration, &compliant, history);
+    }
     let started = Instant::now();
     let energy = history == History::Sampled;
     let n = row.columns().len();
@@ -258,6 +270,7 @@ pub fn solve_row(
         impact_energy_loss: state.losses,
         overturned,
         held: state.stretches,
+        contacts: Vec::new(),
         final_time: now,
     })
 }

@@ -90,8 +90,8 @@ pub fn event_against_its_direction(sol: &Solution) -> Option<String> {
         let right = match e.kind {
             EventKind::Uplift | EventKind::Overturn => outward > 0.0,
             EventKind::Landing => outward < 0.0,
-            // A body alone is never struck.
-            EventKind::Impact => false,
+            // A body alone is never struck nor touched.
+            EventKind::Impact | EventKind::ContactStart | EventKind::ContactEnd => false,
         };
         (!right).then(|| format!("{:?} at t = {} with q' = {}", e.kind, e.t, e.qdot_before))
     })

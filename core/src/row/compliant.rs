@@ -1,0 +1,1137 @@
+//! A row of columns with the compliant contact law (book/src/row.md §4a), integrated by diffsol's
+//! Tsit45 with the events located as the single body's adaptive driver locates them
+//! (`solver::adaptive`).
+//!
+//! The state is (q_i, q'_i) of every column. Each column's own acceleration is its automaton's,
+//! in its mode; a contact in force adds Phi P / m_Phi (book/src/row.md §2) with
+//! P = k delta + c delta' (delta = -gap, the penetration; delta' the closing velocity of the
+//! contact points). The work integrals ride along as diffsol's quadratures: each column's input,
+//! damping and contact work in its SDOF energy, and each contact's P delta', the energy the
+//! contact takes from the bodies.
+//!
+//! Events, located on the dense output of each step: every column's uplift, landing and
+//! overturning (the step split at the roots of its q', each guard crossed only in the direction q
+//! moves, regula falsi on the dense output, a step whose crossing its dense output cannot resolve
+//! taken again four times shorter); a contact's start, where its gap falls through zero (the step
+//! split at the root of the closing velocity); its end, where P falls through zero while in
+//! contact (the step split at the root of P'). A pair let go while its faces still overlap (P
+//! falls to zero with delta > 0, the dashpot pulling the faces apart faster than the spring) is in
+//! contact again if P rises through zero before the faces part. The dashpot c is set at each
+//! contact's start from the modes then (the reduced mass of the two contact points, m / Phi^2 of
+//! each, depends on them) and kept to its end. At an event the solver is moved back to it, the
+//! reset (or the change of contacts) is applied, and the method restarts there. An overturning
+//! column ends the row's run. [`RunBudget`]s cap steps and events, so that every run ends.
+
+use std::cell::RefCell;
+use std::time::Instant;
+
+use diffsol::{NalgebraMat, OdeBuilder, OdeEquations, OdeSolverMethod, OdeSolverStopReason};
+
+use super::{ContactLaw, Row, RowSolution};
+use crate::automaton::{Automaton, EventKind, Guard, Mode};
+use crate::excitation::FloorMotion;
+use crate::solution::{Recorder, SolverStats};
+use crate::solver::budget::RunBudget;
+use crate::solver::{History, OutputGrid, SolverError};
+
+type Matrix = NalgebraMat<f64>;
+type Vector = diffsol::NalgebraVec<f64>;
+type Result<T> = std::result::Result<T, SolverError>;
+
+/// The method the compliant row is integrated with.
+pub const METHOD: &str = "tsit45";
+/// rtol and atol of the compliant row when the model file gives none.
+pub const DEFAULT_TOLERANCE: f64 = 1e-10;
+/// A stop time counts as reached this close to it (relative to max(1, t)), as in the single
+/// body's adaptive driver.
+const STOP_TOLERANCE: f64 = 1e-12;
+/// Drift of the solver's clock from a stop time, in ulps of the stop, that is left alone.
+const SNAP_ULPS: f64 = 8.0;
+/// Retakes of one step whose crossing its dense output could not resolve before giving up.
+const MAX_CROSSING_RETRIES: usize = 60;
+/// Events at one instant (a reset that lets a contact go, that starts another) before giving up.
+const MAX_CHAIN: usize = 8;
+
+/// Settings of a compliant row's run.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct CompliantSettings {
+    /// Relative tolerance.
+    pub rtol: f64,
+    /// Absolute tolerance (m for q, m/s for q').
+    pub atol: f64,
+    /// Spacing of the sampled history, s.
+    pub output_dt: f64,
+}
+
+/// A stretch of contact under the compliant law: from the gap's closing to the zero of the force.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct ContactStretch {
+    /// The contact: between columns `contact` and `contact + 1`.
+    pub contact: usize,
+    /// When the faces met, s.
+    pub t_start: f64,
+    /// When the force fell to zero, s; None if in contact at the end.
+    pub t_end: Option<f64>,
+    /// The reduced mass of the two contact points at the start, kg.
+    pub reduced_mass: f64,
+    /// The dashpot c over the stretch, N s/m.
+    pub damping: f64,
+    /// Closing velocity of the contact points at the start, m/s.
+    pub closing_velocity: f64,
+    /// Their separating velocity at the end, m/s.
+    pub separating_velocity: Option<f64>,
+    /// The largest contact force, N.
+    pub peak_force: f64,
+    /// When it was largest, s.
+    pub t_peak_force: f64,
+    /// The energy the contact took from the two bodies, J: the integral of P delta' (the
+    /// dashpot's dissipation and the spring's energy left at the release).
+    pub energy_dissipated: f64,
+}
+
+/// What changes along the run and the right-hand side depends on.
+#[derive(Debug, Clone)]
+struct Config {
+    modes: Vec<Mode>,
+    active: Vec<bool>,
+    /// c of each contact, N s/m, set at its start.
+    damping: Vec<f64>,
+}
+
+/// The row's fixed data.
+struct Model<'r> {
+    row: &'r Row,
+    stiffness: f64,
+    zeta: f64,
+}
+
+impl Model<'_> {
+    fn n(&self) -> usize {
+        self.row.columns().len()
+    }
+
+    fn automaton(&self, i: usize) -> &Automaton {
+        &self.row.columns()[i].automaton
+    }
+
+    fn slopes(&self, c: usize, modes: &[Mode]) -> (f64, f64) {
+        let automata = (self.automaton(c), self.automaton(c + 1));
+        self.row.contacts()[c].slopes(automata, (modes[c], modes[c + 1]))
+    }
+
+    /// delta = -gap, m.
+    fn penetration(&self, c: usize, modes: &[Mode], x: &[f64]) -> f64 {
+        let automata = (self.automaton(c), self.automaton(c + 1));
+        -self.row.contacts()[c].gap(automata, (modes[c], x[2 * c]), (modes[c + 1], x[2 * c + 2]))
+    }
+
+    /// delta' = Phi_l q'_l - Phi_r q'_r, m/s.
+    fn closing(&self, c: usize, modes: &[Mode], x: &[f64]) -> f64 {
+        let (pl, pr) = self.slopes(c, modes);
+        pl * x[2 * c + 1] - pr * x[2 * c + 3]
+    }
+
+    /// P = k delta + c delta' with dashpot `damping`, N.
+    fn force_with(&self, c: usize, modes: &[Mode], damping: f64, x: &[f64]) -> f64 {
+        self.stiffness * self.penetration(c, modes, x) + damping * self.closing(c, modes, x)
+    }
+
+    /// The reduced mass of the contact points of contact `c`, kg.
+    fn reduced_mass(&self, c: usize, modes: &[Mode]) -> f64 {
+        let (pl, pr) = self.slopes(c, modes);
+        let ml = self.automaton(c).kinetic_mass(modes[c]) / (pl * pl);
+        let mr = self.automaton(c + 1).kinetic_mass(modes[c + 1]) / (pr * pr);
+        ml * mr / (ml + mr)
+    }
+
+    /// c = 2 zeta sqrt(k m_red), N s/m.
+    fn dashpot(&self, c: usize, modes: &[Mode]) -> f64 {
+        2.0 * self.zeta * (self.stiffness * self.reduced_mass(c, modes)).sqrt()
+    }
+
+    /// The contact forces, N (0 where not in contact).
+    fn forces(&self, cfg: &Config, x: &[f64]) -> Vec<f64> {
+        (0..self.n() - 1)
+            .map(|c| {
+                if cfg.active[c] {
+                    self.force_with(c, &cfg.modes, cfg.damping[c], x)
+                } else {
+                    0.0
+                }
+            })
+            .collect()
+    }
+
+    /// Each column's q'' from its automaton, and the contact forces' share Phi P / m_Phi.
+    fn rhs(&self, cfg: &Config, x: &[f64], floor_acc: f64, y: &mut [f64]) {
+        let n = self.n();
+        for i in 0..n {
+            y[2 * i] = x[2 * i + 1];
+            y[2 * i + 1] =
+                self.automaton(i)
+                    .acceleration(cfg.modes[i], x[2 * i], x[2 * i + 1], floor_acc);
+        }
+        for (c, p) in self.forces(cfg, x).into_iter().enumerate() {
+            if p == 0.0 {
+                continue;
+            }
+            let (pl, pr) = self.slopes(c, &cfg.modes);
+            y[2 * c + 1] -= pl * p / self.automaton(c).kinetic_mass(cfg.modes[c]);
+            y[2 * c + 3] += pr * p / self.automaton(c + 1).kinetic_mass(cfg.modes[c + 1]);
+        }
+    }
+
+    /// The Jacobian of [`Model::rhs`] times `v`.
+    fn jacobian(&self, cfg: &Config, v: &[f64], y: &mut [f64]) {
+        let n = self.n();
+        for i in 0..n {
+            let (d_q, d_qdot) = self.automaton(i).acceleration_jacobian(cfg.modes[i]);
+            y[2 * i] = v[2 * i + 1];
+            y[2 * i + 1] = d_q * v[2 * i] + d_qdot * v[2 * i + 1];
+        }
+        for c in 0..n - 1 {
+            if !cfg.active[c] {
+                continue;
+            }
+            let (pl, pr) = self.slopes(c, &cfg.modes);
+            let dp = self.stiffness * (pl * v[2 * c] - pr * v[2 * c + 2])
+                + cfg.damping[c] * (pl * v[2 * c + 1] - pr * v[2 * c + 3]);
+            y[2 * c + 1] -= pl * dp / self.automaton(c).kinetic_mass(cfg.modes[c]);
+            y[2 * c + 3] += pr * dp / self.automaton(c + 1).kinetic_mass(cfg.modes[c + 1]);
+        }
+    }
+
+    /// The integrands of the work integrals: per column its input, damping and contact power
+    /// in its SDOF energy (the contact force's term of its equation times M_e q'), then per
+    /// contact P delta'.
+    fn integrands(&self, cfg: &Config, x: &[f64], floor_acc: f64, y: &mut [f64]) {
+        let n = self.n();
+        let forces = self.forces(cfg, x);
+        for i in 0..n {
+            let (a, mode, qdot) = (self.automaton(i), cfg.modes[i], x[2 * i + 1]);
+            y[3 * i] = a.input_power(mode, qdot, floor_acc);
+            y[3 * i + 1] = a.damping_power(mode, qdot);
+            let mut generalised = 0.0;
+            if i > 0 && forces[i - 1] != 0.0 {
+                generalised += self.slopes(i - 1, &cfg.modes).1 * forces[i - 1];
+            }
+            if i + 1 < n && forces[i] != 0.0 {
+                generalised -= self.slopes(i, &cfg.modes).0 * forces[i];
+            }
+            y[3 * i + 2] = a.generalised_mass() / a.kinetic_mass(mode) * generalised * qdot;
+        }
+        for (c, p) in forces.into_iter().enumerate() {
+            y[3 * n + c] = if p == 0.0 {
+                0.0
+            } else {
+                p * self.closing(c, &cfg.modes, x)
+            };
+        }
+    }
+}
+
+fn values(v: &Vector, len: usize) -> Vec<f64> {
+    (0..len).map(|i| v[i]).collect()
+}
+
+fn failed(t: f64, message: impl std::fmt::Display) -> SolverError {
+    SolverError::Failed {
+        method: METHOD.to_string(),
+        t,
+        message: message.to_string(),
+    }
+}
+
+/// Solves `row` (whose contact law must be compliant) on `floor` over [0, duration].
+pub fn solve_row_compliant(
+    row: &Row,
+    floor: &dyn FloorMotion,
+    duration: f64,
+    settings: &CompliantSettings,
+    history: History,
+) -> Result<RowSolution> {
+    let started = Instant::now();
+    let ContactLaw::Compliant {
+        stiffness,
+        damping_ratio,
+    } = row.law()
+    else {
+        return Err(failed(0.0, "the row's contact law is not compliant"));
+    };
+    let model = Model {
+        row,
+        stiffness,
+        zeta: damping_ratio,
+    };
+    let n = model.n();
+    let nstates = 2 * n;
+    let nout = 3 * n + (n - 1);
+    let initial: Vec<f64> = row
+        .columns()
+        .iter()
+        .flat_map(|c| [c.initial.q, c.initial.qdot])
+        .collect();
+    let cfg = RefCell::new(Config {
+        modes: row
+            .columns()
+            .iter()
+            .map(|c| c.automaton.initial_mode(c.initial.q))
+            .collect(),
+        active: vec![false; n - 1],
+        damping: vec![0.0; n - 1],
+    });
+    let floor_cache = std::cell::Cell::new((f64::NAN, 0.0));
+    let floor_acc = |t: f64| {
+        let (t_cached, a_cached) = floor_cache.get();
+        if t == t_cached {
+            a_cached
+        } else {
+            let a = floor.acceleration(t);
+            floor_cache.set((t, a));
+            a
+        }
+    };
+    let rhs_evaluations = std::cell::Cell::new(0usize);
+    let scratch = RefCell::new((vec![0.0; nstates], vec![0.0; nout.max(nstates)]));
+    let mut problem = OdeBuilder::<Matrix>::new()
+        .t0(0.0)
+        .rtol(settings.rtol)
+        .atol(vec![settings.atol; nstates])
+        .rhs_implicit(
+            |x, _p, t, y| {
+                rhs_evaluations.set(rhs_evaluations.get() + 1);
+                let mut s = scratch.borrow_mut();
+                let (xs, ys) = &mut *s;
+                for (i, v) in xs.iter_mut().enumerate() {
+                    *v = x[i];
+                }
+                model.rhs(&cfg.borrow(), xs, floor_acc(t), &mut ys[..nstates]);
+                for (i, v) in ys[..nstates].iter().enumerate() {
+                    y[i] = *v;
+                }
+            },
+            |_x, _p, _t, v, y| {
+                let mut s = scratch.borrow_mut();
+                let (vs, ys) = &mut *s;
+                for (i, value) in vs.iter_mut().enumerate() {
+                    *value = v[i];
+                }
+                model.jacobian(&cfg.borrow(), vs, &mut ys[..nstates]);
+                for (i, value) in ys[..nstates].iter().enumerate() {
+                    y[i] = *value;
+                }
+            },
+        )
+        .init(
+            |_p, _t, y| {
+                for (i, v) in initial.iter().enumerate() {
+                    y[i] = *v;
+                }
+            },
+            nstates,
+        )
+        .out_implicit(
+            |x, _p, t, y| {
+                let mut s = scratch.borrow_mut();
+                let (xs, ys) = &mut *s;
+                for (i, v) in xs.iter_mut().enumerate() {
+                    *v = x[i];
+                }
+                model.integrands(&cfg.borrow(), xs, floor_acc(t), &mut ys[..nout]);
+                for (i, v) in ys[..nout].iter().enumerate() {
+                    y[i] = *v;
+                }
+            },
+            // The work integrals are quadratures of the accepted steps: an explicit method asks
+            // for no derivative of them.
+            |_x, _p, _t, _v, y| (0..nout).for_each(|i| y[i] = 0.0),
+            nout,
+        )
+        .integrate_out(true)
+        .build()
+        .map_err(|e| failed(0.0, e))?;
+    problem.ode_options.min_timestep = problem.ode_options.min_timestep.min(1e-3 * duration);
+    let solver = problem.tsit45().map_err(|e| failed(0.0, e))?;
+    let mut driver = Driver {
+        model: &model,
+        cfg: &cfg,
+        floor,
+        duration,
+        history,
+        recorders: Vec::new(),
+        budgets: (0..n).map(|_| RunBudget::new()).collect(),
+        stretches: Vec::new(),
+        open: vec![None; n - 1],
+        overturned: None,
+        output_dt: settings.output_dt,
+    };
+    let (final_time, steps, retries) = driver.run(solver)?;
+    let stats = SolverStats {
+        method: METHOD.to_string(),
+        steps,
+        error_test_failures: 0,
+        nonlinear_iterations: 0,
+        jacobian_evaluations: 0,
+        crossing_retries: retries,
+        rhs_evaluations: rhs_evaluations.get(),
+        wall_time_s: started.elapsed().as_secs_f64(),
+    };
+    let modes = cfg.borrow().modes.clone();
+    let Driver {
+        recorders,
+        stretches,
+        overturned,
+        ..
+    } = driver;
+    let columns = recorders
+        .into_iter()
+        .zip(modes)
+        .map(|(r, mode)| r.finish(final_time, mode, stats.clone()))
+        .collect();
+    Ok(RowSolution {
+        columns,
+        impacts: Vec::new(),
+        impact_energy_loss: Vec::new(),
+        overturned,
+        held: Vec::new(),
+        contacts: stretches,
+        final_time,
+    })
+}
+
+/// What ends a step early.
+#[derive(Debug, Clone, Copy)]
+enum What {
+    /// Column `.0` crosses a guard of its mode.
+    Guard(usize, Guard),
+    /// Contact `.0`'s faces meet (or, overlapping, its force rises through zero).
+    Start(usize),
+    /// Contact `.0`'s force falls through zero.
+    End(usize),
+}
+
+enum Crossing {
+    None,
+    At(f64, What),
+    Unresolved,
+}
+
+struct StepStart {
+    t: f64,
+    y: Vec<f64>,
+    g: Vec<f64>,
+}
+
+struct Driver<'d> {
+    model: &'d Model<'d>,
+    cfg: &'d RefCell<Config>,
+    floor: &'d dyn FloorMotion,
+    duration: f64,
+    history: History,
+    recorders: Vec<Recorder<'d>>,
+    budgets: Vec<RunBudget>,
+    stretches: Vec<ContactStretch>,
+    /// Per contact: the index of its open stretch and the dissipation integral at its start.
+    open: Vec<Option<(usize, f64)>>,
+    overturned: Option<(usize, f64)>,
+    output_dt: f64,
+}
+
+fn at_stop(t: f64, stop: f64) -> bool {
+    (t - stop).abs() <= STOP_TOLERANCE * stop.abs().max(1.0)
+}
+
+impl<'d> Driver<'d> {
+    fn n(&self) -> usize {
+        self.model.n()
+    }
+
+    fn run<'a, Eqn, S>(&mut self, mut solver: S) -> Result<(f64, usize, usize)>
+    where
+        Eqn: OdeEquations<T = f64, V = Vector> + 'a,
+        S: OdeSolverMethod<'a, Eqn>,
+    {
+        let n = self.n();
+        let end = self.duration;
+        let step_budget = RunBudget::new();
+        let mut retries = 0usize;
+        let mut retries_in_a_row = 0usize;
+        let mut stops: Vec<f64> = self
+            .floor
+            .breakpoints()
+            .iter()
+            .copied()
+            .filter(|&b| b > 0.0 && !at_stop(b, end) && b < end)
+            .collect();
+        stops.push(end);
+        let mut stop_index = 0;
+        if solver.state().h > stops[0] {
+            *solver.state_mut().h = stops[0];
+        }
+        solver.set_stop_time(stops[0]).map_err(|e| failed(0.0, e))?;
+        let y0 = values(solver.state().y, 2 * n);
+        {
+            let cfg = self.cfg.borrow();
+            let model = self.model;
+            self.recorders = (0..n)
+                .map(|i| {
+                    Recorder::new(
+                        model.automaton(i),
+                        0.0,
+                        y0[2 * i],
+                        y0[2 * i + 1],
+                        cfg.modes[i],
+                        self.history,
+                    )
+                })
+                .collect();
+        }
+        let mut grid = OutputGrid::for_history(self.history, end, self.output_dt);
+        self.emit(&solver, &mut grid, 0.0, true)?;
+        // A column that starts on a guard moving across it: an event at t = 0.
+        if self.settle(&mut solver, 0.0, None)? {
+            return Ok((0.0, 0, 0));
+        }
+        loop {
+            let start = StepStart {
+                t: solver.state().t,
+                y: values(solver.state().y, 2 * n),
+                g: values(solver.state().g, self.nout()),
+            };
+            let reason = solver.step().map_err(|e| failed(start.t, e))?;
+            let step_end = solver.state().t;
+            let stop = stops[stop_index];
+            let steps = solver.get_statistics().number_of_steps;
+            step_budget
+                .step(step_end, steps)
+                .map_err(|m| failed(step_end, m))?;
+            if step_end > stop && !at_stop(step_end, stop) {
+                return Err(failed(
+                    step_end,
+                    format!("stepped past the stop time {stop} s"),
+                ));
+            }
+            match self.find_crossing(&solver, &start, step_end)? {
+                Crossing::Unresolved => {
+                    retries += 1;
+                    retries_in_a_row += 1;
+                    if retries_in_a_row == MAX_CROSSING_RETRIES {
+                        return Err(failed(
+                            start.t,
+                            format!(
+                                "an event could not be resolved: {MAX_CROSSING_RETRIES} ever \
+                                 shorter steps from t = {} s",
+                                start.t
+                            ),
+                        ));
+                    }
+                    self.set_state(&mut solver, start.t, &start.y);
+                    {
+                        let state = solver.state_mut();
+                        for (i, v) in start.g.iter().enumerate() {
+                            state.g[i] = *v;
+                        }
+                        *state.h = 0.25 * (step_end - start.t);
+                    }
+                    solver.set_stop_time(stop).map_err(|e| failed(start.t, e))?;
+                    continue;
+                }
+                Crossing::At(t, what) => {
+                    retries_in_a_row = 0;
+                    self.peaks(&solver, &start, t)?;
+                    self.emit(&solver, &mut grid, t, false)?;
+                    solver.state_mut_back(t).map_err(|e| failed(t, e))?;
+                    if self.settle(&mut solver, t, Some(what))? {
+                        return Ok((t, steps, retries));
+                    }
+                    if at_stop(t, stop) {
+                        if stop_index + 1 == stops.len() {
+                            self.emit(&solver, &mut grid, t, true)?;
+                            self.close_open(&values(solver.state().g, self.nout()));
+                            return Ok((t, steps, retries));
+                        }
+                        stop_index += 1;
+                    }
+                    solver
+                        .set_stop_time(stops[stop_index])
+                        .map_err(|e| failed(t, e))?;
+                }
+                Crossing::None => {
+                    retries_in_a_row = 0;
+                    self.peaks(&solver, &start, step_end)?;
+                    self.emit(&solver, &mut grid, step_end, true)?;
+                    if matches!(reason, OdeSolverStopReason::TstopReached)
+                        || at_stop(step_end, stop)
+                    {
+                        self.snap_to_stop(&mut solver, stop, step_end - start.t);
+                        let now = solver.state().t;
+                        if self.floor.jumps_at(stop) {
+                            let y = values(solver.state().y, 2 * n);
+                            self.set_state(&mut solver, now, &y);
+                        }
+                        self.emit(&solver, &mut grid, now, true)?;
+                        if stop_index + 1 == stops.len() {
+                            let y = values(solver.state().y, 2 * n);
+                            for (i, r) in self.recorders.iter_mut().enumerate() {
+                                r.peak_candidate(now, y[2 * i]);
+                            }
+                            self.close_open(&values(solver.state().g, self.nout()));
+                            return Ok((now, steps, retries));
+                        }
+                        stop_index += 1;
+                        solver
+                            .set_stop_time(stops[stop_index])
+                            .map_err(|e| failed(now, e))?;
+                    }
+                }
+            }
+        }
+    }
+
+    fn nout(&self) -> usize {
+        4 * self.n() - 1
+    }
+
+    /// The state at `t` within the current step.
+    fn state_at<'a, Eqn, S>(&self, solver: &S, t: f64) -> Result<Vec<f64>>
+    where
+        Eqn: OdeEquations<T = f64, V = Vector> + 'a,
+        S: OdeSolverMethod<'a, Eqn>,
+    {
+        let len = 2 * self.n();
+        if t == solver.state().t {
+            return Ok(values(solver.state().y, len));
+        }
+        let y = solver.interpolate(t).map_err(|e| failed(t, e))?;
+        Ok(values(&y, len))
+    }
+
+    /// q'' of every column at (t, x) in the current configuration.
+    fn accelerations(&self, t: f64, x: &[f64]) -> Vec<f64> {
+        let mut y = vec![0.0; x.len()];
+        self.model
+            .rhs(&self.cfg.borrow(), x, self.floor.acceleration(t), &mut y);
+        y
+    }
+
+    /// The value and rate of the event function of `what` at `t`: q of a column, the gap of a
+    /// free contact, the force of a contact.
+    fn function<'a, Eqn, S>(&self, solver: &S, t: f64, what: Watch) -> Result<(f64, f64)>
+    where
+        Eqn: OdeEquations<T = f64, V = Vector> + 'a,
+        S: OdeSolverMethod<'a, Eqn>,
+    {
+        let x = self.state_at(solver, t)?;
+        let cfg = self.cfg.borrow();
+        Ok(match what {
+            Watch::Q(i) => (x[2 * i], x[2 * i + 1]),
+            Watch::Gap(c) => (
+                -self.model.penetration(c, &cfg.modes, &x),
+                -self.model.closing(c, &cfg.modes, &x),
+            ),
+            Watch::Force(c, damping) => {
+                drop(cfg);
+                let acc = self.accelerations(t, &x);
+                let cfg = self.cfg.borrow();
+                let (pl, pr) = self.model.slopes(c, &cfg.modes);
+                let rate = self.model.stiffness * self.model.closing(c, &cfg.modes, &x)
+                    + damping * (pl * acc[2 * c + 1] - pr * acc[2 * c + 3]);
+                (self.model.force_with(c, &cfg.modes, damping, &x), rate)
+            }
+        })
+    }
+
+    /// Finds the time in [lo, hi] at which `f` passes from its sign at `lo` (zero counts as
+    /// that side) to its sign at `hi`, by the Illinois variant of regula falsi, to a few ulps.
+    fn locate(&self, mut lo: f64, mut hi: f64, f: impl Fn(f64) -> Result<f64>) -> Result<f64> {
+        let f_hi = f(hi)?;
+        let orientation = if f_hi > 0.0 { 1.0 } else { -1.0 };
+        let mut g_lo = orientation * f(lo)?;
+        let mut g_hi = orientation * f_hi;
+        if g_lo > 0.0 || g_hi <= 0.0 {
+            return Ok(if g_lo > 0.0 { lo } else { hi });
+        }
+        let mut last_side = 0i8;
+        for _ in 0..200 {
+            if hi - lo <= 4.0 * f64::EPSILON * hi.abs().max(lo.abs()) {
+                break;
+            }
+            let secant = hi - g_hi * (hi - lo) / (g_hi - g_lo);
+            let mid = if secant > lo && secant < hi {
+                secant
+            } else {
+                0.5 * (lo + hi)
+            };
+            let g_mid = orientation * f(mid)?;
+            if g_mid > 0.0 {
+                hi = mid;
+                g_hi = g_mid;
+                if last_side == 1 {
+                    g_lo *= 0.5;
+                }
+                last_side = 1;
+            } else {
+                lo = mid;
+                g_lo = g_mid;
+                if last_side == -1 {
+                    g_hi *= 0.5;
+                }
+                last_side = -1;
+            }
+        }
+        Ok(hi)
+    }
+
+    /// The monotone pieces of the function of `what` over [t0, t1]: split at the root of its
+    /// rate, each with the direction it moves in, and the root itself (an extremum), if any.
+    #[allow(clippy::type_complexity)]
+    fn pieces<'a, Eqn, S>(
+        &self,
+        solver: &S,
+        t0: f64,
+        t1: f64,
+        what: Watch,
+    ) -> Result<(Vec<(f64, f64, f64)>, Option<f64>)>
+    where
+        Eqn: OdeEquations<T = f64, V = Vector> + 'a,
+        S: OdeSolverMethod<'a, Eqn>,
+    {
+        let d0 = self.function(solver, t0, what)?.1;
+        let d1 = self.function(solver, t1, what)?.1;
+        if d0 * d1 < 0.0 {
+            let tp = self.locate(t0, t1, |t| Ok(self.function(solver, t, what)?.1))?;
+            Ok((vec![(t0, tp, d0.signum()), (tp, t1, d1.signum())], Some(tp)))
+        } else {
+            let d = if d1 != 0.0 { d1 } else { d0 };
+            Ok((
+                vec![(t0, t1, if d == 0.0 { 0.0 } else { d.signum() })],
+                None,
+            ))
+        }
+    }
+
+    /// The first crossing of zero by the function of `what` in `direction` (+1 rising, -1
+    /// falling) over the step, found piece by piece; `Err(())` when its dense output put it
+    /// where the rate points back.
+    fn first_crossing_of<'a, Eqn, S>(
+        &self,
+        solver: &S,
+        t0: f64,
+        t1: f64,
+        what: Watch,
+        level: f64,
+        direction: f64,
+    ) -> Result<std::result::Result<Option<f64>, ()>>
+    where
+        Eqn: OdeEquations<T = f64, V = Vector> + 'a,
+        S: OdeSolverMethod<'a, Eqn>,
+    {
+        let (pieces, _) = self.pieces(solver, t0, t1, what)?;
+        let over =
+            |t: f64| -> Result<f64> { Ok(direction * (self.function(solver, t, what)?.0 - level)) };
+        for (from, to, moving) in pieces {
+            if moving != direction || over(to)? <= 0.0 {
+                continue;
+            }
+            if over(from)? >= 0.0 {
+                return Ok(Err(()));
+            }
+            let t = self.locate(from, to, over)?;
+            if direction * self.function(solver, t, what)?.1 <= 0.0 {
+                return Ok(Err(()));
+            }
+            return Ok(Ok(Some(t)));
+        }
+        Ok(Ok(None))
+    }
+
+    /// The first event of the step [start, t1].
+    fn find_crossing<'a, Eqn, S>(&self, solver: &S, start: &StepStart, t1: f64) -> Result<Crossing>
+    where
+        Eqn: OdeEquations<T = f64, V = Vector> + 'a,
+        S: OdeSolverMethod<'a, Eqn>,
+    {
+        let n = self.n();
+        let t0 = start.t;
+        let mut first: Option<(f64, What)> = None;
+        let mut consider = |t: f64, what: What| {
+            if first.is_none_or(|(t_first, _)| t < t_first) {
+                first = Some((t, what));
+            }
+        };
+        let cfg = self.cfg.borrow().clone();
+        for i in 0..n {
+            let automaton = self.model.automaton(i);
+            let mode = cfg.modes[i];
+            let mut crossed = false;
+            for &slot in automaton.guards(mode) {
+                let guard = automaton.guard(mode, slot);
+                match self.first_crossing_of(
+                    solver,
+                    t0,
+                    t1,
+                    Watch::Q(i),
+                    guard.level,
+                    guard.direction,
+                )? {
+                    Err(()) => return Ok(Crossing::Unresolved),
+                    Ok(Some(t)) => {
+                        crossed = true;
+                        consider(t, What::Guard(i, guard));
+                    }
+                    Ok(None) => {}
+                }
+            }
+            // The column must end inside its mode; if not, q turned more than once.
+            let q1 = self.state_at(solver, t1)?[2 * i];
+            if !crossed
+                && automaton
+                    .guards(mode)
+                    .iter()
+                    .any(|&slot| automaton.guard(mode, slot).overshoot(q1) > 0.0)
+            {
+                return Ok(Crossing::Unresolved);
+            }
+        }
+        for c in 0..n - 1 {
+            if cfg.active[c] {
+                let watch = Watch::Force(c, cfg.damping[c]);
+                // A contact whose force starts at zero or below is let go at once (settle).
+                if let Ok(Some(t)) = self.first_crossing_of(solver, t0, t1, watch, 0.0, -1.0)? {
+                    consider(t, What::End(c));
+                }
+            } else {
+                if let Ok(Some(t)) =
+                    self.first_crossing_of(solver, t0, t1, Watch::Gap(c), 0.0, -1.0)?
+                {
+                    consider(t, What::Start(c));
+                }
+                // Faces that still overlap after a release: contact again where the force
+                // would push.
+                let damping = self.model.dashpot(c, &cfg.modes);
+                let overlapping = |t: f64| -> Result<bool> {
+                    Ok(self.function(solver, t, Watch::Gap(c))?.0 < 0.0)
+                };
+                if overlapping(t0)? {
+                    let watch = Watch::Force(c, damping);
+                    if let Ok(Some(t)) = self.first_crossing_of(solver, t0, t1, watch, 0.0, 1.0)? {
+                        if overlapping(t)? {
+                            consider(t, What::Start(c));
+                        }
+                    }
+                }
+            }
+        }
+        Ok(match first {
+            Some((t, what)) => Crossing::At(t, what),
+            None => Crossing::None,
+        })
+    }
+
+    /// Books the peaks of q of every column and the peak forces of the contacts within
+    /// [start, until].
+    fn peaks<'a, Eqn, S>(&mut self, solver: &S, start: &StepStart, until: f64) -> Result<()>
+    where
+        Eqn: OdeEquations<T = f64, V = Vector> + 'a,
+        S: OdeSolverMethod<'a, Eqn>,
+    {
+        if until <= start.t {
+            return Ok(());
+        }
+        let cfg = self.cfg.borrow().clone();
+        for i in 0..self.n() {
+            if let (_, Some(tp)) = self.pieces(solver, start.t, until, Watch::Q(i))? {
+                let q = self.state_at(solver, tp)?[2 * i];
+                self.recorders[i].peak_candidate(tp, q);
+            }
+        }
+        for c in 0..self.n() - 1 {
+            if !cfg.active[c] {
+                continue;
+            }
+            let watch = Watch::Force(c, cfg.damping[c]);
+            let (_, root) = self.pieces(solver, start.t, until, watch)?;
+            for t in root.into_iter().chain([until]) {
+                let p = self.function(solver, t, watch)?.0;
+                self.force_candidate(c, t, p);
+            }
+        }
+        Ok(())
+    }
+
+    fn force_candidate(&mut self, c: usize, t: f64, p: f64) {
+        if let Some((k, _)) = self.open[c] {
+            let s = &mut self.stretches[k];
+            if p > s.peak_force {
+                s.peak_force = p;
+                s.t_peak_force = t;
+            }
+        }
+    }
+
+    /// Samples every column at every grid time up to `until`.
+    fn emit<'a, Eqn, S>(
+        &mut self,
+        solver: &S,
+        grid: &mut OutputGrid,
+        until: f64,
+        inclusive: bool,
+    ) -> Result<()>
+    where
+        Eqn: OdeEquations<T = f64, V = Vector> + 'a,
+        S: OdeSolverMethod<'a, Eqn>,
+    {
+        let (n, nout) = (self.n(), self.nout());
+        while let Some(t) = grid.peek() {
+            if t > until || (!inclusive && t == until) {
+                break;
+            }
+            let (y, g) = if at_stop(t, solver.state().t) {
+                (
+                    values(solver.state().y, 2 * n),
+                    values(solver.state().g, nout),
+                )
+            } else {
+                let y = solver.interpolate(t).map_err(|e| failed(t, e))?;
+                let g = solver.interpolate_out(t).map_err(|e| failed(t, e))?;
+                (values(&y, 2 * n), values(&g, nout))
+            };
+            let floor_acc = self.floor.acceleration(t);
+            let modes = self.cfg.borrow().modes.clone();
+            for (i, r) in self.recorders.iter_mut().enumerate() {
+                r.set_contact_work(g[3 * i + 2]);
+                r.sample(
+                    t,
+                    modes[i],
+                    y[2 * i],
+                    y[2 * i + 1],
+                    floor_acc,
+                    g[3 * i],
+                    g[3 * i + 1],
+                );
+            }
+            grid.advance();
+        }
+        Ok(())
+    }
+
+    /// Applies `what` at `t` (the solver already there), then whatever else the new state
+    /// asks for at the same instant: a guard crossed by the start, a contact whose force is not
+    /// compressive after a reset. Returns true when a column overturned (the run ends).
+    fn settle<'a, Eqn, S>(&mut self, solver: &mut S, t: f64, what: Option<What>) -> Result<bool>
+    where
+        Eqn: OdeEquations<T = f64, V = Vector> + 'a,
+        S: OdeSolverMethod<'a, Eqn>,
+    {
+        let n = self.n();
+        let mut y = values(solver.state().y, 2 * n);
+        let g = values(solver.state().g, self.nout());
+        let mut next = what;
+        let mut started_now = vec![false; n - 1];
+        for _ in 0..MAX_CHAIN {
+            match next {
+                Some(What::Guard(i, guard)) => {
+                    let automaton = self.model.automaton(i);
+                    let from = self.cfg.borrow().modes[i];
+                    let before = y[2 * i + 1];
+                    let after = automaton.reset_velocity(guard.kind, before);
+                    y[2 * i] = guard.level;
+                    y[2 * i + 1] = after;
+                    self.recorders[i].set_contact_work(g[3 * i + 2]);
+                    self.recorders[i].event(
+                        t,
+                        guard.kind,
+                        from,
+                        guard.to,
+                        guard.level,
+                        before,
+                        after,
+                        self.floor.acceleration(t),
+                        g[3 * i],
+                        g[3 * i + 1],
+                    );
+                    self.budgets[i].event(t).map_err(|m| failed(t, m))?;
+                    self.cfg.borrow_mut().modes[i] = guard.to;
+                    if guard.to == Mode::Overturned {
+                        // The run ends here for every column: the state here may be a peak.
+                        for (j, r) in self.recorders.iter_mut().enumerate() {
+                            if j != i {
+                                r.peak_candidate(t, y[2 * j]);
+                            }
+                        }
+                        self.overturned = Some((i, t));
+                        self.close_open(&g);
+                        return Ok(true);
+                    }
+                }
+                Some(What::Start(c)) => {
+                    let modes = self.cfg.borrow().modes.clone();
+                    let damping = self.model.dashpot(c, &modes);
+                    {
+                        let mut cfg = self.cfg.borrow_mut();
+                        cfg.active[c] = true;
+                        cfg.damping[c] = damping;
+                    }
+                    started_now[c] = true;
+                    let closing = self.model.closing(c, &modes, &y);
+                    self.stretches.push(ContactStretch {
+                        contact: c,
+                        t_start: t,
+                        t_end: None,
+                        reduced_mass: self.model.reduced_mass(c, &modes),
+                        damping,
+                        closing_velocity: closing,
+                        separating_velocity: None,
+                        peak_force: 0.0,
+                        t_peak_force: t,
+                        energy_dissipated: 0.0,
+                    });
+                    self.open[c] = Some((self.stretches.len() - 1, g[3 * n + c]));
+                    let p = self.model.force_with(c, &modes, damping, &y);
+                    self.force_candidate(c, t, p);
+                    self.contact_events(c, t, EventKind::ContactStart, &y, &g)?;
+                }
+                Some(What::End(c)) => {
+                    self.end_contact(c, t, &y, &g)?;
+                }
+                None => {}
+            }
+            // What the state asks for at once: a guard it sits on moving across, a contact
+            // whose force is not compressive (one just started is not let go at its start).
+            next = None;
+            let cfg = self.cfg.borrow().clone();
+            for i in 0..n {
+                if let Some(guard) =
+                    self.model
+                        .automaton(i)
+                        .crossed_guard(cfg.modes[i], y[2 * i], y[2 * i + 1])
+                {
+                    next = Some(What::Guard(i, guard));
+                    break;
+                }
+            }
+            if next.is_none() {
+                next = (0..n - 1)
+                    .find(|&c| {
+                        cfg.active[c]
+                            && !started_now[c]
+                            && self.model.force_with(c, &cfg.modes, cfg.damping[c], &y) <= 0.0
+                    })
+                    .map(What::End);
+            }
+            if next.is_none() {
+                self.set_state(solver, t, &y);
+                return Ok(false);
+            }
+        }
+        Err(failed(t, "endless chain of events at one instant"))
+    }
+
+    /// Books the event `kind` (contact start or end) in both columns of contact `c`.
+    fn contact_events(
+        &mut self,
+        c: usize,
+        t: f64,
+        kind: EventKind,
+        y: &[f64],
+        g: &[f64],
+    ) -> Result<()> {
+        let modes = self.cfg.borrow().modes.clone();
+        for i in [c, c + 1] {
+            self.recorders[i].set_contact_work(g[3 * i + 2]);
+            self.recorders[i].event(
+                t,
+                kind,
+                modes[i],
+                modes[i],
+                y[2 * i],
+                y[2 * i + 1],
+                y[2 * i + 1],
+                self.floor.acceleration(t),
+                g[3 * i],
+                g[3 * i + 1],
+            );
+            self.budgets[i].event(t).map_err(|m| failed(t, m))?;
+        }
+        Ok(())
+    }
+
+    /// Lets contact `c` go at `t`.
+    fn end_contact(&mut self, c: usize, t: f64, y: &[f64], g: &[f64]) -> Result<()> {
+        let n = self.n();
+        self.cfg.borrow_mut().active[c] = false;
+        let modes = self.cfg.borrow().modes.clone();
+        if let Some((k, dissipation)) = self.open[c].take() {
+            let s = &mut self.stretches[k];
+            s.t_end = Some(t);
+            s.separating_velocity = Some(-self.model.closing(c, &modes, y));
+            s.energy_dissipated = g[3 * n + c] - dissipation;
+        }
+        self.contact_events(c, t, EventKind::ContactEnd, y, g)
+    }
+
+    /// Closes the books of the stretches still open at the end of the run.
+    fn close_open(&mut self, g: &[f64]) {
+        let n = self.n();
+        for c in 0..n - 1 {
+            if let Some((k, dissipation)) = self.open[c].take() {
+                self.stretches[k].energy_dissipated = g[3 * n + c] - dissipation;
+            }
+        }
+    }
+
+    /// Sets the solver's time and state, with derivatives consistent with the configuration.
+    fn set_state<'a, Eqn, S>(&self, solver: &mut S, t: f64, x: &[f64])
+    where
+        Eqn: OdeEquations<T = f64, V = Vector> + 'a,
+        S: OdeSolverMethod<'a, Eqn>,
+    {
+        let floor_acc = self.floor.acceleration(t);
+        let mut dy = vec![0.0; x.len()];
+        let mut dg = vec![0.0; self.nout()];
+        {
+            let cfg = self.cfg.borrow();
+            self.model.rhs(&cfg, x, floor_acc, &mut dy);
+            self.model.integrands(&cfg, x, floor_acc, &mut dg);
+        }
+        let state = solver.state_mut();
+        *state.t = t;
+        for i in 0..x.len() {
+            state.y[i] = x[i];
+            state.dy[i] = dy[i];
+        }
+        for (i, v) in dg.into_iter().enumerate() {
+            state.dg[i] = v;
+        }
+    }
+
+    /// Moves the solver's clock onto a stop time it reached to within [`STOP_TOLERANCE`] (as
+    /// the single body's adaptive driver does).
+    fn snap_to_stop<'a, Eqn, S>(&self, solver: &mut S, stop: f64, h_taken: f64)
+    where
+        Eqn: OdeEquations<T = f64, V = Vector> + 'a,
+        S: OdeSolverMethod<'a, Eqn>,
+    {
+        let sliver = solver.state().h < 1e-3 * h_taken;
+        let drift = (solver.state().t - stop).abs();
+        if !sliver && drift <= SNAP_ULPS * f64::EPSILON * stop.abs() {
+            return;
+        }
+        let state = solver.state_mut();
+        *state.t = stop;
+        if sliver {
+            *state.h = h_taken;
+        }
+    }
+}
+
+/// The function an event is found on.
+#[derive(Debug, Clone, Copy)]
+enum Watch {
+    /// q of a column.
+    Q(usize),
+    /// The gap of a contact.
+    Gap(usize),
+    /// The force of a contact, with its dashpot.
+    Force(usize, f64),
+}
