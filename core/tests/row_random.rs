@@ -6,6 +6,7 @@
 //! case names (the three- and four-column cases of `row.rs` were found this way).
 
 use proptest::prelude::*;
+use proptest::test_runner::RngSeed;
 
 const RECORDS: [&str; 5] = [
     "A-ELC180.AT2",
@@ -19,6 +20,12 @@ proptest! {
     #![proptest_config(ProptestConfig {
         cases: 48,
         failure_persistence: None,
+        // The same cases on every machine (so that CI is not a lottery); set
+        // PROPTEST_RNG_SEED to explore others.
+        rng_seed: std::env::var("PROPTEST_RNG_SEED")
+            .ok()
+            .and_then(|s| s.parse().ok())
+            .map_or(RngSeed::Fixed(20_261_126), RngSeed::Fixed),
         ..ProptestConfig::default()
     })]
 
@@ -78,6 +85,7 @@ proptest! {
             }
         }
         for (i, column) in solution.columns.iter().enumerate() {
+            // An impact right after a column's own event is booked after it, not an ulp before.
             prop_assert!(column.events.windows(2).all(|w| w[0].t <= w[1].t), "column {}: events out of order\n{}", i, text);
             let share = column.energy_residual_share();
             prop_assert!(share < 1e-8, "column {}: energy residual {} of its scale\n{}", i, share, text);

@@ -517,7 +517,9 @@ impl<'a> Run<'a> {
         time_error: f64,
         budget: &mut RunBudget,
     ) -> Result<(), SolverError> {
-        let (t, q) = (self.t, self.q.value());
+        // At the run's own time, with the rest of an event's crossing that lies between
+        // doubles (as that event was booked), so that the impact is not booked before it.
+        let (t, q) = (self.t + self.t_lo, self.q.value());
         self.event_errors.push(time_error);
         self.recorder.event(
             t,
