@@ -471,8 +471,7 @@ fn run_row(
     let shapes_at = shapes_at
         .map(|text| flexrock::figures::row::parse_shape_times(text, model.duration))
         .transpose()?;
-    let report =
-        flexrock::commands::row::run_row_to_dir(&model, &out, plot, shapes_at.as_deref())?;
+    let report = flexrock::commands::row::run_row_to_dir(&model, &out, plot, shapes_at.as_deref())?;
     Ok(Output {
         stdout: flexrock::commands::row::row_report_text(&model, &report).into_bytes(),
         warnings: Vec::new(),

@@ -295,7 +295,10 @@ fn the_strip_of_shapes_is_drawn_at_the_times_given() {
             .unwrap_or_else(|| panic!("no panel titled {title}"))
     };
     assert!(at("t = 0 s") < at("t = 0.25 s") && at("t = 0.25 s") < at("t = 1.5 s"));
-    assert!(svg.contains("true scale"), "the strip should say it is to scale");
+    assert!(
+        svg.contains("true scale"),
+        "the strip should say it is to scale"
+    );
     let png = std::fs::read(out.join("row_shapes.png")).unwrap();
     assert_eq!(&png[1..4], b"PNG");
 }

@@ -315,6 +315,20 @@ pub fn encode_png(name: &str, pixels: &[u8], (width, height): (u32, u32)) -> Res
     Ok(bytes)
 }
 
+/// The width in pixels of an `equal_aspect` panel `height` pixels high whose data span `span`
+/// (across, up, in the same unit) fills its height: the width at which the axes are widened
+/// across only (so nothing is added below or above the data). With no legend strip.
+pub fn equal_aspect_width(height: u32, (across, up): (f64, f64)) -> u32 {
+    let plot_h = f64::from(
+        height
+            .saturating_sub(X_LABEL_AREA + 2 * MARGIN + CAPTION)
+            .max(1),
+    );
+    // The paddings of `axis_ranges`: 3 % each side across, 5 % up and down.
+    let plot_w = plot_h * (1.06 * across) / (1.1 * up);
+    plot_w.ceil() as u32 + 2 + Y_LABEL_AREA + 2 * MARGIN
+}
+
 fn grid_size(panels: &[Panel], columns: usize, size: (u32, u32)) -> (u32, u32) {
     let columns = columns.max(1);
     let rows = panels.len().div_ceil(columns).max(1);

@@ -134,6 +134,8 @@ pub fn panels(model: &RowModel, solution: &RowSolution) -> Vec<Panel> {
             }
         })
         .collect();
+    // The legend lists the pairs in order.
+    gaps.spans.sort_by_key(|span| span.color);
     gaps.legend = Legend::Outside;
     let mut panels = vec![floor, q, gaps];
     for (k, panel) in panels.iter_mut().enumerate() {
@@ -153,8 +155,8 @@ pub const SHAPES_FIGURE: &str = "row_shapes";
 pub const MAX_SHAPE_TIMES: usize = 8;
 /// How many times the strip chooses on its own.
 const AUTOMATIC_TIMES: usize = 4;
-/// Each panel's size in pixels.
-const SHAPE_PANEL: (u32, u32) = (430, 820);
+/// Each panel's smallest width and its height in pixels.
+const SHAPE_PANEL: (u32, u32) = (420, 820);
 /// Points along each face of a drawn column.
 const FACE_POINTS: usize = 40;
 /// A contact whose clear gap is within this of zero (m) is drawn as touching.
@@ -198,7 +200,12 @@ pub fn automatic_shape_times(model: &RowModel, solution: &RowSolution) -> Vec<Sh
         .columns
         .iter()
         .enumerate()
-        .flat_map(|(i, c)| [(c.max_q.value.abs(), c.max_q.t, i), (c.min_q.value.abs(), c.min_q.t, i)])
+        .flat_map(|(i, c)| {
+            [
+                (c.max_q.value.abs(), c.max_q.t, i),
+                (c.min_q.value.abs(), c.min_q.t, i),
+            ]
+        })
         .filter(|(q, _, _)| *q > 0.0)
         .max_by(|a, b| a.0.total_cmp(&b.0));
     if let Some((_, t, i)) = lean {
@@ -287,9 +294,7 @@ pub fn column_outline(
     mode: flexrock_core::automaton::Mode,
     shape: &dyn Fn(f64) -> f64,
 ) -> Vec<(f64, f64)> {
-    let place = |x: f64, y: f64| {
-        deformed_point(x0, (width, height), (s, r), mode, shape, (x, y))
-    };
+    let place = |x: f64, y: f64| deformed_point(x0, (width, height), (s, r), mode, shape, (x, y));
     let heights: Vec<f64> = (0..=FACE_POINTS)
         .map(|k| height * k as f64 / FACE_POINTS as f64)
         .collect();
@@ -333,7 +338,16 @@ pub fn shape_figures(
         states.push(flexrock_core::simulate::row_state_at(model, time.t)?);
     }
     let panels = shape_panels(model, solution, times, &states);
-    let size = (SHAPE_PANEL.0 * panels.len() as u32, SHAPE_PANEL.1);
+    // Each panel as wide as the row drawn to scale needs, and room for its title and legend.
+    let span = panels
+        .first()
+        .and_then(|p| p.series.last())
+        .map_or((1.0, 1.0), |frame| {
+            let (a, b) = (frame.points[0], frame.points[1]);
+            (b.0 - a.0, b.1 - a.1)
+        });
+    let width = plot::equal_aspect_width(SHAPE_PANEL.1, span).max(SHAPE_PANEL.0);
+    let size = (width * panels.len() as u32, SHAPE_PANEL.1);
     let mut files = Vec::new();
     for format in [Format::Svg, Format::Png] {
         let name = format!("{SHAPES_FIGURE}.{}", format.extension());
@@ -421,9 +435,7 @@ pub fn shape_panels(
             );
             let gap = contact.gap(automata, (l.mode, l.q), (r.mode, r.q));
             let held = solution.held.iter().any(|h| {
-                h.contact == c
-                    && h.t_start <= time.t
-                    && h.t_end.is_none_or(|end| time.t <= end)
+                h.contact == c && h.t_start <= time.t && h.t_end.is_none_or(|end| time.t <= end)
             });
             let struck = solution
                 .impacts
@@ -458,7 +470,7 @@ pub fn shape_panels(
     // One scale for every panel: the same ranges, from the floor to above the tallest column
     // (room for the legend), across the row and a margin.
     let tallest = model.bodies.iter().map(|b| b.height).fold(0.0, f64::max);
-    let margin = 0.25 * (bounds.1 - bounds.0).max(0.5);
+    let margin = 0.15 * (bounds.1 - bounds.0).max(1.0);
     let (left, right) = (bounds.0 - margin, bounds.1 + margin);
     // The legend (a line of 28 pixels for each column and each contact, and its frame) must
     // fit above the columns in a plotting area about 680 pixels high showing 1.1 times the
@@ -502,16 +514,35 @@ mod tests {
         let lift = b * r / h;
         // Left face: bottom to top; right face: top to bottom; closed.
         assert!(close(outline[0], (x0, lift)), "{:?}", outline[0]);
-        assert!(close(outline[n], (x0 + s + r, h + lift)), "{:?}", outline[n]);
-        assert!(close(outline[n + 1], (x0 + b + s + r, h)), "{:?}", outline[n + 1]);
-        assert!(close(outline[2 * n + 1], (x0 + b, 0.0)), "{:?}", outline[2 * n + 1]);
+        assert!(
+            close(outline[n], (x0 + s + r, h + lift)),
+            "{:?}",
+            outline[n]
+        );
+        assert!(
+            close(outline[n + 1], (x0 + b + s + r, h)),
+            "{:?}",
+            outline[n + 1]
+        );
+        assert!(
+            close(outline[2 * n + 1], (x0 + b, 0.0)),
+            "{:?}",
+            outline[2 * n + 1]
+        );
         assert_eq!(outline[2 * n + 2], outline[0]);
         let mid = outline[n / 2];
-        assert!(close(mid, (x0 + s / 4.0 + r / 2.0, h / 2.0 + lift)), "{mid:?}");
+        assert!(
+            close(mid, (x0 + s / 4.0 + r / 2.0, h / 2.0 + lift)),
+            "{mid:?}"
+        );
         // Rocking about the left toe: it stays, the right toe lifts.
         let outline = column_outline(x0, (b, h), (-s, -r), Mode::RockLeft, &shape);
         assert!(close(outline[0], (x0, 0.0)), "{:?}", outline[0]);
-        assert!(close(outline[2 * n + 1], (x0 + b, lift)), "{:?}", outline[2 * n + 1]);
+        assert!(
+            close(outline[2 * n + 1], (x0 + b, lift)),
+            "{:?}",
+            outline[2 * n + 1]
+        );
         assert!(close(outline[n], (x0 - s - r, h)), "{:?}", outline[n]);
         // Before uplift both toes stay on the floor.
         let outline = column_outline(x0, (b, h), (s, 0.0), Mode::PreUplift, &shape);
@@ -526,13 +557,15 @@ mod tests {
             std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("models/row-record.toml"),
         )
         .unwrap();
-        let model = row_model(&text.replace(
-            "../validation/records/elCentro.AT2",
-            std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-                .join("validation/records/elCentro.AT2")
-                .to_str()
-                .unwrap(),
-        ));
+        let model = row_model(
+            &text.replace(
+                "../validation/records/elCentro.AT2",
+                std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+                    .join("validation/records/elCentro.AT2")
+                    .to_str()
+                    .unwrap(),
+            ),
+        );
         let at = base_positions(&model);
         assert_eq!(at.len(), 3);
         assert!(close((at[0], at[1]), (0.0, 0.7 + 0.015)));
