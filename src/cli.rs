@@ -34,7 +34,7 @@ pub(crate) enum Command {
     Run {
         /// Model file (TOML): one body, or a row of columns (a [row] table and one [[column]]
         /// per column: each column's files, impacts.csv and summary.json; only --out,
-        /// --duration and --plot apply).
+        /// --duration, --plot and --shapes-at apply).
         model: PathBuf,
         /// Output directory [default: out/<model file stem>].
         #[arg(long)]
@@ -71,6 +71,13 @@ pub(crate) enum Command {
         /// plot_energy.svg), written with the run's files as one set.
         #[arg(long)]
         plot: bool,
+        /// A row only: the times (s, comma-separated, at most 8, within the duration) of the
+        /// strip of the row's deformed shapes, row_shapes.svg and .png (drawn to true scale at
+        /// the model's exact state at each time; drawn even without --plot). Without it, --plot
+        /// draws the strip at times chosen from the run (first uplift, first impact, largest
+        /// lean, held contact, last impact).
+        #[arg(long, value_name = "T1,T2,...", allow_hyphen_values = true)]
+        shapes_at: Option<String>,
         #[command(flatten)]
         timings: TimingsArg,
     },

@@ -226,6 +226,7 @@ fn execute(command: Command) -> flexrock::Result<Output> {
             set,
             check,
             plot,
+            shapes_at,
             timings,
         } => {
             let overrides = Overrides {
@@ -237,7 +238,15 @@ fn execute(command: Command) -> flexrock::Result<Output> {
                 newmark_variant: variant,
                 settings: set.settings_for(&path),
             };
-            run(&path, out, &overrides, check, plot, timings.wall_times())
+            run(
+                &path,
+                out,
+                &overrides,
+                check,
+                plot,
+                shapes_at.as_deref(),
+                timings.wall_times(),
+            )
         }
         Command::Plot(args) => plot(args),
         Command::Events { dir, csv, json } => events(&dir, csv, json),
@@ -383,10 +392,20 @@ fn run(
     overrides: &Overrides,
     check: bool,
     plot: bool,
+    shapes_at: Option<&str>,
     wall_times: flexrock::writers::WallTimes,
 ) -> flexrock::Result<Output> {
     if is_row_model(path) {
-        return run_row(path, out, overrides, check, plot);
+        return run_row(path, out, overrides, check, plot, shapes_at);
+    }
+    if let Some(times) = shapes_at {
+        return Err(flexrock_core::Error::invalid(
+            "--shapes-at",
+            times.to_string(),
+            "applies only to a row model (a file with a [row] table): it sets the times of the \
+             strip of the row's shapes, row_shapes.svg",
+        )
+        .into());
     }
     let model = load(path, overrides)?;
     let out = out.unwrap_or_else(|| default_out_dir(path, ""));
@@ -410,13 +429,14 @@ fn is_row_model(path: &std::path::Path) -> bool {
         .is_ok_and(|(_, table)| flexrock_core::model::is_row_table(&table))
 }
 
-/// `flexrock run` on a row model: only `--duration`, `--out` and `--plot` apply.
+/// `flexrock run` on a row model: only `--duration`, `--out`, `--plot` and `--shapes-at` apply.
 fn run_row(
     path: &std::path::Path,
     out: Option<PathBuf>,
     overrides: &Overrides,
     check: bool,
     plot: bool,
+    shapes_at: Option<&str>,
 ) -> flexrock::Result<Output> {
     let refuse = |flag: &str, value: String| -> flexrock::Result<Output> {
         Err(flexrock_core::Error::invalid(
@@ -447,7 +467,11 @@ fn run_row(
         .map_err(|e| e.renamed("simulation.duration", "--duration"))?;
     let out = out.unwrap_or_else(|| default_out_dir(path, ""));
     flexrock::writers::check_creatable(&out)?;
-    let report = flexrock::commands::row::run_row_to_dir(&model, &out, plot)?;
+    // The strip's times are checked against the row's duration before anything is written.
+    let shapes_at = shapes_at
+        .map(|text| flexrock::figures::row::parse_shape_times(text, model.duration))
+        .transpose()?;
+    let report = flexrock::commands::row::run_row_to_dir(&model, &out, plot, shapes_at.as_deref())?;
     Ok(Output {
         stdout: flexrock::commands::row::row_report_text(&model, &report).into_bytes(),
         warnings: Vec::new(),

@@ -30,6 +30,8 @@ fn a_row_run_writes_every_column_and_the_impacts_the_same_twice() {
             "impacts.csv",
             "row_motion.png",
             "row_motion.svg",
+            "row_shapes.png",
+            "row_shapes.svg",
             "summary.json"
         ]
     );
@@ -351,4 +353,97 @@ fn columns_pressed_together_under_a_record_are_held_and_their_books_close() {
         let scale = column["energy_scale"].as_f64().unwrap();
         assert!(residual <= 1e-12 * scale, "{residual} of {scale}");
     }
+}
+
+/// `--shapes-at` draws the strip at the times given, sorted, even without --plot, with the other
+/// files of the run; each panel's title names its time.
+#[test]
+fn the_strip_of_shapes_is_drawn_at_the_times_given() {
+    let dir = scratch_dir("rows-shapes");
+    let model = dir.join("row.toml");
+    std::fs::write(&model, ROW).unwrap();
+    let out = dir.join("out");
+    let o = run(&model, &out, &["--shapes-at", "1.5, 0.25,0"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let mut names: Vec<String> = std::fs::read_dir(&out)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().to_string())
+        .collect();
+    names.sort();
+    assert!(names.contains(&"row_shapes.svg".to_string()), "{names:?}");
+    assert!(names.contains(&"row_shapes.png".to_string()), "{names:?}");
+    assert!(!names.contains(&"row_motion.svg".to_string()), "{names:?}");
+    assert!(names.contains(&"summary.json".to_string()), "{names:?}");
+    let svg = std::fs::read_to_string(out.join("row_shapes.svg")).unwrap();
+    let at = |title: &str| {
+        // A title is the whole text of its element.
+        svg.lines()
+            .position(|line| line.trim() == title || line.contains(&format!(">{title}<")))
+            .unwrap_or_else(|| panic!("no panel titled {title}"))
+    };
+    assert!(at("t = 0 s") < at("t = 0.25 s") && at("t = 0.25 s") < at("t = 1.5 s"));
+    assert!(
+        svg.contains("true scale"),
+        "the strip should say it is to scale"
+    );
+    let png = std::fs::read(out.join("row_shapes.png")).unwrap();
+    assert_eq!(&png[1..4], b"PNG");
+}
+
+/// Bad times for the strip are refused naming the flag, the value and the rule, with exit code 2
+/// and nothing written: an output directory from before keeps its files as they were.
+#[test]
+fn hostile_shape_times_are_refused_with_no_output() {
+    let dir = scratch_dir("rows-shapes-hostile");
+    let model = dir.join("row.toml");
+    // The row of ROW runs 2 s.
+    std::fs::write(&model, ROW).unwrap();
+    let earlier = dir.join("earlier");
+    std::fs::create_dir_all(&earlier).unwrap();
+    std::fs::write(earlier.join("summary.json"), "kept").unwrap();
+    for (value, rule) in [
+        ("nan", "finite and within [0, 2] s"),
+        ("1,inf", "finite and within [0, 2] s"),
+        ("-0.5", "finite and within [0, 2] s"),
+        ("2.5", "finite and within [0, 2] s"),
+        ("1e308", "finite and within [0, 2] s"),
+        ("1,,2", "is not a number"),
+        ("one", "is not a number"),
+        ("", "is not a number"),
+        ("0,0.2,0.4,0.6,0.8,1,1.2,1.4,1.6", "at most 8 times"),
+    ] {
+        for out in [dir.join("new"), earlier.clone()] {
+            let o = run(&model, &out, &["--plot", &format!("--shapes-at={value}")]);
+            let stderr = String::from_utf8_lossy(&o.stderr);
+            assert_eq!(o.status.code(), Some(2), "{value}: {stderr}");
+            assert!(
+                stderr.contains(&format!("--shapes-at = {value:?}"))
+                    || stderr.contains(&format!("--shapes-at = {value}")),
+                "{value}: {stderr}"
+            );
+            assert!(stderr.contains(rule), "{value}: {stderr}");
+            assert!(!stderr.contains("panicked"), "{value}: {stderr}");
+        }
+        assert!(!dir.join("new").exists(), "{value}: output written");
+        let names: Vec<_> = std::fs::read_dir(&earlier).unwrap().collect();
+        assert_eq!(names.len(), 1, "{value}: files added");
+        assert_eq!(
+            std::fs::read_to_string(earlier.join("summary.json")).unwrap(),
+            "kept"
+        );
+    }
+    // A single body has no strip.
+    let out = dir.join("single");
+    let o = run(
+        &repo("models/ichinose1986.toml"),
+        &out,
+        &["--shapes-at", "1.0"],
+    );
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains("--shapes-at") && stderr.contains("applies only to a row model"),
+        "{stderr}"
+    );
+    assert!(!out.exists());
 }

@@ -5,6 +5,7 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use crate::error::Result;
+use crate::figures::row::ShapeTime;
 use crate::writers;
 use flexrock_core::automaton::EventKind;
 use flexrock_core::columns::fields;
@@ -23,9 +24,17 @@ pub struct RowReport {
 
 /// Solves a row and writes, for each column i (from 0, left to right), `history-i.csv`,
 /// `events-i.csv` and `episodes-i.csv` (the columns of a single body's files), and
-/// `impacts.csv`, `summary.json` and, with `plots`, `row_motion.svg` and `row_motion.png`, as
-/// one atomic set. Nothing in them depends on the machine: the same row gives the same bytes.
-pub fn run_row_to_dir(model: &RowModel, out_dir: &Path, plots: bool) -> Result<RowReport> {
+/// `impacts.csv`, `summary.json` and, with `plots`, `row_motion.svg` and `row_motion.png` and
+/// the strip of the row's shapes `row_shapes.svg` and `row_shapes.png` (at `shapes_at`, or at
+/// the times [`crate::figures::row::automatic_shape_times`] chooses), as one atomic set. Times
+/// given without `plots` draw the strip alone. Nothing in them depends on the machine: the
+/// same row gives the same bytes.
+pub fn run_row_to_dir(
+    model: &RowModel,
+    out_dir: &Path,
+    plots: bool,
+    shapes_at: Option<&[ShapeTime]>,
+) -> Result<RowReport> {
     let solution = simulate_row(model)?;
     let mut files: Vec<(String, Vec<u8>)> = Vec::new();
     for (i, column) in solution.columns.iter().enumerate() {
@@ -53,6 +62,15 @@ pub fn run_row_to_dir(model: &RowModel, out_dir: &Path, plots: bool) -> Result<R
     ));
     if plots {
         files.extend(crate::figures::row::figures(model, &solution)?);
+    }
+    if plots || shapes_at.is_some() {
+        let times = match shapes_at {
+            Some(times) => times.to_vec(),
+            None => crate::figures::row::automatic_shape_times(model, &solution),
+        };
+        files.extend(crate::figures::row::shape_figures(
+            model, &solution, &times,
+        )?);
     }
     let named: Vec<(&str, Vec<u8>)> = files
         .iter()

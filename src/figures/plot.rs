@@ -114,6 +114,23 @@ pub struct Panel {
     pub dashed_lines: Vec<(f64, String)>,
     /// Thin vertical lines across the whole panel (events in time), drawn under the series.
     pub vertical_lines: Vec<VerticalLine>,
+    /// Shaded stretches of the x axis across the whole panel (e.g. a state that lasts), drawn
+    /// over the vertical lines and under the series.
+    pub spans: Vec<Span>,
+}
+
+/// A stretch of the x axis shaded across a panel, in a pale palette colour; the first span of
+/// each non-empty label gets a legend entry.
+#[derive(Debug, Clone)]
+pub struct Span {
+    /// Where it starts.
+    pub from: f64,
+    /// Where it ends.
+    pub to: f64,
+    /// Index into the palette.
+    pub color: usize,
+    /// The legend text (empty: none).
+    pub label: String,
 }
 
 impl Panel {
@@ -298,6 +315,20 @@ pub fn encode_png(name: &str, pixels: &[u8], (width, height): (u32, u32)) -> Res
     Ok(bytes)
 }
 
+/// The width in pixels of an `equal_aspect` panel `height` pixels high whose data span `span`
+/// (across, up, in the same unit) fills its height: the width at which the axes are widened
+/// across only (so nothing is added below or above the data). With no legend strip.
+pub fn equal_aspect_width(height: u32, (across, up): (f64, f64)) -> u32 {
+    let plot_h = f64::from(
+        height
+            .saturating_sub(X_LABEL_AREA + 2 * MARGIN + CAPTION)
+            .max(1),
+    );
+    // The paddings of `axis_ranges`: 3 % each side across, 5 % up and down.
+    let plot_w = plot_h * (1.06 * across) / (1.1 * up);
+    plot_w.ceil() as u32 + 2 + Y_LABEL_AREA + 2 * MARGIN
+}
+
 fn grid_size(panels: &[Panel], columns: usize, size: (u32, u32)) -> (u32, u32) {
     let columns = columns.max(1);
     let rows = panels.len().div_ceil(columns).max(1);
@@ -359,6 +390,7 @@ enum Swatch {
     Dashed(RGBColor, u32),
     Vertical(RGBColor),
     Marker(RGBColor, Marker),
+    Band(RGBColor),
 }
 
 /// Draws markers of `shape` centred on `points` (in the coordinates of `area`). Each shape is
@@ -739,6 +771,12 @@ fn legend_entries<'p>(
         }
     }
     let mut seen: Vec<&str> = Vec::new();
+    for span in &panel.spans {
+        if !span.label.is_empty() && !seen.contains(&span.label.as_str()) {
+            seen.push(&span.label);
+            legend.push((&span.label, Swatch::Band(span_colour(span.color))));
+        }
+    }
     for v in &panel.vertical_lines {
         if !v.label.is_empty() && !seen.contains(&v.label.as_str()) {
             seen.push(&v.label);
@@ -750,6 +788,13 @@ fn legend_entries<'p>(
 
 const REFERENCE_GREY: RGBColor = RGBColor(150, 150, 150);
 const DASHED_GREY: RGBColor = RGBColor(90, 90, 90);
+
+/// The colour of a shaded span: the palette colour, three fifths white.
+fn span_colour(color: usize) -> RGBColor {
+    let c = PALETTE[color % PALETTE.len()];
+    let pale = |v: u8| ((2 * u16::from(v) + 3 * 255) / 5) as u8;
+    RGBColor(pale(c.0), pale(c.1), pale(c.2))
+}
 
 /// The colour of a vertical event line: the palette colour, lightened.
 fn event_colour(color: usize) -> RGBColor {
@@ -934,6 +979,16 @@ where
             event_colour(v.color).stroke_width(1),
         ))?;
     }
+    for span in &panel.spans {
+        let (Some(a), Some(b)) = (panel.x_axis(span.from), panel.x_axis(span.to)) else {
+            continue;
+        };
+        let (a, b) = (a.clamp(x0, x1), b.clamp(x0, x1));
+        chart.draw_series(std::iter::once(Rectangle::new(
+            [(a, y0), (b, y1)],
+            span_colour(span.color).filled(),
+        )))?;
+    }
     for (level, _) in &panel.reference_lines {
         let Some(level) = panel.y_axis(*level) else {
             continue;
@@ -1047,6 +1102,10 @@ where
             Swatch::Marker(color, shape) => {
                 draw_markers(area, &[(x + swatch_width / 2, y)], shape, color)?
             }
+            Swatch::Band(color) => area.draw(&Rectangle::new(
+                [(x, y - step / 2 + 4), (x + swatch_width, y + step / 2 - 4)],
+                color.filled(),
+            ))?,
         }
         area.draw(&Text::new(
             label.to_string(),

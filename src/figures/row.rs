@@ -2,10 +2,14 @@
 //! column's top displacement q(t); and the clear gap of every contact, which falls to zero at
 //! each impact. Impacts are thin vertical lines in every panel. The gaps come from the row's
 //! own contact geometry ([`flexrock_core::row::Contact::gap`]): no formula of the model is
-//! written here.
+//! written here. Stretches of held (persistent) contact are shaded on the gap panel.
+//!
+//! And the strip `row_shapes.svg` (and `.png`): the row drawn to true scale at a few instants,
+//! each column in its deformed shape at the model's exact state there
+//! ([`flexrock_core::simulate::row_state_at`]).
 
 use crate::error::Result;
-use crate::figures::plot::{self, Format, Legend, Panel, Series, VerticalLine};
+use crate::figures::plot::{self, Format, Legend, Panel, Series, Span, VerticalLine};
 use flexrock_core::model::RowModel;
 use flexrock_core::row::RowSolution;
 
@@ -112,6 +116,26 @@ pub fn panels(model: &RowModel, solution: &RowSolution) -> Vec<Panel> {
         gaps = gaps.with(Series::line(&name, points, c + 1).with_width(2));
     }
     gaps.reference_lines = vec![(0.0, "contact".to_string())];
+    // Held contact (persistent contact), shaded over its stretch in the pair's colour.
+    gaps.spans = solution
+        .held
+        .iter()
+        .map(|h| {
+            let stretches = solution
+                .held
+                .iter()
+                .filter(|o| o.contact == h.contact)
+                .count();
+            Span {
+                from: h.t_start,
+                to: h.t_end.unwrap_or(solution.final_time),
+                color: h.contact + 1,
+                label: format!("{}|{} held ({stretches})", h.contact, h.contact + 1),
+            }
+        })
+        .collect();
+    // The legend lists the pairs in order.
+    gaps.spans.sort_by_key(|span| span.color);
     gaps.legend = Legend::Outside;
     let mut panels = vec![floor, q, gaps];
     for (k, panel) in panels.iter_mut().enumerate() {
@@ -123,4 +147,480 @@ pub fn panels(model: &RowModel, solution: &RowSolution) -> Vec<Panel> {
         }
     }
     panels
+}
+
+/// The strip's file stem.
+pub const SHAPES_FIGURE: &str = "row_shapes";
+/// The most times a strip draws.
+pub const MAX_SHAPE_TIMES: usize = 8;
+/// How many times the strip chooses on its own.
+const AUTOMATIC_TIMES: usize = 4;
+/// Each panel's smallest width and its height in pixels.
+const SHAPE_PANEL: (u32, u32) = (420, 820);
+/// Points along each face of a drawn column.
+const FACE_POINTS: usize = 40;
+/// A contact whose clear gap is within this of zero (m) is drawn as touching.
+const TOUCHING: f64 = 1e-9;
+
+/// One time of the strip, and why it was chosen (empty when the user gave it).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ShapeTime {
+    /// The time, s.
+    pub t: f64,
+    /// Why it was chosen, e.g. "first impact" (empty: given with --shapes-at).
+    pub why: String,
+}
+
+/// The strip's times when none are given: in this order of preference, the first uplift of any
+/// column, the first impact, the largest lean of the row (the largest |q| of any column), the
+/// middle of the longest stretch of held contact, and the last impact; at most
+/// `AUTOMATIC_TIMES` (4) of them, a time within 1 % of the duration of one already taken left
+/// out, sorted. A row where none of these happens (a row at rest) is drawn at its end.
+pub fn automatic_shape_times(model: &RowModel, solution: &RowSolution) -> Vec<ShapeTime> {
+    use flexrock_core::automaton::EventKind;
+    let mut candidates: Vec<(f64, String)> = Vec::new();
+    let first_uplift = solution
+        .columns
+        .iter()
+        .enumerate()
+        .filter_map(|(i, c)| {
+            c.events
+                .iter()
+                .find(|e| e.kind == EventKind::Uplift)
+                .map(|e| (e.t, i))
+        })
+        .min_by(|a, b| a.0.total_cmp(&b.0));
+    if let Some((t, i)) = first_uplift {
+        candidates.push((t, format!("first uplift of {i}")));
+    }
+    if let Some(first) = solution.impacts.first() {
+        candidates.push((first.t, "first impact".to_string()));
+    }
+    let lean = solution
+        .columns
+        .iter()
+        .enumerate()
+        .flat_map(|(i, c)| {
+            [
+                (c.max_q.value.abs(), c.max_q.t, i),
+                (c.min_q.value.abs(), c.min_q.t, i),
+            ]
+        })
+        .filter(|(q, _, _)| *q > 0.0)
+        .max_by(|a, b| a.0.total_cmp(&b.0));
+    if let Some((_, t, i)) = lean {
+        candidates.push((t, format!("largest lean of {i}")));
+    }
+    let longest = solution
+        .held
+        .iter()
+        .map(|h| (h.t_start, h.t_end.unwrap_or(solution.final_time)))
+        .max_by(|a, b| (a.1 - a.0).total_cmp(&(b.1 - b.0)));
+    if let Some((from, to)) = longest {
+        candidates.push((0.5 * (from + to), "held contact".to_string()));
+    }
+    if let Some(last) = solution.impacts.last() {
+        candidates.push((last.t, "last impact".to_string()));
+    }
+    let apart = 0.01 * model.duration;
+    let mut chosen: Vec<ShapeTime> = Vec::new();
+    for (t, why) in candidates {
+        if chosen.len() == AUTOMATIC_TIMES {
+            break;
+        }
+        if chosen.iter().all(|c| (c.t - t).abs() > apart) {
+            chosen.push(ShapeTime { t, why });
+        }
+    }
+    if chosen.is_empty() {
+        chosen.push(ShapeTime {
+            t: solution.final_time,
+            why: "end".to_string(),
+        });
+    }
+    chosen.sort_by(|a, b| a.t.total_cmp(&b.t));
+    chosen
+}
+
+/// The times of `--shapes-at` (comma-separated seconds), sorted: each finite and in
+/// [0, `duration`], at most [`MAX_SHAPE_TIMES`]. Errors name the flag, the value and the rule.
+pub fn parse_shape_times(text: &str, duration: f64) -> Result<Vec<ShapeTime>> {
+    let refuse = |rule: String| -> crate::error::Error {
+        flexrock_core::Error::invalid("--shapes-at", text.to_string(), &rule).into()
+    };
+    let mut times = Vec::new();
+    for item in text.split(',') {
+        let item = item.trim();
+        let t: f64 = item.parse().map_err(|_| {
+            refuse(format!(
+                "must be times in seconds separated by commas (e.g. 1.2,3.5); {item:?} is not a number"
+            ))
+        })?;
+        if !(t.is_finite() && (0.0..=duration).contains(&t)) {
+            return Err(refuse(format!(
+                "every time must be finite and within [0, {duration}] s, the run's duration; {item} is not"
+            )));
+        }
+        times.push(t);
+    }
+    if times.len() > MAX_SHAPE_TIMES {
+        return Err(refuse(format!(
+            "at most {MAX_SHAPE_TIMES} times (one panel each); {} given",
+            times.len()
+        )));
+    }
+    times.sort_by(f64::total_cmp);
+    times.dedup();
+    Ok(times
+        .into_iter()
+        .map(|t| ShapeTime {
+            t,
+            why: String::new(),
+        })
+        .collect())
+}
+
+/// A column's outline in its deformed shape, closed (m, the floor at y = 0): the body of width
+/// `width` and height `height` standing with its left toe at `x0` at rest, each section moved
+/// across by `s` U(y/H) (`shape` is U, 1 at the top), then turned as a rigid body by r/H about
+/// its pivot toe (the right toe for `Mode::RockRight`, the left for `Mode::RockLeft`; before
+/// uplift r = 0), to the small-rotation order of the model: a point at (x, y) moves by
+/// (y r/H, -(x - x_pivot) r/H). So the top moves across by s + r = q and the toe away from the
+/// pivot lifts by B |r| / H.
+pub fn column_outline(
+    x0: f64,
+    (width, height): (f64, f64),
+    (s, r): (f64, f64),
+    mode: flexrock_core::automaton::Mode,
+    shape: &dyn Fn(f64) -> f64,
+) -> Vec<(f64, f64)> {
+    let place = |x: f64, y: f64| deformed_point(x0, (width, height), (s, r), mode, shape, (x, y));
+    let heights: Vec<f64> = (0..=FACE_POINTS)
+        .map(|k| height * k as f64 / FACE_POINTS as f64)
+        .collect();
+    let mut outline: Vec<(f64, f64)> = heights.iter().map(|&y| place(x0, y)).collect();
+    outline.extend(heights.iter().rev().map(|&y| place(x0 + width, y)));
+    outline.push(outline[0]);
+    outline
+}
+
+/// Where the point (x, y) of the column of [`column_outline`] (at rest) is drawn.
+pub fn deformed_point(
+    x0: f64,
+    (width, height): (f64, f64),
+    (s, r): (f64, f64),
+    mode: flexrock_core::automaton::Mode,
+    shape: &dyn Fn(f64) -> f64,
+    (x, y): (f64, f64),
+) -> (f64, f64) {
+    use flexrock_core::automaton::Mode;
+    let pivot = match mode {
+        Mode::RockLeft => x0,
+        Mode::RockRight => x0 + width,
+        _ if r < 0.0 => x0,
+        _ => x0 + width,
+    };
+    let theta = r / height;
+    let flexed = x + s * shape(y / height);
+    (flexed + theta * y, y - theta * (x - pivot))
+}
+
+/// The strip's figure files, row_shapes.svg and row_shapes.png: one panel per time of
+/// `times`, each the row at that instant (the state from [`flexrock_core::simulate::row_state_at`])
+/// drawn to true scale.
+pub fn shape_figures(
+    model: &RowModel,
+    solution: &RowSolution,
+    times: &[ShapeTime],
+) -> Result<Vec<(String, Vec<u8>)>> {
+    let mut states = Vec::with_capacity(times.len());
+    for time in times {
+        states.push(flexrock_core::simulate::row_state_at(model, time.t)?);
+    }
+    let panels = shape_panels(model, solution, times, &states);
+    // Each panel as wide as the row drawn to scale needs, and room for its title and legend.
+    let span = panels
+        .first()
+        .and_then(|p| p.series.last())
+        .map_or((1.0, 1.0), |frame| {
+            let (a, b) = (frame.points[0], frame.points[1]);
+            (b.0 - a.0, b.1 - a.1)
+        });
+    let width = plot::equal_aspect_width(SHAPE_PANEL.1, span).max(SHAPE_PANEL.0);
+    let size = (width * panels.len() as u32, SHAPE_PANEL.1);
+    let mut files = Vec::new();
+    for format in [Format::Svg, Format::Png] {
+        let name = format!("{SHAPES_FIGURE}.{}", format.extension());
+        let bytes = plot::figure_sized(format, &name, &panels, panels.len(), size)?;
+        files.push((name, bytes));
+    }
+    Ok(files)
+}
+
+/// The left toe of each column at rest: the bases spaced by the widths and the gaps.
+pub fn base_positions(model: &RowModel) -> Vec<f64> {
+    let mut x = 0.0;
+    let mut at = Vec::new();
+    for (i, body) in model.bodies.iter().enumerate() {
+        at.push(x);
+        x += body.width + model.section.gaps.get(i).copied().unwrap_or(0.0);
+    }
+    at
+}
+
+/// The strip's panels, from each time's state of every column.
+pub fn shape_panels(
+    model: &RowModel,
+    solution: &RowSolution,
+    times: &[ShapeTime],
+    states: &[Vec<flexrock_core::solution::Sample>],
+) -> Vec<Panel> {
+    use flexrock_core::constants::flexural_shape_at;
+    let bases = base_positions(model);
+    let shapes: Vec<_> = model
+        .bodies
+        .iter()
+        .map(|body| {
+            let body = body.clone();
+            move |xi: f64| {
+                if xi >= 1.0 {
+                    1.0
+                } else {
+                    flexural_shape_at(&body, xi).unwrap_or(f64::NAN)
+                }
+            }
+        })
+        .collect();
+    let mut panels = Vec::new();
+    let mut bounds = (f64::INFINITY, f64::NEG_INFINITY, 0.0f64);
+    for (time, state) in times.iter().zip(states) {
+        let title = if time.why.is_empty() {
+            format!("t = {} s", crate::writers::significant(time.t, 6))
+        } else {
+            format!(
+                "t = {} s, {}",
+                crate::writers::significant(time.t, 5),
+                time.why
+            )
+        };
+        let mut panel = Panel::new(&title, "x (m), true scale", "y (m)");
+        panel.equal_aspect = true;
+        let mut outlines = Vec::new();
+        for (i, sample) in state.iter().enumerate() {
+            let body = &model.bodies[i];
+            let outline = column_outline(
+                bases[i],
+                (body.width, body.height),
+                (sample.s, sample.r),
+                sample.mode,
+                &shapes[i],
+            );
+            for &(x, y) in &outline {
+                bounds = (bounds.0.min(x), bounds.1.max(x), bounds.2.max(y));
+            }
+            let name = format!(
+                "column {i}: {} × {} m",
+                crate::writers::significant(body.height, 4),
+                crate::writers::significant(body.width, 4)
+            );
+            panel = panel.with(Series::line(&name, outline.clone(), i + 1).with_width(2));
+            outlines.push(outline);
+        }
+        for contact in model.row.contacts() {
+            let c = contact.index;
+            let (l, r) = (&state[c], &state[c + 1]);
+            let automata = (
+                &model.row.columns()[c].automaton,
+                &model.row.columns()[c + 1].automaton,
+            );
+            let gap = contact.gap(automata, (l.mode, l.q), (r.mode, r.q));
+            let held = solution.held.iter().any(|h| {
+                h.contact == c && h.t_start <= time.t && h.t_end.is_none_or(|end| time.t <= end)
+            });
+            let struck = solution
+                .impacts
+                .iter()
+                .any(|i| i.contact == c && (i.t - time.t).abs() <= 1e-9 * time.t.max(1.0));
+            if !(held || struck || gap <= TOUCHING) {
+                continue;
+            }
+            // The contact point: the left column's right face at the contact's height.
+            let body = &model.bodies[c];
+            let at = deformed_point(
+                bases[c],
+                (body.width, body.height),
+                (l.s, l.r),
+                l.mode,
+                &shapes[c],
+                (bases[c] + body.width, contact.height),
+            );
+            let (label, marker, color) = if held {
+                (format!("{c}|{} held", c + 1), plot::Marker::Circle, 4)
+            } else {
+                (
+                    format!("{c}|{} touching", c + 1),
+                    plot::Marker::TriangleDown,
+                    0,
+                )
+            };
+            panel = panel.with(Series::markers(&label, vec![at], color, marker));
+        }
+        panels.push(panel);
+    }
+    // One scale for every panel: the same ranges, from the floor to above the tallest column
+    // (room for the legend), across the row and a margin.
+    let tallest = model.bodies.iter().map(|b| b.height).fold(0.0, f64::max);
+    let margin = 0.15 * (bounds.1 - bounds.0).max(1.0);
+    let (left, right) = (bounds.0 - margin, bounds.1 + margin);
+    // The legend (a line of 28 pixels for each column and each contact, and its frame) must
+    // fit above the columns in a plotting area about 680 pixels high showing 1.1 times the
+    // height drawn: headroom h with h / (1.1 (H + h)) = L / 680.
+    let legend = 30.0 + 28.0 * (2 * model.bodies.len() - 1) as f64;
+    let plot_height = f64::from(SHAPE_PANEL.1) - 140.0;
+    let standing = bounds.2.max(tallest);
+    let top = standing + 1.1 * standing * legend / (plot_height - 1.1 * legend);
+    for panel in &mut panels {
+        panel.series.insert(
+            0,
+            Series::line("", vec![(left, 0.0), (right, 0.0)], 0).with_width(3),
+        );
+        let mut frame = Series::line("", vec![(left, -0.02 * tallest), (right, top)], 0);
+        frame.line = false;
+        panel.series.push(frame);
+        panel.legend = Legend::UpperLeft;
+    }
+    panels
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use flexrock_core::automaton::Mode;
+
+    fn close(a: (f64, f64), b: (f64, f64)) -> bool {
+        (a.0 - b.0).abs() < 1e-12 && (a.1 - b.1).abs() < 1e-12
+    }
+
+    /// A column rocking about its right toe with known s and r: its top moves across by
+    /// q = s + r, the right toe stays where it stood, the left toe lifts by B r / H, and a
+    /// section at mid-height moves by s U(1/2) + r/2 (with a made-up shape U = xi^2).
+    #[test]
+    fn an_outline_is_bent_by_s_and_turned_about_its_toe_by_r() {
+        let (x0, b, h, s, r) = (1.5, 0.7, 4.0, 0.03, 0.2);
+        let shape = |xi: f64| xi * xi;
+        let outline = column_outline(x0, (b, h), (s, r), Mode::RockRight, &shape);
+        let n = FACE_POINTS;
+        assert_eq!(outline.len(), 2 * n + 3);
+        let lift = b * r / h;
+        // Left face: bottom to top; right face: top to bottom; closed.
+        assert!(close(outline[0], (x0, lift)), "{:?}", outline[0]);
+        assert!(
+            close(outline[n], (x0 + s + r, h + lift)),
+            "{:?}",
+            outline[n]
+        );
+        assert!(
+            close(outline[n + 1], (x0 + b + s + r, h)),
+            "{:?}",
+            outline[n + 1]
+        );
+        assert!(
+            close(outline[2 * n + 1], (x0 + b, 0.0)),
+            "{:?}",
+            outline[2 * n + 1]
+        );
+        assert_eq!(outline[2 * n + 2], outline[0]);
+        let mid = outline[n / 2];
+        assert!(
+            close(mid, (x0 + s / 4.0 + r / 2.0, h / 2.0 + lift)),
+            "{mid:?}"
+        );
+        // Rocking about the left toe: it stays, the right toe lifts.
+        let outline = column_outline(x0, (b, h), (-s, -r), Mode::RockLeft, &shape);
+        assert!(close(outline[0], (x0, 0.0)), "{:?}", outline[0]);
+        assert!(
+            close(outline[2 * n + 1], (x0 + b, lift)),
+            "{:?}",
+            outline[2 * n + 1]
+        );
+        assert!(close(outline[n], (x0 - s - r, h)), "{:?}", outline[n]);
+        // Before uplift both toes stay on the floor.
+        let outline = column_outline(x0, (b, h), (s, 0.0), Mode::PreUplift, &shape);
+        assert!(close(outline[0], (x0, 0.0)) && close(outline[2 * n + 1], (x0 + b, 0.0)));
+        assert!(close(outline[n], (x0 + s, h)));
+    }
+
+    /// The bases stand at the widths plus the gaps: 0, B0 + g0, B0 + g0 + B1 + g1.
+    #[test]
+    fn the_columns_stand_at_their_widths_and_gaps() {
+        let text = std::fs::read_to_string(
+            std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("models/row-record.toml"),
+        )
+        .unwrap();
+        let model = row_model(
+            &text.replace(
+                "../validation/records/elCentro.AT2",
+                std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+                    .join("validation/records/elCentro.AT2")
+                    .to_str()
+                    .unwrap(),
+            ),
+        );
+        let at = base_positions(&model);
+        assert_eq!(at.len(), 3);
+        assert!(close((at[0], at[1]), (0.0, 0.7 + 0.015)));
+        assert!((at[2] - (0.7 + 0.015 + 0.7 + 0.01)).abs() < 1e-12);
+    }
+
+    fn row_model(text: &str) -> RowModel {
+        let dir = std::env::temp_dir().join(format!("flexrock-strip-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join(format!("{}.toml", text.len()));
+        std::fs::write(&path, text).unwrap();
+        RowModel::load(&path, None).unwrap()
+    }
+
+    /// The state at an instant is the model's own: at a time of the output grid it is the
+    /// sample of the full run there (after impacts on the way), and at an impact's time the two
+    /// columns touch.
+    #[test]
+    fn the_state_at_a_time_is_the_runs_own() {
+        let text = std::fs::read_to_string(
+            std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("models/row-pair.toml"),
+        )
+        .unwrap();
+        let model = row_model(&text);
+        let solution = flexrock_core::simulate::simulate_row(&model).unwrap();
+        let last = solution.impacts.last().expect("the pair strikes").t;
+        // A grid time after the last impact (the grid is 0.005 s).
+        let t = ((last + 0.3) / 0.005).round() * 0.005;
+        let state = flexrock_core::simulate::row_state_at(&model, t).unwrap();
+        for (i, column) in solution.columns.iter().enumerate() {
+            let sample = column
+                .samples
+                .iter()
+                .find(|s| (s.t - t).abs() < 1e-12)
+                .expect("a grid sample");
+            assert_eq!(state[i].t, t);
+            assert_eq!(state[i].mode, sample.mode);
+            let scale = sample.q.abs().max(1e-3);
+            assert!((state[i].q - sample.q).abs() <= 1e-12 * scale, "column {i}");
+            assert!((state[i].s - sample.s).abs() <= 1e-12 * scale, "column {i}");
+        }
+        // At the first impact the contact is closed (to rounding), which no sample of the
+        // grid shows.
+        let first = solution.impacts[0];
+        let state = flexrock_core::simulate::row_state_at(&model, first.t).unwrap();
+        let contact = &model.row.contacts()[0];
+        let automata = (
+            &model.row.columns()[0].automaton,
+            &model.row.columns()[1].automaton,
+        );
+        let gap = contact.gap(
+            automata,
+            (state[0].mode, state[0].q),
+            (state[1].mode, state[1].q),
+        );
+        assert!(gap.abs() < 1e-9, "gap {gap} at the first impact");
+    }
 }
