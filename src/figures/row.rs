@@ -2,7 +2,8 @@
 //! column's top displacement q(t); and the clear gap of every contact, which falls to zero at
 //! each impact. Impacts are thin vertical lines in every panel. The gaps come from the row's
 //! own contact geometry ([`flexrock_core::row::Contact::gap`]): no formula of the model is
-//! written here. Stretches of held (persistent) contact are shaded on the gap panel.
+//! written here. Stretches of held (persistent) contact, and under the compliant law every
+//! stretch of contact, are shaded on the gap panel.
 //!
 //! And the strip `row_shapes.svg` (and `.png`): the row drawn to true scale at a few instants,
 //! each column in its deformed shape at the model's exact state there
@@ -134,6 +135,20 @@ pub fn panels(model: &RowModel, solution: &RowSolution) -> Vec<Panel> {
             }
         })
         .collect();
+    // Under the compliant law, every stretch of contact, shaded the same way.
+    gaps.spans.extend(solution.contacts.iter().map(|s| {
+        let stretches = solution
+            .contacts
+            .iter()
+            .filter(|o| o.contact == s.contact)
+            .count();
+        Span {
+            from: s.t_start,
+            to: s.t_end.unwrap_or(solution.final_time),
+            color: s.contact + 1,
+            label: format!("{}|{} in contact ({stretches})", s.contact, s.contact + 1),
+        }
+    }));
     // The legend lists the pairs in order.
     gaps.spans.sort_by_key(|span| span.color);
     gaps.legend = Legend::Outside;
