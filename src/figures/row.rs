@@ -172,7 +172,7 @@ pub const MAX_SHAPE_TIMES: usize = 8;
 const AUTOMATIC_TIMES: usize = 4;
 /// Each panel's smallest width and its height in pixels.
 const SHAPE_PANEL: (u32, u32) = (420, 820);
-/// Points along each face of a drawn column.
+/// Segments along each face of a drawn column, at most.
 const FACE_POINTS: usize = 40;
 /// A contact whose clear gap is within this of zero (m) is drawn as touching.
 const TOUCHING: f64 = 1e-9;
@@ -301,17 +301,19 @@ pub fn parse_shape_times(text: &str, duration: f64) -> Result<Vec<ShapeTime>> {
 /// its pivot toe (the right toe for `Mode::RockRight`, the left for `Mode::RockLeft`; before
 /// uplift r = 0), to the small-rotation order of the model: a point at (x, y) moves by
 /// (y r/H, -(x - x_pivot) r/H). So the top moves across by s + r = q and the toe away from the
-/// pivot lifts by B |r| / H.
+/// pivot lifts by B |r| / H. Each face is drawn in `segments` straight pieces.
 pub fn column_outline(
     x0: f64,
     (width, height): (f64, f64),
     (s, r): (f64, f64),
     mode: flexrock_core::automaton::Mode,
     shape: &dyn Fn(f64) -> f64,
+    segments: usize,
 ) -> Vec<(f64, f64)> {
     let place = |x: f64, y: f64| deformed_point(x0, (width, height), (s, r), mode, shape, (x, y));
-    let heights: Vec<f64> = (0..=FACE_POINTS)
-        .map(|k| height * k as f64 / FACE_POINTS as f64)
+    let segments = segments.max(1);
+    let heights: Vec<f64> = (0..=segments)
+        .map(|k| height * k as f64 / segments as f64)
         .collect();
     let mut outline: Vec<(f64, f64)> = heights.iter().map(|&y| place(x0, y)).collect();
     outline.extend(heights.iter().rev().map(|&y| place(x0 + width, y)));
@@ -408,6 +410,9 @@ pub fn shape_panels(
         .collect();
     let mut panels = Vec::new();
     let mut bounds = (f64::INFINITY, f64::NEG_INFINITY, 0.0f64);
+    // The drawing's scale, about: the tallest column over the plot's height in pixels.
+    let tallest = model.bodies.iter().map(|b| b.height).fold(0.0, f64::max);
+    let metres_per_pixel = 1.3 * tallest / (f64::from(SHAPE_PANEL.1) - 140.0);
     for (time, state) in times.iter().zip(states) {
         let title = if time.why.is_empty() {
             format!("t = {} s", crate::writers::significant(time.t, 6))
@@ -423,12 +428,16 @@ pub fn shape_panels(
         let mut outlines = Vec::new();
         for (i, sample) in state.iter().enumerate() {
             let body = &model.bodies[i];
+            // About one segment per pixel the bending moves a face across (the figure's
+            // coordinates are whole pixels, and more pieces than that draw a staircase).
+            let segments = (sample.s.abs() / metres_per_pixel).ceil() as usize;
             let outline = column_outline(
                 bases[i],
                 (body.width, body.height),
                 (sample.s, sample.r),
                 sample.mode,
                 &shapes[i],
+                segments.clamp(1, FACE_POINTS),
             );
             for &(x, y) in &outline {
                 bounds = (bounds.0.min(x), bounds.1.max(x), bounds.2.max(y));
@@ -523,7 +532,7 @@ mod tests {
     fn an_outline_is_bent_by_s_and_turned_about_its_toe_by_r() {
         let (x0, b, h, s, r) = (1.5, 0.7, 4.0, 0.03, 0.2);
         let shape = |xi: f64| xi * xi;
-        let outline = column_outline(x0, (b, h), (s, r), Mode::RockRight, &shape);
+        let outline = column_outline(x0, (b, h), (s, r), Mode::RockRight, &shape, FACE_POINTS);
         let n = FACE_POINTS;
         assert_eq!(outline.len(), 2 * n + 3);
         let lift = b * r / h;
@@ -551,7 +560,7 @@ mod tests {
             "{mid:?}"
         );
         // Rocking about the left toe: it stays, the right toe lifts.
-        let outline = column_outline(x0, (b, h), (-s, -r), Mode::RockLeft, &shape);
+        let outline = column_outline(x0, (b, h), (-s, -r), Mode::RockLeft, &shape, FACE_POINTS);
         assert!(close(outline[0], (x0, 0.0)), "{:?}", outline[0]);
         assert!(
             close(outline[2 * n + 1], (x0 + b, lift)),
@@ -560,7 +569,7 @@ mod tests {
         );
         assert!(close(outline[n], (x0 - s - r, h)), "{:?}", outline[n]);
         // Before uplift both toes stay on the floor.
-        let outline = column_outline(x0, (b, h), (s, 0.0), Mode::PreUplift, &shape);
+        let outline = column_outline(x0, (b, h), (s, 0.0), Mode::PreUplift, &shape, FACE_POINTS);
         assert!(close(outline[0], (x0, 0.0)) && close(outline[2 * n + 1], (x0 + b, 0.0)));
         assert!(close(outline[n], (x0 + s, h)));
     }
