@@ -117,38 +117,30 @@ pub fn panels(model: &RowModel, solution: &RowSolution) -> Vec<Panel> {
         gaps = gaps.with(Series::line(&name, points, c + 1).with_width(2));
     }
     gaps.reference_lines = vec![(0.0, "contact".to_string())];
-    // Held contact (persistent contact), shaded over its stretch in the pair's colour.
-    gaps.spans = solution
-        .held
-        .iter()
-        .map(|h| {
-            let stretches = solution
-                .held
-                .iter()
-                .filter(|o| o.contact == h.contact)
-                .count();
-            Span {
-                from: h.t_start,
-                to: h.t_end.unwrap_or(solution.final_time),
-                color: h.contact + 1,
-                label: format!("{}|{} held ({stretches})", h.contact, h.contact + 1),
-            }
-        })
-        .collect();
-    // Under the compliant law, every stretch of contact, shaded the same way.
-    gaps.spans.extend(solution.contacts.iter().map(|s| {
-        let stretches = solution
-            .contacts
+    // Held contact (persistent contact), and under the compliant law every stretch of contact,
+    // shaded over its stretch in the pair's colour; the legend counts each pair's stretches.
+    let shade = |stretches: &[(usize, f64, Option<f64>)], what: &str| -> Vec<Span> {
+        stretches
             .iter()
-            .filter(|o| o.contact == s.contact)
-            .count();
-        Span {
-            from: s.t_start,
-            to: s.t_end.unwrap_or(solution.final_time),
-            color: s.contact + 1,
-            label: format!("{}|{} in contact ({stretches})", s.contact, s.contact + 1),
-        }
-    }));
+            .map(|&(contact, from, to)| {
+                let count = stretches.iter().filter(|o| o.0 == contact).count();
+                Span {
+                    from,
+                    to: to.unwrap_or(solution.final_time),
+                    color: contact + 1,
+                    label: format!("{contact}|{} {what} ({count})", contact + 1),
+                }
+            })
+            .collect()
+    };
+    let held: Vec<_> = (solution.held.iter())
+        .map(|h| (h.contact, h.t_start, h.t_end))
+        .collect();
+    let touching: Vec<_> = (solution.contacts.iter())
+        .map(|s| (s.contact, s.t_start, s.t_end))
+        .collect();
+    gaps.spans = shade(&held, "held");
+    gaps.spans.extend(shade(&touching, "in contact"));
     // The legend lists the pairs in order.
     gaps.spans.sort_by_key(|span| span.color);
     gaps.legend = Legend::Outside;

@@ -49,12 +49,7 @@ impl Contact {
         left: (Mode, f64),
         right: (Mode, f64),
     ) -> f64 {
-        let u_left = automata
-            .0
-            .displacement_at(left.0, left.1, self.left.0, self.left.1);
-        let u_right = automata
-            .1
-            .displacement_at(right.0, right.1, self.right.0, self.right.1);
+        let (u_left, u_right) = self.displacements(automata, left, right);
         self.clearance - u_left + u_right
     }
 
@@ -66,13 +61,25 @@ impl Contact {
         left: (Mode, f64),
         right: (Mode, f64),
     ) -> f64 {
-        let u_left = automata
-            .0
-            .displacement_at(left.0, left.1, self.left.0, self.left.1);
-        let u_right = automata
-            .1
-            .displacement_at(right.0, right.1, self.right.0, self.right.1);
+        let (u_left, u_right) = self.displacements(automata, left, right);
         self.clearance.abs() + u_left.abs() + u_right.abs()
+    }
+
+    /// Each column's horizontal displacement at the contact, m.
+    fn displacements(
+        &self,
+        automata: (&Automaton, &Automaton),
+        left: (Mode, f64),
+        right: (Mode, f64),
+    ) -> (f64, f64) {
+        (
+            automata
+                .0
+                .displacement_at(left.0, left.1, self.left.0, self.left.1),
+            automata
+                .1
+                .displacement_at(right.0, right.1, self.right.0, self.right.1),
+        )
     }
 
     /// du/dq of the left and the right column at the contact, in their modes: the closing

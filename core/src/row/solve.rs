@@ -550,24 +550,28 @@ impl<'a> RowRun<'a> {
         }
     }
 
-    /// Contact `c`'s gap (with its rounding allowance) at `t` along the two columns' plans;
-    /// None where a column has no plan.
-    fn gap_at(&self, c: usize, t: f64) -> Option<Point> {
+    /// Contact `c`'s gap (with its rounding allowance) along the two columns' plans; None where
+    /// a column has no plan.
+    fn gap(&self, c: usize) -> Option<Gap<'_>> {
         let contact = &self.row.contacts()[c];
         let (Some(left), Some(right)) = (&self.plans[c], &self.plans[c + 1]) else {
             return None;
         };
         let automata = (self.runs[c].automaton(), self.runs[c + 1].automaton());
         let modes = (self.runs[c].state().1, self.runs[c + 1].state().1);
-        let gap = Gap {
+        Some(Gap {
             contact,
             automata,
             modes,
             flows: (left.flow(), right.flow()),
             slopes: contact.slopes(automata, modes),
             allowance: self.rounding[c].unwrap_or(0.0),
-        };
-        Some(gap.point(t))
+        })
+    }
+
+    /// Contact `c`'s gap at `t`, as [`Self::gap`].
+    fn gap_at(&self, c: usize, t: f64) -> Option<Point> {
+        self.gap(c).map(|gap| gap.point(t))
     }
 
     /// `closing` with every contact next to the columns struck that is as good as closed at
@@ -613,18 +617,8 @@ impl<'a> RowRun<'a> {
             if self.held[c] {
                 continue;
             }
-            let (Some(left), Some(right)) = (&self.plans[c], &self.plans[c + 1]) else {
+            let Some(gap) = self.gap(c) else {
                 continue;
-            };
-            let automata = (self.runs[c].automaton(), self.runs[c + 1].automaton());
-            let modes = (self.runs[c].state().1, self.runs[c + 1].state().1);
-            let gap = Gap {
-                contact,
-                automata,
-                modes,
-                flows: (left.flow(), right.flow()),
-                slopes: contact.slopes(automata, modes),
-                allowance: self.rounding[c].unwrap_or(0.0),
             };
             if let Some(t) =
                 first_fall(&gap, self.now, window_end).map_err(|e| scan_failed(e, c))?
