@@ -22,4 +22,5 @@ mod rigid;
 mod rigid_forms;
 mod row;
 mod row_compliant;
+mod row_friction;
 mod row_random;
