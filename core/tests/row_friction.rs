@@ -485,3 +485,116 @@ fn bad_friction_is_refused_by_name() {
     assert!(read("friction = 0.0\n").is_ok());
     assert!(read("contact = \"compliant\"\nstiffness = 1e7\nfriction = 0.6\n").is_ok());
 }
+
+/// A soft column leaning on a stiff one under a slow pulse (models/row-friction.toml): once the
+/// faces stick, the pair is locked (psi_l q_l - psi_r q_r stays what it was) and moves
+/// quasi-statically with the floor: each column's static balance with the contact force
+/// P = k delta and the friction T, written out here as four linear equations, gives T / P at
+/// every instant, and the faces must slide again where |T| reaches mu P. Inertia and damping,
+/// left out of the closed form, move that instant by microseconds on a pulse of 20 s (1.4e-6 s).
+#[test]
+fn locked_faces_slide_where_the_quasi_static_friction_reaches_mu_p() {
+    let stiff = body(4.0, 0.7, 600.0, 5e8, 0.05);
+    let soft = body(4.0, 0.7, 600.0, 5e6, 0.05);
+    let (gap, k, mu, amplitude, period) = (0.003, 1e9, 0.5, 0.8, 20.0);
+    let row = Row::new(
+        &[at_rest(stiff.clone()), at_rest(soft.clone())],
+        &[gap],
+        0.5,
+    )
+    .unwrap()
+    .compliant(k)
+    .unwrap()
+    .with_friction(mu)
+    .unwrap();
+    let floor = SinePulse::new(amplitude, period, 1.0, PulseShape::Antisymmetric);
+    let solved = solve_row_compliant(&row, &floor, 12.0, &TIGHT, History::Sampled).unwrap();
+    let longest = solved
+        .sticking
+        .iter()
+        .max_by(|a, b| {
+            let length = |s: &&flexrock_core::row::StickStretch| s.t_end.unwrap() - s.t_start;
+            length(a).total_cmp(&length(b))
+        })
+        .expect("the faces stick");
+    let (t_stick, t_slip) = (longest.t_start, longest.t_end.unwrap());
+    // The pair's state where the faces stuck: q of each column at its friction-stick event.
+    let q_at = |i: usize| {
+        solved.columns[i]
+            .events
+            .iter()
+            .find(|e| e.kind == EventKind::FrictionStick && e.t == t_stick)
+            .expect("a stick event")
+            .q
+    };
+    let (q_l0, q_r0) = (q_at(0), q_at(1));
+    // Both before uplift: Phi = 1 at the top, psi = -+ B U'(1) / (2 H), m = M/4, beta = 4 sigma / L.
+    let beta = 4.0 * sigma() / L;
+    let psi = 0.5 * 0.7 * mode_slope(1.0) / 4.0;
+    let (psi_l, psi_r) = (-psi, psi);
+    let column = |b: &flexrock_core::body::Body| {
+        let m = b.mass / 4.0;
+        let omega2 = L.powi(4) * b.flexural_rigidity / (b.mass * b.height.powi(3));
+        (m, m * omega2)
+    };
+    let ((m_l, k_l), (m_r, k_r)) = (column(&stiff), column(&soft));
+    let locked = psi_l * q_l0 - psi_r * q_r0;
+    // Unknowns (q_l, q_r, P, T):
+    //   k_l q_l + P - psi_l T = -m_l beta a
+    //   k_r q_r - P + psi_r T = -m_r beta a
+    //   psi_l q_l - psi_r q_r = locked
+    //   k q_l - k q_r - P     = k gap
+    let ratio = |t: f64| {
+        let a = amplitude * (2.0 * std::f64::consts::PI * t / period).sin();
+        let mut m = [
+            [k_l, 0.0, 1.0, -psi_l, -m_l * beta * a],
+            [0.0, k_r, -1.0, psi_r, -m_r * beta * a],
+            [psi_l, -psi_r, 0.0, 0.0, locked],
+            [k, -k, -1.0, 0.0, k * gap],
+        ];
+        // Gaussian elimination with partial pivoting.
+        for col in 0..4 {
+            let pivot = (col..4)
+                .max_by(|&i, &j| m[i][col].abs().total_cmp(&m[j][col].abs()))
+                .unwrap();
+            m.swap(col, pivot);
+            for row in 0..4 {
+                if row != col {
+                    let f = m[row][col] / m[col][col];
+                    for c in col..5 {
+                        m[row][c] -= f * m[col][c];
+                    }
+                }
+            }
+        }
+        let (p, t_force) = (m[2][4] / m[2][2], m[3][4] / m[3][3]);
+        (t_force.abs() / p, p)
+    };
+    let (start_ratio, start_force) = ratio(t_stick + 1e-3);
+    assert!(
+        start_ratio < mu && start_force > 0.0,
+        "stuck at {t_stick} s with |T|/P = {start_ratio}"
+    );
+    // The first instant after the stick where |T| reaches mu P, by bisection on a fine scan.
+    let mut t = t_stick + 1e-3;
+    while ratio(t).0 < mu {
+        t += 1e-3;
+        assert!(t < 12.0, "the closed form never slides");
+    }
+    let (mut lo, mut hi) = (t - 1e-3, t);
+    for _ in 0..60 {
+        let mid = 0.5 * (lo + hi);
+        if ratio(mid).0 < mu {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    eprintln!(
+        "locked from {t_stick} s: slides at {t_slip} s, the quasi-static closed form at {hi} s"
+    );
+    assert!(
+        (t_slip - hi).abs() < 1e-4,
+        "slides at {t_slip} s, the quasi-static closed form at {hi} s"
+    );
+}
