@@ -876,45 +876,10 @@ impl<'d> Driver<'d> {
         })
     }
 
-    /// Finds the time in [lo, hi] at which `f` passes from its sign at `lo` (zero counts as
-    /// that side) to its sign at `hi`, by the Illinois variant of regula falsi, to a few ulps.
-    fn locate(&self, mut lo: f64, mut hi: f64, f: impl Fn(f64) -> Result<f64>) -> Result<f64> {
-        let f_hi = f(hi)?;
-        let orientation = if f_hi > 0.0 { 1.0 } else { -1.0 };
-        let mut g_lo = orientation * f(lo)?;
-        let mut g_hi = orientation * f_hi;
-        if g_lo > 0.0 || g_hi <= 0.0 {
-            return Ok(if g_lo > 0.0 { lo } else { hi });
-        }
-        let mut last_side = 0i8;
-        for _ in 0..200 {
-            if hi - lo <= 4.0 * f64::EPSILON * hi.abs().max(lo.abs()) {
-                break;
-            }
-            let secant = hi - g_hi * (hi - lo) / (g_hi - g_lo);
-            let mid = if secant > lo && secant < hi {
-                secant
-            } else {
-                0.5 * (lo + hi)
-            };
-            let g_mid = orientation * f(mid)?;
-            if g_mid > 0.0 {
-                hi = mid;
-                g_hi = g_mid;
-                if last_side == 1 {
-                    g_lo *= 0.5;
-                }
-                last_side = 1;
-            } else {
-                lo = mid;
-                g_lo = g_mid;
-                if last_side == -1 {
-                    g_hi *= 0.5;
-                }
-                last_side = -1;
-            }
-        }
-        Ok(hi)
+    /// Finds the time in [lo, hi] at which `f` passes from its sign at `lo` (zero counts as that
+    /// side) to its sign at `hi` ([`crate::solver::sign_change::locate`]).
+    fn locate(&self, lo: f64, hi: f64, f: impl Fn(f64) -> Result<f64>) -> Result<f64> {
+        crate::solver::sign_change::locate(lo, hi, f)
     }
 
     /// The monotone pieces of the function of `what` over [t0, t1]: split at the root of its

@@ -619,59 +619,19 @@ impl<'d> Driver<'d> {
     }
 
     /// Finds the time in [lo, hi] at which `f` of the dense-output state passes from the sign it
-    /// has at `lo` (zero counts as that side: a state that starts on a guard is not past it) to
-    /// the sign it has at `hi`, by the Illinois variant of regula falsi, to a few ulps of t.
+    /// has at `lo` to the sign it has at `hi` ([`crate::solver::sign_change::locate`]).
     fn locate<'a, Eqn, S>(
         &self,
         solver: &S,
-        mut lo: f64,
-        mut hi: f64,
+        lo: f64,
+        hi: f64,
         f: impl Fn([f64; 2]) -> f64,
     ) -> Result<f64>
     where
         Eqn: OdeEquations<T = f64, V = Vector> + 'a,
         S: OdeSolverMethod<'a, Eqn>,
     {
-        // Orient f so that the far end is positive; then "past" means g > 0.
-        let f_hi = f(self.state_at(solver, hi)?);
-        let orientation = if f_hi > 0.0 { 1.0 } else { -1.0 };
-        let g = |t: f64| -> Result<f64> { Ok(orientation * f(self.state_at(solver, t)?)) };
-        let mut g_lo = g(lo)?;
-        let mut g_hi = orientation * f_hi;
-        if g_lo > 0.0 || g_hi <= 0.0 {
-            // Already past at `lo`, or never past: nothing to refine.
-            return Ok(if g_lo > 0.0 { lo } else { hi });
-        }
-        let mut last_side = 0i8;
-        for _ in 0..200 {
-            if hi - lo <= 4.0 * f64::EPSILON * hi.abs().max(lo.abs()) {
-                break;
-            }
-            let secant = hi - g_hi * (hi - lo) / (g_hi - g_lo);
-            // Fall back to bisection when the secant leaves the bracket or stalls at its ends.
-            let mid = if secant > lo && secant < hi {
-                secant
-            } else {
-                0.5 * (lo + hi)
-            };
-            let g_mid = g(mid)?;
-            if g_mid > 0.0 {
-                hi = mid;
-                g_hi = g_mid;
-                if last_side == 1 {
-                    g_lo *= 0.5;
-                }
-                last_side = 1;
-            } else {
-                lo = mid;
-                g_lo = g_mid;
-                if last_side == -1 {
-                    g_hi *= 0.5;
-                }
-                last_side = -1;
-            }
-        }
-        Ok(hi)
+        crate::solver::sign_change::locate(lo, hi, |t| Ok(f(self.state_at(solver, t)?)))
     }
 
     /// Moves the solver to `t`, books the event, applies the reset and switches the mode.

@@ -6,6 +6,7 @@ pub mod budget;
 mod error;
 pub mod exact;
 pub mod newmark;
+pub(crate) mod sign_change;
 
 use serde::Serialize;
 
