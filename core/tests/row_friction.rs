@@ -558,11 +558,12 @@ fn locked_faces_slide_where_the_quasi_static_friction_reaches_mu_p() {
                 .max_by(|&i, &j| m[i][col].abs().total_cmp(&m[j][col].abs()))
                 .unwrap();
             m.swap(col, pivot);
-            for row in 0..4 {
-                if row != col {
-                    let f = m[row][col] / m[col][col];
-                    for c in col..5 {
-                        m[row][c] -= f * m[col][c];
+            let pivot_row = m[col];
+            for (r, row) in m.iter_mut().enumerate() {
+                if r != col {
+                    let f = row[col] / pivot_row[col];
+                    for (x, p) in row.iter_mut().zip(pivot_row.iter()).skip(col) {
+                        *x -= f * p;
                     }
                 }
             }
