@@ -155,7 +155,7 @@ fn the_output_tables_list_exactly_the_columns_the_writers_write() {
         documented.extend(group.iter().cloned());
         documented.extend(scales.iter().cloned());
         assert_eq!(
-            strings(&Row::columns(find)),
+            Row::columns(find),
             documented,
             "find_min = {find}"
         );
