@@ -23,3 +23,4 @@ mod rigid_forms;
 mod row;
 mod row_compliant;
 mod row_random;
+mod row_sweep;
