@@ -408,10 +408,17 @@ impl Sweep {
             if let Err(e) = checked {
                 let is_axis = i >= request.settings.len();
                 return Err(if is_axis {
+                    // A rule about this very key and value is said once.
+                    let rule = match &e {
+                        Error::InvalidParameter { key, rule, .. } if *key == setting.key => {
+                            rule.clone()
+                        }
+                        _ => e.to_string(),
+                    };
                     Error::invalid(
                         &setting.key,
                         setting.value_text(),
-                        &format!("cannot be swept: {e}"),
+                        &format!("cannot be swept: {rule}"),
                     )
                 } else {
                     e
