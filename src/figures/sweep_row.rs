@@ -98,6 +98,18 @@ pub fn verdict_maps(
             .collect()
     };
     let (xs, ys) = (values(x), values(y));
+    // An axis of positive values spanning two decades or more is drawn in log10 of its values.
+    let logged = |v: Vec<f64>| {
+        let (lo, hi) = v
+            .iter()
+            .fold((f64::INFINITY, 0.0f64), |(lo, hi), &x| (lo.min(x), hi.max(x)));
+        if lo > 0.0 && hi / lo >= 100.0 {
+            (v.iter().map(|x| x.log10()).collect(), true)
+        } else {
+            (v, false)
+        }
+    };
+    let ((xs, log_x), (ys, log_y)) = (logged(xs), logged(ys));
     if !(drawable(&xs) && drawable(&ys)) {
         return Ok(Vec::new());
     }
@@ -111,6 +123,7 @@ pub fn verdict_maps(
         xs: &xs,
         ys: &ys,
         labels: (&labels.0, &labels.1),
+        log: (log_x, log_y),
     };
     let mut svg = String::new();
     {
@@ -135,6 +148,31 @@ struct Figure<'a> {
     xs: &'a [f64],
     ys: &'a [f64],
     labels: (&'a str, &'a str),
+    /// Whether each axis is drawn in log10 of its values.
+    log: (bool, bool),
+}
+
+/// A tick's value as a reader reads it: at most four significant digits, in scientific
+/// notation for very large or small magnitudes; `logged` ticks are log10 of the value.
+fn tick(value: f64, logged: bool) -> String {
+    let v = if logged { 10f64.powf(value) } else { value };
+    if v == 0.0 || !v.is_finite() {
+        return format!("{v}");
+    }
+    let magnitude = v.abs();
+    if !(1e-3..1e5).contains(&magnitude) {
+        let text = format!("{v:.2e}");
+        let (mantissa, exponent) = text.split_once('e').unwrap_or((&text, "0"));
+        let mantissa = mantissa.trim_end_matches('0').trim_end_matches('.');
+        return format!("{mantissa}e{exponent}");
+    }
+    let digits = (3 - magnitude.log10().floor() as i32).clamp(0, 6) as usize;
+    let text = format!("{v:.digits$}");
+    if text.contains('.') {
+        text.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        text
+    }
 }
 
 type Drawn = std::result::Result<(), Box<dyn std::error::Error>>;
@@ -185,13 +223,28 @@ impl Figure<'_> {
             .x_label_area_size(64)
             .y_label_area_size(100)
             .build_cartesian_2d(range(&ex), range(&ey))?;
+        let (log_x, log_y) = self.log;
+        let x_tick = move |v: &f64| tick(*v, log_x);
+        let y_tick = move |v: &f64| tick(*v, log_y);
+        let x_desc = if log_x {
+            format!("{} (log scale)", self.labels.0)
+        } else {
+            self.labels.0.to_string()
+        };
+        let y_desc = if log_y {
+            format!("{} (log scale)", self.labels.1)
+        } else {
+            self.labels.1.to_string()
+        };
         chart
             .configure_mesh()
             .disable_mesh()
-            .x_desc(self.labels.0)
-            .y_desc(self.labels.1)
+            .x_desc(x_desc)
+            .y_desc(y_desc)
             .x_labels(6)
             .y_labels(6)
+            .x_label_formatter(&x_tick)
+            .y_label_formatter(&y_tick)
             .label_style(("sans-serif", TICK_FONT))
             .axis_desc_style(("sans-serif", AXIS_FONT))
             .draw()?;
@@ -293,4 +346,20 @@ where
         y += 24;
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::tick;
+
+    #[test]
+    fn ticks_are_short() {
+        assert_eq!(tick(0.05, false), "0.05");
+        assert_eq!(tick(6.0, false), "6");
+        assert_eq!(tick(2.5, false), "2.5");
+        assert_eq!(tick(8.0, true), "1e8");
+        assert_eq!(tick(7.5, true), "3.16e7");
+        assert_eq!(tick(0.0, false), "0");
+        assert_eq!(tick(123456.0, false), "1.23e5");
+    }
 }
