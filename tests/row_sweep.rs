@@ -113,15 +113,27 @@ fn every_verdict_of_a_map_is_what_the_row_and_each_column_alone_give() {
             };
             let verdict = &row[&format!("c{i}_verdict")];
             assert_eq!(verdict, expected, "point {p}, column {i}: {row:?}");
-            assert_eq!(row[&format!("c{i}_alone_overturned")], alone_over.to_string());
+            assert_eq!(
+                row[&format!("c{i}_alone_overturned")],
+                alone_over.to_string()
+            );
             *seen.entry(verdict.clone()).or_default() += 1;
         }
     }
     // The map holds both kinds of cell that a neighbour makes.
-    assert!(seen.contains_key("saved") && seen.contains_key("toppled"), "{seen:?}");
+    assert!(
+        seen.contains_key("saved") && seen.contains_key("toppled"),
+        "{seen:?}"
+    );
     // The verdict maps, one per column, as SVG and PNG.
     let svg = std::fs::read_to_string(out.join("verdicts.svg")).unwrap();
-    for text in ["Column 0", "Column 1", "saved", "toppled", "gap g, every gap (m)"] {
+    for text in [
+        "Column 0",
+        "Column 1",
+        "saved",
+        "toppled",
+        "gap g, every gap (m)",
+    ] {
         assert!(svg.contains(text), "verdicts.svg lacks {text:?}");
     }
     let png = std::fs::read(out.join("verdicts.png")).unwrap();
@@ -157,7 +169,12 @@ fn bad_keys_of_a_row_are_refused_by_name_with_nothing_written() {
             &["column.0.stiffness = 1", "unknown field `stiffness`"],
         ),
         (
-            &["--vary", "row.gaps=0.01,0.02", "--vary", "row.gaps.0=0.01,0.02"],
+            &[
+                "--vary",
+                "row.gaps=0.01,0.02",
+                "--vary",
+                "row.gaps.0=0.01,0.02",
+            ],
             &["row.gaps.0", "sets a value that the axis row.gaps sets too"],
         ),
         (
@@ -165,7 +182,12 @@ fn bad_keys_of_a_row_are_refused_by_name_with_nothing_written() {
             &["row.gaps = tight", "a gap is a number"],
         ),
         (
-            &["--vary", "excitation.amplitude=1,2", "--find-min", "excitation.period=0.5:2"],
+            &[
+                "--vary",
+                "excitation.amplitude=1,2",
+                "--find-min",
+                "excitation.period=0.5:2",
+            ],
             &["--find-min", "a minimum search is not made for a row"],
         ),
         (
@@ -187,7 +209,10 @@ fn bad_keys_of_a_row_are_refused_by_name_with_nothing_written() {
         let stderr = String::from_utf8_lossy(&o.stderr);
         assert_eq!(o.status.code(), Some(2), "{args:?}: {stderr}");
         for needle in *needles {
-            assert!(stderr.contains(needle), "{args:?}: {needle:?} not in {stderr}");
+            assert!(
+                stderr.contains(needle),
+                "{args:?}: {needle:?} not in {stderr}"
+            );
         }
         assert!(!stderr.contains("panicked"), "{stderr}");
         assert!(!out.exists(), "{args:?} wrote {}", out.display());

@@ -51,7 +51,13 @@ fn sweep(text: &str, axes: &[&str]) -> (Plan, Vec<Vec<(String, Cell)>>) {
     let rows = sweep.rows(0..sweep.points(), &|| {});
     let named = rows
         .iter()
-        .map(|row| names.iter().cloned().zip(row.cells(sweep.plan.layout())).collect())
+        .map(|row| {
+            names
+                .iter()
+                .cloned()
+                .zip(row.cells(sweep.plan.layout()))
+                .collect()
+        })
         .collect();
     (sweep.plan, named)
 }
@@ -124,8 +130,13 @@ fn a_row_whose_gaps_never_close_gives_each_column_its_single_sweep() {
         }
     }
     // The range holds points where a column stands and points where it overturns.
-    assert!(overturned_alone.iter().all(|&n| n > 0 && n < 7), "{overturned_alone:?}");
-    assert!(!verdicts.iter().any(|v| v.contains("saved") || v.contains("toppled")));
+    assert!(
+        overturned_alone.iter().all(|&n| n > 0 && n < 7),
+        "{overturned_alone:?}"
+    );
+    assert!(!verdicts
+        .iter()
+        .any(|v| v.contains("saved") || v.contains("toppled")));
 }
 
 #[test]
@@ -136,7 +147,10 @@ fn identical_columns_never_touch_at_any_point() {
     );
     let (plan, rows) = sweep(
         &text,
-        &["row.gaps=lin:0.002:0.05:4", "excitation.amplitude=lin:2:9:5"],
+        &[
+            "row.gaps=lin:0.002:0.05:4",
+            "excitation.amplitude=lin:2:9:5",
+        ],
     );
     assert_eq!(plan.row_columns, Some(3));
     assert_eq!(rows.len(), 20);
@@ -167,5 +181,7 @@ fn a_row_plan_is_not_a_single_body_plan() {
     assert!(!row.same_sweep(&other_kind));
     assert_ne!(row.identity(), other_kind.identity());
     // A single body's plan is written as before rows could be swept.
-    assert!(!serde_json::to_string(&body).unwrap().contains("row_columns"));
+    assert!(!serde_json::to_string(&body)
+        .unwrap()
+        .contains("row_columns"));
 }

@@ -306,9 +306,7 @@ fn row_key_label(key: &str) -> Option<String> {
             (None, "qdot0") => format!("q'0 of column {i} (m/s)"),
             (None, _) => key.to_string(),
         }),
-        ["column", name] => {
-            body(name).map(|label| with_unit(&label, ", every column"))
-        }
+        ["column", name] => body(name).map(|label| with_unit(&label, ", every column")),
         _ => None,
     }
 }

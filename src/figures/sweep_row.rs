@@ -73,7 +73,7 @@ pub fn verdict_maps(
     let (nx, ny) = (plan.axes[x].len(), plan.axes[y].len());
     let status = table.column("status")?;
     let mut maps = vec![vec![vec![Class::Missing; ny]; nx]; n];
-    for i in 0..n {
+    for (i, map) in maps.iter_mut().enumerate() {
         let verdict = table.column(&format!("c{i}_verdict"))?;
         let alone = table.column(&format!("c{i}_alone_overturned"))?;
         for (r, row) in table.rows.iter().enumerate() {
@@ -82,7 +82,7 @@ pub fn verdict_maps(
                 message: format!("row {} has no point number", r + 1),
             })?;
             let c = plan.coordinates(point);
-            maps[i][c[x]][c[y]] = match (&row[status], &row[verdict], &row[alone]) {
+            map[c[x]][c[y]] = match (&row[status], &row[verdict], &row[alone]) {
                 ("ok", "saved", _) => Class::Saved,
                 ("ok", "toppled", _) => Class::Toppled,
                 ("ok", "undecided", _) => Class::Undecided,
@@ -100,9 +100,9 @@ pub fn verdict_maps(
     let (xs, ys) = (values(x), values(y));
     // An axis of positive values spanning two decades or more is drawn in log10 of its values.
     let logged = |v: Vec<f64>| {
-        let (lo, hi) = v
-            .iter()
-            .fold((f64::INFINITY, 0.0f64), |(lo, hi), &x| (lo.min(x), hi.max(x)));
+        let (lo, hi) = v.iter().fold((f64::INFINITY, 0.0f64), |(lo, hi), &x| {
+            (lo.min(x), hi.max(x))
+        });
         if lo > 0.0 && hi / lo >= 100.0 {
             (v.iter().map(|x| x.log10()).collect(), true)
         } else {
@@ -208,10 +208,7 @@ impl Figure<'_> {
         // Cells in ascending order of both coordinates, whatever the order of the axes.
         let (ox, oy) = (ascending(self.xs), ascending(self.ys));
         let sorted = |v: &[f64], order: &[usize]| order.iter().map(|&i| v[i]).collect::<Vec<_>>();
-        let (ex, ey) = (
-            edges(&sorted(self.xs, &ox)),
-            edges(&sorted(self.ys, &oy)),
-        );
+        let (ex, ey) = (edges(&sorted(self.xs, &ox)), edges(&sorted(self.ys, &oy)));
         let cells: Vec<Vec<Class>> = ox
             .iter()
             .map(|&i| oy.iter().map(|&j| cells[i][j]).collect())

@@ -249,8 +249,7 @@ impl RowModel {
         } else {
             row
         };
-        let (floor, natural_duration) =
-            floor_from_section(&excitation, base_dir, records)?;
+        let (floor, natural_duration) = floor_from_section(&excitation, base_dir, records)?;
         let duration = match (duration.or(simulation.duration), natural_duration) {
             (Some(d), _) | (None, Some(d)) => d,
             (None, None) => {

@@ -540,7 +540,10 @@ mod tests {
             let find_min = layout != Layout::Runs;
             let columns = Row::columns(layout);
             let mut seen = std::collections::BTreeSet::new();
-            assert!(columns.iter().all(|c| seen.insert(c.clone())), "{columns:?}");
+            assert!(
+                columns.iter().all(|c| seen.insert(c.clone())),
+                "{columns:?}"
+            );
             let empty = failed.cells(layout);
             assert_eq!(empty.len(), columns.len());
             assert_eq!(empty[1], Cell::Text(Some("a reason".into())));

@@ -14,8 +14,7 @@ use std::path::Path;
 
 use crate::error::{Error, Result};
 use crate::model::{
-    read_schema, Model, Overrides, RecordCache, RowModel, RowSection, RowSimulationSection,
-    Setting,
+    read_schema, Model, Overrides, RecordCache, RowModel, RowSection, RowSimulationSection, Setting,
 };
 use crate::row::RowSolution;
 use crate::solver::History;
@@ -263,9 +262,11 @@ pub fn apply(table: &mut toml::Table, setting: &Setting) -> Result<()> {
         1 => "1 gap: row.gaps.0".to_string(),
         g => format!("{g} gaps: row.gaps.0 to row.gaps.{}", g - 1),
     };
-    let number = || match setting.value {
-        toml::Value::Float(_) | toml::Value::Integer(_) => true,
-        _ => false,
+    let number = || {
+        matches!(
+            setting.value,
+            toml::Value::Float(_) | toml::Value::Integer(_)
+        )
     };
     match parts.as_slice() {
         ["row", "gaps"] | ["row", "gaps", _] => {
@@ -522,7 +523,12 @@ mod tests {
         for i in 0..3 {
             assert_eq!(table["column"][i]["height"].as_float(), Some(4.0));
         }
-        for bad in ["row.gaps.2", "column.3.width", "body.width", "row.restitution.0"] {
+        for bad in [
+            "row.gaps.2",
+            "column.3.width",
+            "body.width",
+            "row.restitution.0",
+        ] {
             let e = apply(&mut table, &Setting::number(bad, 1.0)).unwrap_err();
             assert!(e.to_string().contains(bad), "{bad}: {e}");
         }
