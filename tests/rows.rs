@@ -21,6 +21,7 @@ fn a_row_run_writes_every_column_and_the_impacts_the_same_twice() {
     assert_eq!(
         names,
         [
+            "contacts.csv",
             "episodes-0.csv",
             "episodes-1.csv",
             "events-0.csv",
@@ -203,7 +204,7 @@ fn a_compliant_row_runs_end_to_end() {
         );
     }
     let names = crate::common::file_names(&a);
-    assert_eq!(names.len(), 8, "{names:?}");
+    assert_eq!(names.len(), 9, "{names:?}");
     for name in &names {
         assert_eq!(
             std::fs::read(a.join(name)).unwrap(),
@@ -235,6 +236,152 @@ fn a_compliant_row_runs_end_to_end() {
     }
     let impacts = std::fs::read_to_string(a.join("impacts.csv")).unwrap();
     assert_eq!(impacts.lines().count(), 1, "{impacts}");
+}
+
+/// The rows of contacts.csv, split at commas.
+fn contact_rows(dir: &std::path::Path) -> Vec<Vec<String>> {
+    let text = std::fs::read_to_string(dir.join("contacts.csv")).unwrap();
+    let mut lines = text.lines();
+    assert_eq!(
+        lines.next(),
+        Some("t,contact,state,gap,closing_velocity,sliding_velocity,force,friction_force")
+    );
+    lines
+        .map(|l| l.split(',').map(str::to_string).collect())
+        .collect()
+}
+
+/// contacts.csv of the impact law: one row per sample, the gap never below zero, no forces (its
+/// forces are impulses), held exactly within the held stretches summary.json lists.
+#[test]
+fn the_impact_laws_contact_history_has_gaps_and_held_stretches() {
+    let dir = scratch_dir("rows-contacts-impact");
+    // The leaning pair of models/row-friction.toml under the impact law: held for seconds.
+    let leaning = dir.join("leaning.toml");
+    let text = std::fs::read_to_string(repo("models/row-friction.toml")).unwrap();
+    let text: String = text
+        .lines()
+        .filter(|l| {
+            !["contact", "stiffness", "friction", "method", "rtol", "atol"]
+                .iter()
+                .any(|k| l.starts_with(&format!("{k} ")))
+        })
+        .map(|l| format!("{l}\n"))
+        .collect();
+    std::fs::write(&leaning, text).unwrap();
+    let out = dir.join("leaning");
+    let o = run(&leaning, &out, &[]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    check_impact_contacts(&out, true);
+    let out = dir.join("record");
+    let o = run(&repo("models/row-record.toml"), &out, &[]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    check_impact_contacts(&out, false);
+}
+
+/// The checks of contacts.csv of an impact-law row in `out`; `held` if it must hold some.
+fn check_impact_contacts(out: &std::path::Path, must_hold: bool) {
+    let out = out.to_path_buf();
+    let rows = contact_rows(&out);
+    // Every grid instant, for each of the two contacts (the record's row has three columns).
+    let grid = |i: usize| {
+        let history = std::fs::read_to_string(out.join(format!("history-{i}.csv"))).unwrap();
+        history
+            .lines()
+            .skip(1)
+            .map(|l| l.split(',').next().unwrap().to_string())
+            .collect::<std::collections::BTreeSet<String>>()
+    };
+    let contacts = 1 + rows
+        .iter()
+        .map(|r| r[1].parse::<usize>().unwrap())
+        .max()
+        .unwrap();
+    for c in 0..contacts {
+        let times: std::collections::BTreeSet<String> = rows
+            .iter()
+            .filter(|r| r[1] == c.to_string())
+            .map(|r| r[0].clone())
+            .collect();
+        let shared: std::collections::BTreeSet<String> =
+            grid(c).intersection(&grid(c + 1)).cloned().collect();
+        assert_eq!(times, shared, "contact {c}");
+    }
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let held = summary["held_contacts"].as_array().unwrap();
+    let mut held_rows = 0;
+    for r in &rows {
+        let (t, c, gap): (f64, usize, f64) = (
+            r[0].parse().unwrap(),
+            r[1].parse().unwrap(),
+            r[3].parse().unwrap(),
+        );
+        assert!(gap >= -1e-9, "{r:?}");
+        assert_eq!((r[6].as_str(), r[7].as_str()), ("", ""), "{r:?}");
+        let inside = held.iter().any(|h| {
+            h["contact"].as_u64() == Some(c as u64)
+                && h["t_start"].as_f64().unwrap() <= t
+                && h["t_end"].as_f64().is_none_or(|end| t < end)
+        });
+        assert_eq!(r[2] == "held", inside, "{r:?}");
+        if inside {
+            held_rows += 1;
+            assert!(gap.abs() < 1e-9, "held but apart: {r:?}");
+        }
+    }
+    eprintln!("{} contact rows, {held_rows} held", rows.len());
+    assert_eq!(held_rows > 0, must_hold, "{held_rows} held rows");
+}
+
+/// Friction end to end: models/row-friction.toml sticks and slides; contacts.csv never holds a
+/// friction force above mu times the contact force, its sticking faces do not slide, and each
+/// change is an event of both columns.
+#[test]
+fn a_row_with_friction_sticks_and_slides() {
+    let dir = scratch_dir("rows-friction");
+    let out = dir.join("a");
+    let o = run(&repo("models/row-friction.toml"), &out, &[]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(stdout.contains("friction mu = 0.5"), "{stdout}");
+    let rows = contact_rows(&out);
+    let mut seen = std::collections::BTreeSet::new();
+    for r in &rows {
+        seen.insert(r[2].clone());
+        let (force, friction): (f64, f64) = (r[6].parse().unwrap(), r[7].parse().unwrap());
+        assert!(
+            friction.abs() <= 0.5 * force.max(0.0) * (1.0 + 1e-9) + 1e-9,
+            "{r:?}"
+        );
+        if r[2] == "sticking" {
+            let sliding: f64 = r[5].parse().unwrap();
+            assert!(sliding.abs() < 1e-8, "{r:?}");
+        }
+        if r[2] == "open" {
+            assert_eq!((force, friction), (0.0, 0.0), "{r:?}");
+        }
+    }
+    assert!(
+        seen.contains("sliding") && seen.contains("sticking"),
+        "{seen:?}"
+    );
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["row"]["friction"].as_f64(), Some(0.5));
+    let stretches = summary["contact_stretches"].as_array().unwrap();
+    let changes: u64 = stretches
+        .iter()
+        .map(|s| s["friction_changes"].as_u64().unwrap())
+        .sum();
+    for i in 0..2 {
+        let events = std::fs::read_to_string(out.join(format!("events-{i}.csv"))).unwrap();
+        let logged = events
+            .lines()
+            .filter(|l| l.contains(",friction-stick,") || l.contains(",friction-slip,"))
+            .count() as u64;
+        assert_eq!(logged, changes + stretches.len() as u64, "column {i}");
+    }
 }
 
 #[test]

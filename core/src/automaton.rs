@@ -62,6 +62,11 @@ pub enum EventKind {
     ContactStart,
     /// That contact's force falls to zero and it ends; q' and the mode stay.
     ContactEnd,
+    /// The faces of that contact stop sliding and stick (Coulomb's friction); q' and the mode
+    /// stay.
+    FrictionStick,
+    /// The faces of that contact start sliding, or slide the other way; q' and the mode stay.
+    FrictionSlip,
 }
 
 impl EventKind {
@@ -74,6 +79,8 @@ impl EventKind {
             EventKind::Impact => "impact",
             EventKind::ContactStart => "contact-start",
             EventKind::ContactEnd => "contact-end",
+            EventKind::FrictionStick => "friction-stick",
+            EventKind::FrictionSlip => "friction-slip",
         }
     }
 }
@@ -299,7 +306,9 @@ impl Automaton {
             EventKind::Overturn
             | EventKind::Impact
             | EventKind::ContactStart
-            | EventKind::ContactEnd => qdot,
+            | EventKind::ContactEnd
+            | EventKind::FrictionStick
+            | EventKind::FrictionSlip => qdot,
         }
     }
 
@@ -492,11 +501,17 @@ impl Automaton {
     /// du/dq at height xi H in `mode` (the velocity shape Phi(xi): U(xi) before uplift, V(xi)
     /// while rocking), with `shape` = U(xi). Within a mode u is affine in q, with this slope.
     pub fn displacement_slope_at(&self, mode: Mode, xi: f64, shape: f64) -> f64 {
-        let ds = match mode {
+        let ds = self.flexural_slope(mode);
+        shape * ds + xi * (1.0 - ds)
+    }
+
+    /// ds/dq in `mode`: 1 before uplift, the constant of eq. (9b) while rocking; dr/dq is one
+    /// less it.
+    pub fn flexural_slope(&self, mode: Mode) -> f64 {
+        match mode {
             Mode::PreUplift => 1.0,
             Mode::RockRight | Mode::RockLeft | Mode::Overturned => self.rocking_flexural_slope,
-        };
-        shape * ds + xi * (1.0 - ds)
+        }
     }
 
     /// Rocking part r = q - s of q (eq. 9).

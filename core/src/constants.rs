@@ -40,6 +40,24 @@ pub fn cantilever_mode(xi: f64) -> f64 {
     (z.cosh() - z.cos() - sigma * (z.sinh() - z.sin())) / 2.0
 }
 
+/// dU/dxi of the first cantilever mode [`cantilever_mode`].
+pub fn cantilever_mode_slope(xi: f64) -> f64 {
+    let (l, sigma) = (MODE_ROOT, mode_sigma());
+    let z = l * xi;
+    l * (z.sinh() + z.sin() - sigma * (z.cosh() - z.cos())) / 2.0
+}
+
+/// The slope d/dxi of the flexural shape of `body`'s variant at height xi H (see
+/// [`flexural_shape_at`]): the turn of the sections there is this times s / H.
+pub fn flexural_shape_slope_at(body: &Body, xi: f64) -> Option<f64> {
+    match body.self_weight {
+        SelfWeight::Paper => Some(cantilever_mode_slope(xi)),
+        SelfWeight::Consistent => {
+            SelfWeightedShape::new(body.gravity_parameter()).map(|shape| shape.slope(xi))
+        }
+    }
+}
+
 /// The flexural shape of `body`'s variant at height xi H, scaled to 1 at the top: the paper's
 /// U(xi), or psi(xi) of the consistent variant (`None` when the body buckles under its own
 /// weight).

@@ -226,6 +226,15 @@ impl SelfWeightedShape {
             .map(|(k, c)| c * CantileverMode::new(k + 1).values(xi)[0])
             .sum()
     }
+
+    /// dpsi/dxi.
+    pub fn slope(&self, xi: f64) -> f64 {
+        self.coefficients
+            .iter()
+            .enumerate()
+            .map(|(k, c)| c * CantileverMode::new(k + 1).values(xi)[1])
+            .sum()
+    }
 }
 
 #[cfg(test)]

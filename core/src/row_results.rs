@@ -1,6 +1,6 @@
 //! The results of a row's run (book/src/row.md): summary.json (how it was made: version, model
 //! file, the row as read, the floor motion, the method; each column's peaks and counts; the
-//! impacts) and the rows of impacts.csv.
+//! impacts), the rows of impacts.csv and those of contacts.csv.
 
 use serde::Serialize;
 
@@ -10,7 +10,10 @@ use crate::format::number;
 use crate::automaton::EventKind;
 use crate::body::Body;
 use crate::model::{RowModel, RowSection};
-use crate::row::{CompliantSettings, ContactLaw, ContactStretch, HeldContact, RowSolution};
+use crate::row::{
+    CompliantSettings, ContactLaw, ContactSample, ContactStretch, HeldContact, RowSolution,
+    StickStretch,
+};
 use crate::simulate::VERSION;
 use crate::solver::exact::ExactSettings;
 use crate::solver::InitialState;
@@ -61,6 +64,10 @@ pub struct RowSummary<'a> {
     /// the energy taken. Absent under the impact law.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub contact_stretches: Option<Vec<ContactStretch>>,
+    /// With friction, every stretch over which a contact's faces stuck: contact, t_start, t_end
+    /// (s; null if stuck at the end). Absent without friction.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub friction_sticking: Option<Vec<StickStretch>>,
     /// Each column, left to right.
     pub columns: Vec<ColumnSummary<'a>>,
 }
@@ -144,6 +151,7 @@ pub fn row_summary<'a>(model: &'a RowModel, solution: &RowSolution) -> RowSummar
         impact_energy_lost: solution.impact_energy_loss.iter().map(|(_, e)| e).sum(),
         held_contacts: solution.held.clone(),
         contact_stretches: model.compliant.map(|_| solution.contacts.clone()),
+        friction_sticking: (model.row.friction() > 0.0).then(|| solution.sticking.clone()),
         columns,
     }
 }
@@ -220,6 +228,35 @@ pub fn impact_rows(model: &RowModel, solution: &RowSolution) -> Vec<ImpactRow> {
     rows
 }
 
+/// A value the law may not have: empty in the table when it has none.
+fn optional(value: Option<f64>) -> String {
+    value.map(number).unwrap_or_default()
+}
+
+/// The columns of contacts.csv (one row per contact per sampled instant): names and fields from
+/// one list.
+pub const CONTACT_COLUMNS: [Column<ContactSample>; 8] = [
+    Column::new("t", |r| number(r.t)),
+    Column::new("contact", |r| r.contact.to_string()),
+    Column::new("state", |r| {
+        serde_json::to_value(r.state)
+            .ok()
+            .and_then(|v| v.as_str().map(str::to_string))
+            .unwrap_or_default()
+    }),
+    Column::new("gap", |r| number(r.gap + 0.0)),
+    // + 0.0: a zero that rounding made negative is written 0.
+    Column::new("closing_velocity", |r| number(r.closing_velocity + 0.0)),
+    Column::new("sliding_velocity", |r| number(r.sliding_velocity + 0.0)),
+    Column::new("force", |r| optional(r.force.map(|f| f + 0.0))),
+    Column::new("friction_force", |r| {
+        optional(r.friction_force.map(|f| f + 0.0))
+    }),
+];
+
+/// The header of contacts.csv.
+pub const CONTACT_COLUMN_NAMES: [&str; 8] = names(&CONTACT_COLUMNS);
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -242,5 +279,25 @@ mod tests {
             crate::columns::serialized_keys(&row),
             IMPACT_COLUMN_NAMES.to_vec()
         );
+    }
+
+    #[test]
+    fn the_contact_columns_name_the_sample_fields_in_order() {
+        let sample = ContactSample {
+            t: 0.0,
+            contact: 0,
+            state: crate::row::ContactState::Sticking,
+            gap: -1e-4,
+            closing_velocity: 0.0,
+            sliding_velocity: 0.0,
+            force: Some(1.0),
+            friction_force: None,
+        };
+        assert_eq!(
+            crate::columns::serialized_keys(&sample),
+            CONTACT_COLUMN_NAMES.to_vec()
+        );
+        assert_eq!((CONTACT_COLUMNS[2].field)(&sample), "sticking");
+        assert_eq!((CONTACT_COLUMNS[7].field)(&sample), "");
     }
 }

@@ -22,5 +22,6 @@ mod rigid;
 mod rigid_forms;
 mod row;
 mod row_compliant;
+mod row_friction;
 mod row_random;
 mod row_sweep;

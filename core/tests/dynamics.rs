@@ -159,7 +159,11 @@ fn resets_follow_the_zetas() {
             EventKind::Uplift => c.zeta_uplift * e.qdot_before,
             EventKind::Landing => e.qdot_before / c.zeta_landing,
             EventKind::Overturn => e.qdot_before,
-            EventKind::Impact | EventKind::ContactStart | EventKind::ContactEnd => {
+            EventKind::Impact
+            | EventKind::ContactStart
+            | EventKind::ContactEnd
+            | EventKind::FrictionStick
+            | EventKind::FrictionSlip => {
                 panic!("a body alone is struck at t = {}", e.t)
             }
         };

@@ -233,7 +233,8 @@ fn result_of(
     })
 }
 
-/// The solution of `simulate_row`: each column's `Result`, the impacts and the summary.
+/// The solution of `simulate_row`: each column's `Result`, the impacts, the contacts' history
+/// and the summary.
 #[pyclass(module = "flexrock", name = "RowResult")]
 pub(crate) struct RowResult {
     /// Each column's `Result`, left to right; its `summary` is the column's entry of the row's.
@@ -242,6 +243,10 @@ pub(crate) struct RowResult {
     /// The impacts: dicts with impacts.csv's columns.
     #[pyo3(get)]
     impacts: Py<PyAny>,
+    /// Every contact at every sampled instant: dicts with contacts.csv's columns (`force` and
+    /// `friction_force` None under the impact law).
+    #[pyo3(get)]
+    contacts: Py<PyAny>,
     /// The dict of the row's summary.json.
     #[pyo3(get)]
     summary: Py<PyAny>,
@@ -281,9 +286,11 @@ pub(crate) fn simulate_row(
     }
     // impacts.csv's rows, keyed by its column names (the row type serializes under them).
     let impacts = json(py, &impact_rows(&model, &solution))?;
+    let contacts = json(py, &solution.contact_history)?;
     Ok(RowResult {
         columns: columns.into_any().unbind(),
         impacts: impacts.unbind(),
+        contacts: contacts.unbind(),
         summary: summary.unbind(),
     })
 }

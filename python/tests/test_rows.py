@@ -66,3 +66,21 @@ def test_row_errors_name_the_key_or_the_argument(tmp_path):
     bad.write_text(PAIR.read_text().replace("restitution = 0.5", "restitution = 2.0"))
     with pytest.raises(flexrock.FlexrockError, match=r"row.restitution = 2"):
         flexrock.simulate_row(bad)
+
+
+FRICTION = PAIR.parent / "row-friction.toml"
+
+
+def test_a_row_gives_every_contact_at_every_sample_and_friction_within_mu_p():
+    row = flexrock.simulate_row(FRICTION)
+    assert row.contacts and set(row.contacts[0]) == {
+        "t", "contact", "state", "gap", "closing_velocity", "sliding_velocity", "force",
+        "friction_force",
+    }
+    states = {c["state"] for c in row.contacts}
+    assert {"sliding", "sticking"} <= states
+    for c in row.contacts:
+        assert abs(c["friction_force"]) <= 0.5 * max(c["force"], 0.0) * (1 + 1e-9) + 1e-9
+    # The impact law's contacts have gaps and no forces (its forces are impulses).
+    pair = flexrock.simulate_row(PAIR)
+    assert all(c["force"] is None and c["gap"] > -1e-9 for c in pair.contacts)

@@ -11,7 +11,10 @@ use flexrock_core::automaton::EventKind;
 use flexrock_core::columns::fields;
 use flexrock_core::model::RowModel;
 use flexrock_core::row::{ContactLaw, RowSolution, METHOD};
-use flexrock_core::row_results::{impact_rows, row_summary, IMPACT_COLUMNS, IMPACT_COLUMN_NAMES};
+use flexrock_core::row_results::{
+    impact_rows, row_summary, CONTACT_COLUMNS, CONTACT_COLUMN_NAMES, IMPACT_COLUMNS,
+    IMPACT_COLUMN_NAMES,
+};
 use flexrock_core::simulate::{simulate_row, VERSION};
 
 /// What `flexrock run` on a row returns.
@@ -24,7 +27,8 @@ pub struct RowReport {
 
 /// Solves a row and writes, for each column i (from 0, left to right), `history-i.csv`,
 /// `events-i.csv` and `episodes-i.csv` (the columns of a single body's files), and
-/// `impacts.csv`, `summary.json` and, with `plots`, `row_motion.svg` and `row_motion.png` and
+/// `impacts.csv`, `contacts.csv` (every contact at every sampled instant), `summary.json` and,
+/// with `plots`, `row_motion.svg` and `row_motion.png` and
 /// the strip of the row's shapes `row_shapes.svg` and `row_shapes.png` (at `shapes_at`, or at
 /// the times [`crate::figures::row::automatic_shape_times`] chooses), as one atomic set. Times
 /// given without `plots` draw the strip alone. Nothing in them depends on the machine: the
@@ -56,6 +60,11 @@ pub fn run_row_to_dir(
         impacts.row(fields(&IMPACT_COLUMNS, &row));
     }
     files.push(("impacts.csv".to_string(), impacts.into_bytes()));
+    let mut contacts = writers::Table::new(&CONTACT_COLUMN_NAMES);
+    for sample in &solution.contact_history {
+        contacts.row(fields(&CONTACT_COLUMNS, sample));
+    }
+    files.push(("contacts.csv".to_string(), contacts.into_bytes()));
     files.push((
         "summary.json".to_string(),
         writers::json_bytes(&row_summary(model, &solution)),
@@ -89,10 +98,14 @@ pub fn row_report_text(model: &RowModel, report: &RowReport) -> String {
             stiffness,
             damping_ratio,
         } => {
+            let friction = match model.row.friction() {
+                mu if mu > 0.0 => format!(", friction mu = {}", writers::significant(mu, 6)),
+                _ => String::new(),
+            };
             let _ = writeln!(
                 t,
                 "flexrock {VERSION}: {METHOD} solution of a row of {} columns over {} s, compliant \
-                 contacts (k = {} N/m, zeta = {})",
+                 contacts (k = {} N/m, zeta = {}{friction})",
                 s.columns.len(),
                 model.duration,
                 writers::significant(stiffness, 6),
@@ -128,9 +141,20 @@ pub fn row_report_text(model: &RowModel, report: &RowReport) -> String {
     let lost: f64 = s.impact_energy_loss.iter().map(|(_, e)| e).sum();
     if let ContactLaw::Compliant { .. } = model.row.law() {
         let taken: f64 = s.contacts.iter().map(|c| c.energy_dissipated).sum();
+        let friction = if model.row.friction() > 0.0 {
+            let rubbed: f64 = s.contacts.iter().map(|c| c.friction_dissipated).sum();
+            let changes: usize = s.contacts.iter().map(|c| c.friction_changes).sum();
+            format!(
+                ", friction {} J ({} between sticking and sliding)",
+                writers::significant(rubbed, 6),
+                writers::count(changes, "change", "changes")
+            )
+        } else {
+            String::new()
+        };
         let _ = writeln!(
             t,
-            "  {} of contact, taking {} J; {}",
+            "  {} of contact, taking {} J{friction}; {}",
             writers::count(s.contacts.len(), "stretch", "stretches"),
             writers::significant(taken, 6),
             match s.overturned {

@@ -131,6 +131,8 @@ pub struct Span {
     pub color: usize,
     /// The legend text (empty: none).
     pub label: String,
+    /// Drawn in a stronger tint of its colour (a stretch within a paler one).
+    pub strong: bool,
 }
 
 impl Panel {
@@ -774,7 +776,10 @@ fn legend_entries<'p>(
     for span in &panel.spans {
         if !span.label.is_empty() && !seen.contains(&span.label.as_str()) {
             seen.push(&span.label);
-            legend.push((&span.label, Swatch::Band(span_colour(span.color))));
+            legend.push((
+                &span.label,
+                Swatch::Band(span_colour(span.color, span.strong)),
+            ));
         }
     }
     for v in &panel.vertical_lines {
@@ -790,9 +795,10 @@ const REFERENCE_GREY: RGBColor = RGBColor(150, 150, 150);
 const DASHED_GREY: RGBColor = RGBColor(90, 90, 90);
 
 /// The colour of a shaded span: the palette colour, three fifths white.
-fn span_colour(color: usize) -> RGBColor {
+fn span_colour(color: usize, strong: bool) -> RGBColor {
     let c = PALETTE[color % PALETTE.len()];
-    let pale = |v: u8| ((2 * u16::from(v) + 3 * 255) / 5) as u8;
+    let (own, white) = if strong { (4, 1) } else { (2, 3) };
+    let pale = |v: u8| ((own * u16::from(v) + white * 255) / 5) as u8;
     RGBColor(pale(c.0), pale(c.1), pale(c.2))
 }
 
@@ -986,7 +992,7 @@ where
         let (a, b) = (a.clamp(x0, x1), b.clamp(x0, x1));
         chart.draw_series(std::iter::once(Rectangle::new(
             [(a, y0), (b, y1)],
-            span_colour(span.color).filled(),
+            span_colour(span.color, span.strong).filled(),
         )))?;
     }
     for (level, _) in &panel.reference_lines {

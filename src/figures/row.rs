@@ -3,7 +3,8 @@
 //! each impact. Impacts are thin vertical lines in every panel. The gaps come from the row's
 //! own contact geometry ([`flexrock_core::row::Contact::gap`]): no formula of the model is
 //! written here. Stretches of held (persistent) contact, and under the compliant law every
-//! stretch of contact, are shaded on the gap panel.
+//! stretch of contact, are shaded on the gap panel; stretches of faces stuck by friction in a
+//! stronger tint over them.
 //!
 //! And the strip `row_shapes.svg` (and `.png`): the row drawn to true scale at a few instants,
 //! each column in its deformed shape at the model's exact state there
@@ -119,7 +120,7 @@ pub fn panels(model: &RowModel, solution: &RowSolution) -> Vec<Panel> {
     gaps.reference_lines = vec![(0.0, "contact".to_string())];
     // Held contact (persistent contact), and under the compliant law every stretch of contact,
     // shaded over its stretch in the pair's colour; the legend counts each pair's stretches.
-    let shade = |stretches: &[(usize, f64, Option<f64>)], what: &str| -> Vec<Span> {
+    let shade = |stretches: &[(usize, f64, Option<f64>)], what: &str, strong: bool| -> Vec<Span> {
         stretches
             .iter()
             .map(|&(contact, from, to)| {
@@ -129,6 +130,7 @@ pub fn panels(model: &RowModel, solution: &RowSolution) -> Vec<Panel> {
                     to: to.unwrap_or(solution.final_time),
                     color: contact + 1,
                     label: format!("{contact}|{} {what} ({count})", contact + 1),
+                    strong,
                 }
             })
             .collect()
@@ -139,10 +141,15 @@ pub fn panels(model: &RowModel, solution: &RowSolution) -> Vec<Panel> {
     let touching: Vec<_> = (solution.contacts.iter())
         .map(|s| (s.contact, s.t_start, s.t_end))
         .collect();
-    gaps.spans = shade(&held, "held");
-    gaps.spans.extend(shade(&touching, "in contact"));
-    // The legend lists the pairs in order.
-    gaps.spans.sort_by_key(|span| span.color);
+    // Faces stuck by friction, within their stretch of contact, in a stronger tint.
+    let stuck: Vec<_> = (solution.sticking.iter())
+        .map(|s| (s.contact, s.t_start, s.t_end))
+        .collect();
+    gaps.spans = shade(&held, "held", false);
+    gaps.spans.extend(shade(&touching, "in contact", false));
+    gaps.spans.extend(shade(&stuck, "faces stuck", true));
+    // The legend lists the pairs in order, a pair's stuck stretches drawn over its contacts.
+    gaps.spans.sort_by_key(|span| (span.color, span.strong));
     gaps.legend = Legend::Outside;
     let mut panels = vec![floor, q, gaps];
     for (k, panel) in panels.iter_mut().enumerate() {

@@ -37,6 +37,10 @@ pub struct RowSection {
     /// refused with the impact law).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub stiffness: Option<f64>,
+    /// Coulomb's coefficient of friction between faces in contact, >= 0 (0, the default, is
+    /// none; above 0 it needs contact = "compliant").
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub friction: Option<f64>,
 }
 
 /// The `[simulation]` table of a row: its duration (each column has its own q0 and qdot0).
@@ -248,6 +252,10 @@ impl RowModel {
             row.compliant(k)?
         } else {
             row
+        };
+        let row = match section.friction {
+            Some(mu) => row.with_friction(mu)?,
+            None => row,
         };
         let (floor, natural_duration) = floor_from_section(&excitation, base_dir, records)?;
         let duration = match (duration.or(simulation.duration), natural_duration) {

@@ -27,7 +27,7 @@ use std::time::Instant;
 
 use diffsol::{NalgebraMat, OdeBuilder, OdeEquations, OdeSolverMethod, OdeSolverStopReason};
 
-use super::{ContactLaw, Row, RowSolution};
+use super::{ContactLaw, ContactSample, ContactState, Row, RowSolution};
 use crate::automaton::{Automaton, EventKind, Guard, Mode};
 use crate::excitation::FloorMotion;
 use crate::solution::{Recorder, SolverStats};
@@ -50,7 +50,7 @@ const SNAP_ULPS: f64 = 8.0;
 /// Retakes of one step whose crossing its dense output could not resolve before giving up.
 const MAX_CROSSING_RETRIES: usize = 60;
 /// Events at one instant (a reset that lets a contact go, that starts another) before giving up.
-const MAX_CHAIN: usize = 8;
+const MAX_CHAIN: usize = 16;
 
 /// Settings of a compliant row's run.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
@@ -87,6 +87,36 @@ pub struct ContactStretch {
     /// The energy the contact took from the two bodies, J: the integral of P delta' (the
     /// dashpot's dissipation and the spring's energy left at the release).
     pub energy_dissipated: f64,
+    /// The energy friction between the faces took from the two bodies, J: the integral of
+    /// mu P |sigma| while they slid (0 without friction).
+    pub friction_dissipated: f64,
+    /// The largest friction force, N (its magnitude, up to mu times the contact force).
+    pub peak_friction_force: f64,
+    /// Changes between sticking and sliding over the stretch, after the faces met (each, and
+    /// how they met, is a `friction-stick` or `friction-slip` event of both columns).
+    pub friction_changes: usize,
+}
+
+/// Coulomb's friction at a contact in force (book/src/row.md §4b).
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Friction {
+    /// No friction: the contact is not in force, or the row has none.
+    Off,
+    /// The faces slide, sigma of the sign given; the friction force is -mu P that sign.
+    Slip(f64),
+    /// The faces stick: the friction force is what keeps sigma' = 0, within mu P.
+    Stick,
+}
+
+/// A stretch over which the faces of a contact stuck (book/src/row.md §4b).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct StickStretch {
+    /// The contact: between columns `contact` and `contact + 1`.
+    pub contact: usize,
+    /// When the faces stuck, s.
+    pub t_start: f64,
+    /// When they slid again or the contact ended, s; None if stuck at the end of the run.
+    pub t_end: Option<f64>,
 }
 
 /// What changes along the run and the right-hand side depends on.
@@ -96,6 +126,8 @@ struct Config {
     active: Vec<bool>,
     /// c of each contact, N s/m, set at its start.
     damping: Vec<f64>,
+    /// The friction state of each contact.
+    friction: Vec<Friction>,
 }
 
 /// The row's fixed data.
@@ -103,6 +135,17 @@ struct Model<'r> {
     row: &'r Row,
     stiffness: f64,
     zeta: f64,
+    /// Coulomb's coefficient of friction between the faces.
+    mu: f64,
+    /// The integration's atol, m/s: a sliding speed this small is not told from zero.
+    atol: f64,
+}
+
+/// The contact forces at one state: the normal force P and the friction force T on the left
+/// column's face (up; the right column's face takes -T), N, 0 where not in contact.
+struct Forces {
+    normal: Vec<f64>,
+    friction: Vec<f64>,
 }
 
 impl Model<'_> {
@@ -149,21 +192,126 @@ impl Model<'_> {
         2.0 * self.zeta * (self.stiffness * self.reduced_mass(c, modes)).sqrt()
     }
 
-    /// The contact forces, N (0 where not in contact).
-    fn forces(&self, cfg: &Config, x: &[f64]) -> Vec<f64> {
-        (0..self.n() - 1)
-            .map(|c| {
-                if cfg.active[c] {
-                    self.force_with(c, &cfg.modes, cfg.damping[c], x)
-                } else {
-                    0.0
-                }
-            })
-            .collect()
+    /// dv/dq of the two faces of contact `c` (book/src/row.md §4b): the faces slide at
+    /// sigma = `.0` q'_left - `.1` q'_right.
+    fn sliding_slopes(&self, c: usize, modes: &[Mode], x: &[f64]) -> (f64, f64) {
+        let automata = (self.automaton(c), self.automaton(c + 1));
+        self.row.contacts()[c].sliding_slopes(
+            automata,
+            (modes[c], x[2 * c]),
+            (modes[c + 1], x[2 * c + 2]),
+        )
     }
 
-    /// Each column's q'' from its automaton, and the contact forces' share Phi P / m_Phi.
-    fn rhs(&self, cfg: &Config, x: &[f64], floor_acc: f64, y: &mut [f64]) {
+    /// sigma, the speed at which the left face slides up past the right one, m/s.
+    fn sliding(&self, c: usize, modes: &[Mode], x: &[f64]) -> f64 {
+        let (vl, vr) = self.sliding_slopes(c, modes, x);
+        vl * x[2 * c + 1] - vr * x[2 * c + 3]
+    }
+
+    /// The sliding speed below which the faces of contact `c` count as not sliding, m/s: the
+    /// integration's atol on q' carried to sigma.
+    fn sliding_tolerance(&self, c: usize, modes: &[Mode], x: &[f64]) -> f64 {
+        let (vl, vr) = self.sliding_slopes(c, modes, x);
+        self.atol * (vl.abs() + vr.abs())
+    }
+
+    /// The contact forces at `x` with floor acceleration `floor_acc`. A sticking contact's
+    /// friction is the force that keeps its faces from sliding: sigma' = 0, with the other
+    /// forces as they are; neighbouring sticking contacts share a column, so each run of them
+    /// is one tridiagonal system.
+    fn forces(&self, cfg: &Config, x: &[f64], floor_acc: f64) -> Forces {
+        let contacts = self.n() - 1;
+        let mut normal = vec![0.0; contacts];
+        let mut friction = vec![0.0; contacts];
+        let mut sticking = false;
+        for c in 0..contacts {
+            if !cfg.active[c] {
+                continue;
+            }
+            normal[c] = self.force_with(c, &cfg.modes, cfg.damping[c], x);
+            match cfg.friction[c] {
+                Friction::Off => {}
+                Friction::Slip(sign) => friction[c] = -self.mu * normal[c].max(0.0) * sign,
+                Friction::Stick => sticking = true,
+            }
+        }
+        if sticking {
+            let mut y = vec![0.0; x.len()];
+            self.accelerations_with(cfg, x, floor_acc, &normal, &friction, &mut y);
+            self.stick(cfg, x, &y, &mut friction);
+        }
+        Forces { normal, friction }
+    }
+
+    /// Sets the friction of every sticking contact in `friction` from the accelerations `y`
+    /// the other forces give: D T = -sigma' over each run of neighbouring sticking contacts,
+    /// D = G M^-1 G^T with G the faces' slopes. Faces whose slopes give D = 0 cannot slide
+    /// against each other, and take no friction.
+    fn stick(&self, cfg: &Config, x: &[f64], y: &[f64], friction: &mut [f64]) {
+        let contacts = self.n() - 1;
+        let mass = |i: usize| self.automaton(i).kinetic_mass(cfg.modes[i]);
+        let mut c = 0;
+        while c < contacts {
+            if cfg.friction[c] != Friction::Stick {
+                c += 1;
+                continue;
+            }
+            let first = c;
+            while c < contacts && cfg.friction[c] == Friction::Stick {
+                c += 1;
+            }
+            // Thomas' algorithm over the run first..c.
+            let len = c - first;
+            let slopes: Vec<(f64, f64)> = (first..c)
+                .map(|k| self.sliding_slopes(k, &cfg.modes, x))
+                .collect();
+            let mut diag = Vec::with_capacity(len);
+            let mut upper = Vec::with_capacity(len);
+            let mut rhs = Vec::with_capacity(len);
+            for (j, &(vl, vr)) in slopes.iter().enumerate() {
+                let k = first + j;
+                diag.push(vl * vl / mass(k) + vr * vr / mass(k + 1));
+                upper.push(if j + 1 < len {
+                    -vr * slopes[j + 1].0 / mass(k + 1)
+                } else {
+                    0.0
+                });
+                rhs.push(-(vl * y[2 * k + 1] - vr * y[2 * k + 3]));
+            }
+            for j in 1..len {
+                if diag[j - 1] > 0.0 {
+                    let factor = upper[j - 1] / diag[j - 1];
+                    diag[j] -= factor * upper[j - 1];
+                    rhs[j] -= factor * rhs[j - 1];
+                }
+            }
+            for j in (0..len).rev() {
+                let above = if j + 1 < len {
+                    upper[j] * friction[first + j + 1]
+                } else {
+                    0.0
+                };
+                friction[first + j] = if diag[j] > 0.0 {
+                    (rhs[j] - above) / diag[j]
+                } else {
+                    0.0
+                };
+            }
+        }
+    }
+
+    /// Each column's q'' from its automaton with the contact forces' shares, Phi P / m_Phi and
+    /// the faces' dv/dq T / m_Phi.
+    fn accelerations_with(
+        &self,
+        cfg: &Config,
+        x: &[f64],
+        floor_acc: f64,
+        normal: &[f64],
+        friction: &[f64],
+        y: &mut [f64],
+    ) {
         let n = self.n();
         for i in 0..n {
             y[2 * i] = x[2 * i + 1];
@@ -171,14 +319,23 @@ impl Model<'_> {
                 self.automaton(i)
                     .acceleration(cfg.modes[i], x[2 * i], x[2 * i + 1], floor_acc);
         }
-        for (c, p) in self.forces(cfg, x).into_iter().enumerate() {
-            if p == 0.0 {
+        for c in 0..n - 1 {
+            let (p, f) = (normal[c], friction[c]);
+            if p == 0.0 && f == 0.0 {
                 continue;
             }
             let (pl, pr) = self.slopes(c, &cfg.modes);
-            y[2 * c + 1] -= pl * p / self.automaton(c).kinetic_mass(cfg.modes[c]);
-            y[2 * c + 3] += pr * p / self.automaton(c + 1).kinetic_mass(cfg.modes[c + 1]);
+            let (vl, vr) = self.sliding_slopes(c, &cfg.modes, x);
+            y[2 * c + 1] += (vl * f - pl * p) / self.automaton(c).kinetic_mass(cfg.modes[c]);
+            y[2 * c + 3] +=
+                (pr * p - vr * f) / self.automaton(c + 1).kinetic_mass(cfg.modes[c + 1]);
         }
+    }
+
+    /// Each column's q'' from its automaton, with the contact forces.
+    fn rhs(&self, cfg: &Config, x: &[f64], floor_acc: f64, y: &mut [f64]) {
+        let forces = self.forces(cfg, x, floor_acc);
+        self.accelerations_with(cfg, x, floor_acc, &forces.normal, &forces.friction, y);
     }
 
     /// The Jacobian of [`Model::rhs`] times `v`.
@@ -198,33 +355,62 @@ impl Model<'_> {
                 + cfg.damping[c] * (pl * v[2 * c + 1] - pr * v[2 * c + 3]);
             y[2 * c + 1] -= pl * dp / self.automaton(c).kinetic_mass(cfg.modes[c]);
             y[2 * c + 3] += pr * dp / self.automaton(c + 1).kinetic_mass(cfg.modes[c + 1]);
+            // A slipping contact's friction -mu P sign; a sticking one's is left out (Tsit45,
+            // an explicit method, asks for no Jacobian: this one serves diffsol's interface).
+            if let Friction::Slip(sign) = cfg.friction[c] {
+                let (vl, vr) = self.slopes_for_jacobian(c, cfg);
+                let df = -self.mu * sign * dp;
+                y[2 * c + 1] += vl * df / self.automaton(c).kinetic_mass(cfg.modes[c]);
+                y[2 * c + 3] -= vr * df / self.automaton(c + 1).kinetic_mass(cfg.modes[c + 1]);
+            }
         }
     }
 
+    /// dv/dq of the faces of contact `c` at a state the Jacobian does not pass: a slipping
+    /// column's face slopes depend on its q only through an overturned column's side, and an
+    /// overturned column ends the run.
+    fn slopes_for_jacobian(&self, c: usize, cfg: &Config) -> (f64, f64) {
+        let automata = (self.automaton(c), self.automaton(c + 1));
+        self.row.contacts()[c].sliding_slopes(
+            automata,
+            (cfg.modes[c], 0.0),
+            (cfg.modes[c + 1], 0.0),
+        )
+    }
+
     /// The integrands of the work integrals: per column its input, damping and contact power
-    /// in its SDOF energy (the contact force's term of its equation times M_e q'), then per
-    /// contact P delta'.
+    /// in its SDOF energy (the contact forces' terms of its equation times M_e q'), then per
+    /// contact P delta' (what the spring and dashpot take), then per contact -T sigma (what
+    /// friction takes).
     fn integrands(&self, cfg: &Config, x: &[f64], floor_acc: f64, y: &mut [f64]) {
         let n = self.n();
-        let forces = self.forces(cfg, x);
+        let Forces { normal, friction } = self.forces(cfg, x, floor_acc);
         for i in 0..n {
             let (a, mode, qdot) = (self.automaton(i), cfg.modes[i], x[2 * i + 1]);
             y[3 * i] = a.input_power(mode, qdot, floor_acc);
             y[3 * i + 1] = a.damping_power(mode, qdot);
             let mut generalised = 0.0;
-            if i > 0 && forces[i - 1] != 0.0 {
-                generalised += self.slopes(i - 1, &cfg.modes).1 * forces[i - 1];
+            if i > 0 && (normal[i - 1] != 0.0 || friction[i - 1] != 0.0) {
+                let vr = self.sliding_slopes(i - 1, &cfg.modes, x).1;
+                generalised +=
+                    self.slopes(i - 1, &cfg.modes).1 * normal[i - 1] - vr * friction[i - 1];
             }
-            if i + 1 < n && forces[i] != 0.0 {
-                generalised -= self.slopes(i, &cfg.modes).0 * forces[i];
+            if i + 1 < n && (normal[i] != 0.0 || friction[i] != 0.0) {
+                let vl = self.sliding_slopes(i, &cfg.modes, x).0;
+                generalised += vl * friction[i] - self.slopes(i, &cfg.modes).0 * normal[i];
             }
             y[3 * i + 2] = a.generalised_mass() / a.kinetic_mass(mode) * generalised * qdot;
         }
-        for (c, p) in forces.into_iter().enumerate() {
-            y[3 * n + c] = if p == 0.0 {
+        for c in 0..n - 1 {
+            y[3 * n + c] = if normal[c] == 0.0 {
                 0.0
             } else {
-                p * self.closing(c, &cfg.modes, x)
+                normal[c] * self.closing(c, &cfg.modes, x)
+            };
+            y[4 * n - 1 + c] = if friction[c] == 0.0 {
+                0.0
+            } else {
+                -friction[c] * self.sliding(c, &cfg.modes, x)
             };
         }
     }
@@ -262,10 +448,12 @@ pub fn solve_row_compliant(
         row,
         stiffness,
         zeta: damping_ratio,
+        mu: row.friction(),
+        atol: settings.atol,
     };
     let n = model.n();
     let nstates = 2 * n;
-    let nout = 3 * n + (n - 1);
+    let nout = 3 * n + 2 * (n - 1);
     let initial: Vec<f64> = row
         .columns()
         .iter()
@@ -279,6 +467,7 @@ pub fn solve_row_compliant(
             .collect(),
         active: vec![false; n - 1],
         damping: vec![0.0; n - 1],
+        friction: vec![Friction::Off; n - 1],
     });
     let floor_cache = std::cell::Cell::new((f64::NAN, 0.0));
     let floor_acc = |t: f64| {
@@ -364,6 +553,9 @@ pub fn solve_row_compliant(
         open: vec![None; n - 1],
         overturned: None,
         output_dt: settings.output_dt,
+        contact_history: Vec::new(),
+        sticking: Vec::new(),
+        stuck: vec![None; n - 1],
     };
     let (final_time, steps, retries) = driver.run(solver)?;
     let stats = SolverStats {
@@ -381,6 +573,8 @@ pub fn solve_row_compliant(
         recorders,
         stretches,
         overturned,
+        contact_history,
+        sticking,
         ..
     } = driver;
     let columns = recorders
@@ -395,6 +589,8 @@ pub fn solve_row_compliant(
         overturned,
         held: Vec::new(),
         contacts: stretches,
+        contact_history,
+        sticking,
         final_time,
     })
 }
@@ -408,6 +604,9 @@ enum What {
     Start(usize),
     /// Contact `.0`'s force falls through zero.
     End(usize),
+    /// Contact `.0`'s faces: stick or slide, as the state says; with `Some(sign)`, start
+    /// sliding that way (a sticking contact whose friction reached mu P).
+    Friction(usize, Option<f64>),
 }
 
 enum Crossing {
@@ -431,10 +630,16 @@ struct Driver<'d> {
     recorders: Vec<Recorder<'d>>,
     budgets: Vec<RunBudget>,
     stretches: Vec<ContactStretch>,
-    /// Per contact: the index of its open stretch and the dissipation integral at its start.
-    open: Vec<Option<(usize, f64)>>,
+    /// Per contact: the index of its open stretch and the integrals of what the spring and
+    /// dashpot took and of what friction took, at its start.
+    open: Vec<Option<(usize, f64, f64)>>,
     overturned: Option<(usize, f64)>,
     output_dt: f64,
+    /// Every contact at every sampled instant.
+    contact_history: Vec<ContactSample>,
+    /// Every stretch of sticking faces, and per contact the index of the one under way.
+    sticking: Vec<StickStretch>,
+    stuck: Vec<Option<usize>>,
 }
 
 fn at_stop(t: f64, stop: f64) -> bool {
@@ -589,7 +794,7 @@ impl<'d> Driver<'d> {
     }
 
     fn nout(&self) -> usize {
-        4 * self.n() - 1
+        5 * self.n() - 2
     }
 
     /// The state at `t` within the current step.
@@ -637,6 +842,36 @@ impl<'d> Driver<'d> {
                 let rate = self.model.stiffness * self.model.closing(c, &cfg.modes, &x)
                     + damping * (pl * acc[2 * c + 1] - pr * acc[2 * c + 3]);
                 (self.model.force_with(c, &cfg.modes, damping, &x), rate)
+            }
+            Watch::Sliding(c) => {
+                drop(cfg);
+                let acc = self.accelerations(t, &x);
+                let cfg = self.cfg.borrow();
+                let (vl, vr) = self.model.sliding_slopes(c, &cfg.modes, &x);
+                (
+                    self.model.sliding(c, &cfg.modes, &x),
+                    vl * acc[2 * c + 1] - vr * acc[2 * c + 3],
+                )
+            }
+            Watch::Margin(c, sign, t0, t1) => {
+                drop(cfg);
+                let margin = |t: f64| -> Result<f64> {
+                    let x = self.state_at(solver, t)?;
+                    let cfg = self.cfg.borrow();
+                    let forces = self.model.forces(&cfg, &x, self.floor.acceleration(t));
+                    Ok(self.model.mu * forces.normal[c] - sign * forces.friction[c])
+                };
+                // Within a step the margin is smooth (linear in the state and the floor's
+                // acceleration, both smooth between stops): a central difference on the dense
+                // output, one-sided at the step's ends.
+                let h = 1e-6 * (t1 - t0);
+                let (lo, hi) = ((t - h).max(t0), (t + h).min(t1));
+                let rate = if hi > lo {
+                    (margin(hi)? - margin(lo)?) / (hi - lo)
+                } else {
+                    0.0
+                };
+                (margin(t)?, rate)
             }
         })
     }
@@ -800,6 +1035,43 @@ impl<'d> Driver<'d> {
                 if let Ok(Some(t)) = self.first_crossing_of(solver, t0, t1, watch, 0.0, -1.0)? {
                     consider(t, What::End(c));
                 }
+                match cfg.friction[c] {
+                    Friction::Off => {}
+                    // Sliding faces that come to a stop: stick, or slide back.
+                    Friction::Slip(sign) => {
+                        let x0 = self.state_at(solver, t0)?;
+                        let level = -sign * self.model.sliding_tolerance(c, &cfg.modes, &x0);
+                        let watch = Watch::Sliding(c);
+                        match self.first_crossing_of(solver, t0, t1, watch, level, -sign)? {
+                            Ok(Some(t)) => consider(t, What::Friction(c, None)),
+                            Ok(None) => {}
+                            Err(()) => {
+                                if -sign * (self.function(solver, t0, watch)?.0 - level) >= 0.0 {
+                                    consider(t0, What::Friction(c, None));
+                                } else {
+                                    return Ok(Crossing::Unresolved);
+                                }
+                            }
+                        }
+                    }
+                    // Sticking faces whose friction reaches mu P: slide.
+                    Friction::Stick => {
+                        for sign in [1.0, -1.0] {
+                            let watch = Watch::Margin(c, sign, t0, t1);
+                            match self.first_crossing_of(solver, t0, t1, watch, 0.0, -1.0)? {
+                                Ok(Some(t)) => consider(t, What::Friction(c, Some(-sign))),
+                                Ok(None) => {}
+                                Err(()) => {
+                                    if self.function(solver, t0, watch)?.0 <= 0.0 {
+                                        consider(t0, What::Friction(c, Some(-sign)));
+                                    } else {
+                                        return Ok(Crossing::Unresolved);
+                                    }
+                                }
+                            }
+                        }
+                    }
+                }
             } else {
                 if let Ok(Some(t)) =
                     self.first_crossing_of(solver, t0, t1, Watch::Gap(c), 0.0, -1.0)?
@@ -854,13 +1126,24 @@ impl<'d> Driver<'d> {
             for t in root.into_iter().chain([until]) {
                 let p = self.function(solver, t, watch)?.0;
                 self.force_candidate(c, t, p);
+                if cfg.friction[c] != Friction::Off {
+                    let x = self.state_at(solver, t)?;
+                    let f = self
+                        .model
+                        .forces(&cfg, &x, self.floor.acceleration(t))
+                        .friction[c];
+                    if let Some((k, _, _)) = self.open[c] {
+                        let s = &mut self.stretches[k];
+                        s.peak_friction_force = s.peak_friction_force.max(f.abs());
+                    }
+                }
             }
         }
         Ok(())
     }
 
     fn force_candidate(&mut self, c: usize, t: f64, p: f64) {
-        if let Some((k, _)) = self.open[c] {
+        if let Some((k, _, _)) = self.open[c] {
             let s = &mut self.stretches[k];
             if p > s.peak_force {
                 s.peak_force = p;
@@ -898,6 +1181,9 @@ impl<'d> Driver<'d> {
             };
             let floor_acc = self.floor.acceleration(t);
             let modes = self.cfg.borrow().modes.clone();
+            if self.history == History::Sampled {
+                self.sample_contacts(t, &y, floor_acc);
+            }
             for (i, r) in self.recorders.iter_mut().enumerate() {
                 r.set_contact_work(g[3 * i + 2]);
                 r.sample(
@@ -928,6 +1214,7 @@ impl<'d> Driver<'d> {
         let g = values(solver.state().g, self.nout());
         let mut next = what;
         let mut started_now = vec![false; n - 1];
+        let mut pending: Vec<usize> = Vec::new();
         for _ in 0..MAX_CHAIN {
             match next {
                 Some(What::Guard(i, guard)) => {
@@ -985,16 +1272,58 @@ impl<'d> Driver<'d> {
                         peak_force: 0.0,
                         t_peak_force: t,
                         energy_dissipated: 0.0,
+                        friction_dissipated: 0.0,
+                        peak_friction_force: 0.0,
+                        friction_changes: 0,
                     });
-                    self.open[c] = Some((self.stretches.len() - 1, g[3 * n + c]));
+                    self.open[c] = Some((self.stretches.len() - 1, g[3 * n + c], g[4 * n - 1 + c]));
                     let p = self.model.force_with(c, &modes, damping, &y);
                     self.force_candidate(c, t, p);
                     self.contact_events(c, t, EventKind::ContactStart, &y, &g)?;
+                    // With friction, the faces meet sliding or sticking: an event of its own.
+                    if self.model.mu > 0.0 {
+                        let state = self.friction_state(c, t, &y);
+                        self.set_friction(c, t, state);
+                        let kind = if state == Friction::Stick {
+                            EventKind::FrictionStick
+                        } else {
+                            EventKind::FrictionSlip
+                        };
+                        self.contact_events(c, t, kind, &y, &g)?;
+                    }
                 }
                 Some(What::End(c)) => {
                     self.end_contact(c, t, &y, &g)?;
                 }
+                Some(What::Friction(c, slide)) => {
+                    let state = match slide {
+                        Some(sign) => Friction::Slip(sign),
+                        None => self.friction_state(c, t, &y),
+                    };
+                    let before = self.cfg.borrow().friction[c];
+                    if state != before {
+                        self.set_friction(c, t, state);
+                        if let Some((k, _, _)) = self.open[c] {
+                            self.stretches[k].friction_changes += 1;
+                        }
+                        let kind = if state == Friction::Stick {
+                            EventKind::FrictionStick
+                        } else {
+                            EventKind::FrictionSlip
+                        };
+                        self.contact_events(c, t, kind, &y, &g)?;
+                    }
+                }
                 None => {}
+            }
+            // A column's reset changes its q' and its faces' slopes: its contacts' friction is
+            // looked at again.
+            if let Some(What::Guard(i, _)) = next {
+                for c in [i.checked_sub(1), Some(i)].into_iter().flatten() {
+                    if c + 1 < n && self.cfg.borrow().active[c] && self.model.mu > 0.0 {
+                        pending.push(c);
+                    }
+                }
             }
             // What the state asks for at once: a guard it sits on moving across, a contact
             // whose force is not compressive (one just started is not let go at its start).
@@ -1018,6 +1347,12 @@ impl<'d> Driver<'d> {
                             && self.model.force_with(c, &cfg.modes, cfg.damping[c], &y) <= 0.0
                     })
                     .map(What::End);
+            }
+            if next.is_none() {
+                next = pending.pop().map(|c| What::Friction(c, None));
+            }
+            if next.is_none() && self.model.mu > 0.0 {
+                next = self.friction_due(t, &y);
             }
             if next.is_none() {
                 self.set_state(solver, t, &y);
@@ -1056,16 +1391,42 @@ impl<'d> Driver<'d> {
         Ok(())
     }
 
+    /// Books every contact at the sampled instant `t`, state `y`.
+    fn sample_contacts(&mut self, t: f64, y: &[f64], floor_acc: f64) {
+        let cfg = self.cfg.borrow();
+        let forces = self.model.forces(&cfg, y, floor_acc);
+        for c in 0..self.n() - 1 {
+            let state = match (cfg.active[c], cfg.friction[c]) {
+                (false, _) => ContactState::Open,
+                (true, Friction::Off) => ContactState::Pressing,
+                (true, Friction::Slip(_)) => ContactState::Sliding,
+                (true, Friction::Stick) => ContactState::Sticking,
+            };
+            self.contact_history.push(ContactSample {
+                t,
+                contact: c,
+                state,
+                gap: -self.model.penetration(c, &cfg.modes, y),
+                closing_velocity: self.model.closing(c, &cfg.modes, y),
+                sliding_velocity: self.model.sliding(c, &cfg.modes, y),
+                force: Some(forces.normal[c]),
+                friction_force: Some(forces.friction[c]),
+            });
+        }
+    }
+
     /// Lets contact `c` go at `t`.
     fn end_contact(&mut self, c: usize, t: f64, y: &[f64], g: &[f64]) -> Result<()> {
         let n = self.n();
         self.cfg.borrow_mut().active[c] = false;
+        self.set_friction(c, t, Friction::Off);
         let modes = self.cfg.borrow().modes.clone();
-        if let Some((k, dissipation)) = self.open[c].take() {
+        if let Some((k, dissipation, friction)) = self.open[c].take() {
             let s = &mut self.stretches[k];
             s.t_end = Some(t);
             s.separating_velocity = Some(-self.model.closing(c, &modes, y));
             s.energy_dissipated = g[3 * n + c] - dissipation;
+            s.friction_dissipated = g[4 * n - 1 + c] - friction;
         }
         self.contact_events(c, t, EventKind::ContactEnd, y, g)
     }
@@ -1074,9 +1435,66 @@ impl<'d> Driver<'d> {
     fn close_open(&mut self, g: &[f64]) {
         let n = self.n();
         for c in 0..n - 1 {
-            if let Some((k, dissipation)) = self.open[c].take() {
+            if let Some((k, dissipation, friction)) = self.open[c].take() {
                 self.stretches[k].energy_dissipated = g[3 * n + c] - dissipation;
+                self.stretches[k].friction_dissipated = g[4 * n - 1 + c] - friction;
             }
+        }
+    }
+
+    /// Sets contact `c`'s friction to `state` at `t`, keeping the stretches of sticking.
+    fn set_friction(&mut self, c: usize, t: f64, state: Friction) {
+        self.cfg.borrow_mut().friction[c] = state;
+        if state == Friction::Stick {
+            if self.stuck[c].is_none() {
+                self.sticking.push(StickStretch {
+                    contact: c,
+                    t_start: t,
+                    t_end: None,
+                });
+                self.stuck[c] = Some(self.sticking.len() - 1);
+            }
+        } else if let Some(k) = self.stuck[c].take() {
+            self.sticking[k].t_end = Some(t);
+        }
+    }
+
+    /// A change of friction the state at (t, `y`) asks for at once: sticking faces whose
+    /// friction exceeds mu P, sliding faces that slide the other way.
+    fn friction_due(&self, t: f64, y: &[f64]) -> Option<What> {
+        let cfg = self.cfg.borrow();
+        let forces = self.model.forces(&cfg, y, self.floor.acceleration(t));
+        (0..self.n() - 1).find_map(|c| match cfg.friction[c] {
+            Friction::Off => None,
+            Friction::Stick => {
+                let f = forces.friction[c];
+                (f.abs() > self.model.mu * forces.normal[c])
+                    .then_some(What::Friction(c, Some(-f.signum())))
+            }
+            Friction::Slip(sign) => {
+                let tolerance = self.model.sliding_tolerance(c, &cfg.modes, y);
+                (sign * self.model.sliding(c, &cfg.modes, y) < -2.0 * tolerance)
+                    .then_some(What::Friction(c, None))
+            }
+        })
+    }
+
+    /// Whether the faces of contact `c` (in force) stick or slide at (t, `y`): sliding faces
+    /// slide on; faces not sliding stick if the friction that keeps them so is within mu P,
+    /// and otherwise start sliding the way that friction would have to push against.
+    fn friction_state(&self, c: usize, t: f64, y: &[f64]) -> Friction {
+        let mut cfg = self.cfg.borrow().clone();
+        let sigma = self.model.sliding(c, &cfg.modes, y);
+        if sigma.abs() > 2.0 * self.model.sliding_tolerance(c, &cfg.modes, y) {
+            return Friction::Slip(sigma.signum());
+        }
+        cfg.friction[c] = Friction::Stick;
+        let forces = self.model.forces(&cfg, y, self.floor.acceleration(t));
+        let (p, f) = (forces.normal[c], forces.friction[c]);
+        if f.abs() <= self.model.mu * p {
+            Friction::Stick
+        } else {
+            Friction::Slip(-f.signum())
         }
     }
 
@@ -1134,4 +1552,9 @@ enum Watch {
     Gap(usize),
     /// The force of a contact, with its dashpot.
     Force(usize, f64),
+    /// The sliding speed sigma of a contact's faces.
+    Sliding(usize),
+    /// mu P - sign T of a sticking contact: how far its friction is from the most it can be,
+    /// with its rate taken on the dense output of the step (t0, t1).
+    Margin(usize, f64, f64, f64),
 }

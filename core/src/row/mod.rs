@@ -56,15 +56,15 @@ pub mod law;
 mod solve;
 
 pub use compliant::{
-    solve_row_compliant, CompliantSettings, ContactStretch, DEFAULT_TOLERANCE, METHOD,
+    solve_row_compliant, CompliantSettings, ContactStretch, StickStretch, DEFAULT_TOLERANCE, METHOD,
 };
-pub use contact::Contact;
+pub use contact::{Contact, ContactSample, ContactState, Face};
 pub use impact::{impulses, ImpactError, MAX_SIMULTANEOUS};
 pub use solve::{solve_row, HeldContact, ImpactRecord, RowSolution, ACCUMULATION_SHARE};
 
 use crate::automaton::Automaton;
 use crate::body::Body;
-use crate::constants::{flexural_shape_at, Constants};
+use crate::constants::{flexural_shape_at, flexural_shape_slope_at, Constants};
 use crate::invalid::InvalidParameter as Error;
 use crate::solver::InitialState;
 
@@ -113,6 +113,7 @@ pub struct Row {
     contacts: Vec<Contact>,
     restitution: f64,
     law: ContactLaw,
+    friction: f64,
 }
 
 impl Row {
@@ -186,12 +187,30 @@ impl Row {
                     )
                 })
             };
+            let face = |body: &Body, index: usize, side: f64| {
+                let xi = height / body.height;
+                flexural_shape_slope_at(body, xi)
+                    .map(|shape_slope| Face {
+                        side,
+                        width: body.width,
+                        height: body.height,
+                        shape_slope,
+                    })
+                    .ok_or_else(|| {
+                        Error::new(
+                            &format!("column[{index}].height"),
+                            body.height,
+                            "the body buckles under its own weight",
+                        )
+                    })
+            };
             contacts.push(Contact::new(
                 i,
                 height,
                 gap,
                 point(left, i)?,
                 point(right, i + 1)?,
+                (face(left, i, 1.0)?, face(right, i + 1, -1.0)?),
             ));
         }
         for contact in &contacts {
@@ -219,6 +238,7 @@ impl Row {
             contacts,
             restitution,
             law: ContactLaw::Impact,
+            friction: 0.0,
         })
     }
 
@@ -247,6 +267,36 @@ impl Row {
             damping_ratio: law::damping_ratio_for(self.restitution),
         };
         Ok(self)
+    }
+
+    /// The row with Coulomb's friction of coefficient `mu` between faces in contact
+    /// (book/src/row.md §4b): on their vertical sliding, at most `mu` times the contact force,
+    /// with stick and slip. The contact law must be compliant; 0 is no friction. Errors name
+    /// `row.friction`.
+    pub fn with_friction(mut self, mu: f64) -> Result<Self, Error> {
+        if !(mu.is_finite() && mu >= 0.0) {
+            return Err(Error::new(
+                "row.friction",
+                mu,
+                "must be a finite coefficient of friction >= 0",
+            ));
+        }
+        if mu > 0.0 && self.law == ContactLaw::Impact {
+            return Err(Error::new(
+                "row.friction",
+                mu,
+                "needs contact = \"compliant\": friction acts through the contact force while \
+                 two faces press, and the impact law has no such stretch (leave friction out, or \
+                 set contact = \"compliant\" with its stiffness)",
+            ));
+        }
+        self.friction = mu;
+        Ok(self)
+    }
+
+    /// Coulomb's coefficient of friction between faces in contact (0: none).
+    pub fn friction(&self) -> f64 {
+        self.friction
     }
 
     /// The columns, left to right.

@@ -29,7 +29,11 @@
 
 use std::time::Instant;
 
-use super::{impulses, CompliantSettings, Contact, ContactLaw, ContactStretch, Row};
+use super::contact::contact_history_from_samples;
+use super::{
+    impulses, CompliantSettings, Contact, ContactLaw, ContactSample, ContactStretch, Row,
+    StickStretch,
+};
 use crate::automaton::{Automaton, EventKind, Guard, LinearForm, Mode};
 use crate::solver::exact::flow::{Flow, Point};
 use crate::solver::exact::scan::{self, first_crossing, ScanError, Smooth, Watch};
@@ -104,6 +108,11 @@ pub struct RowSolution {
     pub held: Vec<HeldContact>,
     /// Every stretch of contact under the compliant law (empty under the impact law).
     pub contacts: Vec<ContactStretch>,
+    /// Every contact at every sampled instant (empty without a sampled history).
+    pub contact_history: Vec<ContactSample>,
+    /// Every stretch over which the faces of a contact stuck by friction (the compliant law
+    /// with friction; empty otherwise).
+    pub sticking: Vec<StickStretch>,
     /// The time the run ended, s.
     pub final_time: f64,
 }
@@ -256,7 +265,7 @@ pub fn solve_row(
     state.replan(&everyone)?;
     let overturned = state.go()?;
     let now = state.now;
-    let solutions = state
+    let solutions: Vec<Solution> = state
         .runs
         .into_iter()
         .map(|run| {
@@ -264,6 +273,7 @@ pub fn solve_row(
             run.finish(t, started).0
         })
         .collect();
+    let contact_history = contact_history_from_samples(row, &solutions, &state.stretches);
     Ok(RowSolution {
         columns: solutions,
         impacts: state.impacts,
@@ -271,6 +281,8 @@ pub fn solve_row(
         overturned,
         held: state.stretches,
         contacts: Vec::new(),
+        contact_history,
+        sticking: Vec::new(),
         final_time: now,
     })
 }

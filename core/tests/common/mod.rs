@@ -91,7 +91,11 @@ pub fn event_against_its_direction(sol: &Solution) -> Option<String> {
             EventKind::Uplift | EventKind::Overturn => outward > 0.0,
             EventKind::Landing => outward < 0.0,
             // A body alone is never struck nor touched.
-            EventKind::Impact | EventKind::ContactStart | EventKind::ContactEnd => false,
+            EventKind::Impact
+            | EventKind::ContactStart
+            | EventKind::ContactEnd
+            | EventKind::FrictionStick
+            | EventKind::FrictionSlip => false,
         };
         (!right).then(|| format!("{:?} at t = {} with q' = {}", e.kind, e.t, e.qdot_before))
     })

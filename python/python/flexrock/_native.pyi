@@ -85,6 +85,7 @@ def simulate(
 class RowResult:
     columns: list[Result]
     impacts: list[dict[str, Any]]
+    contacts: list[dict[str, Any]]
     summary: dict[str, Any]
 
 def simulate_row(
