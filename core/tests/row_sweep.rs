@@ -185,3 +185,26 @@ fn a_row_plan_is_not_a_single_body_plan() {
         .unwrap()
         .contains("row_columns"));
 }
+
+#[test]
+fn the_energy_a_compliant_row_takes_counts_friction_too() {
+    // models/row-friction.toml: faces that stick and slide under mu = 0.5.
+    let path =
+        std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../models/row-friction.toml");
+    let text = std::fs::read_to_string(&path).unwrap();
+    let (_, rows) = sweep(&text, &["row.friction=0.5"]);
+    let model = flexrock_core::model::RowModel::load(&path, None).unwrap();
+    let run = flexrock_core::simulate::simulate_row(&model).unwrap();
+    let friction: f64 = run.contacts.iter().map(|c| c.friction_dissipated).sum();
+    let normal: f64 = run.contacts.iter().map(|c| c.energy_dissipated).sum();
+    assert!(friction > 0.0 && normal > 0.0, "{friction} {normal}");
+    let energy = float(at(&rows[0], "contact_energy")).unwrap();
+    assert!(
+        (energy - (friction + normal)).abs() <= 1e-6 * (friction + normal),
+        "{energy} against {normal} + {friction}"
+    );
+    assert_eq!(
+        at(&rows[0], "n_contacts"),
+        &Cell::Int(Some(run.contacts.len()))
+    );
+}

@@ -116,7 +116,8 @@ pub struct RowOutcome {
     pub n_contacts: usize,
     /// When two columns first touched, s.
     pub t_first_contact: Option<f64>,
-    /// The energy the contacts took from the columns, J.
+    /// The energy the contacts took from the columns, J: the impacts', or under the compliant
+    /// law the contact force's and friction's.
     pub contact_energy: f64,
     /// Each column, left to right.
     pub columns: Vec<ColumnOutcome>,
@@ -199,7 +200,11 @@ impl RowOutcome {
                     .iter()
                     .map(|c| c.t_start)
                     .min_by(f64::total_cmp),
-                solution.contacts.iter().map(|c| c.energy_dissipated).sum(),
+                solution
+                    .contacts
+                    .iter()
+                    .map(|c| c.energy_dissipated + c.friction_dissipated)
+                    .sum(),
             )
         } else {
             (
