@@ -104,7 +104,9 @@ pub(crate) enum Command {
     /// the smallest overturning value at each), one row per point in sweep.csv, with sweep.json
     /// and a figure (SVG): a map over two numeric axes, a spectrum of a minimum search, or for
     /// records (excitation.path) against excitation.scale or excitation.amplitude an
-    /// incremental dynamic analysis (ida.svg). Re-running the same command resumes an interrupted sweep.
+    /// incremental dynamic analysis (ida.svg). A row model (a [row] table) gives each column's
+    /// outcome in the row and alone, with a verdict (saved, toppled, same) and, over two numeric
+    /// axes, verdicts.svg and verdicts.png. Re-running the same command resumes an interrupted sweep.
     Sweep(SweepArgs),
     /// Overturning criteria of elastic bodies of the model's geometry (and of other
     /// slendernesses B/H), E from near-rigid to beyond the paper's body, under sines, one-sine
@@ -322,10 +324,13 @@ pub(crate) struct SweepArgs {
     pub(crate) out: Option<PathBuf>,
     /// An axis, KEY=VALUES (repeatable): LO:HI:STEP, lin:LO:HI:N, log:LO:HI:N, a comma list, or
     /// for excitation.path a file pattern such as 'records/*.AT2'. The last axis varies fastest.
+    /// In a row model: row.gaps (every gap), row.gaps.I (the gap right of column I), column.I.KEY
+    /// (column I's key, from 0), column.KEY (every column's).
     #[arg(long, value_name = "KEY=VALUES")]
     pub(crate) vary: Vec<String>,
     /// Instead of one run per point, the smallest value of KEY in [LO, HI] that overturns the
-    /// body: a scan of --scan values, then bisection of the first transition to --tol.
+    /// body: a scan of --scan values, then bisection of the first transition to --tol. Not for a
+    /// row model.
     #[arg(long, value_name = "KEY=LO:HI")]
     pub(crate) find_min: Option<String>,
     /// Values scanned by --find-min [default: 100].

@@ -150,15 +150,26 @@ fn the_output_tables_list_exactly_the_columns_the_writers_write() {
         .collect();
     assert_eq!(find_min, strings(&search));
     assert_eq!(scales, strings(&Scales::default().named().map(|(n, _)| n)));
+    // A row's: the row's run, then each column's, named `cI_...` on the page.
+    let row = flexrock_core::sweep::rows::RowOutcome::columns(1);
+    assert_eq!(listed(&text, "columns: sweep.csv row"), row[..5]);
+    let column: Vec<String> = row[5..]
+        .iter()
+        .map(|c| c.replacen("c0_", "cI_", 1))
+        .collect();
+    assert_eq!(listed(&text, "columns: sweep.csv row column"), column);
+    assert_eq!(
+        Row::columns(flexrock_core::sweep::Layout::Row(1)),
+        strings(&["status", "reason"])
+            .into_iter()
+            .chain(row)
+            .collect::<Vec<_>>()
+    );
     for (find, group) in [(false, &run), (true, &find_min)] {
         let mut documented = strings(&["status", "reason"]);
         documented.extend(group.iter().cloned());
         documented.extend(scales.iter().cloned());
-        assert_eq!(
-            strings(&Row::columns(find)),
-            documented,
-            "find_min = {find}"
-        );
+        assert_eq!(Row::columns(find), documented, "find_min = {find}");
     }
 }
 

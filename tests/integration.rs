@@ -23,6 +23,7 @@ mod fem_cli;
 mod figures;
 mod plot_cli;
 mod report;
+mod row_sweep;
 mod rows;
 mod sweep;
 mod sweep_slurm;

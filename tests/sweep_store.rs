@@ -622,6 +622,7 @@ fn a_plan_reads_back_bit_for_bit() {
             }),
             chunk_size: 1,
             records: Vec::new(),
+            row_columns: None,
         };
         let back: Plan =
             serde_json::from_slice(&serde_json::to_vec_pretty(&plan).unwrap()).unwrap();

@@ -39,7 +39,7 @@
 //! let sweep = Sweep::new(Path::new("models/sine-pulse.toml"), request, &here)?;
 //! let rows = sweep.rows(0..sweep.points(), &|| {});
 //! // A row's cells follow Row::columns (sweep.csv's columns after the point and the axes).
-//! let at = Row::columns(false).iter().position(|&c| c == "overturned").unwrap();
+//! let at = Row::columns(false).iter().position(|c| c == "overturned").unwrap();
 //! let overturned: Vec<Cell> = rows.iter().map(|row| row.cells(false)[at].clone()).collect();
 //! assert_eq!(overturned, [false, true, true].map(|b| Cell::Bool(Some(b))));
 //! # Ok::<(), flexrock_core::Error>(())

@@ -24,3 +24,4 @@ mod row;
 mod row_compliant;
 mod row_friction;
 mod row_random;
+mod row_sweep;

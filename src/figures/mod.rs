@@ -6,3 +6,4 @@ pub mod plot;
 pub mod row;
 pub mod run;
 pub mod sweep;
+pub mod sweep_row;

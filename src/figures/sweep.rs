@@ -18,7 +18,7 @@ use plotters::style::text_anchor::{HPos, Pos, VPos};
 use crate::commands::sweep::store::Counts;
 use crate::error::{Error, Result};
 use crate::figures::plot::{Legend, Marker, Panel, Series};
-use flexrock_core::sweep::Plan;
+use flexrock_core::sweep::{Layout, Plan};
 
 /// sweep.csv read back: its columns and rows of text.
 pub struct SweepTable {
@@ -71,18 +71,20 @@ impl SweepTable {
         self.rows[row][column].parse().ok()
     }
 
-    /// Rows by status, and points that overturned.
-    pub fn counts(&self, find_min: bool) -> Result<Counts> {
+    /// Counts of the rows by status, and of the points that overturned: for a minimum search,
+    /// that overturned somewhere in the interval; for a row, where a column overturned.
+    pub fn counts(&self, layout: Layout) -> Result<Counts> {
         let status = self.column("status")?;
-        let overturned = if find_min {
-            self.column("min_overturning")?
-        } else {
-            self.column("overturned")?
+        // Counted where the column is not empty (and, for runs, "true").
+        let (overturned, any_value) = match layout {
+            Layout::Runs => (self.column("overturned")?, false),
+            Layout::Minimum(_) => (self.column("min_overturning")?, true),
+            Layout::Row(_) => (self.column("overturned_column")?, true),
         };
-        let share = if find_min {
-            None
-        } else {
-            Some(self.column("energy_residual_share")?)
+        let find_min = any_value;
+        let share = match layout {
+            Layout::Runs => Some(self.column("energy_residual_share")?),
+            _ => None,
         };
         let mut counts = Counts::default();
         for (r, row) in self.rows.iter().enumerate() {
@@ -111,6 +113,12 @@ pub fn figures(plan: &Plan, table: &SweepTable) -> Result<Vec<(String, Vec<u8>)>
     let numeric: Vec<usize> = (0..plan.axes.len())
         .filter(|&i| plan.axes[i].is_numeric())
         .collect();
+    if let Some(n) = plan.row_columns {
+        return match (plan.axes.len(), numeric.as_slice()) {
+            (2, [x, y]) => crate::figures::sweep_row::verdict_maps(plan, table, n, *x, *y),
+            _ => Ok(Vec::new()),
+        };
+    }
     match (&plan.find_min, plan.axes.len(), numeric.as_slice()) {
         (None, 2, [x, y]) => Ok(map(plan, table, *x, *y)?
             .map(|svg| ("map.svg".to_string(), svg))
@@ -130,6 +138,10 @@ pub fn figures(plan: &Plan, table: &SweepTable) -> Result<Vec<(String, Vec<u8>)>
 
 /// The figure of a sweep over records and an intensity (incremental dynamic analysis).
 pub const IDA_FILE: &str = "ida.svg";
+/// The maps of a row sweep over two numeric axes: each column's verdict.
+pub const VERDICTS_SVG: &str = "verdicts.svg";
+/// The same maps as PNG.
+pub const VERDICTS_PNG: &str = "verdicts.png";
 
 /// True for a sweep whose numeric axis `x` scales the excitation (excitation.scale or
 /// excitation.amplitude) beside an axis of records (excitation.path), or is excitation.scale
@@ -265,9 +277,49 @@ pub fn axis_label(key: &str) -> String {
         "body.gravity" => "g (m/s²)",
         "solver.dt" => "Δt (s)",
         "solver.rtol" => "rtol",
-        _ => key,
+        "row.gaps" => "gap g, every gap (m)",
+        "row.restitution" => "restitution e",
+        "row.stiffness" => "contact stiffness k (N/m)",
+        "simulation.duration" => "duration (s)",
+        _ => return row_key_label(key).unwrap_or_else(|| key.to_string()),
     };
     label.to_string()
+}
+
+/// The label of a key of a row: one gap (`row.gaps.I`), a column's key (`column.I.KEY`) or
+/// every column's (`column.KEY`), by the label of the body's key.
+fn row_key_label(key: &str) -> Option<String> {
+    let parts: Vec<&str> = key.split('.').collect();
+    let body = |name: &str| {
+        let label = axis_label(&format!("body.{name}"));
+        (!label.starts_with("body.")).then_some(label)
+    };
+    let with_unit = |label: &str, suffix: &str| match label.split_once(" (") {
+        Some((symbol, unit)) => format!("{symbol}{suffix} ({unit}"),
+        None => format!("{label}{suffix}"),
+    };
+    match parts.as_slice() {
+        ["row", "gaps", i] => Some(format!("gap g{} (m)", subscript(i))),
+        ["column", i, name] => Some(match (body(name), *name) {
+            (Some(label), _) => with_unit(&label, &subscript(i)),
+            (None, "q0") => format!("q0 of column {i} (m)"),
+            (None, "qdot0") => format!("q'0 of column {i} (m/s)"),
+            (None, _) => key.to_string(),
+        }),
+        ["column", name] => body(name).map(|label| with_unit(&label, ", every column")),
+        _ => None,
+    }
+}
+
+/// A column's or gap's index as subscript digits.
+fn subscript(index: &str) -> String {
+    index
+        .chars()
+        .map(|c| match c.to_digit(10) {
+            Some(d) => char::from_u32(0x2080 + d).unwrap_or(c),
+            None => c,
+        })
+        .collect()
 }
 
 /// The colour of max |q|/B in [0, 1]: a perceptually ordered ramp (dark blue, teal, yellow).
@@ -300,7 +352,7 @@ struct Cell {
 
 /// Edges of cells centred on ascending `centres`: midpoints, the ends extended by half a cell.
 /// Written so that no intermediate sum overflows; empty for no centres.
-fn edges(centres: &[f64]) -> Vec<f64> {
+pub(crate) fn edges(centres: &[f64]) -> Vec<f64> {
     let n = centres.len();
     match n {
         0 => return Vec::new(),
@@ -321,14 +373,14 @@ fn edges(centres: &[f64]) -> Vec<f64> {
 }
 
 /// The indices of `values` in ascending order of value (NaN last).
-fn ascending(values: &[f64]) -> Vec<usize> {
+pub(crate) fn ascending(values: &[f64]) -> Vec<usize> {
     let mut order: Vec<usize> = (0..values.len()).collect();
     order.sort_by(|&a, &b| values[a].total_cmp(&values[b]));
     order
 }
 
 /// True when cells around `values` can be drawn: finite, distinct, and edges that grow.
-fn drawable(values: &[f64]) -> bool {
+pub(crate) fn drawable(values: &[f64]) -> bool {
     let sorted: Vec<f64> = ascending(values).iter().map(|&i| values[i]).collect();
     let e = edges(&sorted);
     !e.is_empty() && e.iter().all(|x| x.is_finite()) && e.windows(2).all(|w| w[0] < w[1])

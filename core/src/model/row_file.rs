@@ -113,6 +113,18 @@ impl RowModel {
         duration: Option<f64>,
     ) -> Result<RowModel> {
         let table = parse_table(text, source)?;
+        RowModel::from_table(table, source, base_dir, duration, &RecordCache::default())
+    }
+
+    /// Validates the table of a row model file (`source` names it in messages); record files
+    /// are read through `records`, so that a sweep reads each once.
+    pub(crate) fn from_table(
+        table: toml::Table,
+        source: &Path,
+        base_dir: &Path,
+        duration: Option<f64>,
+        records: &RecordCache,
+    ) -> Result<RowModel> {
         let parse_error = |message: String| Error::ParseModel {
             path: source.to_path_buf(),
             message,
@@ -245,8 +257,7 @@ impl RowModel {
             Some(mu) => row.with_friction(mu)?,
             None => row,
         };
-        let (floor, natural_duration) =
-            floor_from_section(&excitation, base_dir, &RecordCache::default())?;
+        let (floor, natural_duration) = floor_from_section(&excitation, base_dir, records)?;
         let duration = match (duration.or(simulation.duration), natural_duration) {
             (Some(d), _) | (None, Some(d)) => d,
             (None, None) => {

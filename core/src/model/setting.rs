@@ -184,13 +184,22 @@ pub fn value_text(value: &toml::Value) -> String {
     }
 }
 
-/// A key must be `section.name`, both parts made of letters, digits and `_`.
+/// A key must be `section.name`, both parts made of letters, digits and `_`; or, for a row
+/// model, one gap `row.gaps.I` or one column's key `column.I.name` (I counted from 0, written
+/// without leading zeros).
 pub fn check_key(key: &str) -> std::result::Result<(), String> {
     let word = |w: &str| !w.is_empty() && w.chars().all(|c| c.is_ascii_alphanumeric() || c == '_');
-    match key.split_once('.') {
-        Some((section, name)) if word(section) && word(name) => Ok(()),
+    let index = |w: &str| {
+        !w.is_empty() && w.chars().all(|c| c.is_ascii_digit()) && (w == "0" || !w.starts_with('0'))
+    };
+    let parts: Vec<&str> = key.split('.').collect();
+    match parts.as_slice() {
+        [section, name] if word(section) && word(name) => Ok(()),
+        ["row", name, i] if word(name) && index(i) => Ok(()),
+        ["column", i, name] if index(i) && word(name) => Ok(()),
         _ => Err(format!(
-            "the key \"{key}\" must be section.name, e.g. excitation.amplitude or body.youngs_modulus"
+            "the key \"{key}\" must be section.name, e.g. excitation.amplitude or \
+             body.youngs_modulus (in a row model also row.gaps.I or column.I.name, I from 0)"
         )),
     }
 }

@@ -3,7 +3,9 @@
 //!
 //! - [`axis`]: the axes and their values (`KEY=LO:HI:STEP`, `log:LO:HI:N`, lists, file patterns);
 //! - [`find_min`]: the smallest overturning value of a key at every point (scan, then bisect);
-//! - [`row`]: what a point gives, typed, and the column names of sweep.csv.
+//! - [`row`]: what a point gives, typed, and the column names of sweep.csv;
+//! - [`rows`]: sweeps of a row of columns (a model file with a `[row]` table): the keys of a
+//!   row, and each column's outcome in the row against its outcome alone.
 //!
 //! Every point is the base model with the point's keys set ([`crate::model::Setting`]), read
 //! and checked by the same rules as a model file: a point that breaks one is a row with its
@@ -17,6 +19,7 @@
 pub mod axis;
 pub mod find_min;
 pub mod row;
+pub mod rows;
 
 use std::path::{Path, PathBuf};
 
@@ -56,6 +59,10 @@ pub struct Plan {
     /// replaced between a kill and the resume (or a relative path that names another file from
     /// another directory) makes another sweep, never a mixed one.
     pub records: Vec<RecordInput>,
+    /// For a sweep of a row of columns, their number; absent for a single body's sweep, so that
+    /// a single body's plan is written as before rows could be swept.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub row_columns: Option<usize>,
 }
 
 /// A record file a sweep reads: where it is named, and the digest of its contents.
@@ -79,15 +86,16 @@ impl Plan {
     pub fn columns(&self) -> Vec<String> {
         let mut columns = vec!["point".to_string()];
         columns.extend(self.axes.iter().map(|a| a.key.clone()));
-        columns.extend(Row::columns(self.layout()).into_iter().map(str::to_string));
+        columns.extend(Row::columns(self.layout()));
         columns
     }
 
     /// The result columns the sweep has: runs, or a minimum search with its rigid block's form.
     pub fn layout(&self) -> Layout {
-        match &self.find_min {
-            None => Layout::Runs,
-            Some(find) => Layout::Minimum(find.rigid_form),
+        match (&self.find_min, self.row_columns) {
+            (_, Some(n)) => Layout::Row(n),
+            (None, None) => Layout::Runs,
+            (Some(find), None) => Layout::Minimum(find.rigid_form),
         }
     }
 
@@ -291,6 +299,15 @@ impl Sweep {
         here: &Path,
     ) -> Result<Sweep> {
         let model_path = source;
+        let row_columns = crate::model::is_row_table(&table).then(|| rows::column_count(&table));
+        if let (Some(_), Some((key, interval))) = (row_columns, &request.find_min) {
+            return Err(Error::invalid(
+                "find_min",
+                format!("{key}={}:{}", interval.lo, interval.hi),
+                "a minimum search is not made for a row of columns (yet): sweep the key as an \
+                 axis (vary) and read each column's verdict",
+            ));
+        }
         let find_min = match &request.find_min {
             None => None,
             Some((key, interval)) => {
@@ -351,6 +368,13 @@ impl Sweep {
                     "each key may be varied (or searched) once",
                 ));
             }
+            if let Some(other) = keys[..i].iter().find(|k| rows::overlapping(k, key)) {
+                return Err(Error::invalid(
+                    &format!("vary {key}"),
+                    key,
+                    &format!("sets a value that the axis {other} sets too: vary one of them"),
+                ));
+            }
         }
         let points = request
             .axes
@@ -377,13 +401,24 @@ impl Sweep {
             probe.push(Setting::number(&f.key, f.lo));
         }
         for (i, setting) in probe.iter().enumerate() {
-            if let Err(e) = read_schema(&table, &probe[..=i], model_path) {
+            let checked = match row_columns {
+                None => read_schema(&table, &probe[..=i], model_path).map(|_| ()),
+                Some(_) => row_schema(&table, &probe[..=i], model_path),
+            };
+            if let Err(e) = checked {
                 let is_axis = i >= request.settings.len();
                 return Err(if is_axis {
+                    // A rule about this very key and value is said once.
+                    let rule = match &e {
+                        Error::InvalidParameter { key, rule, .. } if *key == setting.key => {
+                            rule.clone()
+                        }
+                        _ => e.to_string(),
+                    };
                     Error::invalid(
                         &setting.key,
                         setting.value_text(),
-                        &format!("cannot be swept: {e}"),
+                        &format!("cannot be swept: {rule}"),
                     )
                 } else {
                     e
@@ -410,6 +445,7 @@ impl Sweep {
             find_min,
             chunk_size: chunk_size.min(points.max(1)),
             records: Vec::new(),
+            row_columns,
         };
         let mut sweep = Sweep {
             plan,
@@ -440,13 +476,27 @@ impl Sweep {
         }
         let mut inputs = Vec::new();
         for (named_by, settings) in cases {
-            let Ok(file) = read_schema(&self.table, &settings, &self.source) else {
+            let excitation = if self.plan.row_columns.is_some() {
+                let Ok(table) = self.row_table(&settings) else {
+                    continue;
+                };
+                let Some(Ok(section)) = table
+                    .get("excitation")
+                    .map(|e| e.clone().try_into::<crate::model::ExcitationSection>())
+                else {
+                    continue;
+                };
+                section
+            } else {
+                let Ok(file) = read_schema(&self.table, &settings, &self.source) else {
+                    continue;
+                };
+                file.excitation
+            };
+            let Some(path) = excitation.path.as_deref() else {
                 continue;
             };
-            let Some(path) = file.excitation.path.as_deref() else {
-                continue;
-            };
-            if file.excitation.kind != "record" {
+            if excitation.kind != "record" {
                 continue;
             }
             let sha256 = match read_record_bytes(&self.base_dir.join(path)) {
@@ -454,7 +504,13 @@ impl Sweep {
                 Err(e) => format!("unreadable: {e}"),
             };
             // Into the cache now; a point whose record is bad reports it in its own row.
-            let _ = self.model(&settings);
+            if self.plan.row_columns.is_some() {
+                if let Ok(table) = self.row_table(&settings) {
+                    let _ = rows::row_model(&table, &self.source, &self.base_dir, &self.records);
+                }
+            } else {
+                let _ = self.model(&settings);
+            }
             inputs.push(RecordInput { named_by, sha256 });
         }
         inputs
@@ -484,6 +540,60 @@ impl Sweep {
             }
         }
         setting
+    }
+
+    /// The row model's table with `settings` set.
+    fn row_table(&self, settings: &[Setting]) -> Result<toml::Table> {
+        let mut table = self.table.clone();
+        for setting in settings {
+            rows::apply(&mut table, setting)?;
+        }
+        Ok(table)
+    }
+
+    /// The row of a point of a row sweep: the row's run, and each column's alone.
+    fn row_point(&self, settings: &[Setting]) -> Row {
+        let invalid = |e: &Error| Row::failure(Status::Invalid, reason(e));
+        let table = match self.row_table(settings) {
+            Ok(table) => table,
+            Err(e) => return invalid(&e),
+        };
+        let model = match rows::row_model(&table, &self.source, &self.base_dir, &self.records) {
+            Ok(model) => model,
+            Err(e) => return invalid(&e),
+        };
+        let mut alone = Vec::with_capacity(model.bodies.len());
+        for i in 0..model.bodies.len() {
+            let single = rows::alone_model(
+                &table,
+                i,
+                model.duration,
+                (&self.source, &self.base_dir),
+                &self.records,
+            );
+            let in_column = |e: &Error| format!("column {i} alone: {}", reason(e));
+            let single = match single {
+                Ok(single) => single,
+                Err(e) => return Row::failure(Status::Invalid, in_column(&e)),
+            };
+            match crate::simulate::simulate_peaks(&single) {
+                Ok(s) => alone.push((
+                    s.overturned,
+                    s.t_overturn,
+                    s.max_q.value.abs().max(s.min_q.value.abs()),
+                )),
+                Err(e) => return Row::failure(Status::Failed, in_column(&e)),
+            }
+        }
+        match rows::solve_peaks(&model) {
+            Ok(solution) => Row {
+                status: Status::Ok,
+                reason: String::new(),
+                outcome: Some(Outcome::Row(rows::RowOutcome::of(&solution, &alone))),
+                scales: None,
+            },
+            Err(e) => Row::failure(Status::Failed, reason(&e)),
+        }
     }
 
     fn model(&self, settings: &[Setting]) -> Result<Model> {
@@ -517,6 +627,9 @@ impl Sweep {
     /// The row of point `index`.
     pub fn evaluate(&self, index: usize) -> Row {
         let settings = self.settings_at(index);
+        if self.plan.row_columns.is_some() {
+            return self.row_point(&settings);
+        }
         match &self.plan.find_min {
             None => self.run_point(&settings),
             Some(find) => self.search_point(&settings, find),
@@ -681,6 +794,23 @@ fn read_record_bytes(path: &Path) -> std::io::Result<Vec<u8>> {
     let mut bytes = Vec::new();
     file.take(limit).read_to_end(&mut bytes)?;
     Ok(bytes)
+}
+
+/// Checks the keys `settings` against a row model's table: each names a value of the row (a
+/// gap, a column it has) and the table with them fits the row model file's schema. Values are
+/// the points' business.
+fn row_schema(table: &toml::Table, settings: &[Setting], source: &Path) -> Result<()> {
+    let mut table = table.clone();
+    for setting in settings {
+        rows::apply(&mut table, setting)?;
+    }
+    match rows::schema_problem(&table) {
+        None => Ok(()),
+        Some(message) => Err(Error::ParseModel {
+            path: source.to_path_buf(),
+            message,
+        }),
+    }
 }
 
 /// An error as one line of a CSV field.

@@ -11,6 +11,8 @@ use crate::model::Model;
 use crate::rigid::RigidForm;
 use crate::solution::Solution;
 
+use super::rows::RowOutcome;
+
 /// One field of a row, typed; `None` where the field is empty (no value is known).
 #[derive(Debug, Clone, PartialEq)]
 pub enum Cell {
@@ -397,6 +399,9 @@ pub enum Layout {
     /// A minimum search per point, with the rigid blocks' searches by the given form of
     /// Housner's block (see [`RigidMinima`]).
     Minimum(RigidForm),
+    /// One run of a row of this many columns per point, and each column's run alone (see
+    /// [`super::rows`]).
+    Row(usize),
 }
 
 impl From<bool> for Layout {
@@ -417,6 +422,8 @@ pub enum Outcome {
     Run(RunOutcome),
     /// A minimum search at the point, for the elastic body and the rigid blocks.
     Minimum(MinimumOutcome, RigidMinima),
+    /// One run of a row, and each of its columns alone.
+    Row(RowOutcome),
 }
 
 /// One point's row, before formatting.
@@ -444,7 +451,7 @@ impl Row {
     }
 
     /// The result columns, for a sweep that searches a minimum (`true` or a [`Layout`]) or not.
-    pub fn columns(layout: impl Into<Layout>) -> Vec<&'static str> {
+    pub fn columns(layout: impl Into<Layout>) -> Vec<String> {
         let mut columns = vec!["status", "reason"];
         match layout.into() {
             Layout::Minimum(form) => {
@@ -452,9 +459,16 @@ impl Row {
                 columns.extend(names(RigidMinima::with_form(form).named()));
             }
             Layout::Runs => columns.extend(names(RunOutcome::default().named())),
+            // A row's columns are named by their index, and no row has the single body's
+            // dimensionless numbers.
+            Layout::Row(n) => {
+                let mut columns: Vec<String> = columns.into_iter().map(String::from).collect();
+                columns.extend(RowOutcome::columns(n));
+                return columns;
+            }
         }
         columns.extend(names(Scales::default().named()));
-        columns
+        columns.into_iter().map(String::from).collect()
     }
 
     /// The result cells, in the order of [`Row::columns`]; empty where there is no value.
@@ -470,12 +484,20 @@ impl Row {
                 cells.extend(values(min.named()));
                 cells.extend(values(rigid.named()));
             }
+            Some(Outcome::Row(row)) => {
+                cells.extend(row.cells());
+                return cells;
+            }
             None => match layout {
                 Layout::Minimum(form) => {
                     cells.extend(emptied(MinimumOutcome::default().named()));
                     cells.extend(emptied(RigidMinima::with_form(form).named()));
                 }
                 Layout::Runs => cells.extend(emptied(RunOutcome::default().named())),
+                Layout::Row(n) => {
+                    cells.extend(RowOutcome::empty_cells(n));
+                    return cells;
+                }
             },
         }
         match &self.scales {
@@ -513,11 +535,15 @@ mod tests {
             Layout::Runs,
             Layout::Minimum(RigidForm::SmallAngle),
             Layout::Minimum(RigidForm::Full),
+            Layout::Row(3),
         ] {
             let find_min = layout != Layout::Runs;
             let columns = Row::columns(layout);
             let mut seen = std::collections::BTreeSet::new();
-            assert!(columns.iter().all(|c| seen.insert(*c)), "{columns:?}");
+            assert!(
+                columns.iter().all(|c| seen.insert(c.clone())),
+                "{columns:?}"
+            );
             let empty = failed.cells(layout);
             assert_eq!(empty.len(), columns.len());
             assert_eq!(empty[1], Cell::Text(Some("a reason".into())));
@@ -546,7 +572,7 @@ mod tests {
             Row::columns(true),
             Row::columns(Layout::Minimum(RigidForm::SmallAngle))
         );
-        assert!(!Row::columns(true).contains(&"rigid_form"));
+        assert!(!Row::columns(true).iter().any(|c| c == "rigid_form"));
         let columns = Row::columns(Layout::Minimum(RigidForm::Full));
         let at = |name: &str| columns.iter().position(|c| *c == name).unwrap();
         assert_eq!(at("rigid_form"), at("rigid_amplitude_over_g_tan_alpha") + 1);

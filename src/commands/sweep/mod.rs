@@ -60,6 +60,8 @@ pub fn report_text(report: &store::SweepReport, seconds: Option<f64>) -> String 
         c.overturned,
         if s.plan.find_min.is_some() {
             " within the searched interval"
+        } else if s.plan.row_columns.is_some() {
+            " (a column of the row overturned and ended the run)"
         } else {
             ""
         }

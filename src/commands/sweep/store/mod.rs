@@ -106,11 +106,13 @@ pub struct SweepReport {
 const SUMMARY_FILE: &str = "sweep.json";
 const TABLE_FILE: &str = "sweep.csv";
 /// Every file of a finished sweep, the only names a sweep ever removes from its directory.
-const RESULT_FILES: [&str; 5] = [
+const RESULT_FILES: [&str; 7] = [
     TABLE_FILE,
     "map.svg",
     "spectrum.svg",
     figure::IDA_FILE,
+    figure::VERDICTS_SVG,
+    figure::VERDICTS_PNG,
     SUMMARY_FILE,
 ];
 
@@ -474,7 +476,7 @@ fn finish(
         writers::Table::new(&columns.iter().map(String::as_str).collect::<Vec<_>>()).into_bytes();
     table_bytes.extend_from_slice(body);
     let table = figure::SweepTable::parse(&table_bytes, &table_path)?;
-    let counts = table.counts(plan.find_min.is_some())?;
+    let counts = table.counts(plan.layout())?;
     let figures = if shard.is_none() {
         figure::figures(plan, &table)?
     } else {

@@ -182,6 +182,7 @@ mod tests {
             find_min: None,
             chunk_size,
             records: Vec::new(),
+            row_columns: None,
         }
     }
 
