@@ -4,28 +4,11 @@
 //! uninterrupted one.
 
 use std::collections::HashMap;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
 use crate::common::{flexrock, flexrock_command, repo, scratch_dir};
-
-/// sweep.csv as rows of column name -> text.
-fn rows(dir: &Path) -> Vec<HashMap<String, String>> {
-    let mut reader = csv::Reader::from_path(dir.join("sweep.csv")).expect("sweep.csv");
-    let headers = reader.headers().unwrap().clone();
-    reader
-        .records()
-        .map(|r| {
-            let r = r.unwrap();
-            headers
-                .iter()
-                .zip(r.iter())
-                .map(|(h, v)| (h.to_string(), v.to_string()))
-                .collect()
-        })
-        .collect()
-}
 
 fn ok(o: Output) -> Output {
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
@@ -88,7 +71,7 @@ fn every_verdict_of_a_map_is_what_the_row_and_each_column_alone_give() {
     let stdout = String::from_utf8_lossy(&o.stdout);
     assert!(stdout.contains("sweep of 4 points"), "{stdout}");
     let mut seen: HashMap<String, usize> = HashMap::new();
-    for (p, row) in rows(&out).iter().enumerate() {
+    for (p, row) in crate::common::sweep_rows(&out).iter().enumerate() {
         assert_eq!(row["status"], "ok", "{row:?}");
         let (gap, amplitude) = (&row["row.gaps"], &row["excitation.amplitude"]);
         let together = run_text(&dir, &format!("row-{p}"), &row_at(gap, amplitude));
@@ -240,22 +223,6 @@ fn grid(out: &Path) -> Command {
     command
 }
 
-fn chunk_files(dir: &Path) -> Vec<PathBuf> {
-    std::fs::read_dir(dir.join("chunks"))
-        .map(|entries| {
-            entries
-                .filter_map(|e| e.ok())
-                .map(|e| e.path())
-                .filter(|p| {
-                    p.file_name()
-                        .and_then(|n| n.to_str())
-                        .is_some_and(|n| n.len() == 13 && n.ends_with(".csv"))
-                })
-                .collect()
-        })
-        .unwrap_or_default()
-}
-
 fn files_of(dir: &Path) -> Vec<(String, Vec<u8>)> {
     let mut files: Vec<(String, Vec<u8>)> = std::fs::read_dir(dir)
         .unwrap()
@@ -282,7 +249,7 @@ fn a_row_sweep_killed_half_way_resumes_to_the_same_bytes() {
         .spawn()
         .unwrap();
     let started = Instant::now();
-    while chunk_files(&killed).len() < 3 {
+    while crate::common::chunk_files(&killed).len() < 3 {
         if let Some(status) = child.try_wait().unwrap() {
             panic!("the sweep ended ({status}) before 3 chunks were written");
         }

@@ -10,23 +10,6 @@ use std::path::{Path, PathBuf};
 use crate::common::{flexrock, flexrock_in, repo, scratch_dir};
 use flexrock_core::model::{Model, Overrides, Setting};
 
-/// sweep.csv as rows of column name -> text.
-fn rows(dir: &Path) -> Vec<HashMap<String, String>> {
-    let mut reader = csv::Reader::from_path(dir.join("sweep.csv")).expect("sweep.csv");
-    let headers = reader.headers().unwrap().clone();
-    reader
-        .records()
-        .map(|r| {
-            let r = r.unwrap();
-            headers
-                .iter()
-                .zip(r.iter())
-                .map(|(h, v)| (h.to_string(), v.to_string()))
-                .collect()
-        })
-        .collect()
-}
-
 fn number(row: &HashMap<String, String>, column: &str) -> f64 {
     row[column]
         .parse()
@@ -89,7 +72,7 @@ fn every_row_is_the_run_of_its_point_and_the_dimensionless_numbers_are_the_close
         "excitation.period=0.6,0.8",
         "--quiet",
     ]);
-    let rows = rows(&dir);
+    let rows = crate::common::sweep_rows(&dir);
     assert_eq!(rows.len(), 6);
     let (h, b, g) = (4.0f64, 0.7f64, 9.81f64);
     let alpha = (b / h).atan();
@@ -188,7 +171,7 @@ fn invalid_points_are_rows_with_their_reason_and_the_sweep_goes_on() {
         "body.youngs_modulus=5e6,-1",
         "--quiet",
     ]);
-    let rows = rows(&dir);
+    let rows = crate::common::sweep_rows(&dir);
     let status: Vec<&str> = rows.iter().map(|r| r["status"].as_str()).collect();
     assert_eq!(status, ["ok", "invalid", "invalid", "invalid"]);
     assert!(
@@ -567,7 +550,7 @@ fn the_minimum_search_brackets_a_transition_and_reports_the_safe_band_above_it()
         "1e-3",
         "--quiet",
     ]);
-    let rows = rows(&dir);
+    let rows = crate::common::sweep_rows(&dir);
     let row = &rows[0];
     let (min, safe) = (number(row, "min_overturning"), number(row, "safe_below"));
     assert!(min - safe <= 1e-3 && min > safe, "{row:?}");
@@ -638,7 +621,7 @@ fn a_full_form_sweep_searches_and_names_the_full_equations_block() {
         run(&args);
         let json: serde_json::Value =
             serde_json::from_slice(&std::fs::read(out.join("sweep.json")).unwrap()).unwrap();
-        (rows(out).remove(0), json)
+        (crate::common::sweep_rows(out).remove(0), json)
     };
     let (default, default_json) = sweep(&dir.join("default"), &[]);
     let (full, full_json) = sweep(&dir.join("full"), &["--rigid-form", "full"]);
@@ -682,7 +665,7 @@ fn a_full_form_sweep_searches_and_names_the_full_equations_block() {
         file.to_str().unwrap(),
         "--quiet",
     ]);
-    assert_eq!(rows(&from_file).remove(0), full);
+    assert_eq!(crate::common::sweep_rows(&from_file).remove(0), full);
     std::fs::write(
         &file,
         "find_min = \"excitation.amplitude=1.8:8\"\nrigid_form = \"exact\"\n",
@@ -733,7 +716,7 @@ fn the_spectrum_of_a_stiff_body_tends_to_the_rigid_limit() {
         ]);
         let mut to_limit: f64 = 0.0;
         let mut to_housner: f64 = 0.0;
-        for row in rows(&dir) {
+        for row in crate::common::sweep_rows(&dir) {
             let elastic = number(&row, "min_overturning");
             to_limit =
                 to_limit.max((elastic / number(&row, "rigid_limit_min_overturning") - 1.0).abs());
@@ -777,7 +760,7 @@ fn records_and_scales_make_an_incremental_dynamic_analysis() {
         "{}",
         String::from_utf8_lossy(&o.stderr)
     );
-    let rows = rows(&out);
+    let rows = crate::common::sweep_rows(&out);
     let paths: Vec<&str> = rows.iter().map(|r| r["excitation.path"].as_str()).collect();
     assert_eq!(
         paths,
@@ -987,7 +970,10 @@ fn a_loose_tolerance_is_flagged_point_by_point_and_on_standard_error() {
         "{loose_stderr}"
     );
     // Every point whose uplift count the loose run got wrong is flagged.
-    let (loose, tight) = (rows(&loose), rows(&tight));
+    let (loose, tight) = (
+        crate::common::sweep_rows(&loose),
+        crate::common::sweep_rows(&tight),
+    );
     let mut wrong = 0;
     for (l, t) in loose.iter().zip(&tight) {
         assert!(number(t, "energy_residual_share") < 1e-2);
@@ -1040,7 +1026,7 @@ fn no_derived_column_holds_a_value_where_its_source_is_empty() {
         "10",
         "--quiet",
     ]);
-    let rows = rows(&out);
+    let rows = crate::common::sweep_rows(&out);
     let model = model_with(&[]);
     let b = &model.body;
     let (g, alpha) = (b.gravity, (b.width / b.height).atan());

@@ -73,24 +73,6 @@ fn refused(o: &Output, needle: &str) -> String {
     stderr
 }
 
-fn chunk_files(dir: &Path) -> Vec<PathBuf> {
-    let mut files: Vec<PathBuf> = std::fs::read_dir(dir.join("chunks"))
-        .map(|entries| {
-            entries
-                .filter_map(|e| e.ok())
-                .map(|e| e.path())
-                .filter(|p| {
-                    p.file_name()
-                        .and_then(|n| n.to_str())
-                        .is_some_and(|n| n.len() == 13 && n.ends_with(".csv"))
-                })
-                .collect()
-        })
-        .unwrap_or_default();
-    files.sort();
-    files
-}
-
 /// Starts `command` and kills it (SIGKILL) once `dir/chunks` holds at least `chunks` chunk
 /// files. Fails the test if the command ends first.
 fn kill_after_chunks(command: &mut Command, dir: &Path, chunks: usize) {
@@ -100,7 +82,7 @@ fn kill_after_chunks(command: &mut Command, dir: &Path, chunks: usize) {
         .spawn()
         .unwrap();
     let started = Instant::now();
-    while chunk_files(dir).len() < chunks {
+    while crate::common::chunk_files(dir).len() < chunks {
         if let Some(status) = child.try_wait().unwrap() {
             panic!("the sweep ended ({status}) before {chunks} chunks were written");
         }
@@ -209,7 +191,7 @@ fn tampered_chunks_are_computed_again_and_named() {
     for (name, edit) in edits {
         let out = dir.join(name.replace(' ', "-"));
         kill_after_chunks(&mut grid(&out, &[]), &out, 3);
-        let chunks = chunk_files(&out);
+        let chunks = crate::common::chunk_files(&out);
         edit(&chunks);
         let o = ok(&mut grid(&out, &[]));
         let stderr = String::from_utf8_lossy(&o.stderr);
@@ -237,7 +219,7 @@ fn chunks_of_another_sweep_are_never_mixed_in() {
     kill_after_chunks(&mut other_grid, &other, 4);
     let out = dir.join("out");
     kill_after_chunks(&mut grid(&out, &[]), &out, 1);
-    for chunk in chunk_files(&other) {
+    for chunk in crate::common::chunk_files(&other) {
         std::fs::copy(&chunk, out.join("chunks").join(chunk.file_name().unwrap())).unwrap();
     }
     let o = ok(&mut grid(&out, &[]));
@@ -380,7 +362,7 @@ fn two_processes_cannot_write_one_sweep() {
         .spawn()
         .unwrap();
     let started = Instant::now();
-    while chunk_files(&out).is_empty() {
+    while crate::common::chunk_files(&out).is_empty() {
         assert!(started.elapsed() < Duration::from_secs(120));
         std::thread::sleep(Duration::from_millis(2));
     }

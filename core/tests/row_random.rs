@@ -18,6 +18,28 @@ const RECORDS: [&str; 5] = [
     "elCentro.AT2",
 ];
 
+/// A drawn column: height (m), slenderness B/H, log10 of the gravity parameter, damping ratio,
+/// consistent self-weight.
+type Drawn = (f64, f64, f64, f64, bool);
+
+/// The `[[column]]` tables of the drawn columns. Young's modulus comes from the gravity
+/// parameter M g H^2 / EI = 12 rho g H / (E s^2) (from 0.01, near rigid, to 2.5, a quarter of
+/// the way to buckling from the top), so that nearly every body drawn is one the model accepts.
+fn column_tables(columns: &[Drawn]) -> String {
+    let mut text = String::new();
+    for &(height, slenderness, log_gravity, damping, consistent) in columns {
+        let width = height * slenderness;
+        let youngs =
+            12.0 * 600.0 * 9.81 * height / (10f64.powf(log_gravity) * slenderness * slenderness);
+        text.push_str(&format!(
+            "[[column]]\nheight = {height}\nwidth = {width}\ndensity = 600.0\n\
+             youngs_modulus = {youngs:e}\ndamping_ratio = {damping}\nself_weight = \"{}\"\n",
+            if consistent { "consistent" } else { "paper" },
+        ));
+    }
+    text
+}
+
 proptest! {
     #![proptest_config(ProptestConfig {
         cases: 48,
@@ -45,20 +67,7 @@ proptest! {
         let n = columns.len();
         let gaps: Vec<String> = log_gaps[..n - 1].iter().map(|g| format!("{:e}", 10f64.powf(*g))).collect();
         let mut text = format!("[row]\ngaps = [{}]\nrestitution = {restitution}\n", gaps.join(", "));
-        for &(height, slenderness, log_gravity, damping, consistent) in &columns {
-            // Young's modulus from the gravity parameter M g H^2 / EI = 12 rho g H / (E s^2)
-            // (from 0.01, near rigid, to 2.5, a quarter of the way to buckling from the top), so
-            // that nearly every body drawn is one the model accepts.
-            let width = height * slenderness;
-            let youngs = 12.0 * 600.0 * 9.81 * height / (10f64.powf(log_gravity) * slenderness * slenderness);
-            text.push_str(&format!(
-                "[[column]]\nheight = {height}\nwidth = {}\ndensity = 600.0\nyoungs_modulus = {:e}\n\
-                 damping_ratio = {damping}\nself_weight = \"{}\"\n",
-                width,
-                youngs,
-                if consistent { "consistent" } else { "paper" },
-            ));
-        }
+        text.push_str(&column_tables(&columns));
         let records = concat!(env!("CARGO_MANIFEST_DIR"), "/../validation/records");
         text.push_str(&format!(
             "[excitation]\nkind = \"record\"\npath = \"{records}/{}\"\nformat = \"peer-at2\"\n\
@@ -122,17 +131,7 @@ proptest! {
             gaps.join(", "),
             10f64.powf(log_stiffness),
         );
-        for &(height, slenderness, log_gravity, damping, consistent) in &columns {
-            let width = height * slenderness;
-            let youngs = 12.0 * 600.0 * 9.81 * height / (10f64.powf(log_gravity) * slenderness * slenderness);
-            text.push_str(&format!(
-                "[[column]]\nheight = {height}\nwidth = {}\ndensity = 600.0\nyoungs_modulus = {:e}\n\
-                 damping_ratio = {damping}\nself_weight = \"{}\"\n",
-                width,
-                youngs,
-                if consistent { "consistent" } else { "paper" },
-            ));
-        }
+        text.push_str(&column_tables(&columns));
         let records = concat!(env!("CARGO_MANIFEST_DIR"), "/../validation/records");
         text.push_str(&format!(
             "[excitation]\nkind = \"record\"\npath = \"{records}/{}\"\nformat = \"peer-at2\"\n\

@@ -515,20 +515,23 @@ const BOUNDARY: RGBColor = RGBColor(220, 30, 30);
 /// wider and taller on the right and bottom, so that neighbouring cells overlap and no hairline
 /// of the background shows between them in any viewer or zoom; clipped to `limit` (width,
 /// height).
-fn fill_cell(
-    area: &Area<'_>,
+pub(crate) fn fill_cell<DB: DrawingBackend>(
+    area: &DrawingArea<DB, plotters::coord::Shift>,
     (xa, ya): (i32, i32),
     (xb, yb): (i32, i32),
     limit: (i32, i32),
     color: RGBColor,
-) -> std::result::Result<(), Box<dyn std::error::Error>> {
+) -> std::result::Result<[(i32, i32); 2], Box<dyn std::error::Error>>
+where
+    DB::ErrorType: 'static,
+{
     let (left, right) = (xa.min(xb), (xa.max(xb) + 1).min(limit.0));
     let (top, bottom) = (ya.min(yb), (ya.max(yb) + 1).min(limit.1));
     area.draw(&Rectangle::new(
         [(left, top), (right, bottom)],
         color.filled(),
     ))?;
-    Ok(())
+    Ok([(left, top), (right, bottom)])
 }
 
 fn draw_map(

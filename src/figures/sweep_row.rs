@@ -12,7 +12,7 @@ use plotters::style::text_anchor::{HPos, Pos, VPos};
 use crate::error::{Error, Result};
 use crate::figures::plot::{encode_png, register_fonts};
 use crate::figures::sweep::{
-    ascending, axis_label, drawable, edges, SweepTable, VERDICTS_PNG, VERDICTS_SVG,
+    ascending, axis_label, drawable, edges, fill_cell, SweepTable, VERDICTS_PNG, VERDICTS_SVG,
 };
 use flexrock_core::sweep::Plan;
 
@@ -258,14 +258,13 @@ impl Figure<'_> {
         let grey = RGBColor(140, 140, 140);
         for (i, column) in cells.iter().enumerate() {
             for (j, &class) in column.iter().enumerate() {
-                let (xa, ya) = at(ex[i], ey[j]);
-                let (xb, yb) = at(ex[i + 1], ey[j + 1]);
-                let (left, right) = (xa.min(xb), (xa.max(xb) + 1).min(limit.0));
-                let (top, bottom) = (ya.min(yb), (ya.max(yb) + 1).min(limit.1));
-                pixels.draw(&Rectangle::new(
-                    [(left, top), (right, bottom)],
-                    colour(class).filled(),
-                ))?;
+                let [(left, top), (right, bottom)] = fill_cell(
+                    &pixels,
+                    at(ex[i], ey[j]),
+                    at(ex[i + 1], ey[j + 1]),
+                    limit,
+                    colour(class),
+                )?;
                 if class == Class::Missing {
                     pixels.draw(&PathElement::new(
                         vec![(left, bottom), (right, top)],
