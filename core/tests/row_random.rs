@@ -40,6 +40,45 @@ fn column_tables(columns: &[Drawn]) -> String {
     text
 }
 
+/// The `[excitation]` (record `record` of [`RECORDS`] times `scale`) and `[solver]` tables,
+/// the solver's with `solver` before its `output_dt`.
+fn floor_and_solver(record: usize, scale: f64, solver: &str) -> String {
+    let records = concat!(env!("CARGO_MANIFEST_DIR"), "/../validation/records");
+    format!(
+        "[excitation]\nkind = \"record\"\npath = \"{records}/{}\"\nformat = \"peer-at2\"\n\
+         units = \"g\"\nscale = {scale}\n[solver]\n{solver}output_dt = 0.02\n",
+        RECORDS[record],
+    )
+}
+
+/// Duration of every random row's run, s.
+const DURATION: f64 = 12.0;
+
+/// Solves the row model `text` (written into the test directory `name`) over [`DURATION`], and
+/// checks that the run ended at its duration or where a column overturned. None for a body the
+/// model refuses (s_n beyond B under the consistent self-weight).
+fn solve_to_its_end(
+    text: &str,
+    name: &str,
+) -> Result<Option<flexrock_core::row::RowSolution>, TestCaseError> {
+    let dir = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(name);
+    std::fs::create_dir_all(&dir).expect("temporary directory");
+    let path = dir.join("row.toml");
+    std::fs::write(&path, text).expect("model file written");
+    let model = match flexrock_core::model::RowModel::load(&path, Some(DURATION)) {
+        Ok(model) => model,
+        Err(e) if e.to_string().contains("unstable under its own weight") => return Ok(None),
+        Err(e) => return Err(TestCaseError::fail(format!("refused: {e}\n{text}"))),
+    };
+    let solution = flexrock_core::simulate::simulate_row(&model)
+        .map_err(|e| TestCaseError::fail(format!("{e}\n{text}")))?;
+    match solution.overturned {
+        Some((_, t)) => prop_assert_eq!(solution.final_time, t, "{}", text),
+        None => prop_assert_eq!(solution.final_time, DURATION, "{}", text),
+    }
+    Ok(Some(solution))
+}
+
 proptest! {
     #![proptest_config(ProptestConfig {
         cases: 48,
@@ -68,29 +107,10 @@ proptest! {
         let gaps: Vec<String> = log_gaps[..n - 1].iter().map(|g| format!("{:e}", 10f64.powf(*g))).collect();
         let mut text = format!("[row]\ngaps = [{}]\nrestitution = {restitution}\n", gaps.join(", "));
         text.push_str(&column_tables(&columns));
-        let records = concat!(env!("CARGO_MANIFEST_DIR"), "/../validation/records");
-        text.push_str(&format!(
-            "[excitation]\nkind = \"record\"\npath = \"{records}/{}\"\nformat = \"peer-at2\"\n\
-             units = \"g\"\nscale = {scale}\n[solver]\noutput_dt = 0.02\n",
-            RECORDS[record],
-        ));
-        let dir = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("random-rows");
-        std::fs::create_dir_all(&dir).expect("temporary directory");
-        let path = dir.join("row.toml");
-        std::fs::write(&path, &text).expect("model file written");
-        let duration = 12.0;
-        let model = match flexrock_core::model::RowModel::load(&path, Some(duration)) {
-            Ok(model) => model,
-            // A body the model refuses (s_n beyond B under the consistent self-weight) is fine.
-            Err(e) if e.to_string().contains("unstable under its own weight") => return Ok(()),
-            Err(e) => return Err(TestCaseError::fail(format!("refused: {e}\n{text}"))),
+        text.push_str(&floor_and_solver(record, scale, ""));
+        let Some(solution) = solve_to_its_end(&text, "random-rows")? else {
+            return Ok(());
         };
-        let solution = flexrock_core::simulate::simulate_row(&model)
-            .map_err(|e| TestCaseError::fail(format!("{e}\n{text}")))?;
-        match solution.overturned {
-            Some((_, t)) => prop_assert_eq!(solution.final_time, t, "{}", text),
-            None => prop_assert_eq!(solution.final_time, duration, "{}", text),
-        }
         let mut struck: Vec<(usize, f64)> = Vec::new();
         for impact in &solution.impacts {
             prop_assert!(impact.impulse > 0.0, "impact without impulse {:?}\n{}", impact, text);
@@ -132,28 +152,10 @@ proptest! {
             10f64.powf(log_stiffness),
         );
         text.push_str(&column_tables(&columns));
-        let records = concat!(env!("CARGO_MANIFEST_DIR"), "/../validation/records");
-        text.push_str(&format!(
-            "[excitation]\nkind = \"record\"\npath = \"{records}/{}\"\nformat = \"peer-at2\"\n\
-             units = \"g\"\nscale = {scale}\n[solver]\nmethod = \"tsit45\"\noutput_dt = 0.02\n",
-            RECORDS[record],
-        ));
-        let dir = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("random-rough-rows");
-        std::fs::create_dir_all(&dir).expect("temporary directory");
-        let path = dir.join("row.toml");
-        std::fs::write(&path, &text).expect("model file written");
-        let duration = 12.0;
-        let model = match flexrock_core::model::RowModel::load(&path, Some(duration)) {
-            Ok(model) => model,
-            Err(e) if e.to_string().contains("unstable under its own weight") => return Ok(()),
-            Err(e) => return Err(TestCaseError::fail(format!("refused: {e}\n{text}"))),
+        text.push_str(&floor_and_solver(record, scale, "method = \"tsit45\"\n"));
+        let Some(solution) = solve_to_its_end(&text, "random-rough-rows")? else {
+            return Ok(());
         };
-        let solution = flexrock_core::simulate::simulate_row(&model)
-            .map_err(|e| TestCaseError::fail(format!("{e}\n{text}")))?;
-        match solution.overturned {
-            Some((_, t)) => prop_assert_eq!(solution.final_time, t, "{}", text),
-            None => prop_assert_eq!(solution.final_time, duration, "{}", text),
-        }
         for s in &solution.contacts {
             prop_assert!(s.friction_dissipated >= -1e-9 * s.energy_dissipated.abs().max(1.0), "{:?}\n{}", s, text);
             prop_assert!(s.peak_friction_force <= friction * s.peak_force * (1.0 + 1e-9), "{:?}\n{}", s, text);
