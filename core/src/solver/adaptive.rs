@@ -52,9 +52,9 @@ const NOUT: usize = 2;
 /// A stop time counts as reached when the solver lands this close to it (relative to max(1, t)).
 /// diffsol's own test (100 ulps of t + h) misses landings a little further off, after which it
 /// takes a sliver step of 1e-15 s that ends the run with "step size too small".
-const STOP_TOLERANCE: f64 = 1e-12;
+pub(crate) const STOP_TOLERANCE: f64 = 1e-12;
 /// Drift of the solver's clock from a stop time, in ulps of the stop, that is left alone.
-const SNAP_ULPS: f64 = 8.0;
+pub(crate) const SNAP_ULPS: f64 = 8.0;
 /// Retakes of one step whose crossing its dense output could not resolve before giving up.
 const MAX_CROSSING_RETRIES: usize = 60;
 
@@ -274,8 +274,32 @@ enum Crossing {
 }
 
 /// True when `t` is at the stop time `stop` for the driver.
-fn at_stop(t: f64, stop: f64) -> bool {
+pub(crate) fn at_stop(t: f64, stop: f64) -> bool {
     (t - stop).abs() <= STOP_TOLERANCE * stop.abs().max(1.0)
+}
+
+/// Moves the solver's clock onto a stop time it reached to within [`STOP_TOLERANCE`]. Left
+/// alone, its time drifts from the stop times by the rounding of every step (7e-13 s after
+/// 33 s of a record), until a stop is missed by more than diffsol's own tolerance; and a
+/// landing just short of a stop leaves it a sliver step. The state is not changed: it is that
+/// of a time within 1e-12 s.
+pub(crate) fn snap_to_stop<'a, Eqn, S>(solver: &mut S, stop: f64, h_taken: f64)
+where
+    Eqn: OdeEquations<T = f64, V = Vector> + 'a,
+    S: OdeSolverMethod<'a, Eqn>,
+{
+    // A step shortened to a sliver to hit the stop would start the next stretch from it.
+    let sliver = solver.state().h < 1e-3 * h_taken;
+    // A few ulps of drift are left alone: moving the clock makes BDF restart at order 1.
+    let drift = (solver.state().t - stop).abs();
+    if !sliver && drift <= SNAP_ULPS * f64::EPSILON * stop.abs() {
+        return;
+    }
+    let state = solver.state_mut();
+    *state.t = stop;
+    if sliver {
+        *state.h = h_taken;
+    }
 }
 
 impl<'d> Driver<'d> {
@@ -401,7 +425,7 @@ impl<'d> Driver<'d> {
                     if matches!(reason, OdeSolverStopReason::TstopReached)
                         || at_stop(step_end, stop)
                     {
-                        self.snap_to_stop(&mut solver, stop, step_end - start.t);
+                        snap_to_stop(&mut solver, stop, step_end - start.t);
                         let now = solver.state().t;
                         if self.floor.jumps_at(stop) {
                             // The floor jumps here: restart the method from the state, with
@@ -532,30 +556,6 @@ impl<'d> Driver<'d> {
         }
         *state.h = h;
         Ok(())
-    }
-
-    /// Moves the solver's clock onto a stop time it reached to within [`STOP_TOLERANCE`]. Left
-    /// alone, its time drifts from the stop times by the rounding of every step (7e-13 s after
-    /// 33 s of a record), until a stop is missed by more than diffsol's own tolerance; and a
-    /// landing just short of a stop leaves it a sliver step. The state is not changed: it is that
-    /// of a time within 1e-12 s.
-    fn snap_to_stop<'a, Eqn, S>(&self, solver: &mut S, stop: f64, h_taken: f64)
-    where
-        Eqn: OdeEquations<T = f64, V = Vector> + 'a,
-        S: OdeSolverMethod<'a, Eqn>,
-    {
-        // A step shortened to a sliver to hit the stop would start the next stretch from it.
-        let sliver = solver.state().h < 1e-3 * h_taken;
-        // A few ulps of drift are left alone: moving the clock makes BDF restart at order 1.
-        let drift = (solver.state().t - stop).abs();
-        if !sliver && drift <= SNAP_ULPS * f64::EPSILON * stop.abs() {
-            return;
-        }
-        let state = solver.state_mut();
-        *state.t = stop;
-        if sliver {
-            *state.h = h_taken;
-        }
     }
 
     /// The state (q, q') at `t` inside the current step, from the dense output.
