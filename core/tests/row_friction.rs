@@ -599,3 +599,33 @@ fn locked_faces_slide_where_the_quasi_static_friction_reaches_mu_p() {
         "slides at {t_slip} s, the quasi-static closed form at {hi} s"
     );
 }
+
+/// Three columns a millimetre apart under El Centro with a stiff contact, much friction and a
+/// loose tolerance: sliding faces whose sliding the loose dense output puts past its stop at a
+/// step's start, where looking again leaves them sliding, must not stop the run at that
+/// instant over and over (it did, step after step, until the step cap).
+#[test]
+fn a_loose_tolerance_with_much_friction_runs_to_its_end() {
+    let records = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../validation/records/elCentro.AT2"
+    );
+    let text = format!(
+        "[row]\ngaps = [0.001, 0.001]\nrestitution = 0.6\ncontact = \"compliant\"\n\
+         stiffness = 1e8\nfriction = 5.0\n\
+         [[column]]\nheight = 4.0\nwidth = 0.7\ndensity = 600.0\nyoungs_modulus = 5e6\ndamping_ratio = 0.05\n\
+         [[column]]\nheight = 3.2\nwidth = 0.7\ndensity = 600.0\nyoungs_modulus = 8e6\ndamping_ratio = 0.05\n\
+         [[column]]\nheight = 4.0\nwidth = 0.8\ndensity = 500.0\nyoungs_modulus = 2e7\ndamping_ratio = 0.03\n\
+         [excitation]\nkind = \"record\"\npath = \"{records}\"\nformat = \"peer-at2\"\nunits = \"g\"\n\
+         tail = 5.0\n[solver]\nmethod = \"tsit45\"\nrtol = 1e-4\natol = 1e-4\noutput_dt = 0.01\n"
+    );
+    let model = RowModel::from_toml_str(&text).unwrap();
+    let solved = flexrock_core::simulate::simulate_row(&model).unwrap();
+    assert_eq!(solved.final_time, model.duration);
+    let steps = solved.columns[0].stats.steps;
+    eprintln!(
+        "loose tolerance: {steps} steps, {} stretches",
+        solved.contacts.len()
+    );
+    assert!(steps < 100_000, "{steps} steps");
+}

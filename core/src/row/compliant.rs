@@ -31,6 +31,7 @@ use super::{ContactLaw, ContactSample, ContactState, Row, RowSolution};
 use crate::automaton::{Automaton, EventKind, Guard, Mode};
 use crate::excitation::FloorMotion;
 use crate::solution::{Recorder, SolverStats};
+use crate::solver::adaptive::{at_stop, snap_to_stop};
 use crate::solver::budget::RunBudget;
 use crate::solver::{History, OutputGrid, SolverError};
 
@@ -42,11 +43,6 @@ type Result<T> = std::result::Result<T, SolverError>;
 pub const METHOD: &str = "tsit45";
 /// rtol and atol of the compliant row when the model file gives none.
 pub const DEFAULT_TOLERANCE: f64 = 1e-10;
-/// A stop time counts as reached this close to it (relative to max(1, t)), as in the single
-/// body's adaptive driver.
-const STOP_TOLERANCE: f64 = 1e-12;
-/// Drift of the solver's clock from a stop time, in ulps of the stop, that is left alone.
-const SNAP_ULPS: f64 = 8.0;
 /// Retakes of one step whose crossing its dense output could not resolve before giving up.
 const MAX_CROSSING_RETRIES: usize = 60;
 /// Events at one instant (a reset that lets a contact go, that starts another) before giving up.
@@ -642,10 +638,6 @@ struct Driver<'d> {
     stuck: Vec<Option<usize>>,
 }
 
-fn at_stop(t: f64, stop: f64) -> bool {
-    (t - stop).abs() <= STOP_TOLERANCE * stop.abs().max(1.0)
-}
-
 impl<'d> Driver<'d> {
     fn n(&self) -> usize {
         self.model.n()
@@ -768,7 +760,7 @@ impl<'d> Driver<'d> {
                     if matches!(reason, OdeSolverStopReason::TstopReached)
                         || at_stop(step_end, stop)
                     {
-                        self.snap_to_stop(&mut solver, stop, step_end - start.t);
+                        snap_to_stop(&mut solver, stop, step_end - start.t);
                         let now = solver.state().t;
                         if self.floor.jumps_at(stop) {
                             let y = values(solver.state().y, 2 * n);
@@ -1012,7 +1004,12 @@ impl<'d> Driver<'d> {
                             Ok(None) => {}
                             Err(()) => {
                                 if -sign * (self.function(solver, t0, watch)?.0 - level) >= 0.0 {
-                                    consider(t0, What::Friction(c, None));
+                                    // Past the stop already at the step's start: look again
+                                    // there, unless the answer is the state it has (which would
+                                    // stop the run at the same instant without end).
+                                    if self.friction_state(c, t0, &x0) != cfg.friction[c] {
+                                        consider(t0, What::Friction(c, None));
+                                    }
                                 } else {
                                     return Ok(Crossing::Unresolved);
                                 }
@@ -1485,25 +1482,6 @@ impl<'d> Driver<'d> {
         }
         for (i, v) in dg.into_iter().enumerate() {
             state.dg[i] = v;
-        }
-    }
-
-    /// Moves the solver's clock onto a stop time it reached to within [`STOP_TOLERANCE`] (as
-    /// the single body's adaptive driver does).
-    fn snap_to_stop<'a, Eqn, S>(&self, solver: &mut S, stop: f64, h_taken: f64)
-    where
-        Eqn: OdeEquations<T = f64, V = Vector> + 'a,
-        S: OdeSolverMethod<'a, Eqn>,
-    {
-        let sliver = solver.state().h < 1e-3 * h_taken;
-        let drift = (solver.state().t - stop).abs();
-        if !sliver && drift <= SNAP_ULPS * f64::EPSILON * stop.abs() {
-            return;
-        }
-        let state = solver.state_mut();
-        *state.t = stop;
-        if sliver {
-            *state.h = h_taken;
         }
     }
 }
