@@ -258,6 +258,10 @@ fn refine<F: Smooth>(
         }
         let slope = dg(&best);
         let mut t = best.t - value / slope;
+        if t == best.t {
+            // The Newton step is below half an ulp of t: the root is the double found.
+            break;
+        }
         if !(t > lo.t && t < hi.t) {
             t = lo.t + 0.5 * (hi.t - lo.t);
         }
