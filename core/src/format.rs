@@ -1,6 +1,8 @@
 //! Numbers and file kinds for people: the formatting every message, table and file of flexrock
 //! shares (one home; the command layer's `output` module re-exports it).
 
+use std::fmt::Write;
+
 /// Formats a number so that it reads back exactly (shortest round-trip form), as Rust's `{}`
 /// writes it: plain decimal, no exponent, no trailing ".0" (1, 0.005, -0, 1e-7 as 0.0000001).
 pub fn number(x: f64) -> String {
@@ -34,56 +36,90 @@ pub fn push_number(text: &mut String, x: f64) {
         text.push_str(formatted.strip_suffix(".0").unwrap_or(formatted));
         return;
     }
-    // ryu writes d.ddd, 0.000ddd, ddd.0 or d.ddde-N: its digits, and where the point goes.
-    let formatted = formatted.as_bytes();
-    let (negative, formatted) = match formatted.split_first() {
-        Some((b'-', rest)) => (true, rest),
-        _ => (false, formatted),
-    };
-    let (mantissa, exponent) = match formatted.iter().position(|&b| b == b'e') {
-        Some(e) => (&formatted[..e], parse_exponent(&formatted[e + 1..])),
-        None => (formatted, 0),
-    };
-    // The digits without the point, and the decimal exponent of the point: value = 0.DIGITS
-    // times 10^point.
-    let mut digits = [0u8; 32];
-    let mut count = 0;
-    let mut point = exponent;
-    let mut seen_point = false;
-    for &b in mantissa {
-        if b == b'.' {
-            seen_point = true;
-            continue;
+    push_plain(text, &Digits::of(x));
+}
+
+/// The shortest round-trip digits of a finite number: value = 0.DIGITS times 10^point (no
+/// digits for zero).
+struct Digits {
+    negative: bool,
+    digits: [u8; 24],
+    count: usize,
+    point: i32,
+}
+
+impl Digits {
+    /// The digits ryu finds, or where x lies halfway between two shortest candidates (ryu takes
+    /// the even one, the standard library the one above) the standard library's.
+    fn of(x: f64) -> Self {
+        let mut buffer = ryu::Buffer::new();
+        let digits = Self::parse(buffer.format_finite(x).as_bytes());
+        let count = digits.count;
+        if count > 0
+            && digits.digits[count - 1] % 2 == 0
+            && is_midpoint(x.abs(), &digits.digits[..count], digits.point)
+        {
+            return Self::parse(format!("{x:e}").as_bytes());
         }
-        if count == 0 && b == b'0' {
-            // A leading zero: only moves the point when it follows it.
-            if seen_point {
-                point -= 1;
+        digits
+    }
+
+    /// The digits of d.ddd, 0.000ddd, ddd.0 or d.ddde-N (ryu's forms, and `{:e}`'s).
+    fn parse(formatted: &[u8]) -> Self {
+        let (negative, formatted) = match formatted.split_first() {
+            Some((b'-', rest)) => (true, rest),
+            _ => (false, formatted),
+        };
+        let (mantissa, exponent) = match formatted.iter().position(|&b| b == b'e') {
+            Some(e) => (&formatted[..e], parse_exponent(&formatted[e + 1..])),
+            None => (formatted, 0),
+        };
+        let mut digits = Digits {
+            negative,
+            digits: [0; 24],
+            count: 0,
+            point: exponent,
+        };
+        let mut seen_point = false;
+        for &b in mantissa {
+            if b == b'.' {
+                seen_point = true;
+                continue;
             }
-            continue;
+            if digits.count == 0 && b == b'0' {
+                // A leading zero: only moves the point when it follows it.
+                if seen_point {
+                    digits.point -= 1;
+                }
+                continue;
+            }
+            digits.digits[digits.count] = b;
+            digits.count += 1;
+            if !seen_point {
+                digits.point += 1;
+            }
         }
-        digits[count] = b;
-        count += 1;
-        if !seen_point {
-            point += 1;
+        while digits.count > 0 && digits.digits[digits.count - 1] == b'0' {
+            digits.count -= 1;
         }
+        digits
     }
-    while count > 0 && digits[count - 1] == b'0' {
-        count -= 1;
+
+    fn text(&self) -> &str {
+        std::str::from_utf8(&self.digits[..self.count]).unwrap_or("0")
     }
-    if count > 0 && digits[count - 1] % 2 == 0 && is_midpoint(x.abs(), &digits[..count], point) {
-        // Halfway between two shortest candidates: ryu takes the even one, `{}` the one above.
-        text.push_str(&format!("{x}"));
-        return;
-    }
-    if negative {
+}
+
+/// The plain form of `{}`: 0.00ddd, ddd00 or dd.ddd.
+fn push_plain(text: &mut String, d: &Digits) {
+    if d.negative {
         text.push('-');
     }
-    if count == 0 {
+    if d.count == 0 {
         text.push('0');
         return;
     }
-    let digits = std::str::from_utf8(&digits[..count]).unwrap_or("0");
+    let (digits, point, count) = (d.text(), d.point, d.count);
     if point <= 0 {
         text.push_str("0.");
         text.extend(std::iter::repeat_n('0', (-point) as usize));
@@ -96,6 +132,27 @@ pub fn push_number(text: &mut String, x: f64) {
         text.push('.');
         text.push_str(&digits[point as usize..]);
     }
+}
+
+/// The exponent form of `{:e}`: d.ddde-N, de0.
+fn push_exponent(text: &mut String, d: &Digits) {
+    if d.negative {
+        text.push('-');
+    }
+    let digits = d.text();
+    match digits.split_at_checked(1) {
+        None | Some(("", _)) => text.push('0'),
+        Some((first, rest)) => {
+            text.push_str(first);
+            if !rest.is_empty() {
+                text.push('.');
+                text.push_str(rest);
+            }
+        }
+    }
+    text.push('e');
+    let exponent = if d.count == 0 { 0 } else { d.point - 1 };
+    let _ = write!(text, "{exponent}");
 }
 
 /// Whether x = m 2^-j with m odd and 1 <= j <= 18: one whose exact decimal form has j digits
@@ -165,47 +222,16 @@ pub fn shortest(x: f64) -> String {
     if !x.is_finite() {
         return format!("{x}");
     }
-    // One shortest-digit conversion (the costly part of a sweep's table), in exponent form;
-    // the plain form has the same digits, placed by the exponent.
-    let exponent = format!("{x:e}");
-    let (mantissa, power) = exponent.split_once('e').unwrap_or((&exponent, "0"));
-    let power: i64 = power.parse().unwrap_or(0);
-    let (sign, mantissa) = match mantissa.strip_prefix('-') {
-        Some(rest) => ("-", rest),
-        None => ("", mantissa),
-    };
-    let (lead, rest) = mantissa.split_once('.').unwrap_or((mantissa, ""));
-    let n = (lead.len() + rest.len()) as i64;
-    let plain_len = sign.len() as i64
-        + if power >= 0 {
-            n.max(power + 1) + i64::from(n > power + 1)
-        } else {
-            1 + 1 + (-power - 1) + n
-        };
-    if exponent.len() as i64 + 2 <= plain_len {
-        return exponent;
-    }
-    let mut plain = String::with_capacity(plain_len as usize);
-    plain.push_str(sign);
-    if power >= 0 {
-        // The first digit, then `power` more before the point (zeros where the digits end).
-        plain.push_str(lead);
-        let before = power as usize;
-        if rest.len() <= before {
-            plain.push_str(rest);
-            plain.extend(std::iter::repeat_n('0', before - rest.len()));
-        } else {
-            plain.push_str(&rest[..before]);
-            plain.push('.');
-            plain.push_str(&rest[before..]);
-        }
+    // One shortest-digit conversion (the costly part of a sweep's table), both forms from it.
+    let digits = Digits::of(x);
+    let (mut exponent, mut plain) = (String::new(), String::new());
+    push_exponent(&mut exponent, &digits);
+    push_plain(&mut plain, &digits);
+    if exponent.len() + 2 <= plain.len() {
+        exponent
     } else {
-        plain.push_str("0.");
-        plain.extend(std::iter::repeat_n('0', (-power - 1) as usize));
-        plain.push_str(lead);
-        plain.push_str(rest);
+        plain
     }
-    plain
 }
 
 /// A short time step or period in seconds: five decimals, or two significant digits below
