@@ -239,7 +239,9 @@ pub(crate) struct Run<'a> {
 /// A flow planned by [`Run::plan`]: its first guard crossing, if any, and the extrema of q the
 /// search found on the way.
 pub(crate) struct Planned {
-    flow: Flow,
+    /// Boxed: a record's flow holds its Taylor coefficients (about 600 bytes), which moving
+    /// the plan from the search to the commit copied several times.
+    flow: Box<Flow>,
     found: Option<(Point, Guard)>,
     /// The flow's point at its end.
     finish: Point,
@@ -377,7 +379,7 @@ impl<'a> Run<'a> {
                 ),
             ));
         }
-        let flow = Flow::new(
+        let flow = Box::new(Flow::new(
             &linear,
             &stretch,
             self.t,
@@ -385,7 +387,7 @@ impl<'a> Run<'a> {
             self.q,
             self.v,
             stretch.until.min(end),
-        );
+        ));
         self.flows += 1;
         budget
             .step(self.t, self.flows)
@@ -404,8 +406,8 @@ impl<'a> Run<'a> {
             self.emit(&flow, self.t, true);
             self.first = false;
         }
-        let found = scan::evaluate(&flow, flow.until, &mut watch).and_then(|finish| {
-            first_crossing(&flow, start, finish, guards, &mut watch).map(|f| (f, finish))
+        let found = scan::evaluate(&*flow, flow.until, &mut watch).and_then(|finish| {
+            first_crossing(&*flow, start, finish, guards, &mut watch).map(|f| (f, finish))
         });
         self.evaluations += watch.evaluations;
         self.unresolved += watch.unresolved;
