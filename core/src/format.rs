@@ -105,6 +105,29 @@ impl Digits {
         digits
     }
 
+    /// The length of [`push_plain`]'s text.
+    fn plain_len(&self) -> usize {
+        let (count, point) = (self.count as i64, i64::from(self.point));
+        let body = if count == 0 {
+            1
+        } else if point <= 0 {
+            2 - point + count
+        } else if point >= count {
+            point
+        } else {
+            count + 1
+        };
+        usize::from(self.negative) + body as usize
+    }
+
+    /// The length of [`push_exponent`]'s text.
+    fn exponent_len(&self) -> usize {
+        let mantissa = if self.count <= 1 { 1 } else { self.count + 1 };
+        let exponent = if self.count == 0 { 0 } else { self.point - 1 };
+        let exponent_digits = exponent.unsigned_abs().checked_ilog10().unwrap_or(0) as usize + 1;
+        usize::from(self.negative) + mantissa + 1 + usize::from(exponent < 0) + exponent_digits
+    }
+
     fn text(&self) -> &str {
         std::str::from_utf8(&self.digits[..self.count]).unwrap_or("0")
     }
@@ -222,16 +245,16 @@ pub fn shortest(x: f64) -> String {
     if !x.is_finite() {
         return format!("{x}");
     }
-    // One shortest-digit conversion (the costly part of a sweep's table), both forms from it.
+    // One shortest-digit conversion (the costly part of a sweep's table); the lengths of both
+    // forms follow from its digits, and only the shorter is written.
     let digits = Digits::of(x);
-    let (mut exponent, mut plain) = (String::new(), String::new());
-    push_exponent(&mut exponent, &digits);
-    push_plain(&mut plain, &digits);
-    if exponent.len() + 2 <= plain.len() {
-        exponent
+    let mut text = String::new();
+    if digits.exponent_len() + 2 <= digits.plain_len() {
+        push_exponent(&mut text, &digits);
     } else {
-        plain
+        push_plain(&mut text, &digits);
     }
+    text
 }
 
 /// A short time step or period in seconds: five decimals, or two significant digits below
@@ -395,6 +418,12 @@ mod tests {
             text.push_str("a,");
             push_number(&mut text, x);
             assert_eq!(&text[2..], expected, "{x:e}");
+            if x.is_finite() {
+                // The lengths `shortest` chooses by are those of the two forms.
+                let digits = Digits::of(x);
+                assert_eq!(digits.plain_len(), expected.len(), "{x:e}");
+                assert_eq!(digits.exponent_len(), format!("{x:e}").len(), "{x:e}");
+            }
         }
     }
 
