@@ -56,7 +56,7 @@ impl Digits {
         let digits = Self::parse(buffer.format_finite(x).as_bytes());
         let count = digits.count;
         if count > 0
-            && digits.digits[count - 1] % 2 == 0
+            && digits.digits[count - 1].is_multiple_of(2)
             && is_midpoint(x.abs(), &digits.digits[..count], digits.point)
         {
             return Self::parse(format!("{x:e}").as_bytes());
@@ -382,16 +382,17 @@ mod tests {
             1e23,
             123456.0,
             9007199254740993.0,
-            // Halfway between two 17-digit candidates (its ulp is 0.25): `{}` writes ...337.3.
-            -1347897590845337.25,
-            1347897590845337.25,
+            // 1347897590845337.25, halfway between two 17-digit candidates (its ulp is 0.25):
+            // `{}` writes ...337.3.
+            -5391590363381349.0 / 4.0,
+            5391590363381349.0 / 4.0,
             f64::MAX,
             f64::MIN,
             f64::MIN_POSITIVE,
             f64::EPSILON,
             5e-324,
             -5e-324,
-            2.2250738585072009e-308,
+            f64::from_bits(0x000f_ffff_ffff_ffff),
             f64::NAN,
             f64::INFINITY,
             f64::NEG_INFINITY,
