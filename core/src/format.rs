@@ -181,6 +181,11 @@ fn push_exponent(text: &mut String, d: &Digits) {
 /// Whether x = m 2^-j with m odd and 1 <= j <= 18: one whose exact decimal form has j digits
 /// after the point, the last a 5.
 fn short_fraction(x: f64) -> bool {
+    odd_binary(x).is_some_and(|(_, exponent)| (-18..0).contains(&exponent))
+}
+
+/// |x| = m 2^e with m odd, as (m, e); None for zero.
+fn odd_binary(x: f64) -> Option<(u64, i32)> {
     let bits = x.to_bits();
     let (biased, fraction) = (((bits >> 52) & 0x7ff) as i32, bits & ((1 << 52) - 1));
     let (mantissa, exponent) = if biased == 0 {
@@ -188,26 +193,21 @@ fn short_fraction(x: f64) -> bool {
     } else {
         (fraction | (1 << 52), biased - 1075)
     };
-    let exponent = exponent + mantissa.trailing_zeros() as i32;
-    mantissa != 0 && (-18..0).contains(&exponent)
+    if mantissa == 0 {
+        return None;
+    }
+    let shift = mantissa.trailing_zeros();
+    Some((mantissa >> shift, exponent + shift as i32))
 }
 
 /// Whether `x` (positive, finite) is exactly 0.DIGITS5 times 10^point: halfway between the
 /// shortest digits and the next ones up. With x = m 2^e (m odd) and the midpoint N 10^k (N
 /// odd, as it ends in 5), they are equal when e = k and m = N 5^k (k >= 0) or m 5^-k = N.
 fn is_midpoint(x: f64, digits: &[u8], point: i32) -> bool {
-    let bits = x.to_bits();
-    let (biased, fraction) = ((bits >> 52) as i32, bits & ((1 << 52) - 1));
-    let (mantissa, exponent) = if biased == 0 {
-        (fraction, -1074)
-    } else {
-        (fraction | (1 << 52), biased - 1075)
-    };
-    if mantissa == 0 {
+    let Some((odd, exponent)) = odd_binary(x) else {
         return false;
-    }
-    let shift = mantissa.trailing_zeros();
-    let (odd, exponent) = (u128::from(mantissa >> shift), exponent + shift as i32);
+    };
+    let odd = u128::from(odd);
     let k = point - digits.len() as i32 - 1;
     if exponent != k {
         // The common case, settled without the arithmetic below.
