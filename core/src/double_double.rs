@@ -52,15 +52,18 @@ impl DoubleDouble {
         if !x.is_finite() || x == 0.0 {
             return Self::exact(x);
         }
-        let text = format!("{x:e}");
-        let (mantissa, power) = text.split_once('e').unwrap_or((&text, "0"));
-        let power: i32 = power.parse().unwrap_or(0);
-        let negative = mantissa.starts_with('-');
-        let digits: String = mantissa.chars().filter(char::is_ascii_digit).collect();
+        // The digits of `{:e}` (format::Digits: ryu's, checked equal to the standard library's).
+        let written = crate::format::Digits::of(x);
+        let (digits, negative) = (written.ascii(), written.negative);
+        let power = written.point - 1;
         // At most 17 digits: two integers below 2^53 make them exactly.
         let split = digits.len().saturating_sub(9);
-        let high: f64 = digits[..split].parse().unwrap_or(0.0);
-        let low: f64 = digits[split..].parse().unwrap_or(0.0);
+        let integer_of = |digits: &[u8]| {
+            digits
+                .iter()
+                .fold(0u64, |acc, &d| acc * 10 + u64::from(d - b'0')) as f64
+        };
+        let (high, low) = (integer_of(&digits[..split]), integer_of(&digits[split..]));
         let low_digits = (digits.len() - split) as i32;
         let integer = DoubleDouble::from(two_product(high, 10f64.powi(low_digits))) + low;
         // The value is integer * 10^(power - digits + 1).

@@ -39,19 +39,19 @@ pub fn push_number(text: &mut String, x: f64) {
     push_plain(text, &Digits::of(x));
 }
 
-/// The shortest round-trip digits of a finite number: value = 0.DIGITS times 10^point (no
-/// digits for zero).
-struct Digits {
-    negative: bool,
+/// The shortest round-trip digits of a finite number, those of the standard library's `{}`
+/// and `{:e}`: value = 0.DIGITS times 10^point (no digits for zero).
+pub(crate) struct Digits {
+    pub(crate) negative: bool,
     digits: [u8; 24],
     count: usize,
-    point: i32,
+    pub(crate) point: i32,
 }
 
 impl Digits {
     /// The digits ryu finds, or where x lies halfway between two shortest candidates (ryu takes
     /// the even one, the standard library the one above) the standard library's.
-    fn of(x: f64) -> Self {
+    pub(crate) fn of(x: f64) -> Self {
         let mut buffer = ryu::Buffer::new();
         let digits = Self::parse(buffer.format_finite(x).as_bytes());
         let count = digits.count;
@@ -126,6 +126,11 @@ impl Digits {
         let exponent = if self.count == 0 { 0 } else { self.point - 1 };
         let exponent_digits = exponent.unsigned_abs().checked_ilog10().unwrap_or(0) as usize + 1;
         usize::from(self.negative) + mantissa + 1 + usize::from(exponent < 0) + exponent_digits
+    }
+
+    /// The digits, as ASCII.
+    pub(crate) fn ascii(&self) -> &[u8] {
+        &self.digits[..self.count]
     }
 
     fn text(&self) -> &str {

@@ -628,22 +628,25 @@ fn exactly_one(section: &str, alternatives: &[(&str, Option<f64>)]) -> Result<(u
         .enumerate()
         .filter_map(|(i, (k, v))| v.map(|v| (i, *k, v)))
         .collect();
-    let names = alternatives
-        .iter()
-        .map(|(k, _)| format!("{section}.{k}"))
-        .collect::<Vec<_>>()
-        .join(", ");
+    // Built only for a message: a sweep reads a body for every point.
+    let names = || {
+        alternatives
+            .iter()
+            .map(|(k, _)| format!("{section}.{k}"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
     match given.as_slice() {
         [(i, _, v)] => Ok((*i, *v)),
         [] => Err(Error::invalid(
             &format!("{section}.{}", alternatives[0].0),
             "(missing)",
-            &format!("give exactly one of {names}"),
+            &format!("give exactly one of {}", names()),
         )),
         [(_, k1, v1), (_, k2, v2), ..] => Err(Error::invalid(
             &format!("{section}.{k1}"),
             format!("{v1} (and {section}.{k2} = {v2})"),
-            &format!("give exactly one of {names}, not several"),
+            &format!("give exactly one of {}, not several", names()),
         )),
     }
 }
