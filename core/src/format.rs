@@ -183,10 +183,11 @@ fn push_exponent(text: &mut String, d: &Digits) {
     let _ = write!(text, "{exponent}");
 }
 
-/// Whether x = m 2^-j with m odd and 1 <= j <= 18: one whose exact decimal form has j digits
-/// after the point, the last a 5.
+/// Whether x = m 2^-j with m odd and 1 <= j <= 22: one whose exact decimal form has j digits
+/// after the point, the last a 5. A number halfway between two shortest candidates has at most
+/// 18 significant digits, and in the plain form (x >= 1e-5) at most 4 zeros lead them.
 fn short_fraction(x: f64) -> bool {
-    odd_binary(x).is_some_and(|(_, exponent)| (-18..0).contains(&exponent))
+    odd_binary(x).is_some_and(|(_, exponent)| (-22..0).contains(&exponent))
 }
 
 /// |x| = m 2^e with m odd, as (m, e); None for zero.
@@ -431,6 +432,37 @@ mod tests {
                 assert_eq!(digits.exponent_len(), format!("{x:e}").len(), "{x:e}");
             }
         }
+    }
+
+    /// Numbers with few binary digits after the point, m 2^-j, are where a double can lie
+    /// halfway between two shortest candidates (0.020746231079101562 and ...563 for m 2^-19):
+    /// `number` writes what `{}` writes for every j up to 60, below 1 and above it.
+    #[test]
+    fn number_is_the_standard_librarys_on_short_binary_fractions() {
+        let mut state = 0x1234_5678_9abc_def1_u64;
+        let mut next = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            state
+        };
+        let mut bad = 0;
+        for j in 1..60 {
+            for _ in 0..40_000 {
+                let bits = 64 - 53 + (next() % 53) as u32;
+                let m = (next() >> bits) | 1;
+                let x = m as f64 / 2f64.powi(j);
+                for x in [x, -x, x * 2f64.powi(j.min(40))] {
+                    if format!("{x}") != number(x) {
+                        bad += 1;
+                        if bad < 5 {
+                            eprintln!("m 2^-{j}: {x:e} written {}", number(x));
+                        }
+                    }
+                }
+            }
+        }
+        assert_eq!(bad, 0);
     }
 
     /// The plain form built from the exponent form's digits is the standard library's own
