@@ -351,6 +351,16 @@ pub fn file_kind(file_type: std::fs::FileType) -> &'static str {
 mod tests {
     use super::*;
 
+    /// A xorshift stream of bit patterns from `state`.
+    fn xorshift(mut state: u64) -> impl FnMut() -> u64 {
+        move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            state
+        }
+    }
+
     #[test]
     fn numbers_for_people() {
         assert_eq!(shortest(1e300), "1e300");
@@ -403,13 +413,7 @@ mod tests {
             f64::INFINITY,
             f64::NEG_INFINITY,
         ];
-        let mut state = 0x2545_f491_4f6c_dd1d_u64;
-        let mut next = || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            state
-        };
+        let mut next = xorshift(0x2545_f491_4f6c_dd1d_u64);
         for _ in 0..700_000 {
             values.push(f64::from_bits(next()));
             let scale = 10f64.powi((next() % 40) as i32 - 20);
@@ -439,13 +443,7 @@ mod tests {
     /// `number` writes what `{}` writes for every j up to 60, below 1 and above it.
     #[test]
     fn number_is_the_standard_librarys_on_short_binary_fractions() {
-        let mut state = 0x1234_5678_9abc_def1_u64;
-        let mut next = || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            state
-        };
+        let mut next = xorshift(0x1234_5678_9abc_def1_u64);
         let mut bad = 0;
         for j in 1..60 {
             for _ in 0..40_000 {
@@ -469,13 +467,7 @@ mod tests {
     /// plain form, wherever it is chosen; and the choice is the one the two lengths make.
     #[test]
     fn shortest_is_the_shorter_of_the_two_standard_forms() {
-        let mut state = 0x9e37_79b9_7f4a_7c15_u64;
-        let mut next = || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            state
-        };
+        let mut next = xorshift(0x9e37_79b9_7f4a_7c15_u64);
         let mut values = vec![
             0.0, -0.0, 1.0, 10.0, 100.0, 0.1, 0.01, 1e-5, 1e21, 1e22, 123456.0,
         ];
