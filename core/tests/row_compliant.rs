@@ -13,6 +13,7 @@ use flexrock_core::row::{solve_row, solve_row_compliant, ColumnSpec, CompliantSe
 use flexrock_core::solution::Solution;
 use flexrock_core::solver::{History, InitialState};
 
+use crate::common;
 use crate::row::{alone, at_rest, body, mass_and_frequency, mode_shape, sigma, L, SETTINGS};
 
 const TIGHT: CompliantSettings = CompliantSettings {
@@ -216,35 +217,33 @@ fn an_isolated_contact_restitutes_e() {
     }
 }
 
+/// The pair of models/row-compliant.toml: a soft and a stiff column of the reference size,
+/// 2 cm apart, at rest, under the compliant law (k = 1e7 N/m).
+pub(crate) fn pair_of_row_compliant_toml() -> Row {
+    let specs = [
+        at_rest(body(4.0, 0.7, 600.0, 5e6, 0.05)),
+        at_rest(body(4.0, 0.7, 600.0, 5e7, 0.05)),
+    ];
+    Row::new(&specs, &[0.02], 0.5)
+        .unwrap()
+        .compliant(1e7)
+        .unwrap()
+}
+
 /// Each column's energy books close with the work of the contact forces on it, through many
 /// contacts under the paper's sine (the pair of models/row-compliant.toml), and through
 /// uplifts and landings while in contact (a soft column leaning on a stiff one under a slow
 /// pulse, let go near where the quasi-static leans of the two differ by the gap).
 #[test]
 fn energy_books_close_with_the_contact_work() {
-    let specs = [
-        at_rest(body(4.0, 0.7, 600.0, 5e6, 0.05)),
-        at_rest(body(4.0, 0.7, 600.0, 5e7, 0.05)),
-    ];
+    let row = pair_of_row_compliant_toml();
     let floor = PaperSine::new(4.0, 1.0, 0.412);
-    let row = Row::new(&specs, &[0.02], 0.5)
-        .unwrap()
-        .compliant(1e7)
-        .unwrap();
     let solved = solve_row_compliant(&row, &floor, 6.0, &TIGHT, History::Sampled).unwrap();
     assert!(solved.contacts.len() >= 3, "{:?}", solved.contacts);
     let taken: f64 = solved.contacts.iter().map(|s| s.energy_dissipated).sum();
-    for (i, c) in solved.columns.iter().enumerate() {
-        eprintln!(
-            "paper's sine, column {i}: energy residual {} of {} J; contacts took {taken} J",
-            c.max_energy_residual, c.energy_scale
-        );
-        assert!(
-            c.max_energy_residual <= 2e-8 * c.energy_scale,
-            "column {i}: energy residual {} of {}",
-            c.max_energy_residual,
-            c.energy_scale
-        );
+    eprintln!("paper's sine: contacts took {taken} J");
+    common::row_books_close("paper's sine", &solved, 2e-8);
+    for c in &solved.columns {
         // The contact work matters: leaving it out would not close the books.
         assert!(
             taken > 1e-3 * c.energy_scale,
@@ -275,14 +274,7 @@ fn energy_books_close_with_the_contact_work() {
         .unwrap();
     let floor = SinePulse::new(amplitude, period, 1.0, PulseShape::Antisymmetric);
     let solved = solve_row_compliant(&row, &floor, 12.0, &TIGHT, History::Sampled).unwrap();
-    let longest = solved
-        .contacts
-        .iter()
-        .max_by(|a, b| {
-            let length = |s: &&flexrock_core::row::ContactStretch| s.t_end.unwrap() - s.t_start;
-            length(a).total_cmp(&length(b))
-        })
-        .expect("contacts");
+    let longest = common::longest(&solved.contacts, |s| (s.t_start, s.t_end)).expect("contacts");
     let end = longest.t_end.unwrap();
     eprintln!(
         "leaning: in contact from {} s to {end} s, quasi-statically let go at {t_release} s",
@@ -293,21 +285,12 @@ fn energy_books_close_with_the_contact_work() {
         (end - t_release).abs() < 5e-3,
         "let go at {end} s, quasi-statically at {t_release} s"
     );
-    for (i, c) in solved.columns.iter().enumerate() {
-        eprintln!(
-            "leaning, column {i}: energy residual {} of {} J",
-            c.max_energy_residual, c.energy_scale
-        );
-        assert!(
-            c.max_energy_residual <= 2e-8 * c.energy_scale,
-            "leaning, column {i}: energy residual {} of {}",
-            c.max_energy_residual,
-            c.energy_scale
-        );
-    }
+    common::row_books_close("leaning", &solved, 2e-8);
 }
 
-const ROW: &str = "[row]\ngaps = [0.02]\nrestitution = 0.5\n\
+/// The pair of [`pair_of_row_compliant_toml`] as a row model file, under the impact law, for
+/// 1 s of the paper's sine.
+pub(crate) const ROW: &str = "[row]\ngaps = [0.02]\nrestitution = 0.5\n\
     [[column]]\nheight = 4.0\nwidth = 0.7\ndensity = 600.0\nyoungs_modulus = 5e6\ndamping_ratio = 0.05\n\
     [[column]]\nheight = 4.0\nwidth = 0.7\ndensity = 600.0\nyoungs_modulus = 5e7\ndamping_ratio = 0.05\n\
     [excitation]\nkind = \"paper-sine\"\namplitude = 4.0\nperiod = 1.0\nramp = 0.412\n\
@@ -381,14 +364,7 @@ fn bad_contact_keys_are_refused_by_name() {
 /// models/row-compliant.toml under the paper's sine at 9 m/s^2.
 #[test]
 fn an_overturning_column_ends_the_run() {
-    let specs = [
-        at_rest(body(4.0, 0.7, 600.0, 5e6, 0.05)),
-        at_rest(body(4.0, 0.7, 600.0, 5e7, 0.05)),
-    ];
-    let row = Row::new(&specs, &[0.02], 0.5)
-        .unwrap()
-        .compliant(1e7)
-        .unwrap();
+    let row = pair_of_row_compliant_toml();
     let floor = PaperSine::new(9.0, 1.0, 0.412);
     let solved = solve_row_compliant(&row, &floor, 6.0, &TIGHT, History::Sampled).unwrap();
     let (i, t) = solved.overturned.expect("a column overturns");

@@ -12,7 +12,9 @@ use flexrock_core::model::RowModel;
 use flexrock_core::row::{solve_row_compliant, ColumnSpec, CompliantSettings, Face, Row};
 use flexrock_core::solver::{History, InitialState};
 
+use crate::common;
 use crate::row::{at_rest, body, mode_shape, sigma, L};
+use crate::row_compliant::{pair_of_row_compliant_toml, ROW};
 
 const TIGHT: CompliantSettings = CompliantSettings {
     rtol: 1e-10,
@@ -308,15 +310,8 @@ fn an_isolated_contact_slides_or_sticks_as_the_oscillator_says() {
 /// Zero friction is the frictionless row, bit for bit.
 #[test]
 fn zero_friction_is_the_frictionless_row() {
-    let specs = [
-        at_rest(body(4.0, 0.7, 600.0, 5e6, 0.05)),
-        at_rest(body(4.0, 0.7, 600.0, 5e7, 0.05)),
-    ];
+    let row = pair_of_row_compliant_toml();
     let floor = PaperSine::new(4.0, 1.0, 0.412);
-    let row = Row::new(&specs, &[0.02], 0.5)
-        .unwrap()
-        .compliant(1e7)
-        .unwrap();
     let plain = solve_row_compliant(&row, &floor, 6.0, &TIGHT, History::Sampled).unwrap();
     let zero = solve_row_compliant(
         &row.clone().with_friction(0.0).unwrap(),
@@ -420,17 +415,8 @@ fn energy_books_close_with_the_friction_work() {
                 "{name}: {s:?}"
             );
         }
+        common::row_books_close(name, &solved, 2e-8);
         for (i, c) in solved.columns.iter().enumerate() {
-            eprintln!(
-                "{name}, column {i}: energy residual {} of {} J",
-                c.max_energy_residual, c.energy_scale
-            );
-            assert!(
-                c.max_energy_residual <= 2e-8 * c.energy_scale,
-                "{name}, column {i}: energy residual {} of {}",
-                c.max_energy_residual,
-                c.energy_scale
-            );
             // Each change of stick and slip is an event of both columns.
             let logged = c
                 .events
@@ -449,12 +435,6 @@ fn energy_books_close_with_the_friction_work() {
         }
     }
 }
-
-const ROW: &str = "[row]\ngaps = [0.02]\nrestitution = 0.5\n\
-    [[column]]\nheight = 4.0\nwidth = 0.7\ndensity = 600.0\nyoungs_modulus = 5e6\ndamping_ratio = 0.05\n\
-    [[column]]\nheight = 4.0\nwidth = 0.7\ndensity = 600.0\nyoungs_modulus = 5e7\ndamping_ratio = 0.05\n\
-    [excitation]\nkind = \"paper-sine\"\namplitude = 4.0\nperiod = 1.0\nramp = 0.412\n\
-    [simulation]\nduration = 1.0\n";
 
 #[test]
 fn bad_friction_is_refused_by_name() {
@@ -509,14 +489,8 @@ fn locked_faces_slide_where_the_quasi_static_friction_reaches_mu_p() {
     .unwrap();
     let floor = SinePulse::new(amplitude, period, 1.0, PulseShape::Antisymmetric);
     let solved = solve_row_compliant(&row, &floor, 12.0, &TIGHT, History::Sampled).unwrap();
-    let longest = solved
-        .sticking
-        .iter()
-        .max_by(|a, b| {
-            let length = |s: &&flexrock_core::row::StickStretch| s.t_end.unwrap() - s.t_start;
-            length(a).total_cmp(&length(b))
-        })
-        .expect("the faces stick");
+    let longest =
+        common::longest(&solved.sticking, |s| (s.t_start, s.t_end)).expect("the faces stick");
     let (t_stick, t_slip) = (longest.t_start, longest.t_end.unwrap());
     // The pair's state where the faces stuck: q of each column at its friction-stick event.
     let q_at = |i: usize| {

@@ -22,6 +22,20 @@ const RECORDS: [&str; 5] = [
 /// consistent self-weight.
 type Drawn = (f64, f64, f64, f64, bool);
 
+/// Two to four drawn columns.
+fn drawn_columns() -> impl Strategy<Value = Vec<Drawn>> {
+    proptest::collection::vec(
+        (
+            2.5f64..5.5,
+            0.1f64..0.22,
+            -2.0f64..0.4,
+            0.0f64..0.06,
+            proptest::bool::ANY,
+        ),
+        2..=4,
+    )
+}
+
 /// The `[[column]]` tables of the drawn columns. Young's modulus comes from the gravity
 /// parameter M g H^2 / EI = 12 rho g H / (E s^2) (from 0.01, near rigid, to 2.5, a quarter of
 /// the way to buckling from the top), so that nearly every body drawn is one the model accepts.
@@ -94,10 +108,7 @@ proptest! {
 
     #[test]
     fn random_rows_under_records_end_normally(
-        columns in proptest::collection::vec(
-            (2.5f64..5.5, 0.1f64..0.22, -2.0f64..0.4, 0.0f64..0.06, proptest::bool::ANY),
-            2..=4,
-        ),
+        columns in drawn_columns(),
         log_gaps in proptest::collection::vec(-3.5f64..-1.3, 3),
         restitution in 0.0f64..=1.0,
         record in 0usize..5,
@@ -132,10 +143,7 @@ proptest! {
 
     #[test]
     fn random_compliant_rows_with_friction_end_normally(
-        columns in proptest::collection::vec(
-            (2.5f64..5.5, 0.1f64..0.22, -2.0f64..0.4, 0.0f64..0.06, proptest::bool::ANY),
-            2..=4,
-        ),
+        columns in drawn_columns(),
         log_gaps in proptest::collection::vec(-3.5f64..-1.3, 3),
         restitution in 0.05f64..=1.0,
         log_stiffness in 6.0f64..9.0,

@@ -151,3 +151,32 @@ pub fn documents() -> Vec<std::path::PathBuf> {
     pages(&root, &root.join("book/src"), &mut docs);
     docs
 }
+
+/// Every column of a solved row closes its energy books to `share` of its scale (the largest
+/// energy or work it booked); `what` names the case in messages.
+pub fn row_books_close(what: &str, solved: &flexrock_core::row::RowSolution, share: f64) {
+    for (i, c) in solved.columns.iter().enumerate() {
+        eprintln!(
+            "{what}, column {i}: energy residual {} of {} J",
+            c.max_energy_residual, c.energy_scale
+        );
+        assert!(
+            c.max_energy_residual <= share * c.energy_scale,
+            "{what}, column {i}: energy residual {} of {}",
+            c.max_energy_residual,
+            c.energy_scale
+        );
+    }
+}
+
+/// The longest of `stretches` (of contact, of sticking faces), each closed: `span` gives its
+/// start and end, s.
+pub fn longest<T>(stretches: &[T], span: impl Fn(&T) -> (f64, Option<f64>)) -> Option<&T> {
+    let length = |s: &T| {
+        let (start, end) = span(s);
+        end.expect("a closed stretch") - start
+    };
+    stretches
+        .iter()
+        .max_by(|a, b| length(a).total_cmp(&length(b)))
+}
