@@ -183,8 +183,14 @@ impl ShapeNumbers {
         }
     }
 
-    /// The paper's printed values, as the decimals they are printed as.
+    /// The paper's printed values, as the decimals they are printed as (worked out once: a
+    /// sweep builds a body at every point).
     fn paper() -> Self {
+        static PAPER: std::sync::OnceLock<ShapeNumbers> = std::sync::OnceLock::new();
+        *PAPER.get_or_init(Self::paper_from_decimals)
+    }
+
+    fn paper_from_decimals() -> Self {
         let l = Dd::decimal(1.8751);
         ShapeNumbers {
             int_u: Dd::decimal(0.3915),

@@ -147,18 +147,29 @@ fn push_plain(text: &mut String, d: &Digits) {
         text.push('0');
         return;
     }
+    text.reserve(d.plain_len());
     let (digits, point, count) = (d.text(), d.point, d.count);
     if point <= 0 {
         text.push_str("0.");
-        text.extend(std::iter::repeat_n('0', (-point) as usize));
+        push_zeros(text, (-point) as usize);
         text.push_str(digits);
     } else if point as usize >= count {
         text.push_str(digits);
-        text.extend(std::iter::repeat_n('0', point as usize - count));
+        push_zeros(text, point as usize - count);
     } else {
         text.push_str(&digits[..point as usize]);
         text.push('.');
         text.push_str(&digits[point as usize..]);
+    }
+}
+
+/// Appends `n` zeros.
+fn push_zeros(text: &mut String, mut n: usize) {
+    const ZEROS: &str = "0000000000000000000000000000000000000000000000000000000000000000";
+    while n > 0 {
+        let now = n.min(ZEROS.len());
+        text.push_str(&ZEROS[..now]);
+        n -= now;
     }
 }
 
@@ -254,7 +265,7 @@ pub fn shortest(x: f64) -> String {
     // One shortest-digit conversion (the costly part of a sweep's table); the lengths of both
     // forms follow from its digits, and only the shorter is written.
     let digits = Digits::of(x);
-    let mut text = String::new();
+    let mut text = String::with_capacity(24);
     if digits.exponent_len() + 2 <= digits.plain_len() {
         push_exponent(&mut text, &digits);
     } else {

@@ -234,7 +234,7 @@ impl Key {
             tail,
             dt,
         } = s;
-        let number = |x: &Option<f64>| x.map(|v| v.to_string());
+        let number = |x: &Option<f64>| x.map(crate::format::number);
         match self {
             Key::Amplitude => number(amplitude),
             Key::Period => number(period),
