@@ -31,7 +31,7 @@ pub use row::{Cell, Layout, Outcome, Row, Status};
 use row::{RigidMinima, RunOutcome, Scales};
 
 use crate::error::{Error, Result};
-use crate::model::{read_schema, Model, Overrides, RecordCache, Setting};
+use crate::model::{read_schema, Model, Overrides, PreparedSchema, RecordCache, Setting};
 use crate::rigid::{RigidBlock, RigidForm};
 
 /// Simulations per chunk, roughly: a chunk is the most a kill can lose.
@@ -251,6 +251,9 @@ pub struct Sweep {
     /// The model's record paths are relative to this directory.
     base_dir: PathBuf,
     settings: Vec<Setting>,
+    /// The table read with `settings`, from which each point's file is read again in the
+    /// sections its own settings name.
+    schema: PreparedSchema,
     /// Record files of an `excitation.path` axis are relative to this directory (where the user
     /// typed the pattern), not to the model file.
     paths_base: PathBuf,
@@ -447,8 +450,10 @@ impl Sweep {
             records: Vec::new(),
             row_columns,
         };
+        let schema = PreparedSchema::new(table.clone(), &request.settings, source);
         let mut sweep = Sweep {
             plan,
+            schema,
             table,
             source: source.to_path_buf(),
             base_dir: base_dir.to_path_buf(),
@@ -596,8 +601,12 @@ impl Sweep {
         }
     }
 
+    /// The model of the sweep's `--set` keys (`settings` starts with them), then the rest of
+    /// `settings`.
     fn model(&self, settings: &[Setting]) -> Result<Model> {
-        let file = read_schema(&self.table, settings, &self.source)?;
+        debug_assert!(settings.starts_with(&self.settings));
+        let further = settings.get(self.settings.len()..).unwrap_or_default();
+        let file = self.schema.read(further, &self.source)?;
         let overrides = Overrides::default();
         Model::from_file_cached(file, &overrides, &self.base_dir, &self.records)
     }
