@@ -53,7 +53,7 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<SweepReport> {
     let plan = first.plan.clone();
     let total = plan.points();
     let mut next = 0;
-    let mut body = Vec::new();
+    let mut pieces = Vec::new();
     for (dir, summary) in &parts {
         let r = summary.points;
         if r.first > next {
@@ -80,7 +80,7 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<SweepReport> {
             path: table.clone(),
             message: problem,
         })?;
-        body.extend_from_slice(&rows);
+        pieces.push(rows);
         next = r.end;
     }
     if next < total {
@@ -99,7 +99,7 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<SweepReport> {
     // Locked (and made) only now, so that a refused merge leaves no directory behind.
     let mut warnings = Vec::new();
     let _lock = dir::lock(out, &mut warnings)?;
-    let (summary, files) = super::finish(out, &plan, None, range, &body)?;
+    let (summary, files) = super::finish(out, &plan, None, range, &pieces)?;
     Ok(SweepReport {
         dir: out.to_path_buf(),
         summary,

@@ -222,27 +222,69 @@ pub fn run(sweep: &Sweep, target: &Target, progress: &dyn Progress) -> Result<Sw
         .map(|(c, _)| chunk_points(plan, c, range.end).len())
         .sum();
     progress.start(range.len(), resumed);
-    let mut computed = 0;
-    for (c, slot) in (first_chunk..end_chunk).zip(done.iter_mut()) {
-        if slot.is_some() {
-            continue;
-        }
+    // The missing chunks are computed in parallel on the thread pool, and this thread writes
+    // each as it comes: no thread of the pool waits for a chunk's slowest point, or for a disk.
+    let missing: Vec<usize> = (first_chunk..end_chunk)
+        .zip(&done)
+        .filter(|(_, rows)| rows.is_none())
+        .map(|(c, _)| c)
+        .collect();
+    let rows_of_chunk = |c: usize| -> Result<Vec<u8>> {
         let points = chunk_points(plan, c, range.end);
+        let fields = rows_of(sweep, points.clone(), progress);
+        // What was computed is checked as what is read back is: a row out of place never
+        // reaches a chunk or sweep.csv.
+        verify::check_fields(plan, &points, &fields).map_err(|problem| Error::SweepStore {
+            path: chunk_path(&chunks, c),
+            message: format!("the rows to be written: {problem}"),
+        })?;
         let mut table = writers::Table::without_header();
-        for fields in rows_of(sweep, points.clone(), progress) {
-            table.row(fields);
+        for row in fields {
+            table.row(row);
         }
-        let rows = table.into_bytes();
-        writers::write_file_atomically(
-            &chunk_path(&chunks, c),
-            &verify::chunk_bytes(&identity, &points, &rows),
-        )?;
-        computed += points.len();
-        *slot = Some(rows);
+        Ok(table.into_bytes())
+    };
+    let stop = std::sync::atomic::AtomicBool::new(false);
+    let mut computed = 0;
+    let mut failure = None;
+    std::thread::scope(|scope| {
+        let (sender, receiver) = std::sync::mpsc::channel();
+        scope.spawn(|| {
+            use rayon::prelude::*;
+            // Once a chunk fails, the chunks not yet started are left alone.
+            missing.par_iter().for_each_with(sender, |sender, &c| {
+                if !stop.load(std::sync::atomic::Ordering::Relaxed) {
+                    let _ = sender.send((c, rows_of_chunk(c)));
+                }
+            });
+        });
+        for (c, rows) in receiver {
+            let points = chunk_points(plan, c, range.end);
+            let written = rows.and_then(|rows| {
+                writers::write_file_atomically(
+                    &chunk_path(&chunks, c),
+                    &verify::chunk_bytes(&identity, &points, &rows),
+                )?;
+                Ok(rows)
+            });
+            match written {
+                Ok(rows) => {
+                    computed += points.len();
+                    done[c - first_chunk] = Some(rows);
+                }
+                Err(e) => {
+                    stop.store(true, std::sync::atomic::Ordering::Relaxed);
+                    failure.get_or_insert(e);
+                }
+            }
+        }
+    });
+    if let Some(e) = failure {
+        return Err(e);
     }
 
-    let body: Vec<u8> = done.into_iter().flatten().flatten().collect();
-    let (summary, files) = finish(&dir, plan, shard, range, &body)?;
+    let pieces: Vec<Vec<u8>> = done.into_iter().flatten().collect();
+    let (summary, files) = finish(&dir, plan, shard, range, &pieces)?;
     warnings.extend(dir::remove_chunks(&chunks));
     Ok(SweepReport {
         dir,
@@ -310,7 +352,7 @@ fn finished(
     writers::remove_stale_temporaries(dir, &RESULT_FILES);
     let missing = summary.files.iter().any(|f| !dir.join(f).is_file());
     let (summary, files) = if missing {
-        finish(dir, plan, shard, range, &body)?
+        finish(dir, plan, shard, range, std::slice::from_ref(&body))?
     } else {
         let files = summary.files.iter().map(|f| dir.join(f)).collect();
         (summary, files)
@@ -454,28 +496,28 @@ fn read_summary(dir: &Path) -> Result<Option<SweepSummary>> {
     }))
 }
 
-/// Writes sweep.csv, the figure and sweep.json (last) from the rows' CSV text, once the rows
-/// verify against the plan; then removes the files an earlier result in `dir` listed that this
-/// one does not write (a map of an earlier sweep beside the spectrum of this one).
+/// Writes sweep.csv, the figure and sweep.json (last) from the rows' CSV text in pieces (the
+/// chunks or shards, in order), which the caller verified against the plan (each against its
+/// points); then removes the files an earlier result in `dir` listed that this one does not
+/// write (a map of an earlier sweep beside the spectrum of this one).
 fn finish(
     dir: &Path,
     plan: &Plan,
     shard: Option<Shard>,
     range: PointRange,
-    body: &[u8],
+    pieces: &[Vec<u8>],
 ) -> Result<(SweepSummary, Vec<PathBuf>)> {
     let table_path = dir.join(TABLE_FILE);
-    verify::check_rows(plan, &(range.first..range.end), body).map_err(|problem| {
-        Error::SweepStore {
-            path: table_path.clone(),
-            message: format!("the rows to be written: {problem}"),
-        }
-    })?;
     let columns = plan.columns();
-    let mut table_bytes =
+    let header =
         writers::Table::new(&columns.iter().map(String::as_str).collect::<Vec<_>>()).into_bytes();
-    table_bytes.extend_from_slice(body);
-    let table = figure::SweepTable::parse(&table_bytes, &table_path)?;
+    let mut table_bytes = header;
+    for piece in pieces {
+        table_bytes.extend_from_slice(piece);
+    }
+    // The pieces are read back in parallel: sweep.csv's rows as a reader of the file finds
+    // them (each piece ends where a row does).
+    let table = figure::SweepTable::of_pieces(&columns, pieces, &table_path)?;
     let counts = table.counts(plan.layout())?;
     let figures = if shard.is_none() {
         figure::figures(plan, &table)?

@@ -63,42 +63,86 @@ pub(super) fn check_rows(
     points: &std::ops::Range<usize>,
     rows: &[u8],
 ) -> Result<(), String> {
-    let columns = plan.columns();
     let mut reader = csv::ReaderBuilder::new()
         .has_headers(false)
         .flexible(true)
         .from_reader(rows);
     let mut rewritten = writers::Table::without_header();
     let mut count = 0usize;
-    let status = columns.iter().position(|c| c == "status");
+    let rules = RowRules::of(plan);
     for (line, record) in reader.records().enumerate() {
         let record = record.map_err(|e| format!("row {}: not CSV: {e}", line + 1))?;
+        count = line + 1;
         let point = points.start + line;
         if point >= points.end {
-            count = line + 1;
             continue;
         }
-        if record.len() != columns.len() {
+        rules.check(plan, point, line, &record.iter().collect::<Vec<_>>())?;
+        rewritten.row(record.iter());
+    }
+    rules.check_count(count, points)?;
+    if rewritten.into_bytes() != rows {
+        return Err(
+            "is not written as flexrock writes it (line ends, quoting or spacing changed)"
+                .to_string(),
+        );
+    }
+    Ok(())
+}
+
+/// Checks the fields of rows just computed, before they are written, by the rules of
+/// [`check_rows`] but the bytes (which the writer makes).
+pub(super) fn check_fields(
+    plan: &Plan,
+    points: &std::ops::Range<usize>,
+    rows: &[Vec<String>],
+) -> Result<(), String> {
+    let rules = RowRules::of(plan);
+    for (line, (point, fields)) in points.clone().zip(rows).enumerate() {
+        let fields: Vec<&str> = fields.iter().map(String::as_str).collect();
+        rules.check(plan, point, line, &fields)?;
+    }
+    rules.check_count(rows.len(), points)
+}
+
+/// What every row of a plan must be.
+struct RowRules {
+    columns: usize,
+    status: Option<usize>,
+}
+
+impl RowRules {
+    fn of(plan: &Plan) -> Self {
+        let columns = plan.columns();
+        RowRules {
+            status: columns.iter().position(|c| c == "status"),
+            columns: columns.len(),
+        }
+    }
+
+    /// Row `line` (from 0), which belongs to point `point`.
+    fn check(&self, plan: &Plan, point: usize, line: usize, fields: &[&str]) -> Result<(), String> {
+        if fields.len() != self.columns {
             return Err(format!(
                 "row {} has {} fields where the sweep has {} columns",
                 line + 1,
-                record.len(),
-                columns.len()
+                fields.len(),
+                self.columns
             ));
         }
-        if record[0] != point.to_string() {
+        if fields[0] != point.to_string() {
             return Err(format!(
                 "row {} is point {:?} where point {point} belongs (rows lost, repeated or out of \
                  order)",
                 line + 1,
-                &record[0]
+                fields[0]
             ));
         }
-        for ((axis, &i), field) in plan
+        for ((axis, &i), &field) in plan
             .axes
             .iter()
             .zip(&plan.coordinates(point))
-            .zip(record.iter().skip(1))
+            .zip(&fields[1..])
         {
             if axis.values.get(i).map(String::as_str) != Some(field) {
                 return Err(format!(
@@ -109,33 +153,30 @@ pub(super) fn check_rows(
                 ));
             }
         }
-        if let Some(s) = status {
-            if !matches!(&record[s], "ok" | "invalid" | "failed") {
+        if let Some(s) = self.status {
+            if !matches!(fields[s], "ok" | "invalid" | "failed") {
                 return Err(format!(
                     "row {} (point {point}) has status {:?} (not ok, invalid or failed)",
                     line + 1,
-                    &record[s]
+                    fields[s]
                 ));
             }
         }
-        rewritten.row(record.iter());
-        count = line + 1;
+        Ok(())
     }
-    if count != points.len() {
-        return Err(format!(
-            "holds {count} rows for the {} points {}..{}",
-            points.len(),
-            points.start,
-            points.end
-        ));
+
+    /// `count` rows were found for `points`.
+    fn check_count(&self, count: usize, points: &std::ops::Range<usize>) -> Result<(), String> {
+        if count != points.len() {
+            return Err(format!(
+                "holds {count} rows for the {} points {}..{}",
+                points.len(),
+                points.start,
+                points.end
+            ));
+        }
+        Ok(())
     }
-    if rewritten.into_bytes() != rows {
-        return Err(
-            "is not written as flexrock writes it (line ends, quoting or spacing changed)"
-                .to_string(),
-        );
-    }
-    Ok(())
 }
 
 /// Checks sweep.csv's bytes against the plan: the header is the plan's columns, the rows those
