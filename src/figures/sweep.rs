@@ -55,6 +55,42 @@ impl SweepTable {
         })
     }
 
+    /// The table of the CSV rows `pieces` (without header; each ends where a row does) under
+    /// `columns`: what [`SweepTable::parse`] reads from the header and the pieces joined, read
+    /// in parallel; `path` names it in messages.
+    pub fn of_pieces(columns: &[String], pieces: &[Vec<u8>], path: &Path) -> Result<SweepTable> {
+        use rayon::prelude::*;
+        let read = |piece: &Vec<u8>| -> Result<Vec<csv::StringRecord>> {
+            csv::ReaderBuilder::new()
+                .has_headers(false)
+                .from_reader(piece.as_slice())
+                .records()
+                .map(|record| {
+                    let malformed = |message: String| Error::ReadResult {
+                        path: path.to_path_buf(),
+                        message: format!("a malformed row: {message}"),
+                    };
+                    let record = record.map_err(|e| malformed(e.to_string()))?;
+                    if record.len() != columns.len() {
+                        return Err(malformed(format!(
+                            "{} fields under {} columns",
+                            record.len(),
+                            columns.len()
+                        )));
+                    }
+                    Ok(record)
+                })
+                .collect()
+        };
+        let parts: Vec<Vec<csv::StringRecord>> =
+            pieces.par_iter().map(read).collect::<Result<_>>()?;
+        Ok(SweepTable {
+            columns: columns.to_vec(),
+            rows: parts.into_iter().flatten().collect(),
+            path: path.to_path_buf(),
+        })
+    }
+
     /// The index of a column.
     pub fn column(&self, name: &str) -> Result<usize> {
         self.columns
@@ -575,20 +611,30 @@ fn draw_map(
         let (a, b) = plotting.map_coordinate(&(x, y));
         (a - xr.start, b - yr.start)
     };
+    let color_of = |cell: &Cell| match (cell.value, cell.overturned) {
+        (_, true) => BLACK,
+        (Some(v), false) => colour(v),
+        (None, false) => WHITE,
+    };
     for (i, column) in cells.iter().enumerate() {
-        for (j, cell) in column.iter().enumerate() {
-            let color = match (cell.value, cell.overturned) {
-                (_, true) => BLACK,
-                (Some(v), false) => colour(v),
-                (None, false) => WHITE,
-            };
+        // A run of cells of one colour up a column is one rectangle (the same pixels: the
+        // overturned cells of a map are often most of it, and a file of 20,000 rectangles is
+        // slow to draw, write and open).
+        let mut first = 0;
+        while first < column.len() {
+            let color = color_of(&column[first]);
+            let mut last = first;
+            while last + 1 < column.len() && color_of(&column[last + 1]) == color {
+                last += 1;
+            }
             fill_cell(
                 &pixels,
-                at(ex[i], ey[j]),
-                at(ex[i + 1], ey[j + 1]),
+                at(ex[i], ey[first]),
+                at(ex[i + 1], ey[last + 1]),
                 limit,
                 color,
             )?;
+            first = last + 1;
         }
     }
     // Invalid or failed points: a grey cross.
