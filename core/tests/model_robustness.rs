@@ -143,3 +143,29 @@ fn an_overflowing_body_product_blames_the_key_that_was_set() {
         .to_string();
     assert!(message.contains("body.width = 1e103"), "{message}");
 }
+
+/// A key the excitation's kind does not take is refused with the value it was given: a number as
+/// typed, a text as written.
+#[test]
+fn a_key_of_another_kind_is_refused_with_its_value() {
+    let harmonic =
+        "youngs_modulus = 5e6\n[simulation]\nduration = 1.0\n[excitation]\nkind = \"harmonic\"\n\
+                    amplitude = 1.0\nperiod = 0.5\n";
+    for (extra, key, value) in [
+        ("cycles = 2.5", "excitation.cycles", "2.5"),
+        ("tail = 1e-7", "excitation.tail", "0.0000001"),
+        ("shape = \"symmetric\"", "excitation.shape", "symmetric"),
+    ] {
+        let text = format!("{harmonic}{extra}\n");
+        let message = reference_with(&text, &Overrides::default())
+            .err()
+            .unwrap_or_else(|| panic!("{extra} was read"))
+            .to_string();
+        assert!(
+            message.contains(key)
+                && message.contains(value)
+                && message.contains("not a parameter of kind = \"harmonic\""),
+            "{extra}: {message}"
+        );
+    }
+}

@@ -214,9 +214,9 @@ impl Key {
         }
     }
 
-    /// The value the section gives the key, as text, if any. The section is taken apart field
-    /// by field, so that a field added to it without a key here does not compile.
-    fn given(self, s: &ExcitationSection) -> Option<String> {
+    /// The value the section gives the key, if any. The section is taken apart field by field,
+    /// so that a field added to it without a key here does not compile.
+    fn given(self, s: &ExcitationSection) -> Option<Given<'_>> {
         let ExcitationSection {
             kind: _,
             amplitude,
@@ -234,22 +234,41 @@ impl Key {
             tail,
             dt,
         } = s;
-        let number = |x: &Option<f64>| x.map(crate::format::number);
+        let number = |x: &Option<f64>| x.map(Given::Number);
+        fn text(x: &Option<String>) -> Option<Given<'_>> {
+            x.as_deref().map(Given::Text)
+        }
         match self {
             Key::Amplitude => number(amplitude),
             Key::Period => number(period),
             Key::Ramp => number(ramp),
             Key::Cycles => number(cycles),
-            Key::Shape => shape.clone(),
+            Key::Shape => text(shape),
             Key::Center => number(center),
-            Key::Path => path.clone(),
-            Key::Format => format.clone(),
-            Key::Units => units.clone(),
+            Key::Path => text(path),
+            Key::Format => text(format),
+            Key::Units => text(units),
             Key::Scale => number(scale),
             Key::Start => number(start),
             Key::End => number(end),
             Key::Tail => number(tail),
             Key::Dt => number(dt),
+        }
+    }
+}
+
+/// A value an `[excitation]` section gives; written out only for a message.
+#[derive(Debug, Clone, Copy)]
+enum Given<'a> {
+    Number(f64),
+    Text(&'a str),
+}
+
+impl Given<'_> {
+    fn text(self) -> String {
+        match self {
+            Given::Number(x) => crate::format::number(x),
+            Given::Text(t) => t.to_string(),
         }
     }
 }
@@ -280,7 +299,7 @@ pub(super) fn floor_from_section(
             Some(v) if !wanted => {
                 return Err(Error::invalid(
                     &format!("excitation.{}", key.name()),
-                    v,
+                    v.text(),
                     &format!("not a parameter of kind = \"{}\"", kind.name()),
                 ))
             }
