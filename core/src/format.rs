@@ -259,19 +259,39 @@ fn parse_exponent(bytes: &[u8]) -> i32 {
 /// but 0.005, 0.0003125, 43.98). It reads back exactly, and 1e300 or 1e-300 never print as
 /// 301 digits.
 pub fn shortest(x: f64) -> String {
-    if !x.is_finite() {
-        return format!("{x}");
-    }
-    // One shortest-digit conversion (the costly part of a sweep's table); the lengths of both
-    // forms follow from its digits, and only the shorter is written.
-    let digits = Digits::of(x);
     let mut text = String::with_capacity(24);
-    if digits.exponent_len() + 2 <= digits.plain_len() {
-        push_exponent(&mut text, &digits);
-    } else {
-        push_plain(&mut text, &digits);
-    }
+    push_shortest(&mut text, x);
     text
+}
+
+/// Appends [`shortest`]`(x)` to `text`.
+pub fn push_shortest(text: &mut String, x: f64) {
+    if !x.is_finite() {
+        let _ = write!(text, "{x}");
+        return;
+    }
+    // One shortest-digit conversion (the costly part of a sweep's table). Where ryu writes the
+    // plain form as `{}` does (as in `push_number`), it is the shorter unless at least three
+    // zeros follow the point before the digits (0.000d) or end a whole number (d000): then
+    // the exponent form can be two characters shorter, and the digits decide.
+    let mut buffer = ryu::Buffer::new();
+    let formatted = buffer.format_finite(x);
+    if !formatted.contains('e') && !short_fraction(x) {
+        let plain = formatted.strip_suffix(".0").unwrap_or(formatted);
+        let unsigned = plain.strip_prefix('-').unwrap_or(plain);
+        if !unsigned.starts_with("0.000") && !(unsigned.ends_with("000") && !plain.contains('.')) {
+            text.push_str(plain);
+            return;
+        }
+    }
+    // Otherwise the lengths of both forms follow from the digits, and only the shorter is
+    // written.
+    let digits = Digits::of(x);
+    if digits.exponent_len() + 2 <= digits.plain_len() {
+        push_exponent(text, &digits);
+    } else {
+        push_plain(text, &digits);
+    }
 }
 
 /// A short time step or period in seconds: five decimals, or two significant digits below
@@ -482,6 +502,21 @@ mod tests {
         let mut values = vec![
             0.0, -0.0, 1.0, 10.0, 100.0, 0.1, 0.01, 1e-5, 1e21, 1e22, 123456.0,
         ];
+        // Where the plain and the exponent forms are of about one length: a few digits after
+        // zeros that follow the point, or before zeros that end a whole number.
+        for digits in [1.0, 7.0, 12.0, 125.0, 1234.0, 123456789.0] {
+            for power in -12..=12 {
+                let x = digits * 10f64.powi(power);
+                values.extend([x, -x]);
+            }
+        }
+        // Numbers with few binary digits after the point (where ryu and `{}` can differ).
+        for j in 1..40 {
+            for _ in 0..200 {
+                let m = (next() >> (11 + next() % 53)) | 1;
+                values.push(m as f64 / 2f64.powi(j));
+            }
+        }
         for _ in 0..20_000 {
             let bits = next();
             let x = f64::from_bits(bits);
