@@ -55,15 +55,23 @@ impl SweepTable {
         })
     }
 
-    /// The table of the CSV rows `pieces` (without header; each ends where a row does) under
-    /// `columns`: what [`SweepTable::parse`] reads from the header and the pieces joined, read
-    /// in parallel; `path` names it in messages.
-    pub fn of_pieces(columns: &[String], pieces: &[Vec<u8>], path: &Path) -> Result<SweepTable> {
+    /// The table of the rows `pieces` under `columns`: what [`SweepTable::parse`] reads from
+    /// the header and the pieces' text joined. A piece's fields are taken as they are where it
+    /// has them (the text was written from them), else read from its text, the pieces in
+    /// parallel; `path` names the table in messages.
+    pub(crate) fn of_pieces(
+        columns: &[String],
+        pieces: Vec<crate::commands::sweep::store::Piece>,
+        path: &Path,
+    ) -> Result<SweepTable> {
         use rayon::prelude::*;
-        let read = |piece: &Vec<u8>| -> Result<Vec<csv::StringRecord>> {
+        let read = |piece: crate::commands::sweep::store::Piece| -> Result<Vec<csv::StringRecord>> {
+            if let Some(records) = piece.records {
+                return Ok(records);
+            }
             csv::ReaderBuilder::new()
                 .has_headers(false)
-                .from_reader(piece.as_slice())
+                .from_reader(piece.rows.as_slice())
                 .records()
                 .map(|record| {
                     let malformed = |message: String| Error::ReadResult {
@@ -83,7 +91,7 @@ impl SweepTable {
                 .collect()
         };
         let parts: Vec<Vec<csv::StringRecord>> =
-            pieces.par_iter().map(read).collect::<Result<_>>()?;
+            pieces.into_par_iter().map(read).collect::<Result<_>>()?;
         Ok(SweepTable {
             columns: columns.to_vec(),
             rows: parts.into_iter().flatten().collect(),

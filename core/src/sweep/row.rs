@@ -6,7 +6,7 @@
 //! No wall-clock time appears in a row, so that a sweep writes the same file every time.
 
 use crate::automaton::EventKind;
-use crate::format::shortest;
+use crate::format::push_shortest;
 use crate::model::Model;
 use crate::rigid::RigidForm;
 use crate::solution::Solution;
@@ -80,11 +80,22 @@ impl Cell {
     /// The field as sweep.csv holds it: `true`/`false`, a decimal count, a number in its
     /// shortest form that reads back to the same bits, the text; empty for `None`.
     pub fn field(&self) -> String {
+        let mut text = String::new();
+        self.push_field(&mut text);
+        text
+    }
+
+    /// Appends [`Cell::field`] to `text`.
+    pub fn push_field(&self, text: &mut String) {
+        use std::fmt::Write as _;
         match self {
-            Cell::Bool(b) => b.map(|b| b.to_string()).unwrap_or_default(),
-            Cell::Int(n) => n.map(|n| n.to_string()).unwrap_or_default(),
-            Cell::Float(x) => x.map(shortest).unwrap_or_default(),
-            Cell::Text(t) => t.clone().unwrap_or_default(),
+            Cell::Bool(Some(b)) => text.push_str(if *b { "true" } else { "false" }),
+            Cell::Int(Some(n)) => {
+                let _ = write!(text, "{n}");
+            }
+            Cell::Float(Some(x)) => push_shortest(text, *x),
+            Cell::Text(Some(t)) => text.push_str(t),
+            Cell::Bool(None) | Cell::Int(None) | Cell::Float(None) | Cell::Text(None) => {}
         }
     }
 }

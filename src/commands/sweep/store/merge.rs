@@ -80,7 +80,7 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<SweepReport> {
             path: table.clone(),
             message: problem,
         })?;
-        pieces.push(rows);
+        pieces.push(super::Piece::read_back(rows));
         next = r.end;
     }
     if next < total {
@@ -99,7 +99,7 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<SweepReport> {
     // Locked (and made) only now, so that a refused merge leaves no directory behind.
     let mut warnings = Vec::new();
     let _lock = dir::lock(out, &mut warnings)?;
-    let (summary, files) = super::finish(out, &plan, None, range, &pieces)?;
+    let (summary, files) = super::finish(out, &plan, None, range, pieces)?;
     Ok(SweepReport {
         dir: out.to_path_buf(),
         summary,

@@ -193,13 +193,13 @@ pub fn run(sweep: &Sweep, target: &Target, progress: &dyn Progress) -> Result<Sw
     let first_chunk = range.first / plan.chunk_size;
     let end_chunk = range.end.div_ceil(plan.chunk_size);
     // The chunks on disk that verify; every other chunk is computed.
-    let mut done: Vec<Option<Vec<u8>>> = Vec::new();
+    let mut done: Vec<Option<Piece>> = Vec::new();
     for c in first_chunk..end_chunk {
         let path = chunk_path(&chunks, c);
         let points = chunk_points(plan, c, range.end);
         let rows = match std::fs::read(&path) {
             Ok(bytes) => match verify::chunk_rows(plan, &identity, &points, &bytes) {
-                Ok(rows) => Some(rows.to_vec()),
+                Ok(rows) => Some(Piece::read_back(rows.to_vec())),
                 Err(problem) => {
                     warnings.push(format!("{} {problem}: computed again", path.display()));
                     None
@@ -229,20 +229,23 @@ pub fn run(sweep: &Sweep, target: &Target, progress: &dyn Progress) -> Result<Sw
         .filter(|(_, rows)| rows.is_none())
         .map(|(c, _)| c)
         .collect();
-    let rows_of_chunk = |c: usize| -> Result<Vec<u8>> {
+    let rows_of_chunk = |c: usize| -> Result<Piece> {
         let points = chunk_points(plan, c, range.end);
-        let fields = rows_of(sweep, points.clone(), progress);
+        let records = rows_of(sweep, points.clone(), progress);
         // What was computed is checked as what is read back is: a row out of place never
         // reaches a chunk or sweep.csv.
-        verify::check_fields(plan, &points, &fields).map_err(|problem| Error::SweepStore {
+        verify::check_fields(plan, &points, &records).map_err(|problem| Error::SweepStore {
             path: chunk_path(&chunks, c),
             message: format!("the rows to be written: {problem}"),
         })?;
         let mut table = writers::Table::without_header();
-        for row in fields {
-            table.row(row);
+        for record in &records {
+            table.row(record);
         }
-        Ok(table.into_bytes())
+        Ok(Piece {
+            rows: table.into_bytes(),
+            records: Some(records),
+        })
     };
     let stop = std::sync::atomic::AtomicBool::new(false);
     let mut computed = 0;
@@ -260,12 +263,12 @@ pub fn run(sweep: &Sweep, target: &Target, progress: &dyn Progress) -> Result<Sw
         });
         for (c, rows) in receiver {
             let points = chunk_points(plan, c, range.end);
-            let written = rows.and_then(|rows| {
+            let written = rows.and_then(|piece| {
                 writers::write_file_atomically(
                     &chunk_path(&chunks, c),
-                    &verify::chunk_bytes(&identity, &points, &rows),
+                    &verify::chunk_bytes(&identity, &points, &piece.rows),
                 )?;
-                Ok(rows)
+                Ok(piece)
             });
             match written {
                 Ok(rows) => {
@@ -283,8 +286,8 @@ pub fn run(sweep: &Sweep, target: &Target, progress: &dyn Progress) -> Result<Sw
         return Err(e);
     }
 
-    let pieces: Vec<Vec<u8>> = done.into_iter().flatten().collect();
-    let (summary, files) = finish(&dir, plan, shard, range, &pieces)?;
+    let pieces: Vec<Piece> = done.into_iter().flatten().collect();
+    let (summary, files) = finish(&dir, plan, shard, range, pieces)?;
     warnings.extend(dir::remove_chunks(&chunks));
     Ok(SweepReport {
         dir,
@@ -352,7 +355,7 @@ fn finished(
     writers::remove_stale_temporaries(dir, &RESULT_FILES);
     let missing = summary.files.iter().any(|f| !dir.join(f).is_file());
     let (summary, files) = if missing {
-        finish(dir, plan, shard, range, std::slice::from_ref(&body))?
+        finish(dir, plan, shard, range, vec![Piece::read_back(body)])?
     } else {
         let files = summary.files.iter().map(|f| dir.join(f)).collect();
         (summary, files)
@@ -436,6 +439,9 @@ fn open_chunks(dir: &Path, plan: &Plan, shard: Option<Shard>, force: bool) -> Re
 pub fn rows(sweep: &Sweep, progress: &dyn Progress) -> Vec<Vec<String>> {
     progress.start(sweep.points(), 0);
     rows_of(sweep, 0..sweep.points(), progress)
+        .iter()
+        .map(|record| record.iter().map(str::to_string).collect())
+        .collect()
 }
 
 /// The fields of the rows of the points `points`, in point order, as sweep.csv holds them.
@@ -443,23 +449,51 @@ fn rows_of(
     sweep: &Sweep,
     points: std::ops::Range<usize>,
     progress: &dyn Progress,
-) -> Vec<Vec<String>> {
+) -> Vec<csv::StringRecord> {
     sweep.rows_as(points, &|| progress.advance(1), |i, row| {
-        row_fields(&sweep.plan, i, &row)
+        row_record(&sweep.plan, i, &row)
     })
+}
+
+/// Rows of sweep.csv (CSV text without header, whole rows), verified against the plan, with
+/// their fields where they were just computed (else they are read back from the text).
+pub(crate) struct Piece {
+    pub(crate) rows: Vec<u8>,
+    pub(crate) records: Option<Vec<csv::StringRecord>>,
+}
+
+impl Piece {
+    /// Rows read from a file.
+    fn read_back(rows: Vec<u8>) -> Self {
+        Piece {
+            rows,
+            records: None,
+        }
+    }
 }
 
 fn chunk_path(dir: &Path, chunk: usize) -> PathBuf {
     dir.join(format!("{chunk:09}.csv"))
 }
 
-fn row_fields(plan: &Plan, index: usize, row: &flexrock_core::sweep::Row) -> Vec<String> {
-    let mut fields = vec![index.to_string()];
+/// The fields of point `index`'s row: its index, its coordinates, then the row's cells (each
+/// written into one buffer, not a string of its own).
+fn row_record(plan: &Plan, index: usize, row: &flexrock_core::sweep::Row) -> csv::StringRecord {
+    use std::fmt::Write as _;
+    let cells = row.cells(plan.layout());
+    let mut record = csv::StringRecord::with_capacity(256, 1 + plan.axes.len() + cells.len());
+    let mut text = String::with_capacity(32);
+    let _ = write!(text, "{index}");
+    record.push_field(&text);
     for (axis, &i) in plan.axes.iter().zip(&plan.coordinates(index)) {
-        fields.push(axis.values[i].clone());
+        record.push_field(&axis.values[i]);
     }
-    fields.extend(row.fields(plan.layout()));
-    fields
+    for cell in &cells {
+        text.clear();
+        cell.push_field(&mut text);
+        record.push_field(&text);
+    }
+    record
 }
 
 fn other_sweep(path: &Path) -> Error {
@@ -505,26 +539,27 @@ fn finish(
     plan: &Plan,
     shard: Option<Shard>,
     range: PointRange,
-    pieces: &[Vec<u8>],
+    pieces: Vec<Piece>,
 ) -> Result<(SweepSummary, Vec<PathBuf>)> {
     let table_path = dir.join(TABLE_FILE);
     let columns = plan.columns();
     let header =
         writers::Table::new(&columns.iter().map(String::as_str).collect::<Vec<_>>()).into_bytes();
     let mut table_bytes = header;
-    for piece in pieces {
-        table_bytes.extend_from_slice(piece);
+    for piece in &pieces {
+        table_bytes.extend_from_slice(&piece.rows);
     }
-    // The pieces are read back in parallel: sweep.csv's rows as a reader of the file finds
-    // them (each piece ends where a row does).
     let table = figure::SweepTable::of_pieces(&columns, pieces, &table_path)?;
     let counts = table.counts(plan.layout())?;
-    let figures = if shard.is_none() {
-        figure::figures(plan, &table)?
-    } else {
-        Vec::new()
-    };
-    let table_sha256 = verify::sha256_hex(&table_bytes);
+    // The figures and sweep.csv's digest at once.
+    let (figures, table_sha256) = rayon::join(
+        || match shard {
+            None => figure::figures(plan, &table),
+            Some(_) => Ok(Vec::new()),
+        },
+        || verify::sha256_hex(&table_bytes),
+    );
+    let figures = figures?;
     let mut files: Vec<(String, Vec<u8>)> = vec![(TABLE_FILE.to_string(), table_bytes)];
     files.extend(figures);
     let mut names: Vec<String> = files.iter().map(|(n, _)| n.clone()).collect();
@@ -545,7 +580,8 @@ fn finish(
         .map(|s| s.files)
         .unwrap_or_default();
     files.push((SUMMARY_FILE.to_string(), writers::json_bytes(&summary)));
-    let set: Vec<(&str, Vec<u8>)> = files.iter().map(|(n, b)| (n.as_str(), b.clone())).collect();
+    let (names, contents): (Vec<String>, Vec<Vec<u8>>) = files.into_iter().unzip();
+    let set: Vec<(&str, Vec<u8>)> = names.iter().map(String::as_str).zip(contents).collect();
     let written = writers::write_atomically(dir, &set)?;
     for name in RESULT_FILES {
         let stale = earlier.iter().any(|f| f == name) && !summary.files.iter().any(|f| f == name);

@@ -95,11 +95,11 @@ pub(super) fn check_rows(
 pub(super) fn check_fields(
     plan: &Plan,
     points: &std::ops::Range<usize>,
-    rows: &[Vec<String>],
+    rows: &[csv::StringRecord],
 ) -> Result<(), String> {
     let rules = RowRules::of(plan);
     for (line, (point, fields)) in points.clone().zip(rows).enumerate() {
-        let fields: Vec<&str> = fields.iter().map(String::as_str).collect();
+        let fields: Vec<&str> = fields.iter().collect();
         rules.check(plan, point, line, &fields)?;
     }
     rules.check_count(rows.len(), points)
