@@ -279,7 +279,9 @@ pub fn push_shortest(text: &mut String, x: f64) {
     if !formatted.contains('e') && !short_fraction(x) {
         let plain = formatted.strip_suffix(".0").unwrap_or(formatted);
         let unsigned = plain.strip_prefix('-').unwrap_or(plain);
-        if !unsigned.starts_with("0.000") && !(unsigned.ends_with("000") && !plain.contains('.')) {
+        let zeros_lead = unsigned.starts_with("0.000");
+        let zeros_end = !plain.contains('.') && unsigned.ends_with("000");
+        if !zeros_lead && !zeros_end {
             text.push_str(plain);
             return;
         }
