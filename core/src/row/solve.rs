@@ -141,6 +141,7 @@ impl Smooth for Gap<'_> {
             v: sr * r.v - sl * l.v,
             acc: sr * r.acc - sl * l.acc,
             jerk: sr * r.jerk - sl * l.jerk,
+            free: [0.0; 2],
         }
     }
 
@@ -176,6 +177,7 @@ impl Smooth for Force<'_> {
             v: alpha * p.v + gamma * p.acc + delta * p.jerk,
             acc: 0.0,
             jerk: 0.0,
+            free: [0.0; 2],
         }
     }
 

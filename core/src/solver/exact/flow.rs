@@ -47,6 +47,10 @@ pub(crate) struct Point {
     pub v: f64,
     pub acc: f64,
     pub jerk: f64,
+    /// The free motion x_h and x_h' at t of a flow of the oscillator form, as
+    /// [`Flow::point`] found them, for [`Flow::derivative_bounds`] (which would otherwise
+    /// evaluate them again); zero for other points.
+    pub free: [f64; 2],
 }
 
 /// sum c_n u^n by compensated Horner (Graillat, Langlois and Louvet 2005): as if in twice the
@@ -573,6 +577,7 @@ impl Flow {
                         v,
                         acc,
                         jerk: df - k * v - c * acc,
+                        free: [xh, vh],
                     },
                     [f, df],
                 )
@@ -588,6 +593,7 @@ impl Flow {
                         v: a(1),
                         acc: 2.0 * a(2),
                         jerk: 3.0 * (2.0 * a(3)),
+                        free: [0.0; 2],
                     },
                     [0.0; 2],
                 )
@@ -612,6 +618,7 @@ impl Flow {
                         v: d[1],
                         acc: d[2],
                         jerk: d[3],
+                        free: [0.0; 2],
                     },
                     [0.0; 2],
                 )
@@ -733,6 +740,7 @@ impl Flow {
     /// would cut its monotone pieces a million times too short. Both bounds hold; the second is
     /// taken where it is at least [`STEADY_BOUND_GAIN`] times smaller, so that elsewhere the
     /// search (and the last bits of the event times it finds) stays as it was.
+    /// `p` must be a point of this flow ([`Flow::point`], or one with only q changed).
     pub fn derivative_bounds(&self, p: &Point, h: f64) -> (f64, f64, f64) {
         let (k, c) = (self.k, self.c);
         let w = k.abs().sqrt();
@@ -745,7 +753,15 @@ impl Flow {
         let m4 = w * w * m2 + c.abs() * m3 + self.force_curvature_bound;
         let safe = 1.0 + 1e-9;
         if let Form::Oscillator(o) = &self.form {
-            let [xh, vh, _, _] = o.free(k, self.local(p.t));
+            let [xh, vh] = p.free;
+            debug_assert_eq!(
+                [xh, vh].map(f64::to_bits),
+                {
+                    let [xh, vh, _, _] = o.free(k, self.local(p.t));
+                    [xh, vh].map(f64::to_bits)
+                },
+                "a point of another flow"
+            );
             let zh = ((w + c.abs()) * h).exp() * (w * w * xh * xh + vh * vh).sqrt();
             let amplitude = (o.xs * o.xs + o.xc * o.xc).sqrt();
             let big_omega = 2.0 * PI / o.period;
