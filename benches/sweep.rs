@@ -90,5 +90,37 @@ fn map(c: &mut Criterion) {
     let _ = std::fs::remove_dir_all(&out);
 }
 
-criterion_group!(benches, one_point, duration, map);
+/// The 100 x 100 map of the book's exact-method chapter, by the exact method and by tsit45 at
+/// the model's tolerance, in process with its files (the whole process adds its start and
+/// end, a few ms).
+fn large_map(c: &mut Criterion) {
+    let out = std::env::temp_dir().join(format!("flexrock-bench-map100-{}", std::process::id()));
+    let mut group = c.benchmark_group("sweep map 100 x 100 pulse");
+    group.sample_size(10);
+    for method in ["exact", "tsit45"] {
+        let request = || Request {
+            settings: vec![flexrock_core::model::Setting::text("solver.method", method)],
+            axes: vec![
+                Axis::parse("excitation.period=lin:0.2:3:100", Path::new(".")).unwrap(),
+                Axis::parse("excitation.amplitude=lin:0.5:15:100", Path::new(".")).unwrap(),
+            ],
+            ..Request::default()
+        };
+        group.bench_function(format!("{method} (in process, files included)"), |b| {
+            b.iter(|| {
+                let _ = std::fs::remove_dir_all(&out);
+                let sweep = Sweep::new(&model_file(), request(), Path::new(".")).unwrap();
+                let target = store::Target {
+                    out: out.clone(),
+                    ..store::Target::default()
+                };
+                store::run(&sweep, &target, &store::Silent).unwrap()
+            })
+        });
+    }
+    group.finish();
+    let _ = std::fs::remove_dir_all(&out);
+}
+
+criterion_group!(benches, one_point, duration, map, large_map);
 criterion_main!(benches);

@@ -4,7 +4,7 @@ use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
 
-use super::ExcitationSection;
+use super::{BodySection, ExcitationSection};
 use crate::body::{positive, Body, ConstantSet, SelfWeight};
 use crate::constants::Constants;
 use crate::error::{Error, Result};
@@ -26,6 +26,9 @@ pub struct RecordCache {
     /// The constants of the bodies met so far: a sweep that varies the excitation derives
     /// them once instead of at every point (they are a pure function of the body).
     constants: Mutex<HashMap<BodyKey, Constants>>,
+    /// The last `[body]` section read and its body: a sweep that varies the excitation reads
+    /// the same section at every point.
+    last_body: Mutex<Option<(BodySection, Body)>>,
 }
 
 /// A body known by the bits of its numbers and its variants.
@@ -36,6 +39,25 @@ type BodyKey = ([u64; 7], ConstantSet, SelfWeight);
 const MAX_CACHED_BODIES: usize = 256;
 
 impl RecordCache {
+    /// `read(section)`, from the cache when the section is the last one read (the same bits
+    /// in every number, the same texts). A section that is refused is read every time, so
+    /// that its message is always its own.
+    pub(crate) fn body(
+        &self,
+        section: &BodySection,
+        read: impl FnOnce(&BodySection) -> Result<Body>,
+    ) -> Result<Body> {
+        let lock = || self.last_body.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some((last, body)) = lock().as_ref() {
+            if last.same_as(section) {
+                return Ok(body.clone());
+            }
+        }
+        let body = read(section)?;
+        *lock() = Some((section.clone(), body.clone()));
+        Ok(body)
+    }
+
     /// `Constants::new(body)`, from the cache when this body was met before.
     pub(crate) fn constants(&self, body: &Body) -> Result<Constants> {
         let key = (

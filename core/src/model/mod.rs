@@ -92,6 +92,47 @@ pub struct BodySection {
     pub poisson_ratio: Option<f64>,
 }
 
+impl BodySection {
+    /// Whether `other` is the same section: every number of the same bits (0 and -0 differ,
+    /// a NaN is itself), every text the same. The section is taken apart field by field, so
+    /// that a field added to it without a comparison here does not compile.
+    pub(crate) fn same_as(&self, other: &BodySection) -> bool {
+        let BodySection {
+            height,
+            width,
+            depth,
+            density,
+            mass,
+            youngs_modulus,
+            flexural_rigidity,
+            period,
+            damping_ratio,
+            gravity,
+            constants,
+            self_weight,
+            poisson_ratio,
+        } = self;
+        let bits = |x: &Option<f64>| x.map(f64::to_bits);
+        height.to_bits() == other.height.to_bits()
+            && width.to_bits() == other.width.to_bits()
+            && [
+                (depth, &other.depth),
+                (density, &other.density),
+                (mass, &other.mass),
+                (youngs_modulus, &other.youngs_modulus),
+                (flexural_rigidity, &other.flexural_rigidity),
+                (period, &other.period),
+                (damping_ratio, &other.damping_ratio),
+                (gravity, &other.gravity),
+                (poisson_ratio, &other.poisson_ratio),
+            ]
+            .iter()
+            .all(|(a, b)| bits(a) == bits(b))
+            && *constants == other.constants
+            && *self_weight == other.self_weight
+    }
+}
+
 #[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 /// The `[excitation]` table: the floor motion.
@@ -588,7 +629,7 @@ impl Model {
             file.solver.newmark_variant = Some(v.clone());
         }
 
-        let body = body_from_section(&file.body)?;
+        let body = records.body(&file.body, body_from_section)?;
         let constants = records.constants(&body)?;
         check_stands_up(&file.body, &body, &constants)?;
         let (floor, natural_duration) = floor_from_section(&file.excitation, base_dir, records)?;
@@ -1032,5 +1073,66 @@ mod prepared_schema_tests {
         let whole = outcome(read_schema(&table, &further, source));
         assert!(whole.starts_with("error"), "{whole}");
         assert_eq!(outcome(prepared.read(&further, source)), whole);
+    }
+}
+
+#[cfg(test)]
+mod body_cache_tests {
+    use super::*;
+    use std::cell::Cell;
+
+    fn section() -> BodySection {
+        let table = read_model_table(
+            &Path::new(env!("CARGO_MANIFEST_DIR")).join("../models/pulse-map.toml"),
+        )
+        .expect("a model of the repository")
+        .1;
+        read_schema(&table, &[], Path::new("model.toml"))
+            .expect("it reads")
+            .body
+    }
+
+    /// The cache gives the body the section reads to, reads a section again unless every
+    /// number has the same bits and every text is the same, and never keeps a refusal.
+    #[test]
+    fn a_body_is_read_again_unless_its_section_is_the_same() {
+        let cache = RecordCache::default();
+        let reads = Cell::new(0);
+        let read = |s: &BodySection| {
+            reads.set(reads.get() + 1);
+            body_from_section(s)
+        };
+        let base = section();
+        let first = cache.body(&base, read).expect("a body");
+        assert_eq!(
+            format!("{first:?}"),
+            format!("{:?}", body_from_section(&base).unwrap())
+        );
+        cache.body(&base.clone(), read).expect("a body");
+        assert_eq!(reads.get(), 1, "the same section is read once");
+        let mut taller = base.clone();
+        taller.height = f64::from_bits(base.height.to_bits() + 1);
+        let body = cache.body(&taller, read).expect("a body");
+        assert_eq!(body.height, taller.height);
+        assert_eq!(reads.get(), 2);
+        let mut signed = taller.clone();
+        signed.poisson_ratio = Some(-0.0);
+        let mut unsigned = taller.clone();
+        unsigned.poisson_ratio = Some(0.0);
+        cache.body(&signed, read).expect("a body");
+        cache.body(&unsigned, read).expect("a body");
+        let mut paper = unsigned.clone();
+        paper.constants = Some("paper".into());
+        cache.body(&paper, read).expect("a body");
+        assert_eq!(
+            reads.get(),
+            5,
+            "-0 and 0, and another text, are other sections"
+        );
+        let mut refused = paper.clone();
+        refused.width = -1.0;
+        assert!(cache.body(&refused, read).is_err());
+        assert!(cache.body(&refused, read).is_err());
+        assert_eq!(reads.get(), 7, "a refusal is not kept");
     }
 }
