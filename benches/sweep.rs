@@ -1,6 +1,7 @@
 //! Speed of sweep points (the README reports these numbers): one point of a pulse map as a
 //! sweep runs it (no history), how its time grows with the simulated duration and with the
-//! number of events, and a whole 20 x 20 map in process (points, chunks, files, figure).
+//! number of events, a whole 20 x 20 map in process (points, chunks, files, figure), and the
+//! 100 x 100 map of the exact method's speed goal by the exact method and tsit45.
 
 use std::path::Path;
 
@@ -63,27 +64,40 @@ fn duration(c: &mut Criterion) {
     }
 }
 
+/// The map of `request` on the pulse model, written into `out` (emptied first).
+fn sweep_map(out: &Path, request: Request) -> store::SweepReport {
+    let _ = std::fs::remove_dir_all(out);
+    let sweep = Sweep::new(&model_file(), request, Path::new(".")).unwrap();
+    let target = store::Target {
+        out: out.to_path_buf(),
+        ..store::Target::default()
+    };
+    store::run(&sweep, &target, &store::Silent).unwrap()
+}
+
+/// The request of a map over `period` and `amplitude` (axis texts) with `settings`.
+fn map_request(settings: Vec<Setting>, period: &str, amplitude: &str) -> Request {
+    Request {
+        settings,
+        axes: vec![
+            Axis::parse(&format!("excitation.period={period}"), Path::new(".")).unwrap(),
+            Axis::parse(&format!("excitation.amplitude={amplitude}"), Path::new(".")).unwrap(),
+        ],
+        ..Request::default()
+    }
+}
+
 /// A whole 20 x 20 map of the pulse model, written to a temporary directory each time.
 fn map(c: &mut Criterion) {
     let out = std::env::temp_dir().join(format!("flexrock-bench-map-{}", std::process::id()));
-    let request = || Request {
-        axes: vec![
-            Axis::parse("excitation.period=lin:0.2:3:20", Path::new(".")).unwrap(),
-            Axis::parse("excitation.amplitude=lin:0.5:15:20", Path::new(".")).unwrap(),
-        ],
-        ..Request::default()
-    };
     c.bench_function(
         "sweep map 20 x 20 pulse bdf (in process, files included)",
         |b| {
             b.iter(|| {
-                let _ = std::fs::remove_dir_all(&out);
-                let sweep = Sweep::new(&model_file(), request(), Path::new(".")).unwrap();
-                let target = store::Target {
-                    out: out.clone(),
-                    ..store::Target::default()
-                };
-                store::run(&sweep, &target, &store::Silent).unwrap()
+                sweep_map(
+                    &out,
+                    map_request(Vec::new(), "lin:0.2:3:20", "lin:0.5:15:20"),
+                )
             })
         },
     );
@@ -98,24 +112,15 @@ fn large_map(c: &mut Criterion) {
     let mut group = c.benchmark_group("sweep map 100 x 100 pulse");
     group.sample_size(10);
     for method in ["exact", "tsit45"] {
-        let request = || Request {
-            settings: vec![flexrock_core::model::Setting::text("solver.method", method)],
-            axes: vec![
-                Axis::parse("excitation.period=lin:0.2:3:100", Path::new(".")).unwrap(),
-                Axis::parse("excitation.amplitude=lin:0.5:15:100", Path::new(".")).unwrap(),
-            ],
-            ..Request::default()
+        let request = || {
+            map_request(
+                vec![Setting::text("solver.method", method)],
+                "lin:0.3:2:100",
+                "lin:1:6:100",
+            )
         };
         group.bench_function(format!("{method} (in process, files included)"), |b| {
-            b.iter(|| {
-                let _ = std::fs::remove_dir_all(&out);
-                let sweep = Sweep::new(&model_file(), request(), Path::new(".")).unwrap();
-                let target = store::Target {
-                    out: out.clone(),
-                    ..store::Target::default()
-                };
-                store::run(&sweep, &target, &store::Silent).unwrap()
-            })
+            b.iter(|| sweep_map(&out, request()))
         });
     }
     group.finish();
