@@ -30,32 +30,7 @@ pub struct SweepTable {
 }
 
 impl SweepTable {
-    /// Parses CSV text; `path` names it in messages.
-    pub fn parse(bytes: &[u8], path: &Path) -> Result<SweepTable> {
-        let fail = |message: String| Error::ReadResult {
-            path: path.to_path_buf(),
-            message,
-        };
-        let mut reader = csv::ReaderBuilder::new().from_reader(bytes);
-        let columns: Vec<String> = reader
-            .headers()
-            .map_err(|e| fail(format!("not a CSV table: {e}")))?
-            .iter()
-            .map(str::to_string)
-            .collect();
-        let mut rows = Vec::new();
-        for record in reader.records() {
-            let record = record.map_err(|e| fail(format!("a malformed row: {e}")))?;
-            rows.push(record);
-        }
-        Ok(SweepTable {
-            columns,
-            rows,
-            path: path.to_path_buf(),
-        })
-    }
-
-    /// The table of the rows `pieces` under `columns`: what [`SweepTable::parse`] reads from
+    /// The table of the rows `pieces` under `columns`: what a CSV reader finds in sweep.csv,
     /// the header and the pieces' text joined. A piece's fields are taken as they are where it
     /// has them (the text was written from them), else read from its text, the pieces in
     /// parallel; `path` names the table in messages.
@@ -629,20 +604,16 @@ fn draw_map(
         // overturned cells of a map are often most of it, and a file of 20,000 rectangles is
         // slow to draw, write and open).
         let mut first = 0;
-        while first < column.len() {
-            let color = color_of(&column[first]);
-            let mut last = first;
-            while last + 1 < column.len() && color_of(&column[last + 1]) == color {
-                last += 1;
-            }
+        for run in column.chunk_by(|a, b| color_of(a) == color_of(b)) {
+            let end = first + run.len();
             fill_cell(
                 &pixels,
                 at(ex[i], ey[first]),
-                at(ex[i + 1], ey[last + 1]),
+                at(ex[i + 1], ey[end]),
                 limit,
-                color,
+                color_of(&run[0]),
             )?;
-            first = last + 1;
+            first = end;
         }
     }
     // Invalid or failed points: a grey cross.

@@ -401,6 +401,11 @@ impl PreparedSchema {
         }
     }
 
+    /// The table as the file has it (without the common settings).
+    pub fn table(&self) -> &toml::Table {
+        &self.table
+    }
+
     /// [`read_schema`] of the table with the common settings, then `further`.
     pub fn read(&self, further: &[Setting], source: &Path) -> Result<ModelFile> {
         let whole = || {

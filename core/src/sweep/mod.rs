@@ -245,14 +245,13 @@ impl Request {
 pub struct Sweep {
     /// What is computed.
     pub plan: Plan,
-    table: toml::Table,
     /// The model file, or what names a model given as text, in messages.
     source: PathBuf,
     /// The model's record paths are relative to this directory.
     base_dir: PathBuf,
     settings: Vec<Setting>,
-    /// The table read with `settings`, from which each point's file is read again in the
-    /// sections its own settings name.
+    /// The base model's table, read with `settings`; each point's file is read again from it
+    /// in the sections its own settings name.
     schema: PreparedSchema,
     /// Record files of an `excitation.path` axis are relative to this directory (where the user
     /// typed the pattern), not to the model file.
@@ -450,11 +449,10 @@ impl Sweep {
             records: Vec::new(),
             row_columns,
         };
-        let schema = PreparedSchema::new(table.clone(), &request.settings, source);
+        let schema = PreparedSchema::new(table, &request.settings, source);
         let mut sweep = Sweep {
             plan,
             schema,
-            table,
             source: source.to_path_buf(),
             base_dir: base_dir.to_path_buf(),
             settings: request.settings,
@@ -493,7 +491,10 @@ impl Sweep {
                 };
                 section
             } else {
-                let Ok(file) = read_schema(&self.table, &settings, &self.source) else {
+                let Ok(file) = self
+                    .schema
+                    .read(&settings[self.settings.len()..], &self.source)
+                else {
                     continue;
                 };
                 file.excitation
@@ -549,7 +550,7 @@ impl Sweep {
 
     /// The row model's table with `settings` set.
     fn row_table(&self, settings: &[Setting]) -> Result<toml::Table> {
-        let mut table = self.table.clone();
+        let mut table = self.schema.table().clone();
         for setting in settings {
             rows::apply(&mut table, setting)?;
         }
