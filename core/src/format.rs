@@ -32,11 +32,13 @@ pub fn push_number(text: &mut String, x: f64) {
     // From 1e-5 to 1e16 ryu writes the plain form as `{}` does, but for the ".0" of a whole
     // number. Only a number with at most 18 digits in all can be halfway between two shortest
     // candidates (below), and only one with a few binary digits after the point has so few.
-    if !formatted.contains('e') && !short_fraction(x) {
+    // ryu's exponent, where it writes one, is among its last five characters ("e-324").
+    let tail = &formatted.as_bytes()[formatted.len().saturating_sub(5)..];
+    if !tail.contains(&b'e') && !short_fraction(x) {
         text.push_str(formatted.strip_suffix(".0").unwrap_or(formatted));
         return;
     }
-    push_plain(text, &Digits::of(x));
+    push_plain(text, &Digits::of_ryu(x, formatted));
 }
 
 /// The shortest round-trip digits of a finite number, those of the standard library's `{}`
@@ -53,7 +55,12 @@ impl Digits {
     /// the even one, the standard library the one above) the standard library's.
     pub(crate) fn of(x: f64) -> Self {
         let mut buffer = ryu::Buffer::new();
-        let digits = Self::parse(buffer.format_finite(x).as_bytes());
+        Self::of_ryu(x, buffer.format_finite(x))
+    }
+
+    /// [`Digits::of`] from the text ryu wrote for `x`.
+    fn of_ryu(x: f64, formatted: &str) -> Self {
+        let digits = Self::parse(formatted.as_bytes());
         let count = digits.count;
         if count > 0
             && digits.digits[count - 1].is_multiple_of(2)
@@ -276,7 +283,9 @@ pub fn push_shortest(text: &mut String, x: f64) {
     // the exponent form can be two characters shorter, and the digits decide.
     let mut buffer = ryu::Buffer::new();
     let formatted = buffer.format_finite(x);
-    if !formatted.contains('e') && !short_fraction(x) {
+    // ryu's exponent, where it writes one, is among its last five characters ("e-324").
+    let tail = &formatted.as_bytes()[formatted.len().saturating_sub(5)..];
+    if !tail.contains(&b'e') && !short_fraction(x) {
         let plain = formatted.strip_suffix(".0").unwrap_or(formatted);
         let unsigned = plain.strip_prefix('-').unwrap_or(plain);
         let zeros_lead = unsigned.starts_with("0.000");
