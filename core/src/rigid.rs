@@ -41,8 +41,33 @@
 //!   slenderness, so it is no small-angle approximation;
 //! - overturned when theta reaches the equation's unstable equilibrium: |theta| = alpha, that
 //!   is |q| = H atan(B/H), in the full form; |theta| = B/H, |q| = B, in the small-angle form
-//!   ([`RigidBlock::overturning_displacement`]);
+//!   ([`RigidBlock::overturning_displacement`]); or, by the other rule
+//!   ([`RigidOverturning::CannotReturn`], that of Zhang and Makris 2001 and Makris and Roussos
+//!   2000), only once the block cannot come back (below);
 //! - chatter is cut short by the same rule (below), with each form's pull towards the floor.
+//!
+//! # When a block has overturned
+//!
+//! By default ([`RigidOverturning::ReachesLimit`]) a block has overturned the moment |theta|
+//! reaches the limit above, and the run ends there. Past the limit the floor can still bring it
+//! back: a pulse's second half pushes a block that passed alpha early in the pulse back towards
+//! the floor. The rocking literature's minimum overturning accelerations count such a block as
+//! standing: a block has overturned only if it never returns to the floor. By that rule
+//! ([`RigidOverturning::CannotReturn`]) the run goes on past the limit (both equations hold there,
+//! up to |theta| = pi/2, where the block lies on its side), and the block has overturned
+//!
+//! - when it lies on its side, |q| = H pi/2; or
+//! - at the first moment the floor is at rest for good ([`FloorMotion::quiet_after`]) or the run
+//!   ends, if its free motion from there never brings it back to the floor: in the small-angle
+//!   form when s (q - s B) + s q'/k >= 0 (the free motion q - s B = c1 e^(k t) + c2 e^(-k t)
+//!   then never returns, c1 >= 0); in the full form when it is past alpha and not moving back
+//!   fast enough to cross it again, or before alpha and moving out fast enough to cross it: the
+//!   energy (1/2) theta'^2 - 2 p^2 sin^2((alpha - s theta)/2), conserved by the free motion,
+//!   decides whether it crosses theta = s alpha (above 0) or not (below), and the direction of
+//!   motion which way. (A block still past the limit when a run ends with the floor moving is
+//!   judged as if the floor stopped then.)
+//!
+//! Its overturning time is then that moment, and its q where it was judged.
 //!
 //! # Numerical method
 //!
@@ -185,6 +210,36 @@ impl std::fmt::Display for RigidForm {
     }
 }
 
+/// When a rocking block counts as overturned (see the module documentation).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum RigidOverturning {
+    /// The moment |theta| reaches the equation's unstable equilibrium (alpha in the full form,
+    /// B/H in the small-angle form): the default.
+    #[default]
+    ReachesLimit,
+    /// Only once it cannot come back: its free motion, once the floor is at rest for good (or
+    /// the run ends), never returns it to the floor, or it lies on its side. The rule of the
+    /// rocking literature's minimum overturning accelerations (Zhang and Makris 2001; Makris and
+    /// Roussos 2000).
+    CannotReturn,
+}
+
+impl RigidOverturning {
+    /// The name in files: `reaches-limit` or `cannot-return`.
+    pub fn name(self) -> &'static str {
+        match self {
+            RigidOverturning::ReachesLimit => "reaches-limit",
+            RigidOverturning::CannotReturn => "cannot-return",
+        }
+    }
+
+    /// True for the default.
+    pub fn is_reaches_limit(&self) -> bool {
+        *self == RigidOverturning::ReachesLimit
+    }
+}
+
 /// A slender rigid block of height H and width B standing on a rigid floor.
 #[derive(Debug, Clone, Serialize)]
 pub struct RigidBlock {
@@ -195,6 +250,13 @@ pub struct RigidBlock {
     /// The equation it obeys; not written for the default, so that its JSON is unchanged.
     #[serde(skip_serializing_if = "RigidForm::is_small_angle")]
     form: RigidForm,
+    /// A coefficient of restitution of its own, or None for Housner's; not written for the
+    /// default.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    restitution: Option<f64>,
+    /// When it counts as overturned; not written for the default.
+    #[serde(skip_serializing_if = "RigidOverturning::is_reaches_limit")]
+    overturning: RigidOverturning,
 }
 
 impl RigidBlock {
@@ -242,6 +304,8 @@ impl RigidBlock {
             gravity,
             uplift_acceleration,
             form: RigidForm::SmallAngle,
+            restitution: None,
+            overturning: RigidOverturning::ReachesLimit,
         })
     }
 
@@ -254,6 +318,35 @@ impl RigidBlock {
     /// The equation the block obeys.
     pub fn form(&self) -> RigidForm {
         self.form
+    }
+
+    /// The same block with the coefficient of restitution `e` (the ratio of q' after an impact
+    /// to q' before it) instead of Housner's, as papers that fix it (e.g. 0.9) use. `e` must lie
+    /// in [0, 1].
+    pub fn with_restitution(mut self, e: f64) -> Result<Self> {
+        if !(e.is_finite() && (0.0..=1.0).contains(&e)) {
+            return Err(InvalidParameter::new(
+                "rigid.restitution",
+                e,
+                "must be a number from 0 to 1: the ratio of the rocking speed after an impact to \
+                 the speed before it",
+            )
+            .into());
+        }
+        self.restitution = Some(e);
+        Ok(self)
+    }
+
+    /// The same block counted as overturned by `rule` (the constructors give
+    /// [`RigidOverturning::ReachesLimit`]).
+    pub fn with_overturning(mut self, rule: RigidOverturning) -> Self {
+        self.overturning = rule;
+        self
+    }
+
+    /// When the block counts as overturned.
+    pub fn overturning(&self) -> RigidOverturning {
+        self.overturning
     }
 
     /// alpha = atan(B/H), the slenderness angle, rad.
@@ -310,11 +403,13 @@ impl RigidBlock {
         0.5 * self.height.hypot(self.width)
     }
 
-    /// Housner's coefficient of restitution e = (2 H^2 - B^2)/(2 (H^2 + B^2)) = 1 - 1.5 sin^2
-    /// alpha: the ratio of q' after an impact to q' before it.
+    /// The coefficient of restitution, the ratio of q' after an impact to q' before it:
+    /// Housner's e = (2 H^2 - B^2)/(2 (H^2 + B^2)) = 1 - 1.5 sin^2 alpha, or the block's own
+    /// ([`RigidBlock::with_restitution`]).
     pub fn restitution(&self) -> f64 {
         let (h2, b2) = (self.height * self.height, self.width * self.width);
-        (2.0 * h2 - b2) / (2.0 * (h2 + b2))
+        self.restitution
+            .unwrap_or((2.0 * h2 - b2) / (2.0 * (h2 + b2)))
     }
 
     /// The smallest speed q' at which a free block leaving q = 0 overturns, m/s: k B in the
@@ -429,7 +524,8 @@ pub enum RigidEventKind {
     /// The chatter after an impact was cut short: the block is at rest (see the module
     /// documentation).
     Settle,
-    /// |q| reached B.
+    /// The block overturned: |q| reached the overturning displacement, or, by
+    /// [`RigidOverturning::CannotReturn`], it can no longer come back.
     Overturn,
 }
 
@@ -440,7 +536,7 @@ pub struct RigidEvent {
     pub t: f64,
     /// What happened.
     pub kind: RigidEventKind,
-    /// q at the event, m (0, or +-B at an overturn).
+    /// q at the event, m (0, or where the block was when it overturned).
     pub q: f64,
     /// q' just before, m/s.
     pub qdot_before: f64,
@@ -478,7 +574,8 @@ pub struct RigidOutcome {
     pub n_settle: usize,
     /// Time of the first uplift from rest, s.
     pub first_uplift: Option<f64>,
-    /// Largest |q| over the run, m (B if it overturned).
+    /// Largest |q| over the run, m (the overturning displacement if it overturned when it
+    /// reached it; by [`RigidOverturning::CannotReturn`] it may pass it and come back).
     pub max_abs_q: f64,
     /// When |q| was largest, s.
     pub t_max_abs_q: f64,
@@ -562,8 +659,16 @@ pub fn simulate_from(
 struct Run<'a> {
     floor: &'a dyn FloorMotion,
     propagator: Propagator<'a>,
-    /// |q| at which the block has overturned.
+    /// |q| at which the block has overturned ([`RigidOverturning::ReachesLimit`]).
     limit: f64,
+    /// |q| at which a block rocking on past the limit lies on its side, H pi/2
+    /// ([`RigidOverturning::CannotReturn`]).
+    on_side: f64,
+    overturning: RigidOverturning,
+    form: RigidForm,
+    height: f64,
+    /// alpha = atan(B/H), rad.
+    alpha: f64,
     restitution: f64,
     tipping: f64,
     /// See [`RigidBlock::pull_factor`].
@@ -621,6 +726,11 @@ impl<'a> Run<'a> {
                 },
             },
             limit: block.overturning_displacement(),
+            on_side: block.height * std::f64::consts::FRAC_PI_2,
+            overturning: block.overturning,
+            form: block.form,
+            height: block.height,
+            alpha: block.slenderness(),
             restitution: block.restitution(),
             tipping: block.tipping_acceleration(),
             pull_factor: block.pull_factor(),
@@ -649,11 +759,14 @@ impl<'a> Run<'a> {
     fn run(mut self) -> Result<RigidOutcome> {
         let quiet_after = self.floor.quiet_after();
         while self.state.t < self.duration && self.state.phase != RigidPhase::Overturned {
+            let quiet = quiet_after.is_some_and(|quiet| self.state.t >= quiet);
             // At rest on a floor at rest for good: nothing more can happen.
-            if self.state.phase == RigidPhase::Rest
-                && quiet_after.is_some_and(|quiet| self.state.t >= quiet)
-            {
+            if self.state.phase == RigidPhase::Rest && quiet {
                 self.state.t = self.duration;
+                break;
+            }
+            // Rocking on a floor at rest for good: its free motion decides.
+            if quiet && self.judge_free_motion()? {
                 break;
             }
             let t_end = self.next_stop();
@@ -665,6 +778,9 @@ impl<'a> Run<'a> {
                 RigidPhase::Rest => self.rest_step(t_end)?,
                 _ => self.rocking_step(t_end)?,
             }
+        }
+        if self.state.phase != RigidPhase::Overturned {
+            self.judge_free_motion()?;
         }
         self.outcome.final_state = self.state;
         Ok(self.outcome)
@@ -784,10 +900,12 @@ impl<'a> Run<'a> {
                     };
                     return self.impact(te, at(te).1);
                 }
-            } else if side * qb >= self.limit {
-                // Moving away from it: overturned when |q| reaches the overturning displacement.
-                let te = first_true(ta, tb, |t| side * at(t).0 >= self.limit);
-                return self.overturn(te, side, at(te).1);
+            } else if side * qb >= self.away_limit() {
+                // Moving away from it: overturned when |q| reaches the overturning displacement
+                // (or, by the rule that it cannot return, when it lies on its side).
+                let limit = self.away_limit();
+                let te = first_true(ta, tb, |t| side * at(t).0 >= limit);
+                return self.overturn(te, side * limit, at(te).1);
             }
         }
         self.peak(t_end, q1);
@@ -836,9 +954,51 @@ impl<'a> Run<'a> {
         Ok(())
     }
 
-    /// The block has overturned on `side` (|q| reached the overturning displacement).
-    fn overturn(&mut self, t: f64, side: f64, qdot: f64) -> Result<()> {
-        let q = side * self.limit;
+    /// |q| at which a block moving away from the floor has overturned.
+    fn away_limit(&self) -> f64 {
+        match self.overturning {
+            RigidOverturning::ReachesLimit => self.limit,
+            RigidOverturning::CannotReturn => self.on_side,
+        }
+    }
+
+    /// By [`RigidOverturning::CannotReturn`], a rocking block whose free motion never brings it
+    /// back to the floor has overturned now (see the module documentation); true if it has.
+    fn judge_free_motion(&mut self) -> Result<bool> {
+        let RigidState { t, q, qdot, phase } = self.state;
+        if self.overturning != RigidOverturning::CannotReturn
+            || !matches!(phase, RigidPhase::RockRight | RigidPhase::RockLeft)
+        {
+            return Ok(false);
+        }
+        let side = phase.side();
+        let gone = match self.form {
+            // q - s B = c1 e^(k t) + c2 e^(-k t), 2 s c1 = s (q - s B) + s q'/k.
+            RigidForm::SmallAngle => {
+                let k = self.propagator.k;
+                side * q - self.propagator.width + side * qdot / k >= 0.0
+            }
+            RigidForm::Full => {
+                let p = self.propagator.k;
+                // u = s theta, w = s theta'; the energy above that of the barrier u = alpha.
+                let (u, w) = (side * q / self.height, side * qdot / self.height);
+                let half = 0.5 * (self.alpha - u);
+                let excess = 0.5 * w * w - 2.0 * p * p * half.sin() * half.sin();
+                if u >= self.alpha {
+                    w >= 0.0 || excess <= 0.0
+                } else {
+                    w > 0.0 && excess >= 0.0
+                }
+            }
+        };
+        if gone {
+            self.overturn(t, q, qdot)?;
+        }
+        Ok(gone)
+    }
+
+    /// The block has overturned at `q`.
+    fn overturn(&mut self, t: f64, q: f64, qdot: f64) -> Result<()> {
         self.state = RigidState {
             t,
             q,
