@@ -209,7 +209,8 @@ pub enum Legend {
 }
 
 /// Width of the legend strip of [`Legend::Outside`], pixels (about 26 characters of the legend
-/// font; longer labels run off the figure).
+/// font). A figure with a longer label widens the strip of all its panels to hold it, so that
+/// panels stacked in one column still share their x axis.
 pub const LEGEND_STRIP: u32 = 300;
 
 const PALETTE: [RGBColor; 8] = [
@@ -356,11 +357,25 @@ where
     };
     root.fill(&WHITE).map_err(|e| fail(&e))?;
     let areas = root.split_evenly((rows, columns));
+    let strip = strip_width(panels);
     for (panel, area) in panels.iter().zip(areas.iter()) {
-        draw_panel(panel, area, raster).map_err(|e| fail(&e))?;
+        draw_panel(panel, area, strip, raster).map_err(|e| fail(&e))?;
     }
     root.present().map_err(|e| fail(&e))?;
     Ok(())
+}
+
+/// The width of the legend strips of a figure's panels: [`LEGEND_STRIP`], or the widest legend
+/// box of its panels whose legend is [`Legend::Outside`] where that is wider.
+fn strip_width(panels: &[Panel]) -> u32 {
+    panels
+        .iter()
+        .filter(|panel| panel.legend == Legend::Outside)
+        .map(|panel| {
+            let series = drawable_pieces(panel);
+            legend_box(&legend_entries(panel, &series)).0.max(0) as u32
+        })
+        .fold(LEGEND_STRIP, u32::max)
 }
 
 /// One unbroken stretch of a curve, in drawing coordinates.
@@ -921,6 +936,7 @@ fn choose_legend(
 fn draw_panel<DB: DrawingBackend>(
     panel: &Panel,
     whole: &DrawingArea<DB, Shift>,
+    strip_width: u32,
     raster: bool,
 ) -> std::result::Result<(), Box<dyn std::error::Error>>
 where
@@ -930,7 +946,7 @@ where
     let placement = choose_legend(panel, &series, whole.dim_in_pixel());
     let (area, strip) = if placement == Placement::Outside {
         let width = whole.dim_in_pixel().0;
-        let (left, right) = whole.split_horizontally(width.saturating_sub(LEGEND_STRIP));
+        let (left, right) = whole.split_horizontally(width.saturating_sub(strip_width));
         (left, Some(right))
     } else {
         (whole.clone(), None)
