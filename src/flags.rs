@@ -81,7 +81,8 @@ fn core_named_by_flags(error: Error, overrides: &Overrides, fem: &FemOverrides) 
 }
 
 /// The flag of a sweep request's value named by the sweep file's key (`vary KEY`,
-/// `find_min KEY`, `scan`, `tol`, `chunk_size`, `rigid_form`), as the core names it.
+/// `find_min KEY`, `scan`, `tol`, `chunk_size`, `rigid_form`, `rigid_overturning`,
+/// `rigid_restitution`), as the core names it.
 fn sweep_flag_for(key: &str) -> Option<String> {
     let (name, rest) = match key.split_once(' ') {
         Some((name, rest)) => (name, Some(rest)),
@@ -94,6 +95,8 @@ fn sweep_flag_for(key: &str) -> Option<String> {
         "tol" if rest.is_none() => "--tol",
         "chunk_size" if rest.is_none() => "--chunk-size",
         "rigid_form" if rest.is_none() => "--rigid-form",
+        "rigid_overturning" if rest.is_none() => "--rigid-overturning",
+        "rigid_restitution" if rest.is_none() => "--rigid-restitution",
         _ => return None,
     };
     Some(match rest {
@@ -118,10 +121,7 @@ fn core_sweep_named_by_flags(error: Error) -> Error {
             value,
             rule,
         },
-        Error::InModel { path, source } => Error::InModel {
-            path,
-            source: Box::new(core_sweep_named_by_flags(*source)),
-        },
+        // A sweep file's error names the key as the file writes it.
         other => other,
     }
 }
