@@ -344,7 +344,19 @@ pub(crate) struct SweepArgs {
     /// sweep.csv has a rigid_form column.
     #[arg(long, value_name = "FORM", value_parser = ["small-angle", "full"])]
     pub(crate) rigid_form: Option<String>,
-    /// A sweep file (TOML: vary, set, find_min, scan, tol, rigid_form); flags add to it.
+    /// When Housner's rigid block searched by --find-min counts as overturned: when its tilt
+    /// reaches its limit, or only once it cannot come back, the rule of the rocking literature's
+    /// minimum overturning accelerations [default: reaches-limit]. Adds a rigid_overturning
+    /// column.
+    #[arg(long, value_name = "RULE", value_parser = ["reaches-limit", "cannot-return"])]
+    pub(crate) rigid_overturning: Option<String>,
+    /// Housner's rigid block's own coefficient of restitution (0 to 1), the ratio of the rocking
+    /// speed after an impact to the speed before it [default: Housner's, 1 - 1.5 sin^2 alpha].
+    /// Adds a rigid_restitution column.
+    #[arg(long, value_name = "E")]
+    pub(crate) rigid_restitution: Option<f64>,
+    /// A sweep file (TOML: vary, set, find_min, scan, tol, rigid_form, rigid_overturning,
+    /// rigid_restitution); flags add to it.
     #[arg(long)]
     pub(crate) sweep_file: Option<PathBuf>,
     /// Compute only shard K of N (disjoint slices of whole chunks), into OUT/shard-K-of-N; set

@@ -58,6 +58,14 @@ fn sweep(args: SweepArgs) -> flexrock::Result<Output> {
                 Some(text) => Some(flexrock_core::rigid::RigidForm::parse("rigid_form", text)?),
                 None => None,
             },
+            rigid_overturning: match &args.rigid_overturning {
+                Some(text) => Some(flexrock_core::rigid::RigidOverturning::parse(
+                    "rigid_overturning",
+                    text,
+                )?),
+                None => None,
+            },
+            rigid_restitution: args.rigid_restitution,
             ..Request::default()
         };
         if let Some(file) = &args.sweep_file {

@@ -689,6 +689,155 @@ fn a_full_form_sweep_searches_and_names_the_full_equations_block() {
     assert!(!refused.exists());
 }
 
+/// `--rigid-overturning cannot-return --rigid-restitution 0.9` make Housner's block Zhang and
+/// Makris' (2001): on their block at omega_p/p = 5 (models/zhang-makris.toml) its smallest
+/// overturning amplitude over g tan(alpha) falls where the paper puts it, between 3.00 and 3.01,
+/// within 0.4 % (core/tests/published_rigid.rs: 3.0186). Each choice has its column after
+/// Housner's two and its key in sweep.json; the default sweep has neither, and the elastic body's
+/// and the rigid limit's columns do not change. A sweep file does the same. Refused, naming the
+/// flag (or the file's key), without output: a restitution outside [0, 1], an unknown rule, and
+/// either choice without a minimum search.
+#[test]
+fn housners_block_can_be_made_a_papers_and_says_so() {
+    let dir = scratch_dir("sweep-rigid-choices");
+    let model = crate::common::repo("models/zhang-makris.toml");
+    let model = model.to_str().unwrap();
+    let sweep = |out: &Path, extra: &[&str]| {
+        let mut args = vec![
+            "sweep",
+            model,
+            "--out",
+            out.to_str().unwrap(),
+            "--find-min",
+            "excitation.amplitude=2:20",
+            "--scan",
+            "200",
+            "--tol",
+            "1e-4",
+            "--quiet",
+        ];
+        args.extend(extra);
+        run(&args);
+        let json: serde_json::Value =
+            serde_json::from_slice(&std::fs::read(out.join("sweep.json")).unwrap()).unwrap();
+        (crate::common::sweep_rows(out).remove(0), json)
+    };
+    let choices = [
+        "--rigid-overturning",
+        "cannot-return",
+        "--rigid-restitution",
+        "0.9",
+    ];
+    let (default, default_json) = sweep(&dir.join("default"), &[]);
+    let (papers, papers_json) = sweep(&dir.join("papers"), &choices);
+    for column in ["rigid_overturning", "rigid_restitution"] {
+        assert!(!default.contains_key(column), "{default:?}");
+    }
+    assert_eq!(papers["rigid_overturning"], "cannot-return");
+    assert_eq!(papers["rigid_restitution"], "0.9");
+    let beta = number(&papers, "rigid_amplitude_over_g_tan_alpha");
+    assert!((3.00 * 0.996..=3.01 * 1.004).contains(&beta), "{beta}");
+    for column in ["min_overturning", "rigid_limit_min_overturning"] {
+        assert_eq!(default[column], papers[column], "{column}");
+    }
+    let find = &papers_json["plan"]["find_min"];
+    assert_eq!(find["rigid_overturning"], "cannot-return", "{papers_json}");
+    assert_eq!(find["rigid_restitution"], 0.9, "{papers_json}");
+    assert!(!default_json.to_string().contains("rigid_overturning"));
+    assert!(!default_json.to_string().contains("rigid_restitution"));
+    let header = std::fs::read_to_string(dir.join("papers").join("sweep.csv")).unwrap();
+    assert!(
+        header.lines().next().unwrap().contains(
+            "rigid_amplitude_over_g_tan_alpha,rigid_overturning,rigid_restitution,\
+             rigid_limit_min_overturning"
+        ),
+        "{header}"
+    );
+
+    // The same from a sweep file.
+    let file = dir.join("plan.toml");
+    std::fs::write(
+        &file,
+        "find_min = \"excitation.amplitude=2:20\"\nscan = 200\ntol = 1e-4\n\
+         rigid_overturning = \"cannot-return\"\nrigid_restitution = 0.9\n",
+    )
+    .unwrap();
+    let from_file = dir.join("file");
+    run(&[
+        "sweep",
+        model,
+        "--out",
+        from_file.to_str().unwrap(),
+        "--sweep-file",
+        file.to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert_eq!(crate::common::sweep_rows(&from_file).remove(0), papers);
+
+    // Refusals.
+    let refused = dir.join("refused");
+    let find_min: &[&str] = &["--find-min", "excitation.amplitude=2:20"];
+    let vary: &[&str] = &["--vary", "excitation.amplitude=3,4"];
+    for (extra, search, words) in [
+        (
+            &["--rigid-restitution", "1.5"][..],
+            find_min,
+            &["--rigid-restitution", "1.5", "0 to 1"][..],
+        ),
+        (
+            &["--rigid-restitution", "NaN"][..],
+            find_min,
+            &["--rigid-restitution", "NaN"][..],
+        ),
+        (
+            &["--rigid-overturning", "cannot-return"][..],
+            vary,
+            &["--rigid-overturning", "minimum search"][..],
+        ),
+        (
+            &["--rigid-restitution", "0.9"][..],
+            vary,
+            &["--rigid-restitution", "minimum search"][..],
+        ),
+        (
+            &["--rigid-overturning", "never"][..],
+            find_min,
+            &["never"][..],
+        ),
+    ] {
+        let mut args = vec!["sweep", model, "--out", refused.to_str().unwrap()];
+        args.extend(search);
+        args.extend(extra);
+        let o = flexrock(&args);
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{extra:?}: {stderr}");
+        for word in words {
+            assert!(stderr.contains(word), "{extra:?}: {stderr}");
+        }
+        assert!(!refused.exists(), "{extra:?}");
+    }
+    std::fs::write(
+        &file,
+        "find_min = \"excitation.amplitude=2:20\"\nrigid_overturning = \"always\"\n",
+    )
+    .unwrap();
+    let o = flexrock(&[
+        "sweep",
+        model,
+        "--out",
+        refused.to_str().unwrap(),
+        "--sweep-file",
+        file.to_str().unwrap(),
+    ]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains("rigid_overturning") && stderr.contains("always"),
+        "{stderr}"
+    );
+    assert!(!refused.exists());
+}
+
 /// The continuity the paper asks for (its section 4): as E grows, the elastic body's smallest
 /// overturning amplitude under a one-sine pulse tends to that of the rigid block the model
 /// becomes, which lifts off at (L^3/(8 sigma)) g B/H = 1.1226 g B/H (src/rigid.rs). Measured:

@@ -601,6 +601,8 @@ fn a_plan_reads_back_bit_for_bit() {
                 scan: 100,
                 tol,
                 rigid_form: Default::default(),
+                rigid_overturning: Default::default(),
+                rigid_restitution: None,
             }),
             chunk_size: 1,
             records: Vec::new(),

@@ -238,6 +238,33 @@ impl RigidOverturning {
     pub fn is_reaches_limit(&self) -> bool {
         *self == RigidOverturning::ReachesLimit
     }
+
+    /// Every rule, in the order they are listed to users.
+    pub const ALL: [RigidOverturning; 2] = [
+        RigidOverturning::ReachesLimit,
+        RigidOverturning::CannotReturn,
+    ];
+
+    /// The rule named `text`; `key` names the setting in the message of an unknown name.
+    pub fn parse(key: &str, text: &str) -> std::result::Result<Self, InvalidParameter> {
+        RigidOverturning::ALL
+            .into_iter()
+            .find(|r| r.name() == text)
+            .ok_or_else(|| {
+                InvalidParameter::new(
+                    key,
+                    text,
+                    "must be \"reaches-limit\" (overturned when the tilt reaches its limit, the \
+                     default) or \"cannot-return\" (only once the block cannot come back)",
+                )
+            })
+    }
+}
+
+impl std::fmt::Display for RigidOverturning {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
 }
 
 /// A slender rigid block of height H and width B standing on a rigid floor.

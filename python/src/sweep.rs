@@ -18,7 +18,7 @@ fn axis_text(value: &Bound<'_, PyAny>) -> PyResult<String> {
 }
 
 /// An error about the request, named by the Python argument that gave the value: `axes["KEY"]`,
-/// `find_min`, `scan`, `tol`, `rigid_form`.
+/// `find_min`, `scan`, `tol`, `rigid_form`, `rigid_overturning`, `rigid_restitution`.
 fn request_error(e: flexrock_core::Error) -> PyErr {
     use flexrock_core::Error;
     let renamed = match e {
@@ -51,7 +51,11 @@ fn cell<'py>(py: Python<'py>, cell: &Cell) -> PyResult<Bound<'py, PyAny>> {
 /// `{"columns": [...], "kinds": ["int"|"float"|"bool"|"str", ...], "values": [[...], ...],
 /// "axes": [(key, [values]), ...]}`, None where sweep.csv's field is empty.
 #[pyfunction]
-#[pyo3(signature = (model, axes, find_min=None, scan=None, tol=None, rigid_form=None))]
+#[pyo3(signature = (
+    model, axes, find_min=None, scan=None, tol=None, rigid_form=None, rigid_overturning=None,
+    rigid_restitution=None
+))]
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn sweep<'py>(
     py: Python<'py>,
     model: &Model,
@@ -60,10 +64,19 @@ pub(crate) fn sweep<'py>(
     scan: Option<usize>,
     tol: Option<f64>,
     rigid_form: Option<String>,
+    rigid_overturning: Option<String>,
+    rigid_restitution: Option<f64>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let rigid_form = match rigid_form {
         Some(text) => Some(
             flexrock_core::rigid::RigidForm::parse("rigid_form", &text)
+                .map_err(|e| request_error(e.into()))?,
+        ),
+        None => None,
+    };
+    let rigid_overturning = match rigid_overturning {
+        Some(text) => Some(
+            flexrock_core::rigid::RigidOverturning::parse("rigid_overturning", &text)
                 .map_err(|e| request_error(e.into()))?,
         ),
         None => None,
@@ -73,6 +86,8 @@ pub(crate) fn sweep<'py>(
         scan,
         tol,
         rigid_form,
+        rigid_overturning,
+        rigid_restitution,
         find_min: find_min.map(|(key, lo, hi)| (key, Interval { lo, hi })),
         ..Request::default()
     };
@@ -104,7 +119,7 @@ pub(crate) fn sweep<'py>(
         kinds.push(if axis.is_numeric() { "float" } else { "str" });
     }
     let first = columns.len();
-    columns.extend(Row::columns(find).into_iter().map(String::from));
+    columns.extend(Row::columns(find));
     // The kinds of the result columns, from a row without values.
     let empty = Row::failure(Status::Invalid, String::new()).cells(find);
     kinds.extend(empty.iter().map(|c| c.kind().name()));

@@ -309,6 +309,11 @@ def test_a_sweep_equals_the_command_lines_table_typed(tmp_path):
         (dict(find_min=("excitation.amplitude", 1.0, 2.0), rigid_form="exact"),
          r"^rigid_form = exact: must be \"small-angle\""),
         (dict(rigid_form="full"), r"^rigid_form = full: chooses the rigid block of a minimum search"),
+        (dict(find_min=("excitation.amplitude", 1.0, 2.0), rigid_overturning="never"),
+         r"^rigid_overturning = never: must be \"reaches-limit\""),
+        (dict(find_min=("excitation.amplitude", 1.0, 2.0), rigid_restitution=1.5),
+         r"^rigid_restitution = 1.5: must be a number from 0 to 1"),
+        (dict(rigid_restitution=0.9), r"^rigid_restitution = 0.9: chooses the rigid block"),
     ],
 )
 def test_sweep_errors_name_the_argument(kwargs, message):

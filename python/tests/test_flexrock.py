@@ -194,6 +194,24 @@ def test_sweep_with_the_full_rigid_equation_equals_the_command_line(tmp_path):
     assert abs(float(rows[0]["rigid_min_overturning"]) / 3.033 - 1) < 2e-3
 
 
+def test_sweep_with_a_papers_rigid_block_equals_the_command_line(tmp_path):
+    # rigid_overturning and rigid_restitution are the flags of the same names: Zhang and Makris'
+    # block at omega_p/p = 5 overturns from between 3.00 and 3.01 g tan(alpha) (their paper).
+    model = ROOT / "models" / "zhang-makris.toml"
+    run_cli("sweep", model, "--out", tmp_path, "--quiet", "--find-min",
+            "excitation.amplitude=2:20", "--scan", "200", "--rigid-overturning", "cannot-return",
+            "--rigid-restitution", "0.9")
+    rows = read_csv(tmp_path / "sweep.csv")
+    got = flexrock.sweep(flexrock.Model.from_file(model), {},
+                         find_min=("excitation.amplitude", 2.0, 20.0), scan=200,
+                         rigid_overturning="cannot-return", rigid_restitution=0.9)
+    same_table(got, rows)
+    assert rows[0]["rigid_overturning"] == "cannot-return"
+    assert float(rows[0]["rigid_restitution"]) == 0.9
+    beta = float(rows[0]["rigid_amplitude_over_g_tan_alpha"])
+    assert 3.00 * 0.996 <= beta <= 3.01 * 1.004
+
+
 def test_to_pandas():
     pandas = pytest.importorskip("pandas")
     frame = flexrock.simulate(flexrock.Model.from_file(MODEL)).to_pandas()

@@ -774,12 +774,7 @@ fn spectrum(plan: &Plan, table: &SweepTable, x: usize) -> Result<Vec<u8>> {
     ] {
         sort(v);
     }
-    // Short labels: the legend strip holds about 26 characters. The default (small-angle)
-    // block keeps its label; the full equation's says so.
-    let housner = match find.rigid_form {
-        flexrock_core::rigid::RigidForm::SmallAngle => "rigid block (Housner)",
-        flexrock_core::rigid::RigidForm::Full => "Housner, full equation",
-    };
+    let housner = housner_label(&find.housner());
     let limit = format!(
         "rigid limit ({:.3} g B/H)",
         flexrock_core::constants::ModeShapeIntegrals::exact().rigid_limit_uplift_factor()
@@ -789,7 +784,7 @@ fn spectrum(plan: &Plan, table: &SweepTable, x: usize) -> Result<Vec<u8>> {
     let curves =
         |elastic: Vec<(f64, f64)>, rigid: Vec<(f64, f64)>, limit_curve: Vec<(f64, f64)>| {
             vec![
-                Series::line(housner, rigid, 1).with_width(4),
+                Series::line(&housner, rigid, 1).with_width(4),
                 Series::line(&limit, limit_curve, 5).with_width(2).dashed(),
                 Series::line("elastic body", elastic, 2)
                     .with_width(2)
@@ -816,9 +811,67 @@ fn spectrum(plan: &Plan, table: &SweepTable, x: usize) -> Result<Vec<u8>> {
     crate::figures::plot::figure("spectrum.svg", &panels, 1, (1000, 480)).map(String::into_bytes)
 }
 
+/// The legend label of Housner's block: "rigid block (Housner)" for the default block, else
+/// how it is made, in at most 33 characters (the legend strip's width): "Housner, full
+/// equation", "Housner, full, no return, e=0.825".
+fn housner_label(options: &flexrock_core::sweep::HousnerOptions) -> String {
+    let full = !options.form.is_small_angle();
+    let no_return = !options.overturning.is_reaches_limit();
+    let mut tags = Vec::new();
+    match (full, no_return || options.restitution.is_some()) {
+        (true, false) => tags.push("full equation".to_string()),
+        (true, true) => tags.push("full".to_string()),
+        (false, _) => {}
+    }
+    if no_return {
+        tags.push("no return".to_string());
+    }
+    if let Some(e) = options.restitution {
+        tags.push(format!("e={}", crate::writers::significant(e, 3)));
+    }
+    if tags.is_empty() {
+        "rigid block (Housner)".to_string()
+    } else {
+        format!("Housner, {}", tags.join(", "))
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Housner's block's legend label says how the block is made, and fits the legend strip
+    /// (33 characters) with every choice made and a restitution of many digits.
+    #[test]
+    fn housners_label_names_each_choice_and_fits_the_strip() {
+        use flexrock_core::rigid::{RigidForm, RigidOverturning};
+        use flexrock_core::sweep::HousnerOptions;
+        let mut labels = Vec::new();
+        for form in RigidForm::ALL {
+            for overturning in RigidOverturning::ALL {
+                for restitution in [None, Some(0.9), Some(0.824_559_3)] {
+                    let options = HousnerOptions {
+                        form,
+                        overturning,
+                        restitution,
+                    };
+                    let label = housner_label(&options);
+                    assert!(label.chars().count() <= 33, "{label}");
+                    assert_eq!(label.contains("full"), form == RigidForm::Full, "{label}");
+                    assert_eq!(
+                        label.contains("no return"),
+                        overturning == RigidOverturning::CannotReturn,
+                        "{label}"
+                    );
+                    assert_eq!(label.contains("e="), restitution.is_some(), "{label}");
+                    labels.push(label);
+                }
+            }
+        }
+        assert_eq!(labels[0], "rigid block (Housner)");
+        assert!(labels.contains(&"Housner, full equation".to_string()));
+        assert!(labels.contains(&"Housner, full, no return, e=0.825".to_string()));
+    }
 
     #[test]
     fn edges_are_finite_and_growing_for_extreme_but_allowed_values() {

@@ -11,7 +11,7 @@ use serde::{Deserialize, Serialize};
 
 use super::row::MinimumOutcome;
 use crate::format::shortest;
-use crate::rigid::RigidForm;
+use crate::rigid::{RigidBlock, RigidForm, RigidOverturning};
 
 /// Default number of scanned values.
 pub const DEFAULT_SCAN: usize = 100;
@@ -37,9 +37,51 @@ pub struct FindMin {
     /// (small-angle), so that the stored plan of a default sweep is unchanged.
     #[serde(default, skip_serializing_if = "RigidForm::is_small_angle")]
     pub rigid_form: RigidForm,
+    /// When Housner's block counts as overturned; not written for the default.
+    #[serde(default, skip_serializing_if = "RigidOverturning::is_reaches_limit")]
+    pub rigid_overturning: RigidOverturning,
+    /// Housner's block's own coefficient of restitution, or None for Housner's; not written
+    /// for the default.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rigid_restitution: Option<f64>,
+}
+
+/// How Housner's block of a minimum search is made: its equation, its rule of overturning and
+/// its coefficient of restitution. Each one other than the default adds a column to sweep.csv
+/// (see [`super::row::RigidMinima`]).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct HousnerOptions {
+    /// The equation.
+    pub form: RigidForm,
+    /// When it counts as overturned.
+    pub overturning: RigidOverturning,
+    /// A coefficient of restitution of its own, or None for Housner's.
+    pub restitution: Option<f64>,
+}
+
+impl HousnerOptions {
+    /// `block` (a Housner block of the point's geometry) made as these options say.
+    pub fn apply(&self, block: RigidBlock) -> Result<RigidBlock, crate::solver::SolverError> {
+        let block = block
+            .with_form(self.form)
+            .with_overturning(self.overturning);
+        match self.restitution {
+            Some(e) => block.with_restitution(e),
+            None => Ok(block),
+        }
+    }
 }
 
 impl FindMin {
+    /// How Housner's block of the search is made.
+    pub fn housner(&self) -> HousnerOptions {
+        HousnerOptions {
+            form: self.rigid_form,
+            overturning: self.rigid_overturning,
+            restitution: self.rigid_restitution,
+        }
+    }
+
     /// The `i`-th scanned value (the ends exactly as given).
     pub fn scanned(&self, i: usize) -> f64 {
         if i == 0 {
@@ -177,6 +219,8 @@ mod tests {
             scan,
             tol,
             rigid_form: RigidForm::SmallAngle,
+            rigid_overturning: RigidOverturning::ReachesLimit,
+            rigid_restitution: None,
         }
     }
 

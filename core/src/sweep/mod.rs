@@ -26,13 +26,13 @@ use std::path::{Path, PathBuf};
 use serde::{Deserialize, Serialize};
 
 pub use axis::{Axis, Interval};
-pub use find_min::FindMin;
+pub use find_min::{FindMin, HousnerOptions};
 pub use row::{Cell, Layout, Outcome, Row, Status};
 use row::{RigidMinima, RunOutcome, Scales};
 
 use crate::error::{Error, Result};
 use crate::model::{read_schema, Model, Overrides, PreparedSchema, RecordCache, Setting};
-use crate::rigid::{RigidBlock, RigidForm};
+use crate::rigid::{RigidBlock, RigidForm, RigidOverturning};
 
 /// Simulations per chunk, roughly: a chunk is the most a kill can lose.
 pub const SIMULATIONS_PER_CHUNK: usize = 1024;
@@ -95,7 +95,7 @@ impl Plan {
         match (&self.find_min, self.row_columns) {
             (_, Some(n)) => Layout::Row(n),
             (None, None) => Layout::Runs,
-            (Some(find), None) => Layout::Minimum(find.rigid_form),
+            (Some(find), None) => Layout::Minimum(find.housner()),
         }
     }
 
@@ -155,6 +155,11 @@ pub struct Request {
     pub chunk_size: Option<usize>,
     /// The equation of Housner's block in the minimum search [default: small-angle].
     pub rigid_form: Option<RigidForm>,
+    /// When Housner's block of the minimum search counts as overturned [default: when its
+    /// tilt reaches its limit].
+    pub rigid_overturning: Option<RigidOverturning>,
+    /// Housner's block's own coefficient of restitution [default: Housner's].
+    pub rigid_restitution: Option<f64>,
 }
 
 /// A sweep file: the axes, settings and search of a sweep, written as on the command line.
@@ -166,6 +171,8 @@ pub struct Request {
 /// scan = 100                                  # optional
 /// tol = 1e-3                                  # optional
 /// rigid_form = "full"                         # optional, with find_min
+/// rigid_overturning = "cannot-return"         # optional, with find_min
+/// rigid_restitution = 0.9                     # optional, with find_min
 /// ```
 #[derive(Debug, Clone, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -186,6 +193,10 @@ pub struct SweepFile {
     pub chunk_size: Option<usize>,
     /// As `--rigid-form`.
     pub rigid_form: Option<String>,
+    /// As `--rigid-overturning`.
+    pub rigid_overturning: Option<String>,
+    /// As `--rigid-restitution`.
+    pub rigid_restitution: Option<f64>,
 }
 
 impl Request {
@@ -237,6 +248,12 @@ impl Request {
             let form = RigidForm::parse("rigid_form", text).map_err(|e| in_file(e.into()))?;
             self.rigid_form = self.rigid_form.or(Some(form));
         }
+        if let Some(text) = &file.rigid_overturning {
+            let rule = RigidOverturning::parse("rigid_overturning", text)
+                .map_err(|e| in_file(e.into()))?;
+            self.rigid_overturning = self.rigid_overturning.or(Some(rule));
+        }
+        self.rigid_restitution = self.rigid_restitution.or(file.rigid_restitution);
         Ok(())
     }
 }
@@ -336,16 +353,37 @@ impl Sweep {
                     scan,
                     tol,
                     rigid_form: request.rigid_form.unwrap_or_default(),
+                    rigid_overturning: request.rigid_overturning.unwrap_or_default(),
+                    rigid_restitution: request.rigid_restitution,
                 })
             }
         };
-        if let (Some(form), None) = (request.rigid_form, &find_min) {
-            return Err(Error::invalid(
-                "rigid_form",
-                form.name(),
-                "chooses the rigid block of a minimum search (find_min, --find-min), which \
-                 this sweep does not make",
-            ));
+        const NOT_SEARCHED: &str = "chooses the rigid block of a minimum search (find_min, \
+                                    --find-min), which this sweep does not make";
+        if find_min.is_none() {
+            if let Some(form) = request.rigid_form {
+                return Err(Error::invalid("rigid_form", form.name(), NOT_SEARCHED));
+            }
+            if let Some(rule) = request.rigid_overturning {
+                return Err(Error::invalid(
+                    "rigid_overturning",
+                    rule.name(),
+                    NOT_SEARCHED,
+                ));
+            }
+            if let Some(e) = request.rigid_restitution {
+                return Err(Error::invalid("rigid_restitution", e, NOT_SEARCHED));
+            }
+        }
+        if let Some(e) = request.rigid_restitution {
+            if !(e.is_finite() && (0.0..=1.0).contains(&e)) {
+                return Err(Error::invalid(
+                    "rigid_restitution",
+                    e,
+                    "must be a number from 0 to 1: the ratio of the rocking speed after an \
+                     impact to the speed before it",
+                ));
+            }
         }
         if request.axes.is_empty() && find_min.is_none() {
             return Err(Error::invalid(
@@ -703,11 +741,11 @@ impl Sweep {
                         f64,
                     )
                         -> std::result::Result<RigidBlock, crate::solver::SolverError>,
-                     form: RigidForm| {
+                     options: HousnerOptions| {
                         let trial = |value: f64| -> Result<find_min::Trial> {
                             let model = self.model(&at(value))?;
                             let b = &model.body;
-                            let block = block(b.height, b.width, b.gravity)?.with_form(form);
+                            let block = options.apply(block(b.height, b.width, b.gravity)?)?;
                             let out = crate::rigid::simulate_block(
                                 &block,
                                 model.floor.as_ref(),
@@ -729,13 +767,13 @@ impl Sweep {
                         (min, scaled)
                     };
                 let (housner, housner_over_g_tan_alpha) =
-                    rigid_minimum(RigidBlock::housner, find.rigid_form);
-                // The elastic model's limit is the small-angle equation, whatever Housner's
-                // block's form.
+                    rigid_minimum(RigidBlock::housner, find.housner());
+                // The elastic model's limit is the small-angle equation, overturned when its
+                // tilt reaches B/H, with Housner's restitution, whatever Housner's block's.
                 let (elastic_limit, elastic_limit_over_g_tan_alpha) =
-                    rigid_minimum(RigidBlock::elastic_limit, RigidForm::SmallAngle);
+                    rigid_minimum(RigidBlock::elastic_limit, HousnerOptions::default());
                 let rigid = RigidMinima {
-                    form: find.rigid_form,
+                    housner_options: find.housner(),
                     housner,
                     housner_over_g_tan_alpha,
                     elastic_limit,

@@ -8,9 +8,9 @@
 use crate::automaton::EventKind;
 use crate::format::push_shortest;
 use crate::model::Model;
-use crate::rigid::RigidForm;
 use crate::solution::Solution;
 
+use super::find_min::HousnerOptions;
 use super::rows::RowOutcome;
 
 /// One field of a row, typed; `None` where the field is empty (no value is known).
@@ -348,15 +348,17 @@ impl MinimumOutcome {
 }
 
 /// The same search for the rigid blocks of the body's geometry under the same floor motion:
-/// Housner's block (uplift at g B/H), by the equation `form`, and the block the elastic model
+/// Housner's block (uplift at g B/H), made as `housner` says, and the block the elastic model
 /// tends to as E grows (uplift at its quasi-static uplift acceleration's limit), always by the
-/// small-angle equation, which is the elastic model's own limit; see [`crate::rigid`].
+/// small-angle equation, overturned when its tilt reaches B/H and with Housner's restitution,
+/// the elastic model's own limit; see [`crate::rigid`].
 #[derive(Debug, Clone, Copy, Default)]
 pub struct RigidMinima {
-    /// The equation of Housner's block: a `rigid_form` column after its two says `full` when it
-    /// is the full equation; with the default small-angle form there is no such column, so that
-    /// the columns are those of before the full form existed.
-    pub form: RigidForm,
+    /// How Housner's block is made. Each choice other than the default adds a column after its
+    /// two: `rigid_form` (`full`), `rigid_overturning` (`cannot-return`), `rigid_restitution`
+    /// (the number); a default block has none of them, so that its columns are those of before
+    /// the choices existed.
+    pub housner_options: HousnerOptions,
     /// Housner's block's smallest overturning value.
     pub housner: Option<f64>,
     /// Its peak floor acceleration over g tan(alpha).
@@ -368,8 +370,10 @@ pub struct RigidMinima {
 }
 
 impl RigidMinima {
-    /// The cells, by column name (`rigid_form` only for the full form).
+    /// The cells, by column name (`rigid_form`, `rigid_overturning` and `rigid_restitution`
+    /// only where Housner's block is not the default).
     pub fn named(&self) -> Vec<(&'static str, Cell)> {
+        let options = self.housner_options;
         let mut cells = vec![
             ("rigid_min_overturning", Cell::Float(self.housner)),
             (
@@ -377,8 +381,14 @@ impl RigidMinima {
                 Cell::Float(self.housner_over_g_tan_alpha),
             ),
         ];
-        if !self.form.is_small_angle() {
-            cells.push(("rigid_form", Cell::text(self.form.name())));
+        if !options.form.is_small_angle() {
+            cells.push(("rigid_form", Cell::text(options.form.name())));
+        }
+        if !options.overturning.is_reaches_limit() {
+            cells.push(("rigid_overturning", Cell::text(options.overturning.name())));
+        }
+        if let Some(e) = options.restitution {
+            cells.push(("rigid_restitution", Cell::Float(Some(e))));
         }
         cells.extend([
             (
@@ -393,23 +403,23 @@ impl RigidMinima {
         cells
     }
 
-    /// No values, Housner's block by `form`.
-    pub fn with_form(form: RigidForm) -> Self {
+    /// No values, Housner's block made as `options` say.
+    pub fn with_options(options: HousnerOptions) -> Self {
         RigidMinima {
-            form,
+            housner_options: options,
             ..RigidMinima::default()
         }
     }
 }
 
 /// Which result columns a sweep has.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Layout {
     /// One run per point.
     Runs,
-    /// A minimum search per point, with the rigid blocks' searches by the given form of
-    /// Housner's block (see [`RigidMinima`]).
-    Minimum(RigidForm),
+    /// A minimum search per point, with the rigid blocks' searches, Housner's block made as
+    /// the options say (see [`RigidMinima`]).
+    Minimum(HousnerOptions),
     /// One run of a row of this many columns per point, and each column's run alone (see
     /// [`super::rows`]).
     Row(usize),
@@ -419,7 +429,7 @@ impl From<bool> for Layout {
     /// `true`: a minimum search with the default (small-angle) rigid block; `false`: runs.
     fn from(find_min: bool) -> Self {
         if find_min {
-            Layout::Minimum(RigidForm::SmallAngle)
+            Layout::Minimum(HousnerOptions::default())
         } else {
             Layout::Runs
         }
@@ -465,9 +475,9 @@ impl Row {
     pub fn columns(layout: impl Into<Layout>) -> Vec<String> {
         let mut columns = vec!["status", "reason"];
         match layout.into() {
-            Layout::Minimum(form) => {
+            Layout::Minimum(options) => {
                 columns.extend(names(MinimumOutcome::default().named()));
-                columns.extend(names(RigidMinima::with_form(form).named()));
+                columns.extend(names(RigidMinima::with_options(options).named()));
             }
             Layout::Runs => columns.extend(names(RunOutcome::default().named())),
             // A row's columns are named by their index, and no row has the single body's
@@ -500,9 +510,9 @@ impl Row {
                 return cells;
             }
             None => match layout {
-                Layout::Minimum(form) => {
+                Layout::Minimum(options) => {
                     cells.extend(emptied(MinimumOutcome::default().named()));
-                    cells.extend(emptied(RigidMinima::with_form(form).named()));
+                    cells.extend(emptied(RigidMinima::with_options(options).named()));
                 }
                 Layout::Runs => cells.extend(emptied(RunOutcome::default().named())),
                 Layout::Row(n) => {
@@ -544,8 +554,9 @@ mod tests {
         let failed = Row::failure(Status::Failed, "a reason".into());
         for layout in [
             Layout::Runs,
-            Layout::Minimum(RigidForm::SmallAngle),
-            Layout::Minimum(RigidForm::Full),
+            Layout::Minimum(HousnerOptions::default()),
+            Layout::Minimum(full()),
+            Layout::Minimum(every_choice()),
             Layout::Row(3),
         ] {
             let find_min = layout != Layout::Runs;
@@ -575,16 +586,35 @@ mod tests {
         }
     }
 
+    use crate::rigid::{RigidForm, RigidOverturning};
+
+    fn full() -> HousnerOptions {
+        HousnerOptions {
+            form: RigidForm::Full,
+            ..HousnerOptions::default()
+        }
+    }
+
+    fn every_choice() -> HousnerOptions {
+        HousnerOptions {
+            form: RigidForm::Full,
+            overturning: RigidOverturning::CannotReturn,
+            restitution: Some(0.9),
+        }
+    }
+
     /// The `rigid_form` column is there, after Housner's block's two, only for the full form:
     /// the default's columns are those of before the full form existed.
     #[test]
     fn the_rigid_form_column_names_the_full_form_only() {
         assert_eq!(
             Row::columns(true),
-            Row::columns(Layout::Minimum(RigidForm::SmallAngle))
+            Row::columns(Layout::Minimum(HousnerOptions::default()))
         );
-        assert!(!Row::columns(true).iter().any(|c| c == "rigid_form"));
-        let columns = Row::columns(Layout::Minimum(RigidForm::Full));
+        for name in ["rigid_form", "rigid_overturning", "rigid_restitution"] {
+            assert!(!Row::columns(true).iter().any(|c| c == name));
+        }
+        let columns = Row::columns(Layout::Minimum(full()));
         let at = |name: &str| columns.iter().position(|c| *c == name).unwrap();
         assert_eq!(at("rigid_form"), at("rigid_amplitude_over_g_tan_alpha") + 1);
         assert_eq!(at("rigid_limit_min_overturning"), at("rigid_form") + 1);
@@ -595,14 +625,52 @@ mod tests {
                 MinimumOutcome::default(),
                 RigidMinima {
                     housner: Some(3.0),
-                    ..RigidMinima::with_form(RigidForm::Full)
+                    ..RigidMinima::with_options(full())
                 },
             )),
             scales: None,
         };
-        let fields = row.fields(Layout::Minimum(RigidForm::Full));
+        let fields = row.fields(Layout::Minimum(full()));
         assert_eq!(fields.len(), columns.len());
         assert_eq!(fields[at("rigid_form")], "full");
         assert_eq!(fields[at("rigid_min_overturning")], "3");
+    }
+
+    /// A rule of overturning and a restitution of Housner's block's own each add a column, in
+    /// the order rigid_form, rigid_overturning, rigid_restitution, between Housner's block's
+    /// two and the rigid limit's.
+    #[test]
+    fn housners_choices_add_their_columns_in_order() {
+        let columns = Row::columns(Layout::Minimum(every_choice()));
+        let at = |name: &str| columns.iter().position(|c| *c == name).unwrap();
+        assert_eq!(at("rigid_form"), at("rigid_amplitude_over_g_tan_alpha") + 1);
+        assert_eq!(at("rigid_overturning"), at("rigid_form") + 1);
+        assert_eq!(at("rigid_restitution"), at("rigid_overturning") + 1);
+        assert_eq!(
+            at("rigid_limit_min_overturning"),
+            at("rigid_restitution") + 1
+        );
+        let row = Row {
+            status: Status::Ok,
+            reason: String::new(),
+            outcome: Some(Outcome::Minimum(
+                MinimumOutcome::default(),
+                RigidMinima::with_options(every_choice()),
+            )),
+            scales: None,
+        };
+        let fields = row.fields(Layout::Minimum(every_choice()));
+        assert_eq!(fields.len(), columns.len());
+        assert_eq!(fields[at("rigid_overturning")], "cannot-return");
+        assert_eq!(fields[at("rigid_restitution")], "0.9");
+        let only_rule = HousnerOptions {
+            overturning: RigidOverturning::CannotReturn,
+            ..HousnerOptions::default()
+        };
+        let columns = Row::columns(Layout::Minimum(only_rule));
+        assert!(!columns
+            .iter()
+            .any(|c| c == "rigid_form" || c == "rigid_restitution"));
+        assert!(columns.iter().any(|c| c == "rigid_overturning"));
     }
 }

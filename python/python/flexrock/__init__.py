@@ -358,6 +358,8 @@ def sweep(
     scan: Optional[int] = None,
     tol: Optional[float] = None,
     rigid_form: Optional[str] = None,
+    rigid_overturning: Optional[str] = None,
+    rigid_restitution: Optional[float] = None,
 ) -> SweepResult:
     """A parametric study: every combination of the axes' values, on every core.
 
@@ -379,6 +381,13 @@ def sweep(
     rigid_form : {"small-angle", "full"}, optional
         The equation of Housner's rigid block searched beside the body by ``find_min``: the
         small-angle one (the default) or the full one, which adds a ``rigid_form`` column.
+    rigid_overturning : {"reaches-limit", "cannot-return"}, optional
+        When that block counts as overturned: when its tilt reaches its limit (the default), or
+        only once it cannot come back, the rule of the rocking literature's minimum overturning
+        accelerations; ``"cannot-return"`` adds a ``rigid_overturning`` column.
+    rigid_restitution : float, optional
+        That block's own coefficient of restitution (0 to 1) instead of Housner's; adds a
+        ``rigid_restitution`` column.
 
     Returns
     -------
@@ -404,7 +413,14 @@ def sweep(
         )
     return SweepResult(
         _native.sweep(
-            model, dict(axes), find_min=find_min, scan=scan, tol=tol, rigid_form=rigid_form
+            model,
+            dict(axes),
+            find_min=find_min,
+            scan=scan,
+            tol=tol,
+            rigid_form=rigid_form,
+            rigid_overturning=rigid_overturning,
+            rigid_restitution=rigid_restitution,
         )
     )
 

@@ -104,6 +104,8 @@ def sweep(
     scan: Optional[int] = None,
     tol: Optional[float] = None,
     rigid_form: Optional[str] = None,
+    rigid_overturning: Optional[str] = None,
+    rigid_restitution: Optional[float] = None,
 ) -> Any: ...
 def compare(
     model: Model,

@@ -45,9 +45,9 @@ pub fn report_text(report: &store::SweepReport, seconds: Option<f64>) -> String 
     };
     let _ = writeln!(
         t,
-        "flexrock {}: sweep of {} points{slice} in {}",
+        "flexrock {}: sweep of {}{slice} in {}",
         crate::commands::run::VERSION,
-        s.points.total,
+        crate::writers::count(s.points.total, "point", "points"),
         report.dir.display()
     );
     let c = s.counts;
