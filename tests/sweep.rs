@@ -666,11 +666,19 @@ fn a_full_form_sweep_searches_and_names_the_full_equations_block() {
         "--quiet",
     ]);
     assert_eq!(crate::common::sweep_rows(&from_file).remove(0), full);
-    std::fs::write(
-        &file,
+    assert_sweep_file_refused(
+        &dir,
+        model,
         "find_min = \"excitation.amplitude=1.8:8\"\nrigid_form = \"exact\"\n",
-    )
-    .unwrap();
+        &["rigid_form", "exact"],
+    );
+}
+
+/// `flexrock sweep MODEL --sweep-file FILE`, FILE holding `text` (written under `dir`): refused
+/// with exit code 2, a message holding each of `words`, and no output directory.
+fn assert_sweep_file_refused(dir: &Path, model: &str, text: &str, words: &[&str]) {
+    let file = dir.join("refused.toml");
+    std::fs::write(&file, text).unwrap();
     let refused = dir.join("refused");
     let o = flexrock(&[
         "sweep",
@@ -682,10 +690,9 @@ fn a_full_form_sweep_searches_and_names_the_full_equations_block() {
     ]);
     let stderr = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(2), "{stderr}");
-    assert!(
-        stderr.contains("rigid") && stderr.contains("exact"),
-        "{stderr}"
-    );
+    for word in words {
+        assert!(stderr.contains(word), "{word}: {stderr}");
+    }
     assert!(!refused.exists());
 }
 
@@ -816,26 +823,12 @@ fn housners_block_can_be_made_a_papers_and_says_so() {
         }
         assert!(!refused.exists(), "{extra:?}");
     }
-    std::fs::write(
-        &file,
-        "find_min = \"excitation.amplitude=2:20\"\nrigid_overturning = \"always\"\n",
-    )
-    .unwrap();
-    let o = flexrock(&[
-        "sweep",
+    assert_sweep_file_refused(
+        &dir,
         model,
-        "--out",
-        refused.to_str().unwrap(),
-        "--sweep-file",
-        file.to_str().unwrap(),
-    ]);
-    let stderr = String::from_utf8_lossy(&o.stderr);
-    assert_eq!(o.status.code(), Some(2), "{stderr}");
-    assert!(
-        stderr.contains("rigid_overturning") && stderr.contains("always"),
-        "{stderr}"
+        "find_min = \"excitation.amplitude=2:20\"\nrigid_overturning = \"always\"\n",
+        &["rigid_overturning", "always"],
     );
-    assert!(!refused.exists());
 }
 
 /// The continuity the paper asks for (its section 4): as E grows, the elastic body's smallest
