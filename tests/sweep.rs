@@ -648,30 +648,37 @@ fn a_full_form_sweep_searches_and_names_the_full_equations_block() {
     );
 
     // The same from a sweep file; an unknown form there is refused, naming the key.
-    let file = dir.join("plan.toml");
-    std::fs::write(
-        &file,
+    let from_file = sweep_from_file(
+        &dir,
+        model,
         "vary = [\"excitation.period=0.8\"]\nfind_min = \"excitation.amplitude=1.8:8\"\n\
          tol = 1e-4\nrigid_form = \"full\"\n",
-    )
-    .unwrap();
-    let from_file = dir.join("file");
-    run(&[
-        "sweep",
-        model,
-        "--out",
-        from_file.to_str().unwrap(),
-        "--sweep-file",
-        file.to_str().unwrap(),
-        "--quiet",
-    ]);
-    assert_eq!(crate::common::sweep_rows(&from_file).remove(0), full);
+    );
+    assert_eq!(from_file, full);
     assert_sweep_file_refused(
         &dir,
         model,
         "find_min = \"excitation.amplitude=1.8:8\"\nrigid_form = \"exact\"\n",
         &["rigid_form", "exact"],
     );
+}
+
+/// The first row of `flexrock sweep MODEL --sweep-file FILE`, FILE holding `text` (written under
+/// `dir`, the output in `dir/file`).
+fn sweep_from_file(dir: &Path, model: &str, text: &str) -> HashMap<String, String> {
+    let file = dir.join("plan.toml");
+    std::fs::write(&file, text).unwrap();
+    let out = dir.join("file");
+    run(&[
+        "sweep",
+        model,
+        "--out",
+        out.to_str().unwrap(),
+        "--sweep-file",
+        file.to_str().unwrap(),
+        "--quiet",
+    ]);
+    crate::common::sweep_rows(&out).remove(0)
 }
 
 /// `flexrock sweep MODEL --sweep-file FILE`, FILE holding `text` (written under `dir`): refused
@@ -762,24 +769,13 @@ fn housners_block_can_be_made_a_papers_and_says_so() {
     );
 
     // The same from a sweep file.
-    let file = dir.join("plan.toml");
-    std::fs::write(
-        &file,
+    let from_file = sweep_from_file(
+        &dir,
+        model,
         "find_min = \"excitation.amplitude=2:20\"\nscan = 200\ntol = 1e-4\n\
          rigid_overturning = \"cannot-return\"\nrigid_restitution = 0.9\n",
-    )
-    .unwrap();
-    let from_file = dir.join("file");
-    run(&[
-        "sweep",
-        model,
-        "--out",
-        from_file.to_str().unwrap(),
-        "--sweep-file",
-        file.to_str().unwrap(),
-        "--quiet",
-    ]);
-    assert_eq!(crate::common::sweep_rows(&from_file).remove(0), papers);
+    );
+    assert_eq!(from_file, papers);
 
     // Refusals.
     let refused = dir.join("refused");
