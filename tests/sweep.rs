@@ -603,26 +603,15 @@ fn a_full_form_sweep_searches_and_names_the_full_equations_block() {
     let dir = scratch_dir("sweep-rigid-form");
     let model = pulse_model();
     let model = model.to_str().unwrap();
-    let sweep = |out: &Path, extra: &[&str]| {
-        let mut args = vec![
-            "sweep",
-            model,
-            "--out",
-            out.to_str().unwrap(),
-            "--vary",
-            "excitation.period=0.8",
-            "--find-min",
-            "excitation.amplitude=1.8:8",
-            "--tol",
-            "1e-4",
-            "--quiet",
-        ];
-        args.extend(extra);
-        run(&args);
-        let json: serde_json::Value =
-            serde_json::from_slice(&std::fs::read(out.join("sweep.json")).unwrap()).unwrap();
-        (crate::common::sweep_rows(out).remove(0), json)
-    };
+    let search = [
+        "--vary",
+        "excitation.period=0.8",
+        "--find-min",
+        "excitation.amplitude=1.8:8",
+        "--tol",
+        "1e-4",
+    ];
+    let sweep = |out: &Path, extra: &[&str]| first_row_and_plan(model, out, &search, extra);
     let (default, default_json) = sweep(&dir.join("default"), &[]);
     let (full, full_json) = sweep(&dir.join("full"), &["--rigid-form", "full"]);
     assert!(!default.contains_key("rigid_form"), "{default:?}");
@@ -661,6 +650,21 @@ fn a_full_form_sweep_searches_and_names_the_full_equations_block() {
         "find_min = \"excitation.amplitude=1.8:8\"\nrigid_form = \"exact\"\n",
         &["rigid_form", "exact"],
     );
+}
+
+/// The first row of sweep.csv and sweep.json of `flexrock sweep MODEL --out OUT ARGS EXTRA`.
+fn first_row_and_plan(
+    model: &str,
+    out: &Path,
+    args: &[&str],
+    extra: &[&str],
+) -> (HashMap<String, String>, serde_json::Value) {
+    let mut all = vec!["sweep", model, "--out", out.to_str().unwrap(), "--quiet"];
+    all.extend(args);
+    all.extend(extra);
+    run(&all);
+    let json = serde_json::from_slice(&std::fs::read(out.join("sweep.json")).unwrap()).unwrap();
+    (crate::common::sweep_rows(out).remove(0), json)
 }
 
 /// The first row of `flexrock sweep MODEL --sweep-file FILE`, FILE holding `text` (written under
@@ -716,26 +720,15 @@ fn housners_block_can_be_made_a_papers_and_says_so() {
     let dir = scratch_dir("sweep-rigid-choices");
     let model = crate::common::repo("models/zhang-makris.toml");
     let model = model.to_str().unwrap();
-    let sweep = |out: &Path, extra: &[&str]| {
-        let mut args = vec![
-            "sweep",
-            model,
-            "--out",
-            out.to_str().unwrap(),
-            "--find-min",
-            "excitation.amplitude=2:20",
-            "--scan",
-            "200",
-            "--tol",
-            "1e-4",
-            "--quiet",
-        ];
-        args.extend(extra);
-        run(&args);
-        let json: serde_json::Value =
-            serde_json::from_slice(&std::fs::read(out.join("sweep.json")).unwrap()).unwrap();
-        (crate::common::sweep_rows(out).remove(0), json)
-    };
+    let search = [
+        "--find-min",
+        "excitation.amplitude=2:20",
+        "--scan",
+        "200",
+        "--tol",
+        "1e-4",
+    ];
+    let sweep = |out: &Path, extra: &[&str]| first_row_and_plan(model, out, &search, extra);
     let choices = [
         "--rigid-overturning",
         "cannot-return",
