@@ -639,6 +639,40 @@ fn the_default_rule_has_no_safe_region_at_five_times_p() {
     }
 }
 
+/// Zhang and Makris' eq. (47) is the threshold of their second mode at every frequency ratio:
+/// by their rule, flexrock's small-angle block (the linearised equation) first overturns
+/// without any impact at the root of (omega_p/p) sin(psi) - cos(psi) =
+/// -exp(-(p/omega_p)(2 pi - psi)), to 1e-6, at omega_p/p = 1, 2, 3, 4, 6 and 8 (the roots:
+/// 1.41832, 2.34990, 3.63115, 5.23896, 9.41697, 14.87135; eq. 47 does not depend on the
+/// restitution, nor does a run that ends before its first impact).
+#[test]
+fn the_second_mode_begins_at_eq_47_at_every_ratio() {
+    let (alpha, p) = (0.25, 2.14);
+    let block = linearised_block(alpha, p);
+    for ratio in [1.0, 2.0, 3.0, 4.0, 6.0, 8.0] {
+        let period = 2.0 * PI / (ratio * p);
+        let scan = grid(1.001, 16.0, 300);
+        let found = first_transition(scan.clone(), 1e-8, |beta| {
+            let o = pulse(
+                &block,
+                beta * alpha * G_PAPERS,
+                period,
+                1.0,
+                PulseShape::Antisymmetric,
+            );
+            o.overturned && o.n_impact == 0
+        })
+        .unwrap();
+        let eq47 = |beta: f64| {
+            let psi = (1.0 / beta).asin();
+            ratio * psi.sin() - psi.cos() + (-(2.0 * PI - psi) / ratio).exp()
+        };
+        let root = first_transition(scan, 1e-12, |beta| eq47(beta) <= 0.0).unwrap();
+        eprintln!("omega_p/p {ratio}: without impact from {found:.6}, eq. (47) {root:.6}");
+        assert!((found / root - 1.0).abs() < 1e-6, "{found} against {root}");
+    }
+}
+
 /// Zhang and Makris (2001, Fig. 10 and its text): the Point Reyes locomotive (alpha = 0.25,
 /// p = 2.14 rad/s, eta = 0.9) under a one-sine pulse of omega_p = 15.7 rad/s: "a_p0 = 2.22 g"
 /// by the nonlinear equation, overturning after one impact, against "3.24 g" by the linearised
