@@ -530,9 +530,11 @@ fn within_published(what: &str, found: f64, below: f64, above: f64, tolerance: f
 /// (written here as printed, with the sign of its exponent that the derivation gives).
 /// flexrock's three transitions must lie within 0.4 % of the paper's intervals, with the modes
 /// and the recentring as stated, and the third must be the root of eq. (47) to 1e-6.
-/// Measured: 3.01860, 6.31807, 7.16813 (eq. 47: 7.168129). The first lies 0.29 % above the
-/// paper's 3.01 (an independent fixed-step integration also put it between 3.01 and 3.02), the
-/// other two 0.03 % and 0.02 % below the paper's intervals.
+/// All three must also be the transitions of the closed-form solution of the linearised
+/// equation by that rule ([`linearised_one_sine_returns`], written here without the solver), to
+/// 1e-6. Measured: 3.01860, 6.31807, 7.16813 (eq. 47: 7.168129; the closed form: the same to
+/// six digits). The first lies 0.29 % above the paper's 3.01, the other two 0.03 % and 0.02 %
+/// below the paper's intervals.
 #[test]
 fn zhang_and_makris_thresholds_at_five_times_p() {
     let (alpha, p, ratio) = (0.25, 2.14, 5.0);
@@ -579,6 +581,66 @@ fn zhang_and_makris_thresholds_at_five_times_p() {
         (second / root - 1.0).abs() < 1e-6,
         "{second} against {root}"
     );
+    // The closed form of the linearised equation, impact included.
+    let overturns = |beta: f64| !linearised_one_sine_returns(beta, ratio, 0.9);
+    for (found, scan, overturned) in [
+        (first, grid(2.9, 3.1, 21), true),
+        (band_end, grid(6.2, 6.5, 31), false),
+        (second, grid(7.0, 7.3, 31), true),
+    ] {
+        let closed = first_transition(scan, 1e-12, |beta| overturns(beta) == overturned).unwrap();
+        eprintln!("closed form: {closed:.7}, flexrock {found:.7}");
+        assert!(
+            (found / closed - 1.0).abs() < 1e-6,
+            "{found} against {closed}"
+        );
+    }
+}
+
+/// Whether a block obeying the linearised rocking equation comes back for good under the
+/// one-sine pulse of amplitude `beta` g alpha and frequency `ratio` p, with the coefficient of
+/// restitution `eta`, by the rule that it has overturned only if it cannot return: the
+/// closed-form solution, in time units of 1/p and rotation units of alpha (psi = |theta|/alpha),
+/// written here without the solver, for pulses under which the block does not land before the
+/// pulse ends (it panics otherwise).
+///
+/// During the pulse psi is [`linearised_overturns_without_impact`]'s solution. After it,
+/// x = psi - 1 obeys x'' = x: x = A e^s + B e^-s (s the time since the pulse's end T), with
+/// A = (x + x')/2 and B = (x - x')/2 at T. With A >= 0 the block never returns. Otherwise it
+/// lands where x = -1, e^s the root u > 1 of A u^2 + u + B = 0, at the speed |x'| = |A u - B/u|;
+/// it rocks on about the other toe from psi = 0 at eta |x'|, and never returns from there if
+/// eta |x'| >= 1 (its own A is (eta |x'| - 1)/2). Below that it comes back, and every later
+/// impact only slows it.
+fn linearised_one_sine_returns(beta: f64, ratio: f64, eta: f64) -> bool {
+    if beta <= 1.0 {
+        return true;
+    }
+    let omega = ratio;
+    let t0 = (1.0 / beta).asin() / omega;
+    let end = 2.0 * PI / omega;
+    let c = -beta / (1.0 + omega * omega);
+    let c1 = -1.0 - c * (omega * t0).sin();
+    let c2 = -c * omega * (omega * t0).cos();
+    let psi = |t: f64| 1.0 + c * (omega * t).sin() + c1 * (t - t0).cosh() + c2 * (t - t0).sinh();
+    let dpsi = |t: f64| c * omega * (omega * t).cos() + c1 * (t - t0).sinh() + c2 * (t - t0).cosh();
+    let samples = 20_000;
+    for i in 1..=samples {
+        let t = t0 + (end - t0) * i as f64 / samples as f64;
+        assert!(
+            psi(t) > 0.0,
+            "beta {beta}: the block lands during the pulse"
+        );
+    }
+    let (x, v) = (psi(end) - 1.0, dpsi(end));
+    let (a, b) = (0.5 * (x + v), 0.5 * (x - v));
+    if a >= 0.0 {
+        return false;
+    }
+    // A u^2 + u + B = 0 with A < 0: the root above 1 (the landing comes after T).
+    let u = (-1.0 - (1.0 - 4.0 * a * b).sqrt()) / (2.0 * a);
+    assert!(u > 1.0, "beta {beta}: a landing at e^s = {u}");
+    let speed = (a * u - b / u).abs();
+    eta * speed < 1.0
 }
 
 /// Under flexrock's default rule (overturned when theta reaches alpha) the paper's block at
