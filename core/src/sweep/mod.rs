@@ -354,7 +354,8 @@ impl Sweep {
                     tol,
                     rigid_form: request.rigid_form.unwrap_or_default(),
                     rigid_overturning: request.rigid_overturning.unwrap_or_default(),
-                    rigid_restitution: request.rigid_restitution,
+                    // -0 is written as 0.
+                    rigid_restitution: request.rigid_restitution.map(|e| e + 0.0),
                 })
             }
         };
