@@ -277,6 +277,49 @@ fn overturns_without_impact(o: &RigidOutcome) -> bool {
     o.overturned && o.n_impact == 0
 }
 
+/// The linearised block's motion through a one-sine pulse of amplitude `beta` g alpha and
+/// frequency `omega` p from its lift-off, in time units of 1/p and rotation units of alpha
+/// (see [`linearised_overturns_without_impact`]).
+struct LinearisedPulse {
+    omega: f64,
+    t0: f64,
+    end: f64,
+    c: f64,
+    c1: f64,
+    c2: f64,
+}
+
+impl LinearisedPulse {
+    fn new(beta: f64, omega: f64) -> Self {
+        let t0 = (1.0 / beta).asin() / omega;
+        let c = -beta / (1.0 + omega * omega);
+        LinearisedPulse {
+            omega,
+            t0,
+            end: 2.0 * PI / omega,
+            c,
+            c1: -1.0 - c * (omega * t0).sin(),
+            c2: -c * omega * (omega * t0).cos(),
+        }
+    }
+
+    fn psi(&self, t: f64) -> f64 {
+        let s = t - self.t0;
+        1.0 + self.c * (self.omega * t).sin() + self.c1 * s.cosh() + self.c2 * s.sinh()
+    }
+
+    fn dpsi(&self, t: f64) -> f64 {
+        let s = t - self.t0;
+        self.c * self.omega * (self.omega * t).cos() + self.c1 * s.sinh() + self.c2 * s.cosh()
+    }
+
+    /// 20,000 times from just after the lift-off to the pulse's end.
+    fn samples(&self) -> impl Iterator<Item = f64> + '_ {
+        let samples = 20_000;
+        (1..=samples).map(move |i| self.t0 + (self.end - self.t0) * i as f64 / samples as f64)
+    }
+}
+
 /// Whether a block obeying the linearised rocking equation overturns before any impact under
 /// the one-sine pulse of amplitude `beta` g alpha and frequency `ratio` p: the closed-form
 /// solution, in time units of 1/p and rotation units of alpha (psi = |theta|/alpha), written
@@ -292,17 +335,9 @@ fn linearised_overturns_without_impact(beta: f64, ratio: f64) -> bool {
     if beta <= 1.0 {
         return false;
     }
-    let omega = ratio;
-    let t0 = (1.0 / beta).asin() / omega;
-    let end = 2.0 * PI / omega;
-    let c = -beta / (1.0 + omega * omega);
-    let c1 = -1.0 - c * (omega * t0).sin();
-    let c2 = -c * omega * (omega * t0).cos();
-    let psi = |t: f64| 1.0 + c * (omega * t).sin() + c1 * (t - t0).cosh() + c2 * (t - t0).sinh();
-    let dpsi = |t: f64| c * omega * (omega * t).cos() + c1 * (t - t0).sinh() + c2 * (t - t0).cosh();
-    let samples = 20_000;
-    for i in 1..=samples {
-        let t = t0 + (end - t0) * i as f64 / samples as f64;
+    let pulse = LinearisedPulse::new(beta, ratio);
+    let (psi, dpsi, end) = (|t| pulse.psi(t), |t| pulse.dpsi(t), pulse.end);
+    for t in pulse.samples() {
         let value = psi(t);
         if value >= 1.0 {
             return true;
@@ -615,17 +650,9 @@ fn linearised_one_sine_returns(beta: f64, ratio: f64, eta: f64) -> bool {
     if beta <= 1.0 {
         return true;
     }
-    let omega = ratio;
-    let t0 = (1.0 / beta).asin() / omega;
-    let end = 2.0 * PI / omega;
-    let c = -beta / (1.0 + omega * omega);
-    let c1 = -1.0 - c * (omega * t0).sin();
-    let c2 = -c * omega * (omega * t0).cos();
-    let psi = |t: f64| 1.0 + c * (omega * t).sin() + c1 * (t - t0).cosh() + c2 * (t - t0).sinh();
-    let dpsi = |t: f64| c * omega * (omega * t).cos() + c1 * (t - t0).sinh() + c2 * (t - t0).cosh();
-    let samples = 20_000;
-    for i in 1..=samples {
-        let t = t0 + (end - t0) * i as f64 / samples as f64;
+    let pulse = LinearisedPulse::new(beta, ratio);
+    let (psi, dpsi, end) = (|t| pulse.psi(t), |t| pulse.dpsi(t), pulse.end);
+    for t in pulse.samples() {
         assert!(
             psi(t) > 0.0,
             "beta {beta}: the block lands during the pulse"
