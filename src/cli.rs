@@ -350,7 +350,7 @@ pub(crate) struct SweepArgs {
     /// column.
     #[arg(long, value_name = "RULE", value_parser = ["reaches-limit", "cannot-return"])]
     pub(crate) rigid_overturning: Option<String>,
-    /// Housner's rigid block's own coefficient of restitution (0 to 1), the ratio of the rocking
+    /// Housner's rigid block's own coefficient of restitution (strictly between 0 and 1), the ratio of the rocking
     /// speed after an impact to the speed before it [default: Housner's, 1 - 1.5 sin^2 alpha].
     /// Adds a rigid_restitution column.
     #[arg(long, value_name = "E")]

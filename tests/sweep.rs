@@ -713,7 +713,7 @@ fn assert_sweep_file_refused(dir: &Path, model: &str, text: &str, words: &[&str]
 /// within 0.4 % (core/tests/published_rigid.rs: 3.0186). Each choice has its column after
 /// Housner's two and its key in sweep.json; the default sweep has neither, and the elastic body's
 /// and the rigid limit's columns do not change. A sweep file does the same. Refused, naming the
-/// flag (or the file's key), without output: a restitution outside [0, 1], an unknown rule, and
+/// flag (or the file's key), without output: a restitution outside (0, 1), an unknown rule, and
 /// either choice without a minimum search.
 #[test]
 fn housners_block_can_be_made_a_papers_and_says_so() {
@@ -778,7 +778,17 @@ fn housners_block_can_be_made_a_papers_and_says_so() {
         (
             &["--rigid-restitution", "1.5"][..],
             find_min,
-            &["--rigid-restitution", "1.5", "0 to 1"][..],
+            &["--rigid-restitution", "1.5", "between 0 and 1"][..],
+        ),
+        (
+            &["--rigid-restitution", "1"][..],
+            find_min,
+            &["--rigid-restitution", "between 0 and 1"][..],
+        ),
+        (
+            &["--rigid-restitution", "0"][..],
+            find_min,
+            &["--rigid-restitution", "between 0 and 1"][..],
         ),
         (
             &["--rigid-restitution", "NaN"][..],

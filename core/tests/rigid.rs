@@ -338,14 +338,14 @@ fn meaningless_input_is_refused() {
     }
     let err = RigidBlock::housner(H, H, G).unwrap_err();
     assert!(err.to_string().contains("slender"), "{err}");
-    for e in [f64::NAN, -0.1, 1.0 + 1e-12, f64::INFINITY] {
+    for e in [f64::NAN, -0.1, 0.0, -0.0, 1.0, 1.0 + 1e-12, f64::INFINITY] {
         let err = housner().with_restitution(e).unwrap_err().to_string();
         assert!(
-            err.starts_with("rigid.restitution = ") && err.contains("from 0 to 1"),
+            err.starts_with("rigid.restitution = ") && err.contains("strictly between 0 and 1"),
             "{err}"
         );
     }
-    for e in [0.0, 0.9, 1.0] {
+    for e in [1e-9, 0.9, 1.0 - 1e-12] {
         assert_eq!(housner().with_restitution(e).unwrap().restitution(), e);
     }
     let err = RigidBlock::with_uplift_acceleration(H, B, G, 0.9 * G * B / H).unwrap_err();

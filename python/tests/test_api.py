@@ -312,7 +312,9 @@ def test_a_sweep_equals_the_command_lines_table_typed(tmp_path):
         (dict(find_min=("excitation.amplitude", 1.0, 2.0), rigid_overturning="never"),
          r"^rigid_overturning = never: must be \"reaches-limit\""),
         (dict(find_min=("excitation.amplitude", 1.0, 2.0), rigid_restitution=1.5),
-         r"^rigid_restitution = 1.5: must be a number from 0 to 1"),
+         r"^rigid_restitution = 1.5: must lie strictly between 0 and 1"),
+        (dict(find_min=("excitation.amplitude", 1.0, 2.0), rigid_restitution=1.0),
+         r"^rigid_restitution = 1: must lie strictly between 0 and 1"),
         (dict(rigid_restitution=0.9), r"^rigid_restitution = 0.9: chooses the rigid block"),
     ],
 )

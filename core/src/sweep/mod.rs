@@ -354,8 +354,7 @@ impl Sweep {
                     tol,
                     rigid_form: request.rigid_form.unwrap_or_default(),
                     rigid_overturning: request.rigid_overturning.unwrap_or_default(),
-                    // -0 is written as 0.
-                    rigid_restitution: request.rigid_restitution.map(|e| e + 0.0),
+                    rigid_restitution: request.rigid_restitution,
                 })
             }
         };
@@ -377,14 +376,7 @@ impl Sweep {
             }
         }
         if let Some(e) = request.rigid_restitution {
-            if !(e.is_finite() && (0.0..=1.0).contains(&e)) {
-                return Err(Error::invalid(
-                    "rigid_restitution",
-                    e,
-                    "must be a number from 0 to 1: the ratio of the rocking speed after an \
-                     impact to the speed before it",
-                ));
-            }
+            crate::rigid::check_restitution("rigid_restitution", e)?;
         }
         if request.axes.is_empty() && find_min.is_none() {
             return Err(Error::invalid(

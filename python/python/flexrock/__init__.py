@@ -386,7 +386,8 @@ def sweep(
         only once it cannot come back, the rule of the rocking literature's minimum overturning
         accelerations; ``"cannot-return"`` adds a ``rigid_overturning`` column.
     rigid_restitution : float, optional
-        That block's own coefficient of restitution (0 to 1) instead of Housner's; adds a
+        That block's own coefficient of restitution (strictly between 0 and 1) instead of
+        Housner's; adds a
         ``rigid_restitution`` column.
 
     Returns
