@@ -702,10 +702,6 @@ struct Run<'a> {
     /// ([`RigidOverturning::CannotReturn`]).
     on_side: f64,
     overturning: RigidOverturning,
-    form: RigidForm,
-    height: f64,
-    /// alpha = atan(B/H), rad.
-    alpha: f64,
     restitution: f64,
     tipping: f64,
     /// See [`RigidBlock::pull_factor`].
@@ -765,9 +761,6 @@ impl<'a> Run<'a> {
             limit: block.overturning_displacement(),
             on_side: block.height * std::f64::consts::FRAC_PI_2,
             overturning: block.overturning,
-            form: block.form,
-            height: block.height,
-            alpha: block.slenderness(),
             restitution: block.restitution(),
             tipping: block.tipping_acceleration(),
             pull_factor: block.pull_factor(),
@@ -1009,19 +1002,19 @@ impl<'a> Run<'a> {
             return Ok(false);
         }
         let side = phase.side();
-        let gone = match self.form {
+        let gone = match self.propagator.full {
             // q - s B = c1 e^(k t) + c2 e^(-k t), 2 s c1 = s (q - s B) + s q'/k.
-            RigidForm::SmallAngle => {
+            None => {
                 let k = self.propagator.k;
                 side * q - self.propagator.width + side * qdot / k >= 0.0
             }
-            RigidForm::Full => {
+            Some(FullEquation { height, alpha, .. }) => {
                 let p = self.propagator.k;
                 // u = s theta, w = s theta'; the energy above that of the barrier u = alpha.
-                let (u, w) = (side * q / self.height, side * qdot / self.height);
-                let half = 0.5 * (self.alpha - u);
+                let (u, w) = (side * q / height, side * qdot / height);
+                let half = 0.5 * (alpha - u);
                 let excess = 0.5 * w * w - 2.0 * p * p * half.sin() * half.sin();
-                if u >= self.alpha {
+                if u >= alpha {
                     w >= 0.0 || excess <= 0.0
                 } else {
                     w > 0.0 && excess >= 0.0
