@@ -830,6 +830,45 @@ fn housners_block_can_be_made_a_papers_and_says_so() {
     );
 }
 
+/// A rigid block's search that fails fails its point, saying which block, where and why,
+/// instead of leaving the block's cells empty as if nothing had overturned: a restitution this
+/// close to 1 under a cosine pulse that starts exactly at the tipping acceleration makes
+/// Housner's block chatter until the event budget stops it.
+#[test]
+fn a_failed_rigid_search_fails_its_point() {
+    let dir = scratch_dir("sweep-rigid-failure");
+    let model = crate::common::repo("models/zhang-makris.toml");
+    let model = model.to_str().unwrap();
+    // g B/H of the model file's block, to the last bit.
+    let tipping = 9.81 * 0.803_290_680_408_769_3 / 3.213_162_721_635_077;
+    let find_min = format!("excitation.amplitude={tipping:?}:20");
+    let search = [
+        "--set",
+        "excitation.shape=symmetric",
+        "--find-min",
+        &find_min,
+        "--scan",
+        "50",
+    ];
+    let (row, _) = first_row_and_plan(
+        model,
+        &dir.join("near-1"),
+        &search,
+        &["--rigid-restitution", "0.999999999"],
+    );
+    assert_eq!(row["status"], "failed", "{row:?}");
+    assert!(
+        row["reason"].starts_with("Housner's rigid block at excitation.amplitude = 2.4525: ")
+            && row["reason"].contains("events"),
+        "{}",
+        row["reason"]
+    );
+    assert_eq!(row["rigid_min_overturning"], "");
+    // Housner's own restitution: the same search succeeds.
+    let (row, _) = first_row_and_plan(model, &dir.join("housner"), &search, &[]);
+    assert_eq!(row["status"], "ok", "{row:?}");
+}
+
 /// The continuity the paper asks for (its section 4): as E grows, the elastic body's smallest
 /// overturning amplitude under a one-sine pulse tends to that of the rigid block the model
 /// becomes, which lifts off at (L^3/(8 sigma)) g B/H = 1.1226 g B/H (src/rigid.rs). Measured:

@@ -751,20 +751,37 @@ impl Sweep {
                                 rhs_evaluations: 0,
                             })
                         };
-                        let min = find_min::search(find, trial)
-                            .ok()
-                            .and_then(|o| o.min_overturning);
+                        let min = find_min::search(find, trial)?.min_overturning;
                         let scaled = min
                             .and_then(scales_at)
                             .and_then(|s| s.amplitude_over_g_tan_alpha);
-                        (min, scaled)
+                        Ok((min, scaled))
                     };
+                // A rigid block's search that fails fails the point: its cells are not left
+                // empty as if nothing had overturned.
+                let rigid_failure = |block: &str, (value, e): (f64, Error)| {
+                    Row::failure(
+                        Status::Failed,
+                        format!(
+                            "{block} at {} = {}: {}",
+                            find.key,
+                            crate::format::shortest(value),
+                            reason(&e)
+                        ),
+                    )
+                };
                 let (housner, housner_over_g_tan_alpha) =
-                    rigid_minimum(RigidBlock::housner, find.housner());
+                    match rigid_minimum(RigidBlock::housner, find.housner()) {
+                        Ok(found) => found,
+                        Err(failure) => return rigid_failure("Housner's rigid block", failure),
+                    };
                 // The elastic model's limit is the small-angle equation, overturned when its
                 // tilt reaches B/H, with Housner's restitution, whatever Housner's block's.
                 let (elastic_limit, elastic_limit_over_g_tan_alpha) =
-                    rigid_minimum(RigidBlock::elastic_limit, HousnerOptions::default());
+                    match rigid_minimum(RigidBlock::elastic_limit, HousnerOptions::default()) {
+                        Ok(found) => found,
+                        Err(failure) => return rigid_failure("the rigid limit", failure),
+                    };
                 let rigid = RigidMinima {
                     housner_options: find.housner(),
                     housner,
