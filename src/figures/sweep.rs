@@ -812,8 +812,8 @@ fn spectrum(plan: &Plan, table: &SweepTable, x: usize) -> Result<Vec<u8>> {
 }
 
 /// The legend label of Housner's block: "rigid block (Housner)" for the default block, else
-/// how it is made, in at most 33 characters (the legend strip's width): "Housner, full
-/// equation", "Housner, full, no return, e=0.825".
+/// how it is made, in at most 33 characters, so that the legend strip widens little for it:
+/// "Housner, full equation", "Housner, full, no return, e=0.825".
 fn housner_label(options: &flexrock_core::sweep::HousnerOptions) -> String {
     let full = !options.form.is_small_angle();
     let no_return = !options.overturning.is_reaches_limit();
@@ -840,8 +840,8 @@ fn housner_label(options: &flexrock_core::sweep::HousnerOptions) -> String {
 mod tests {
     use super::*;
 
-    /// Housner's block's legend label says how the block is made, and fits the legend strip
-    /// (33 characters) with every choice made and a restitution of many digits.
+    /// Housner's block's legend label says how the block is made, in at most 33 characters
+    /// with every choice made and a restitution of many digits.
     #[test]
     fn housners_label_names_each_choice_and_fits_the_strip() {
         use flexrock_core::rigid::{RigidForm, RigidOverturning};
