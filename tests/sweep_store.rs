@@ -154,7 +154,7 @@ fn tampered_chunks_are_computed_again_and_named() {
     let dir = scratch_dir("store-tampered");
     let expected = reference(&dir);
     type Edit = fn(&[PathBuf]);
-    let edits: [(&str, Edit); 6] = [
+    let edits: [(&str, Edit); 7] = [
         ("copied over another", |c| {
             std::fs::copy(&c[0], &c[1]).unwrap();
         }),
@@ -186,6 +186,14 @@ fn tampered_chunks_are_computed_again_and_named() {
         ("truncated", |c| {
             let bytes = std::fs::read(&c[2]).unwrap();
             std::fs::write(&c[2], &bytes[..bytes.len() / 2]).unwrap();
+        }),
+        // What a crash of the machine can leave of a chunk, which is not synced: its name
+        // with none of its data, and a temporary file of a write under way.
+        ("emptied", |c| {
+            std::fs::write(&c[0], "").unwrap();
+            let bytes = std::fs::read(&c[1]).unwrap();
+            let torn = c[1].with_file_name(".flexrock-tmp-999999999-7f3a");
+            std::fs::write(torn, &bytes[..bytes.len() / 3]).unwrap();
         }),
     ];
     for (name, edit) in edits {

@@ -376,6 +376,16 @@ fn sync_dir(dir: &Path) {
 
 /// A new, empty directory `dir/.flexrock-tmp-<pid>-<nonce>`.
 fn create_staging_dir(dir: &Path) -> std::io::Result<PathBuf> {
+    create_temporary(dir, |path| std::fs::create_dir(path)).map(|(path, ())| path)
+}
+
+/// A new entry `dir/.flexrock-tmp-<pid>-<nonce>` made by `create`, which must fail with
+/// `AlreadyExists` if the name is taken (another nonce is then tried); its path and what
+/// `create` returned.
+fn create_temporary<T>(
+    dir: &Path,
+    create: impl Fn(&Path) -> std::io::Result<T>,
+) -> std::io::Result<(PathBuf, T)> {
     use std::sync::atomic::{AtomicU64, Ordering};
     static COUNTER: AtomicU64 = AtomicU64::new(0);
     let pid = std::process::id();
@@ -385,11 +395,47 @@ fn create_staging_dir(dir: &Path) -> std::io::Result<PathBuf> {
             .map_or(0, |d| d.subsec_nanos() as u64);
         let nonce = clock ^ (COUNTER.fetch_add(1, Ordering::Relaxed) << 32);
         let path = dir.join(format!("{TEMPORARY_PREFIX}{pid}-{nonce:x}"));
-        match std::fs::create_dir(&path) {
+        match create(&path) {
             Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => continue,
-            other => return other.map(|()| path),
+            other => return other.map(|made| (path, made)),
         }
     }
+}
+
+/// Writes a checkpoint: a file that can be made again, and whose reader checks it before use
+/// (a sweep's chunk, under its seal), from `parts` in order. The file is written whole into a
+/// temporary file `.flexrock-tmp-<pid>-<nonce>` beside `path` and renamed over it, so a kill
+/// leaves the previous file or the new one, never a part of it; unlike [`write_atomically`]
+/// it is not synced to the disk, because a crash of the machine that tears it costs only its
+/// computation: its reader finds it torn and makes it again. On failure the temporary file is
+/// removed.
+pub fn write_checkpoint(path: &Path, parts: &[&[u8]]) -> Result<()> {
+    let write_err = |path: &Path, source| Error::Write {
+        path: path.to_path_buf(),
+        source,
+    };
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
+    let (temporary, mut file) = create_temporary(dir, |candidate| {
+        std::fs::OpenOptions::new()
+            .write(true)
+            .create_new(true)
+            .open(candidate)
+    })
+    .map_err(|e| write_err(path, e))?;
+    let written = parts
+        .iter()
+        .try_for_each(|part| file.write_all(part))
+        .and_then(|()| {
+            drop(file);
+            std::fs::rename(&temporary, path)
+        });
+    written.map_err(|e| {
+        let _ = std::fs::remove_file(&temporary);
+        write_err(path, e)
+    })
 }
 
 /// The pid in the name of a temporary entry of flexrock, if the name is one: the current
@@ -581,6 +627,27 @@ mod tests {
             .collect();
         names.sort();
         names
+    }
+
+    /// A checkpoint is its parts in order, replaces a previous file whole, and leaves nothing
+    /// behind when it cannot be put in place (here: a directory stands at its path).
+    #[test]
+    fn a_checkpoint_is_whole_or_absent() {
+        let dir = scratch("checkpoint");
+        let path = dir.join("000000001.csv");
+        std::fs::write(&path, "previous, longer than the new content\n").unwrap();
+        write_checkpoint(&path, &[b"seal\n", b"", b"a,b\n1,2\n"]).unwrap();
+        assert_eq!(std::fs::read(&path).unwrap(), b"seal\na,b\n1,2\n");
+        assert_eq!(names(&dir), ["000000001.csv"]);
+
+        let blocked = dir.join("blocked");
+        std::fs::create_dir(blocked.join("")).unwrap();
+        std::fs::write(blocked.join("inside"), "kept").unwrap();
+        let e = write_checkpoint(&blocked, &[b"rows"]).unwrap_err();
+        assert!(e.to_string().contains("blocked"), "{e}");
+        assert_eq!(names(&dir), ["000000001.csv", "blocked"]);
+        assert_eq!(std::fs::read(blocked.join("inside")).unwrap(), b"kept");
+        let _ = std::fs::remove_dir_all(&dir);
     }
 
     /// history.csv written as text is the text the `csv` crate writes for the same fields:

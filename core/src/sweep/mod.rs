@@ -831,8 +831,18 @@ pub(crate) fn in_order<R: Send>(
 /// SHA-256 of `bytes`, as 64 lower-case hex digits: the digest of a record file a sweep reads,
 /// and of its plan.
 pub fn sha256_hex(bytes: &[u8]) -> String {
+    sha256_hex_of(&[bytes])
+}
+
+/// SHA-256 of the bytes of `parts` one after another (the digest of their concatenation, which
+/// is never made), as 64 lower-case hex digits.
+pub fn sha256_hex_of(parts: &[&[u8]]) -> String {
     use sha2::{Digest as _, Sha256};
-    let digest = Sha256::digest(bytes);
+    let mut hasher = Sha256::new();
+    for part in parts {
+        hasher.update(part);
+    }
+    let digest = hasher.finalize();
     let mut text = String::with_capacity(64);
     for byte in digest {
         text.push_str(&format!("{byte:02x}"));

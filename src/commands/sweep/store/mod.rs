@@ -4,7 +4,8 @@
 //! Layout of an output directory (a shard K of N writes into `DIR/shard-K-of-N/` instead):
 //! - while running: `chunks/plan.json` (what is being computed) and `chunks/<c>.csv`, the rows
 //!   of chunk c (points c x chunk_size onwards) under a seal line, each file written whole
-//!   (temporary file, then rename), in the order the chunks finish;
+//!   (temporary file, then rename), in the order the chunks finish; chunks are not synced to
+//!   the disk: one torn by a crash of the machine fails its seal and is computed again;
 //! - when done: `sweep.csv`, the figure, and last `sweep.json` (the plan, the counts and the
 //!   digest of sweep.csv), written as one set; then what flexrock wrote in `chunks/` is removed.
 //!
@@ -264,9 +265,12 @@ pub fn run(sweep: &Sweep, target: &Target, progress: &dyn Progress) -> Result<Sw
         for (c, rows) in receiver {
             let points = chunk_points(plan, c, range.end);
             let written = rows.and_then(|piece| {
-                writers::write_file_atomically(
+                // A chunk is sealed and checked when read back: it is not synced, as a crash
+                // that tears it costs only its computation (writers::write_checkpoint).
+                let seal = verify::chunk_seal_line(&identity, &points, &piece.rows);
+                writers::write_checkpoint(
                     &chunk_path(&chunks, c),
-                    &verify::chunk_bytes(&identity, &points, &piece.rows),
+                    &[seal.as_bytes(), &piece.rows],
                 )?;
                 Ok(piece)
             });

@@ -7,7 +7,7 @@
 use crate::writers;
 use flexrock_core::sweep::Plan;
 
-pub use flexrock_core::sweep::sha256_hex;
+pub use flexrock_core::sweep::{sha256_hex, sha256_hex_of};
 
 /// The first line of a chunk file: the seal of its rows.
 const CHUNK_SEAL_PREFIX: &str = "# flexrock sweep chunk, sha256 ";
@@ -15,16 +15,17 @@ const CHUNK_SEAL_PREFIX: &str = "# flexrock sweep chunk, sha256 ";
 /// The seal of the rows of points `points` of the sweep `identity`: a chunk cannot be moved to
 /// another place in the sweep, or into another sweep, and still verify.
 fn seal(identity: &str, points: &std::ops::Range<usize>, rows: &[u8]) -> String {
-    let mut bytes = format!("{identity}\n{}..{}\n", points.start, points.end).into_bytes();
-    bytes.extend_from_slice(rows);
-    sha256_hex(&bytes)
+    let place = format!("{identity}\n{}..{}\n", points.start, points.end);
+    sha256_hex_of(&[place.as_bytes(), rows])
 }
 
-/// A chunk file's bytes: the seal line, then the rows as sweep.csv holds them.
-pub(super) fn chunk_bytes(identity: &str, points: &std::ops::Range<usize>, rows: &[u8]) -> Vec<u8> {
-    let mut bytes = format!("{CHUNK_SEAL_PREFIX}{}\n", seal(identity, points, rows)).into_bytes();
-    bytes.extend_from_slice(rows);
-    bytes
+/// A chunk file's seal line; the rows as sweep.csv holds them follow it.
+pub(super) fn chunk_seal_line(
+    identity: &str,
+    points: &std::ops::Range<usize>,
+    rows: &[u8],
+) -> String {
+    format!("{CHUNK_SEAL_PREFIX}{}\n", seal(identity, points, rows))
 }
 
 /// The rows of a chunk file of points `points`, once its seal and its rows verify; else what
