@@ -36,37 +36,38 @@ impl SweepTable {
     /// parallel; `path` names the table in messages.
     pub(crate) fn of_pieces(
         columns: &[String],
-        pieces: Vec<crate::commands::sweep::store::Piece>,
+        pieces: &mut [crate::commands::sweep::store::Piece],
         path: &Path,
     ) -> Result<SweepTable> {
         use rayon::prelude::*;
-        let read = |piece: crate::commands::sweep::store::Piece| -> Result<Vec<csv::StringRecord>> {
-            if let Some(records) = piece.records {
-                return Ok(records);
-            }
-            csv::ReaderBuilder::new()
-                .has_headers(false)
-                .from_reader(piece.rows.as_slice())
-                .records()
-                .map(|record| {
-                    let malformed = |message: String| Error::ReadResult {
-                        path: path.to_path_buf(),
-                        message: format!("a malformed row: {message}"),
-                    };
-                    let record = record.map_err(|e| malformed(e.to_string()))?;
-                    if record.len() != columns.len() {
-                        return Err(malformed(format!(
-                            "{} fields under {} columns",
-                            record.len(),
-                            columns.len()
-                        )));
-                    }
-                    Ok(record)
-                })
-                .collect()
-        };
+        let read =
+            |piece: &mut crate::commands::sweep::store::Piece| -> Result<Vec<csv::StringRecord>> {
+                if let Some(records) = piece.records.take() {
+                    return Ok(records);
+                }
+                csv::ReaderBuilder::new()
+                    .has_headers(false)
+                    .from_reader(piece.rows.as_slice())
+                    .records()
+                    .map(|record| {
+                        let malformed = |message: String| Error::ReadResult {
+                            path: path.to_path_buf(),
+                            message: format!("a malformed row: {message}"),
+                        };
+                        let record = record.map_err(|e| malformed(e.to_string()))?;
+                        if record.len() != columns.len() {
+                            return Err(malformed(format!(
+                                "{} fields under {} columns",
+                                record.len(),
+                                columns.len()
+                            )));
+                        }
+                        Ok(record)
+                    })
+                    .collect()
+            };
         let parts: Vec<Vec<csv::StringRecord>> =
-            pieces.into_par_iter().map(read).collect::<Result<_>>()?;
+            pieces.par_iter_mut().map(read).collect::<Result<_>>()?;
         Ok(SweepTable {
             columns: columns.to_vec(),
             rows: parts.into_iter().flatten().collect(),

@@ -238,27 +238,98 @@ fn write_set(
     files: &[(&str, Vec<u8>)],
     rename: &mut dyn FnMut(&Path, &Path) -> std::io::Result<()>,
 ) -> Result<Vec<PathBuf>> {
-    let write_err = |path: &Path, source| Error::Write {
-        path: path.to_path_buf(),
-        source,
-    };
+    let names: Vec<&str> = files.iter().map(|(name, _)| *name).collect();
     check_output_dir(dir)?;
-    for (name, _) in files {
+    for name in &names {
         check_file_name(dir, name)?;
         check_target(&dir.join(name))?;
     }
-    std::fs::create_dir_all(dir).map_err(|e| write_err(dir, e))?;
-    let names: Vec<&str> = files.iter().map(|(name, _)| *name).collect();
-    remove_stale_temporaries(dir, &names);
-    let staging = create_staging_dir(dir).map_err(|e| write_err(dir, e))?;
-    let staged = (|| {
-        // Each file on a thread of its own: the disk syncs them at once, not one after another.
-        let stage = |(name, bytes): &(&str, Vec<u8>)| -> Result<()> {
-            let path = staging.join(format!("new-{name}"));
-            let mut f = std::fs::File::create(&path).map_err(|e| write_err(&path, e))?;
-            f.write_all(bytes).map_err(|e| write_err(&path, e))?;
-            f.sync_all().map_err(|e| write_err(&path, e))
+    let set = FileSet::begin(dir, &names)?;
+    set.stage_each(files)?;
+    set.commit_with(rename)
+}
+
+/// A set of files written into one directory as a whole, as [`write_atomically`] writes them,
+/// but staged one by one as each is ready, from any thread (a large file is written and synced
+/// while the next is still being made), then put in place together by [`FileSet::commit`].
+/// Dropped without a commit (an error on the way), it removes what it staged: the directory is
+/// left as it was.
+pub struct FileSet {
+    dir: PathBuf,
+    /// The names the set may hold, in the order they are put in place.
+    order: Vec<String>,
+    staging: PathBuf,
+    /// The names staged so far.
+    staged: std::sync::Mutex<Vec<String>>,
+    /// Set when a failed commit could not put the previous files back: they stay in `staging`.
+    keep_staging: bool,
+}
+
+impl FileSet {
+    /// Starts a set in `dir` (which must be a directory, or is created) of files among `order`,
+    /// plain names in the order they are to be put in place; removes the temporaries a killed
+    /// write left in `dir` (steps 1 and 2 of [`write_atomically`], but for the targets, which
+    /// [`FileSet::stage`] checks).
+    pub fn begin(dir: &Path, order: &[&str]) -> Result<Self> {
+        check_output_dir(dir)?;
+        for name in order {
+            check_file_name(dir, name)?;
+        }
+        let write_err = |source| Error::Write {
+            path: dir.to_path_buf(),
+            source,
         };
+        std::fs::create_dir_all(dir).map_err(write_err)?;
+        remove_stale_temporaries(dir, order);
+        let staging = create_staging_dir(dir).map_err(write_err)?;
+        Ok(FileSet {
+            dir: dir.to_path_buf(),
+            order: order.iter().map(|name| name.to_string()).collect(),
+            staging,
+            staged: std::sync::Mutex::new(Vec::new()),
+            keep_staging: false,
+        })
+    }
+
+    /// Writes the file `name` of the set, the bytes of `parts` one after another, and syncs it
+    /// (step 3 of [`write_atomically`]); its target must be a regular file or absent.
+    pub fn stage(&self, name: &str, parts: &[&[u8]]) -> Result<()> {
+        let target = self.dir.join(name);
+        if !self.order.iter().any(|n| n == name) {
+            return Err(Error::Write {
+                path: target,
+                source: std::io::Error::new(
+                    std::io::ErrorKind::InvalidInput,
+                    "not one of the files of the set being written",
+                ),
+            });
+        }
+        check_target(&target)?;
+        let path = self.staging.join(format!("new-{name}"));
+        let write_err = |source| Error::Write {
+            path: path.clone(),
+            source,
+        };
+        let mut f = std::fs::File::create(&path).map_err(write_err)?;
+        for part in parts {
+            f.write_all(part).map_err(write_err)?;
+        }
+        f.sync_all().map_err(write_err)?;
+        let mut staged = self.staged.lock().unwrap_or_else(|e| e.into_inner());
+        if !staged.iter().any(|n| n == name) {
+            staged.push(name.to_string());
+        }
+        Ok(())
+    }
+
+    /// Stages each of `files` (name, bytes), each on a thread of its own: the disk syncs them
+    /// at once, not one after another.
+    pub fn stage_each<N, B>(&self, files: &[(N, B)]) -> Result<()>
+    where
+        N: AsRef<str> + Sync,
+        B: AsRef<[u8]> + Sync,
+    {
+        let stage = |(name, bytes): &(N, B)| self.stage(name.as_ref(), &[bytes.as_ref()]);
         std::thread::scope(|scope| {
             let threads: Vec<_> = files
                 .get(1..)
@@ -275,19 +346,41 @@ fn write_set(
                         .unwrap_or_else(|e| std::panic::resume_unwind(e))
                 })
                 .fold(first, Result::and)
-        })?;
-        sync_dir(&staging);
-        Ok(())
-    })();
-    let result = staged.and_then(|()| swap_in(dir, &staging, &names, rename));
-    match &result {
+        })
+    }
+
+    /// Puts the staged files in place, in the set's order (steps 4 and 5 of
+    /// [`write_atomically`]); their paths.
+    pub fn commit(self) -> Result<Vec<PathBuf>> {
+        self.commit_with(&mut |from, to| std::fs::rename(from, to))
+    }
+
+    /// [`FileSet::commit`] with the rename operation given.
+    fn commit_with(
+        mut self,
+        rename: &mut dyn FnMut(&Path, &Path) -> std::io::Result<()>,
+    ) -> Result<Vec<PathBuf>> {
+        sync_dir(&self.staging);
+        let staged = std::mem::take(self.staged.get_mut().unwrap_or_else(|e| e.into_inner()));
+        let names: Vec<&str> = self
+            .order
+            .iter()
+            .filter(|name| staged.contains(name))
+            .map(String::as_str)
+            .collect();
+        let result = swap_in(&self.dir, &self.staging, &names, rename);
         // The previous files could not all be put back: they stay in the staging directory.
-        Err(Error::Rollback { .. }) => {}
-        _ => {
-            let _ = std::fs::remove_dir_all(&staging);
+        self.keep_staging = matches!(result, Err(Error::Rollback { .. }));
+        result
+    }
+}
+
+impl Drop for FileSet {
+    fn drop(&mut self) {
+        if !self.keep_staging {
+            let _ = std::fs::remove_dir_all(&self.staging);
         }
     }
-    result
 }
 
 /// Moves the previous files of the set into `staging` and the new ones from it into `dir`;
@@ -627,6 +720,41 @@ mod tests {
             .collect();
         names.sort();
         names
+    }
+
+    /// Files staged out of order (the last first, from other threads) are put in place in the
+    /// set's order; a set dropped before its commit leaves the directory as it was; a name
+    /// outside the set is refused.
+    #[test]
+    fn a_file_set_is_put_in_place_in_its_order_or_not_at_all() {
+        let dir = scratch("file-set");
+        std::fs::write(dir.join("b.csv"), "previous").unwrap();
+        let order = ["a.csv", "b.csv", "c.json"];
+        let set = FileSet::begin(&dir, &order).unwrap();
+        std::thread::scope(|scope| {
+            scope.spawn(|| set.stage("c.json", &[b"{}"]).unwrap());
+        });
+        set.stage("a.csv", &[b"x,", b"y\n"]).unwrap();
+        let e = set.stage("d.txt", &[b"no"]).unwrap_err();
+        assert!(e.to_string().contains("d.txt"), "{e}");
+        let mut renamed = Vec::new();
+        set.commit_with(&mut |from, to| {
+            renamed.push(to.file_name().unwrap().to_string_lossy().into_owned());
+            std::fs::rename(from, to)
+        })
+        .unwrap();
+        // b.csv was not staged: it is kept, not moved aside.
+        assert_eq!(renamed, ["a.csv", "c.json"]);
+        assert_eq!(names(&dir), ["a.csv", "b.csv", "c.json"]);
+        assert_eq!(std::fs::read(dir.join("a.csv")).unwrap(), b"x,y\n");
+        assert_eq!(std::fs::read(dir.join("b.csv")).unwrap(), b"previous");
+
+        let dropped = FileSet::begin(&dir, &order).unwrap();
+        dropped.stage("b.csv", &[b"new"]).unwrap();
+        drop(dropped);
+        assert_eq!(names(&dir), ["a.csv", "b.csv", "c.json"]);
+        assert_eq!(std::fs::read(dir.join("b.csv")).unwrap(), b"previous");
+        let _ = std::fs::remove_dir_all(&dir);
     }
 
     /// A checkpoint is its parts in order, replaces a previous file whole, and leaves nothing

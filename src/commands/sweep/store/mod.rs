@@ -534,9 +534,9 @@ fn read_summary(dir: &Path) -> Result<Option<SweepSummary>> {
     }))
 }
 
-/// Writes sweep.csv, the figure and sweep.json (last) from the rows' CSV text in pieces (the
-/// chunks or shards, in order), which the caller verified against the plan (each against its
-/// points); then removes the files an earlier result in `dir` listed that this one does not
+/// Writes sweep.csv, the figure and sweep.json (last) as one set ([`writers::FileSet`]) from
+/// the rows' CSV text in pieces (the chunks or shards, in order), which the caller verified
+/// against the plan (each against its points); then removes the files an earlier result in `dir` listed that this one does not
 /// write (a map of an earlier sweep beside the spectrum of this one).
 fn finish(
     dir: &Path,
@@ -549,24 +549,29 @@ fn finish(
     let columns = plan.columns();
     let header =
         writers::Table::new(&columns.iter().map(String::as_str).collect::<Vec<_>>()).into_bytes();
-    let mut table_bytes = header;
-    for piece in &pieces {
-        table_bytes.extend_from_slice(&piece.rows);
-    }
-    let table = figure::SweepTable::of_pieces(&columns, pieces, &table_path)?;
+    let mut pieces = pieces;
+    let table = figure::SweepTable::of_pieces(&columns, &mut pieces, &table_path)?;
     let counts = table.counts(plan.layout())?;
-    // The figures and sweep.csv's digest at once.
+    // sweep.csv is the header and the pieces' rows one after another (never joined in memory):
+    // its digest is taken and the file written and synced while the figures are drawn.
+    let table_parts: Vec<&[u8]> = std::iter::once(header.as_slice())
+        .chain(pieces.iter().map(|piece| piece.rows.as_slice()))
+        .collect();
+    let set = writers::FileSet::begin(dir, &RESULT_FILES)?;
     let (figures, table_sha256) = rayon::join(
         || match shard {
             None => figure::figures(plan, &table),
             Some(_) => Ok(Vec::new()),
         },
-        || verify::sha256_hex(&table_bytes),
+        || -> Result<String> {
+            let digest = verify::sha256_hex_of(&table_parts);
+            set.stage(TABLE_FILE, &table_parts)?;
+            Ok(digest)
+        },
     );
-    let figures = figures?;
-    let mut files: Vec<(String, Vec<u8>)> = vec![(TABLE_FILE.to_string(), table_bytes)];
-    files.extend(figures);
-    let mut names: Vec<String> = files.iter().map(|(n, _)| n.clone()).collect();
+    let (figures, table_sha256) = (figures?, table_sha256?);
+    let mut names = vec![TABLE_FILE.to_string()];
+    names.extend(figures.iter().map(|(name, _)| name.clone()));
     names.push(SUMMARY_FILE.to_string());
     let summary = SweepSummary {
         flexrock_version: crate::commands::run::VERSION.to_string(),
@@ -583,10 +588,10 @@ fn finish(
         .flatten()
         .map(|s| s.files)
         .unwrap_or_default();
+    let mut files = figures;
     files.push((SUMMARY_FILE.to_string(), writers::json_bytes(&summary)));
-    let (names, contents): (Vec<String>, Vec<Vec<u8>>) = files.into_iter().unzip();
-    let set: Vec<(&str, Vec<u8>)> = names.iter().map(String::as_str).zip(contents).collect();
-    let written = writers::write_atomically(dir, &set)?;
+    set.stage_each(&files)?;
+    let written = set.commit()?;
     for name in RESULT_FILES {
         let stale = earlier.iter().any(|f| f == name) && !summary.files.iter().any(|f| f == name);
         let path = dir.join(name);
