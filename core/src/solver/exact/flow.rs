@@ -509,6 +509,17 @@ impl Flow {
 
     /// The state (q, q') at `t`, compensated: the next flow's anchor.
     pub fn state(&self, t: f64) -> (Dd, Dd) {
+        self.state_with(t, || self.point(t))
+    }
+
+    /// [`Flow::state`] at the time of `p`, a point of this flow ([`Flow::point`]), which the
+    /// oscillator form's state is.
+    pub fn state_at(&self, p: &Point) -> (Dd, Dd) {
+        self.state_with(p.t, || *p)
+    }
+
+    /// [`Flow::state`] at `t`, with `point()` the flow's point there.
+    fn state_with(&self, t: f64, point: impl FnOnce() -> Point) -> (Dd, Dd) {
         let u = self.local(t);
         match &self.form {
             Form::Series { hi, lo, terms, .. } => {
@@ -523,7 +534,7 @@ impl Flow {
                 (Dd::new(q_hi, q_e + x.lo + xl), Dd::new(v.hi, v.lo + vl))
             }
             Form::Oscillator(_) => {
-                let p = self.point(t);
+                let p = point();
                 (Dd::exact(p.q), Dd::exact(p.v))
             }
         }

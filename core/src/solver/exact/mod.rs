@@ -472,7 +472,7 @@ impl<'a> Run<'a> {
             }
             None => {
                 self.advance_work(&flow, flow.until);
-                let (q, v) = flow.state(flow.until);
+                let (q, v) = flow.state_at(&finish);
                 self.q = q;
                 self.v = v;
                 self.t = flow.until;
@@ -739,8 +739,8 @@ impl<'a> Run<'a> {
         self.advance_work(flow, p.t);
         // The crossing lies between doubles: the rest of it, from q at the double found. Taken
         // into the next flow's anchor, it keeps the rounding of event times (biased to the side
-        // beyond the guard) from adding up over a chain of events.
-        let found = flow.point(p.t);
+        // beyond the guard) from adding up over a chain of events. (p is the flow's point at
+        // p.t with q put on the guard: its q'' is the flow's there.)
         let (q_found, v_found) = flow.state_at_event(p.t);
         let rest = (Dd::exact(guard.level) - q_found).value() / v_found.value();
         // The search stops within a few ulps of the crossing; more would be no rest of it.
@@ -749,7 +749,7 @@ impl<'a> Run<'a> {
         } else {
             0.0
         };
-        let before = v_found + found.acc * rest;
+        let before = v_found + p.acc * rest;
         let after = automaton.reset_velocity_twice(guard.kind, before);
         let (qdot_before, qdot_after) = (before.value(), after.value());
         let from = self.mode;
