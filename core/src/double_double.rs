@@ -7,6 +7,56 @@
 
 use std::ops::{Add, Div, Mul, Neg, Sub};
 
+/// Defines a function whose body is compiled twice, as written and with the processor's fused
+/// multiply-add (x86-64 processors that have it, detected when the function is called), where
+/// each product to twice the precision ([`two_product`]) is one instruction instead of a call to
+/// the library's `fma`. Both give the same result to the bit: a fused multiply-add is rounded
+/// once either way, and Rust never fuses an expression on its own. For the hot paths of the
+/// exact method only; the body should call small functions that inline into it.
+macro_rules! fused {
+    ($(#[$attr:meta])* $vis:vis fn $name:ident($($arg:ident: $ty:ty),* $(,)?) -> $ret:ty $body:block) => {
+        $(#[$attr])*
+        $vis fn $name($($arg: $ty),*) -> $ret {
+            #[inline(always)]
+            fn body($($arg: $ty),*) -> $ret $body
+            #[cfg(target_arch = "x86_64")]
+            {
+                #[target_feature(enable = "fma")]
+                unsafe fn with_fma($($arg: $ty),*) -> $ret {
+                    body($($arg),*)
+                }
+                if $crate::double_double::fma_in_use() {
+                    // SAFETY: the processor has the instruction `with_fma` is compiled with.
+                    return unsafe { with_fma($($arg),*) };
+                }
+            }
+            body($($arg),*)
+        }
+    };
+}
+pub(crate) use fused;
+
+/// Whether [`fused`] functions take their fused multiply-add version: where the processor has
+/// the instruction, unless a test turned it off ([`set_fma_in_use`]).
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+pub(crate) fn fma_in_use() -> bool {
+    #[cfg(test)]
+    if !FMA_ALLOWED.load(std::sync::atomic::Ordering::Relaxed) {
+        return false;
+    }
+    std::is_x86_feature_detected!("fma")
+}
+
+#[cfg(test)]
+static FMA_ALLOWED: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(true);
+
+/// Lets the tests run [`fused`] functions as written (false) to compare the two versions.
+#[cfg(test)]
+pub(crate) fn set_fma_in_use(allowed: bool) {
+    FMA_ALLOWED.store(allowed, std::sync::atomic::Ordering::Relaxed);
+}
+
 /// a + b = s + e exactly (Knuth's two-sum).
 #[inline(always)]
 pub(crate) fn two_sum(a: f64, b: f64) -> (f64, f64) {
@@ -116,50 +166,37 @@ impl DoubleDouble {
 
     /// e^self: self = n ln 2 + r, e^r by its Taylor series at r / 32 and five squarings.
     pub fn exp(self) -> Self {
-        #[cfg(target_arch = "x86_64")]
-        if std::is_x86_feature_detected!("fma") {
-            // SAFETY: the processor has the instructions the function is compiled with.
-            return unsafe { exp_with_fma(self) };
-        }
         exp_of(self)
     }
 }
 
-/// [`exp_of`] compiled with the processor's fused multiply-add, where the products to twice
-/// the precision are one instruction instead of a call to the library's `fma`. The results are
-/// the same to the bit: a fused multiply-add is rounded once either way.
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "fma")]
-unsafe fn exp_with_fma(x: DoubleDouble) -> DoubleDouble {
-    exp_of(x)
-}
-
-/// [`DoubleDouble::exp`].
-#[inline(always)]
-fn exp_of(x: DoubleDouble) -> DoubleDouble {
-    if !x.hi.is_finite() || x.hi.abs() > 700.0 {
-        return DoubleDouble::exact(x.hi.exp());
+fused! {
+    /// [`DoubleDouble::exp`].
+    fn exp_of(x: DoubleDouble) -> DoubleDouble {
+        if !x.hi.is_finite() || x.hi.abs() > 700.0 {
+            return DoubleDouble::exact(x.hi.exp());
+        }
+        let n = (x.hi / LN_2.hi).round();
+        let r = x - LN_2 * n;
+        let r = r * (1.0 / 32.0);
+        // |r| < 0.011: the terms of degree 7 to 14 add up to less than 4e-18, so they are summed
+        // in double precision (an error below 1e-33), and 14 terms leave less than 1e-36. The
+        // rest by Horner's rule to twice the precision, with the coefficients 1/n! as constants.
+        let tail = INVERSE_FACTORIALS[7..]
+            .iter()
+            .rev()
+            .fold(0.0, |acc: f64, coefficient| acc * r.hi + coefficient.hi);
+        let mut sum = INVERSE_FACTORIALS[6] + r * tail;
+        for &coefficient in INVERSE_FACTORIALS[..6].iter().rev() {
+            sum = sum * r + coefficient;
+        }
+        for _ in 0..5 {
+            sum = sum * sum;
+        }
+        // 2^n exactly, in two factors so that neither overflows (|n| <= 1010).
+        let half = (n / 2.0).trunc();
+        sum * power_of_two(half) * power_of_two(n - half)
     }
-    let n = (x.hi / LN_2.hi).round();
-    let r = x - LN_2 * n;
-    let r = r * (1.0 / 32.0);
-    // |r| < 0.011: the terms of degree 7 to 14 add up to less than 4e-18, so they are summed in
-    // double precision (an error below 1e-33), and 14 terms leave less than 1e-36. The rest by
-    // Horner's rule to twice the precision, with the coefficients 1/n! as constants.
-    let tail = INVERSE_FACTORIALS[7..]
-        .iter()
-        .rev()
-        .fold(0.0, |acc: f64, coefficient| acc * r.hi + coefficient.hi);
-    let mut sum = INVERSE_FACTORIALS[6] + r * tail;
-    for &coefficient in INVERSE_FACTORIALS[..6].iter().rev() {
-        sum = sum * r + coefficient;
-    }
-    for _ in 0..5 {
-        sum = sum * sum;
-    }
-    // 2^n exactly, in two factors so that neither overflows (|n| <= 1010).
-    let half = (n / 2.0).trunc();
-    sum * power_of_two(half) * power_of_two(n - half)
 }
 
 /// 2^k for an integer k with |k| <= 1022, exactly (from its bits).
@@ -441,7 +478,7 @@ mod tests {
     #[test]
     fn exp_matches_values_computed_apart() {
         for (x, hi, lo) in [
-            (1.0, 2.718281828459045, 1.4456468917292502e-16),
+            (1.0, std::f64::consts::E, 1.4456468917292502e-16),
             (-0.5, 0.6065306597126334, -6.593178415491414e-19),
             (10.0, 22026.465794806718, -1.3780134700517372e-12),
             (0.0078125, 1.007843097206448, -6.872774751042842e-17),
@@ -454,26 +491,25 @@ mod tests {
     }
 
     /// The processor's fused multiply-add and the library's give the same e^x to the bit.
-    #[cfg(target_arch = "x86_64")]
     #[test]
-    fn exp_is_the_same_with_the_processors_fma() {
-        if !std::is_x86_feature_detected!("fma") {
-            return;
-        }
-        for i in -2000..2000 {
-            let x = Dd::new(
-                f64::from(i) * 0.173_205_080_756_887_72,
-                f64::from(i) * 1e-19,
-            );
-            // SAFETY: the processor has fma (checked above).
-            let fused = unsafe { super::exp_with_fma(x) };
-            let library = super::exp_of(x);
-            assert_eq!(
-                (fused.hi.to_bits(), fused.lo.to_bits()),
-                (library.hi.to_bits(), library.lo.to_bits()),
-                "e^{x:?}"
-            );
-        }
+    fn exp_is_the_same_with_and_without_the_processors_fma() {
+        let values = || {
+            (-2000..2000)
+                .map(|i| {
+                    let x = Dd::new(
+                        f64::from(i) * 0.173_205_080_756_887_72,
+                        f64::from(i) * 1e-19,
+                    );
+                    let e = x.exp();
+                    (e.hi.to_bits(), e.lo.to_bits())
+                })
+                .collect::<Vec<_>>()
+        };
+        let fused = values();
+        super::set_fma_in_use(false);
+        let library = values();
+        super::set_fma_in_use(true);
+        assert_eq!(fused, library);
     }
 
     #[test]

@@ -15,7 +15,7 @@
 //!   ((n+1)(n+2)). It is summed with compensated Horner, and a flow of this form is kept short
 //!   enough (|k|^(1/2) tau, |c| tau <= 1/2) that [`SERIES_TERMS`] terms reach rounding.
 
-use crate::double_double::{two_product, two_sum, DoubleDouble as Dd, TWO_PI};
+use crate::double_double::{fused, two_product, two_sum, DoubleDouble as Dd, TWO_PI};
 use std::f64::consts::PI;
 
 use crate::automaton::LinearForm;
@@ -55,6 +55,7 @@ pub(crate) struct Point {
 
 /// sum c_n u^n by compensated Horner (Graillat, Langlois and Louvet 2005): as if in twice the
 /// working precision.
+#[inline(always)]
 fn compensated_horner<I>(coefficients: I, u: f64) -> Dd
 where
     I: DoubleEndedIterator<Item = f64>,
@@ -523,15 +524,7 @@ impl Flow {
         let u = self.local(t);
         match &self.form {
             Form::Series { hi, lo, terms, .. } => {
-                let n = *terms;
-                let x = compensated_horner(hi[..n].iter().copied(), u);
-                let xl = horner(&lo[..n], u);
-                let v = compensated_horner(derivative(&hi[..n]), u);
-                let vl = derivative(&lo[..n])
-                    .rev()
-                    .fold(0.0, |acc, value| acc * u + value);
-                let (q_hi, q_e) = two_sum(x.hi, self.q_eq);
-                (Dd::new(q_hi, q_e + x.lo + xl), Dd::new(v.hi, v.lo + vl))
+                series_state(&hi[..*terms], &lo[..*terms], u, self.q_eq)
             }
             Form::Oscillator(_) => {
                 let p = point();
@@ -880,19 +873,36 @@ fn trig(omega2: f64, omega: f64, u: f64) -> (f64, f64) {
     }
 }
 
-/// sin and cos of 2 pi (t + t_lo) f, f = 1/period to twice the precision. The angle is reduced to a fraction of a turn in
-/// twice the precision before the double functions see it: over a long run the rounding of
-/// 2 pi t/period itself (an ulp of the angle) would be an error of the phase of the forcing, and
-/// near resonance the steady state it moves is many times the motion.
-fn phase(t: f64, t_lo: f64, frequency: Dd) -> (f64, f64) {
-    let turns = (Dd::exact(t) + t_lo) * frequency;
-    let fraction = turns - turns.hi.round();
-    let angle = TWO_PI * fraction;
-    let (s, c) = angle.hi.sin_cos();
-    (s + c * angle.lo, c - s * angle.lo)
+fused! {
+    /// The state (q, q') at u of the series form with coefficients `hi` + `lo` (of x = q - q_eq),
+    /// compensated: the next flow's anchor.
+    fn series_state(hi: &[f64], lo: &[f64], u: f64, q_eq: f64) -> (Dd, Dd) {
+        let x = compensated_horner(hi.iter().copied(), u);
+        let xl = horner(lo, u);
+        let v = compensated_horner(derivative(hi), u);
+        let vl = derivative(lo).rev().fold(0.0, |acc, value| acc * u + value);
+        let (q_hi, q_e) = two_sum(x.hi, q_eq);
+        (Dd::new(q_hi, q_e + x.lo + xl), Dd::new(v.hi, v.lo + vl))
+    }
+}
+
+fused! {
+    /// sin and cos of 2 pi (t + t_lo) f, f = 1/period to twice the precision. The angle is
+    /// reduced to a fraction of a turn in twice the precision before the double functions see
+    /// it: over a long run the rounding of 2 pi t/period itself (an ulp of the angle) would be an
+    /// error of the phase of the forcing, and near resonance the steady state it moves is many
+    /// times the motion.
+    fn phase(t: f64, t_lo: f64, frequency: Dd) -> (f64, f64) {
+        let turns = (Dd::exact(t) + t_lo) * frequency;
+        let fraction = turns - turns.hi.round();
+        let angle = TWO_PI * fraction;
+        let (s, c) = angle.hi.sin_cos();
+        (s + c * angle.lo, c - s * angle.lo)
+    }
 }
 
 /// The coefficients i a_i of the derivative of sum a_i u^i.
+#[inline(always)]
 fn derivative(a: &[f64]) -> impl DoubleEndedIterator<Item = f64> + '_ {
     a.iter()
         .enumerate()
@@ -900,6 +910,7 @@ fn derivative(a: &[f64]) -> impl DoubleEndedIterator<Item = f64> + '_ {
         .map(|(i, &value)| i as f64 * value)
 }
 
+#[inline(always)]
 fn horner(coefficients: &[f64], u: f64) -> f64 {
     coefficients.iter().rev().fold(0.0, |acc, &c| acc * u + c)
 }

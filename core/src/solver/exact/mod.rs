@@ -776,3 +776,45 @@ impl<'a> Run<'a> {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::model::{Model, Overrides};
+
+    /// A whole run of the exact method, its history, events, energy books and error estimates,
+    /// as text that tells every double apart (wall time left out).
+    fn run_text(file: &str, duration: f64) -> String {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../models")
+            .join(file);
+        let overrides = Overrides {
+            method: Some(super::NAME.to_string()),
+            duration: Some(duration),
+            ..Overrides::default()
+        };
+        let model = Model::load(&path, &overrides).expect("the model loads");
+        let mut solution = crate::simulate::simulate(&model).expect("it solves");
+        solution.stats.wall_time_s = 0.0;
+        format!("{solution:?}")
+    }
+
+    /// The functions compiled twice (`double_double::fused`) give the same run to the bit with
+    /// the processor's fused multiply-add and without it: the paper's example (the oscillator
+    /// form, rocking, the sine's phase) and 8 s of El Centro (the series form of a record).
+    #[test]
+    fn a_run_is_the_same_with_and_without_the_processors_fma() {
+        let runs = || {
+            [
+                run_text("ichinose1986.toml", 6.0),
+                run_text("elcentro1940.toml", 8.0),
+            ]
+        };
+        let fused = runs();
+        crate::double_double::set_fma_in_use(false);
+        let library = runs();
+        crate::double_double::set_fma_in_use(true);
+        for (fused, library) in fused.iter().zip(&library) {
+            assert!(fused == library, "the runs differ");
+        }
+    }
+}
