@@ -188,8 +188,9 @@ pub fn run_to_dir_checked(
         "summary.json/statistics/wall_time_s",
         &mut solution.stats.wall_time_s,
     );
-    let mut files = vec![
-        ("history.csv", writers::history_csv(&solution.samples)),
+    // The small files are written and synced while history.csv is formatted (on every core),
+    // then history.csv and the figures; the set is put in place as one.
+    let mut small = vec![
         ("events.csv", writers::events_csv(&solution.events)),
         (
             "episodes.csv",
@@ -201,19 +202,38 @@ pub fn run_to_dir_checked(
         ),
     ];
     if let Some(check) = &check {
-        files.push(("check.json", writers::json_bytes(check)));
+        small.push(("check.json", writers::json_bytes(check)));
     }
+    small.extend(timings.file());
+    let mut order = vec![
+        "history.csv",
+        "events.csv",
+        "episodes.csv",
+        "summary.json",
+        "check.json",
+    ];
+    order.extend(crate::figures::run::FIGURES);
+    order.push("timings.json");
+    let set = writers::FileSet::begin(out_dir, &order)?;
+    let history = std::thread::scope(|scope| {
+        let staged = scope.spawn(|| set.stage_each(&small));
+        let history = writers::history_csv(&solution.samples);
+        staged
+            .join()
+            .unwrap_or_else(|e| std::panic::resume_unwind(e))
+            .map(|()| history)
+    })?;
+    set.stage("history.csv", &[&history])?;
     if plots {
         let data = crate::writers::run_dir::RunData::from_bytes(
             out_dir,
-            &files[0].1,
-            &files[1].1,
-            &files[3].1,
+            &history,
+            &small[0].1,
+            &small[2].1,
         )?;
-        files.extend(crate::figures::run::figures(&data)?);
+        set.stage_each(&crate::figures::run::figures(&data)?)?;
     }
-    files.extend(timings.file());
-    let files = writers::write_atomically(out_dir, &files)?;
+    let files = set.commit()?;
     let warnings = warnings(model, &solution);
     Ok(RunReport {
         solution,
