@@ -459,13 +459,18 @@ impl Flow {
         // in one loop; 1 / ((n+1)(n+2)) from a table (a division per term was most of the
         // flow's cost). The extra rounding, an ulp of each coefficient, lies within the
         // rounding the estimate books per term.
+        // The last two coefficients of each are carried in variables, not read back from the
+        // arrays: the recurrence is a chain, and a store read back at once lengthens each link.
         let (mut hi, mut lo) = ([0.0; SERIES_TERMS], [0.0; SERIES_TERMS]);
         (hi[0], hi[1], lo[0], lo[1]) = (x.hi, v.hi, x.lo, v.lo);
+        let (mut hi_n, mut hi_next, mut lo_n, mut lo_next) = (x.hi, v.hi, x.lo, v.lo);
         for n in 0..terms - 2 {
             let forcing = if n <= degree { f[n] } else { 0.0 };
             let (cn, pair) = (c * (n + 1) as f64, RECIPROCAL_PAIRS[n]);
-            hi[n + 2] = (forcing - k * hi[n] - cn * hi[n + 1]) * pair;
-            lo[n + 2] = (0.0 - k * lo[n] - cn * lo[n + 1]) * pair;
+            let hi_new = (forcing - k * hi_n - cn * hi_next) * pair;
+            let lo_new = (0.0 - k * lo_n - cn * lo_next) * pair;
+            (hi[n + 2], lo[n + 2]) = (hi_new, lo_new);
+            (hi_n, hi_next, lo_n, lo_next) = (hi_next, hi_new, lo_next, lo_new);
         }
         let force_bound = f[..=degree]
             .iter()
