@@ -53,23 +53,36 @@ pub(crate) struct Point {
     pub free: [f64; 2],
 }
 
-/// sum c_n u^n by compensated Horner (Graillat, Langlois and Louvet 2005): as if in twice the
-/// working precision.
-#[inline(always)]
-fn compensated_horner<I>(coefficients: I, u: f64) -> Dd
-where
-    I: DoubleEndedIterator<Item = f64>,
-{
-    let mut iter = coefficients.rev();
-    let mut s = iter.next().unwrap_or(0.0);
-    let mut correction = 0.0;
-    for c in iter {
-        let (p, pe) = two_product(s, u);
-        let (sum, se) = two_sum(p, c);
-        s = sum;
-        correction = correction * u + (pe + se);
+/// sum c_n u^n by compensated Horner (Graillat, Langlois and Louvet 2005), as if in twice the
+/// working precision: started from the highest coefficient, then stepped down through the others.
+#[derive(Clone, Copy)]
+struct CompensatedHorner {
+    sum: f64,
+    correction: f64,
+}
+
+impl CompensatedHorner {
+    #[inline(always)]
+    fn new(highest: f64) -> Self {
+        CompensatedHorner {
+            sum: highest,
+            correction: 0.0,
+        }
     }
-    Dd::new(s, correction)
+
+    /// sum u + c, with the rounding of the product and of the sum kept.
+    #[inline(always)]
+    fn step(&mut self, c: f64, u: f64) {
+        let (p, pe) = two_product(self.sum, u);
+        let (sum, se) = two_sum(p, c);
+        self.sum = sum;
+        self.correction = self.correction * u + (pe + se);
+    }
+
+    #[inline(always)]
+    fn value(self) -> Dd {
+        Dd::new(self.sum, self.correction)
+    }
 }
 
 /// What drives a flow, and how it is summed. One flow lives at a time, on the stack: the series
@@ -882,9 +895,19 @@ fused! {
     /// The state (q, q') at u of the series form with coefficients `hi` + `lo` (of x = q - q_eq),
     /// compensated: the next flow's anchor.
     fn series_state(hi: &[f64], lo: &[f64], u: f64, q_eq: f64) -> (Dd, Dd) {
-        let x = compensated_horner(hi.iter().copied(), u);
+        // x = sum hi_i u^i and v = sum i hi_i u^(i-1), each by compensated Horner's rule, in
+        // one loop so that the two chains of products run side by side.
+        let top = hi.len().saturating_sub(1);
+        let mut x = CompensatedHorner::new(hi.get(top).copied().unwrap_or(0.0));
+        let mut v = CompensatedHorner::new(if top >= 1 { top as f64 * hi[top] } else { 0.0 });
+        for i in (0..top).rev() {
+            x.step(hi[i], u);
+            if i >= 1 {
+                v.step(i as f64 * hi[i], u);
+            }
+        }
+        let (x, v) = (x.value(), v.value());
         let xl = horner(lo, u);
-        let v = compensated_horner(derivative(hi), u);
         let vl = derivative(lo).rev().fold(0.0, |acc, value| acc * u + value);
         let (q_hi, q_e) = two_sum(x.hi, q_eq);
         (Dd::new(q_hi, q_e + x.lo + xl), Dd::new(v.hi, v.lo + vl))
