@@ -718,18 +718,19 @@ impl Flow {
         let (mut force_work, mut square) = (0.0, 0.0);
         let (f, v) = (&f[..terms], &v[..terms]);
         for (i, (&fi, &vi)) in f.iter().zip(v).enumerate() {
-            let fv: f64 = v
-                .iter()
-                .zip(&RECIPROCALS[i..])
-                .map(|(&vj, &w)| vj * w)
-                .sum();
-            // v_i v_j twice for j > i, once for j = i.
-            let vv: f64 = v[i..]
-                .iter()
-                .zip(&RECIPROCALS[2 * i..])
-                .map(|(&vj, &w)| vj * w)
-                .sum();
+            // sum_j v_j / (i + j + 1) over every j (fv) and over j >= i (vv): two sums in one
+            // loop, each in the order of j from -0 (as `sum` adds), so that they run side by
+            // side.
+            let (mut fv, mut vv) = (-0.0, -0.0);
+            for (j, (&vj, &w)) in v.iter().zip(&RECIPROCALS[i..]).enumerate() {
+                let term = vj * w;
+                fv += term;
+                if j >= i {
+                    vv += term;
+                }
+            }
             force_work += fi * fv;
+            // v_i v_j twice for j > i, once for j = i.
             square += vi * (2.0 * vv - vi * RECIPROCALS[2 * i]);
         }
         // v was scaled by -h (x' = v / -h), and ds = h d sigma.
