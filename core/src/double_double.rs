@@ -457,8 +457,6 @@ mod tests {
         assert_eq!(seven_tenths.value(), 0.7);
     }
 
-    /// e^x against the product of its factors: e^(a + b) = e^a e^b for exact doubles a and b
-    /// (each found independently), and e^(ln 2 k) = 2^k; and e^x e^-x = 1, all to 1e-29.
     /// Each constant 1/n! times n is the one before it, to twice the precision (so each is
     /// right if 1/0! = 1 is), and each is normalised.
     #[test]
@@ -512,6 +510,8 @@ mod tests {
         assert_eq!(fused, library);
     }
 
+    /// e^x against the product of its factors: e^(a + b) = e^a e^b for exact doubles a and b
+    /// (each found independently), and e^(ln 2 k) = 2^k; and e^x e^-x = 1, all to 1e-29.
     #[test]
     fn exp_is_good_to_twice_the_precision() {
         let close = |a: Dd, b: Dd| ((a - b) / b).hi.abs();

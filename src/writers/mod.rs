@@ -239,12 +239,11 @@ fn write_set(
     rename: &mut dyn FnMut(&Path, &Path) -> std::io::Result<()>,
 ) -> Result<Vec<PathBuf>> {
     let names: Vec<&str> = files.iter().map(|(name, _)| *name).collect();
-    check_output_dir(dir)?;
+    let set = FileSet::begin(dir, &names)?;
+    // Every target before any file is written (staging checks each again as it writes it).
     for name in &names {
-        check_file_name(dir, name)?;
         check_target(&dir.join(name))?;
     }
-    let set = FileSet::begin(dir, &names)?;
     set.stage_each(files)?;
     set.commit_with(rename)
 }

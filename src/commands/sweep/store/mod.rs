@@ -536,20 +536,20 @@ fn read_summary(dir: &Path) -> Result<Option<SweepSummary>> {
 
 /// Writes sweep.csv, the figure and sweep.json (last) as one set ([`writers::FileSet`]) from
 /// the rows' CSV text in pieces (the chunks or shards, in order), which the caller verified
-/// against the plan (each against its points); then removes the files an earlier result in `dir` listed that this one does not
-/// write (a map of an earlier sweep beside the spectrum of this one).
+/// against the plan (each against its points); then removes the files an earlier result in
+/// `dir` listed that this one does not write (a map of an earlier sweep beside the spectrum of
+/// this one).
 fn finish(
     dir: &Path,
     plan: &Plan,
     shard: Option<Shard>,
     range: PointRange,
-    pieces: Vec<Piece>,
+    mut pieces: Vec<Piece>,
 ) -> Result<(SweepSummary, Vec<PathBuf>)> {
     let table_path = dir.join(TABLE_FILE);
     let columns = plan.columns();
     let header =
         writers::Table::new(&columns.iter().map(String::as_str).collect::<Vec<_>>()).into_bytes();
-    let mut pieces = pieces;
     let table = figure::SweepTable::of_pieces(&columns, &mut pieces, &table_path)?;
     let counts = table.counts(plan.layout())?;
     // sweep.csv is the header and the pieces' rows one after another (never joined in memory):
