@@ -601,8 +601,31 @@ proptest::proptest! {
         let shape = if symmetric { PulseShape::Symmetric } else { PulseShape::Antisymmetric };
         let floor = SinePulse::new(beta * G * slenderness, period, cycles as f64, shape);
         let duration = cycles as f64 * period + 60.0 / p;
-        let a = simulate_block(&limit_rule, &floor, duration).unwrap();
-        let b = simulate_block(&papers, &floor, duration).unwrap();
+        // A block whose restitution is near 1, under a pulse that barely lifts it, can chatter
+        // (impacts ever closer in time, a Zeno sequence) until the event budget stops its run
+        // with a message. Until the limit both rules are the same motion, so they stop alike;
+        // the papers' rule may also go on past the limit and chatter there.
+        let (a, b) = match (
+            simulate_block(&limit_rule, &floor, duration),
+            simulate_block(&papers, &floor, duration),
+        ) {
+            (Ok(a), Ok(b)) => (a, b),
+            (Err(a), Err(b)) => {
+                proptest::prop_assert_eq!(a.to_string(), b.to_string());
+                return Ok(());
+            }
+            (Ok(a), Err(flexrock_core::solver::SolverError::Failed { t, message, .. })) => {
+                proptest::prop_assert!(
+                    a.t_overturn.is_some_and(|limit| t >= limit),
+                    "the papers' rule stopped at t = {t} before the limit: {message}"
+                );
+                return Ok(());
+            }
+            (a, b) => {
+                proptest::prop_assert!(false, "one rule failed: {:?} / {:?}", a.err(), b.err());
+                unreachable!()
+            }
+        };
         let end = a.t_overturn.unwrap_or(duration);
         let before = |o: &RigidOutcome| -> Vec<(f64, RigidEventKind)> {
             o.events
