@@ -6,7 +6,12 @@ use proptest::prelude::*;
 const REFERENCE: &str = include_str!("../../models/ichinose1986.toml");
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(2000))]
+    #![proptest_config(ProptestConfig {
+        cases: 2000,
+        failure_persistence: None,
+        rng_seed: crate::common::proptest_seed(20_261_129),
+        ..ProptestConfig::default()
+    })]
 
     #[test]
     fn arbitrary_text_never_panics(text in ".{0,400}") {

@@ -8,7 +8,6 @@
 //! force nor gives energy, stuck stretches end after they begin, and the books close.
 
 use proptest::prelude::*;
-use proptest::test_runner::RngSeed;
 
 const RECORDS: [&str; 5] = [
     "A-ELC180.AT2",
@@ -97,12 +96,7 @@ proptest! {
     #![proptest_config(ProptestConfig {
         cases: 48,
         failure_persistence: None,
-        // The same cases on every machine (so that CI is not a lottery); set
-        // PROPTEST_RNG_SEED to explore others.
-        rng_seed: std::env::var("PROPTEST_RNG_SEED")
-            .ok()
-            .and_then(|s| s.parse().ok())
-            .map_or(RngSeed::Fixed(20_261_126), RngSeed::Fixed),
+        rng_seed: crate::common::proptest_seed(20_261_126),
         ..ProptestConfig::default()
     })]
 

@@ -180,3 +180,15 @@ pub fn longest<T>(stretches: &[T], span: impl Fn(&T) -> (f64, Option<f64>)) -> O
         .iter()
         .max_by(|a, b| length(a).total_cmp(&length(b)))
 }
+
+/// The seed of a property test's random cases: fixed, so that every machine (CI included) runs
+/// the same cases and a pass is not a lottery; `PROPTEST_RNG_SEED` explores others.
+pub fn proptest_seed(fixed: u64) -> proptest::test_runner::RngSeed {
+    std::env::var("PROPTEST_RNG_SEED")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .map_or(
+            proptest::test_runner::RngSeed::Fixed(fixed),
+            proptest::test_runner::RngSeed::Fixed,
+        )
+}
