@@ -545,6 +545,52 @@ fn every_closed_form_of_the_floor_is_the_floor_motion() {
     }
 }
 
+/// A flow under the Ricker wavelet re-plans at the end of each Taylor piece, where x = pi (t -
+/// tc) / Tp computed from that time can round to just below the boundary: the closed form there
+/// must be the next piece (its own expansion, within its stated bound over all of it), not the
+/// piece before carried a whole width beyond its radius. The pieces used to be carried: on the
+/// first wavelet below, the piece at x = 0.5 was the one about x = 0.35, off by 1e-12 of A
+/// near its end, 1e5 times its stated bound, which moved that run's peaks by 1.5e-14 m.
+#[test]
+fn each_taylor_piece_of_the_ricker_wavelet_is_its_own_from_its_start() {
+    use flexrock_core::excitation::{FloorMotion, Ricker};
+    for (amplitude, period, center) in [(6.0, 0.5, 0.6), (4.0, 1.0, 1.5), (-2.5, 0.37, 0.9)] {
+        let floor = Ricker {
+            amplitude,
+            period,
+            center,
+        };
+        let mut t: f64 = 0.0;
+        let mut pieces = 0;
+        while t.is_finite() && pieces < 100 {
+            let form = floor.closed_form(t);
+            assert!(
+                form.until > t,
+                "the stretch at t = {t} ends at {}",
+                form.until
+            );
+            let end = if form.until.is_finite() {
+                form.until
+            } else {
+                t + period
+            };
+            for k in 0..=64 {
+                let s = t + (end - t) * k as f64 / 64.0;
+                let difference = (form.shape.value(s) - floor.acceleration(s)).abs();
+                assert!(
+                    difference <= form.error_bound + 1e-14 * amplitude.abs(),
+                    "A = {amplitude}, Tp = {period}: the piece taken at t = {t} is off by \
+                     {difference:e} at {s} (stated bound {:e})",
+                    form.error_bound
+                );
+            }
+            t = form.until;
+            pieces += 1;
+        }
+        assert!(pieces > 30, "the wavelet has {pieces} pieces");
+    }
+}
+
 /// Each root of the paper's example (its 22 events and the extrema between them) is found in a
 /// few Newton steps. Once a step falls below half an ulp of t the double found is the root; the
 /// search used to halve the bracket from there down to two ulps, which took 1043 evaluations of

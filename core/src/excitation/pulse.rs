@@ -180,6 +180,12 @@ impl Ricker {
         self.center + x * self.period / PI
     }
 
+    /// The time at which piece `index` starts (and the one before ends), s: the tails end at
+    /// pieces 0 and 2 RICKER_TAIL / RICKER_PIECE.
+    fn boundary(&self, index: usize) -> f64 {
+        self.time_at(-RICKER_TAIL + index as f64 * RICKER_PIECE)
+    }
+
     /// The wavelet on the piece holding `t`: rest in the tails, and in between the Taylor series
     /// of degree [`MAX_DEGREE`] about the middle of a piece 0.3 wide in x.
     ///
@@ -194,9 +200,9 @@ impl Ricker {
         let tail_bound = self.amplitude.abs()
             * (2.0 * RICKER_TAIL * RICKER_TAIL - 1.0)
             * (-RICKER_TAIL * RICKER_TAIL).exp();
-        if x < -RICKER_TAIL {
+        if x < -RICKER_TAIL && self.boundary(0) > t {
             return ClosedForm {
-                until: self.time_at(-RICKER_TAIL),
+                until: self.boundary(0),
                 shape: Shape::Rest,
                 error_bound: tail_bound,
             };
@@ -209,14 +215,22 @@ impl Ricker {
             };
         }
         let pieces = (2.0 * RICKER_TAIL / RICKER_PIECE).round() as usize;
-        let index = (((x + RICKER_TAIL) / RICKER_PIECE).floor() as usize).min(pieces - 1);
-        let start = -RICKER_TAIL + index as f64 * RICKER_PIECE;
-        let mut until = self.time_at(start + RICKER_PIECE);
-        // The piece must hold t: rounding of the piece's end can put it at or before t.
-        if until <= t {
-            until = self.time_at(start + 2.0 * RICKER_PIECE);
+        let mut index = (((x + RICKER_TAIL) / RICKER_PIECE).floor() as usize).min(pieces - 1);
+        // The piece must end after t. At the end of a piece (where a flow re-plans) x computed
+        // from t can round to just below the boundary: the piece is then the next one, whose
+        // own series holds from t on (t lies within rounding of its start).
+        if self.boundary(index + 1) <= t {
+            index += 1;
+            if index == pieces {
+                return ClosedForm {
+                    until: f64::INFINITY,
+                    shape: Shape::Rest,
+                    error_bound: tail_bound,
+                };
+            }
         }
-        let x0 = start + 0.5 * RICKER_PIECE;
+        let until = self.boundary(index + 1);
+        let x0 = -RICKER_TAIL + (index as f64 + 0.5) * RICKER_PIECE;
         let origin = self.time_at(x0);
         // h_n = H_n(x0)/n! up to n = MAX_DEGREE + 2.
         let mut h = [0.0; MAX_DEGREE + 3];
