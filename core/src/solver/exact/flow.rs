@@ -670,6 +670,12 @@ impl Flow {
             terms += 1;
             tail *= rho * RECIPROCALS[terms - 1];
         }
+        // A polynomial forcing's every coefficient enters (those of x up to its degree + 2): the
+        // bound above follows the free motion's rates, and a polynomial can change faster (the
+        // Ricker wavelet's pieces of degree 18 under a slow rocking motion).
+        if let Form::Series { degree, .. } = &self.form {
+            terms = terms.max((degree + 2).min(WORK_TERMS));
+        }
         // The forcing's Taylor coefficients about the end, scaled by (-h)^n.
         let mut f = [0.0; WORK_TERMS];
         match &self.form {
