@@ -174,10 +174,14 @@ fn a_grazing_uplift_a_billionth_above_the_threshold_is_found() {
 /// The references of validation/exact/: for each case the exact method gives the same event
 /// sequence; every event time within 1e-13 s and every peak within 1e-13 m of the 40-digit
 /// evaluation, and each run's own error estimate at least its true error. The consistent
-/// self-weight variant's constants come from a Ritz solution good to about 1e-11, so its results
-/// are held to 1e-8 (and to their estimate). The cases include a long chain of shallow uplifts of
-/// a near-rigid body (free-rocking-stiff, 267 events) and uplifts right after a slow approach to
-/// s_n under a sine near resonance (harmonic-uplifts), where a state's rounding is most amplified.
+/// self-weight variant's constants come from a Ritz solution good to about 1e-11, and the
+/// ill-conditioned cases (`ill-*`: an uplift that grazes s_n by 8e-11 m, a landing at 3e-5 m/s)
+/// move picoseconds for a rounding of q by a few ulps, so these are held to 1e-8 and to their
+/// estimate. The cases include a long chain of shallow uplifts of a near-rigid body
+/// (free-rocking-stiff, 267 events), uplifts right after a slow approach to s_n under a sine
+/// near resonance (harmonic-uplifts), where a state's rounding is most amplified, and a narrow
+/// Ricker wavelet under a near-rigid body (ricker-narrow-stiff), whose later events carry the
+/// errors of the earlier ones.
 #[test]
 fn the_multiprecision_references_to_1e_13() {
     let dir = common::workspace_file("validation/exact/reference");
@@ -200,11 +204,8 @@ fn the_multiprecision_references_to_1e_13() {
         let peaks: serde_json::Value =
             serde_json::from_str(&std::fs::read_to_string(case.join("peaks.json")).unwrap())
                 .unwrap();
-        let tolerance: f64 = if name.contains("consistent") {
-            1e-8
-        } else {
-            1e-13
-        };
+        let to_estimate = name.contains("consistent") || name.starts_with("ill-");
+        let tolerance: f64 = if to_estimate { 1e-8 } else { 1e-13 };
         assert_eq!(sol.events.len(), reference.len(), "{name}");
         for ((event, (t, kind, to)), error) in
             sol.events.iter().zip(&reference).zip(&estimate.event_time)
@@ -212,9 +213,9 @@ fn the_multiprecision_references_to_1e_13() {
             assert_eq!(event.kind.name(), kind, "{name}");
             assert_eq!(event.to.name(), to, "{name}");
             let true_error = (event.t - t).abs();
-            // The paper's variant to 1e-13 s whatever the estimate; the consistent one to its
-            // estimate where that is larger.
-            let limit = if name.contains("consistent") {
+            // The paper's variant to 1e-13 s whatever the estimate; the consistent one and the
+            // ill-conditioned cases to their estimate where that is larger.
+            let limit = if to_estimate {
                 tolerance.max(*error)
             } else {
                 tolerance
@@ -262,10 +263,9 @@ fn the_multiprecision_references_to_1e_13() {
         );
         cases += 1;
     }
-    assert!(cases >= 15, "{cases} cases");
+    assert!(cases >= 19, "{cases} cases");
 }
 
-/// (t, kind, to) of each row of a reference events.csv.
 /// The energy books of the exact method close: on every case of the multiprecision references
 /// (sines, pulses, the ramp's cubic, a Ricker wavelet, a record, free motion, grazing), the
 /// energy at each sample equals the initial energy plus the floor's work minus the damping's
@@ -300,6 +300,7 @@ fn the_energy_books_close_to_1e_13_on_every_reference_case() {
     assert!(cases >= 10, "only {cases} reference cases");
 }
 
+/// (t, kind, to) of each row of a reference events.csv.
 fn read_events(path: &std::path::Path) -> Vec<(f64, String, String)> {
     let text = std::fs::read_to_string(path).expect("reference events");
     let mut lines = text.lines();

@@ -752,6 +752,12 @@ impl Flow {
         }
     }
 
+    /// Whether the flow's points give their free motion apart ([`Point::free`]): the oscillator
+    /// form does, the series form sums the free and the forced motion as one.
+    pub fn splits_free_motion(&self) -> bool {
+        matches!(self.form, Form::Oscillator(_))
+    }
+
     /// The mode's q_eq.
     pub fn equilibrium(&self) -> f64 {
         self.q_eq

@@ -22,11 +22,16 @@
 //! and decaying exponentials, whose terms do not cancel when the body barely lifts off); the
 //! mode's coefficients are the constants rounded once from twice the precision; and a sine's
 //! phase is reduced to a fraction of a turn in twice the precision. The solver
-//! books a first-order estimate of its own error: the rounding of every term summed and of every
-//! phase formed, carried through the flows in the energy norm (it cannot grow faster than the
-//! mode's largest rate) and through the resets, and turned into an error of each event time
-//! (the error of q over |q'|) and of each peak (of q, and of its time, the error of q' over
-//! |q''|). The estimate also covers a relative error of a few ulps in the model's constants.
+//! books a first-order estimate of its own error. Locally, within each flow: the rounding of
+//! every term summed and of every phase formed since the flow's anchor (growing with the flow's
+//! rates), and the stated error of the floor's closed form, turned into an error of each event
+//! time (the error of q over |q'|) and of each peak (of q, and of its time, the error of q'
+//! over |q''|). Carried: the local errors of the earlier events' times, added as a random walk,
+//! are added to every later event's and peak's time, as the shift of time they are in free
+//! motion (and to a peak's value, times the largest speed met). And measured: the spread of two
+//! runs whose constants and initial state are moved by a few ulps (see [`solve`]), which
+//! carries a relative error of a few ulps in the model's constants through the whole run,
+//! grazing events and their amplification included.
 //!
 //! Energy books: the input and damping work are integrated along each flow on pieces short
 //! against the flow's rates (one per sample of the history), each from the Taylor series of the
@@ -223,6 +228,15 @@ pub(crate) struct Run<'a> {
     /// |q| at the peak of the rocking episode under way.
     episode_peak: f64,
     event_errors: Vec<f64>,
+    /// The local estimates of the earlier events' times, added as a random walk (the root of the
+    /// sum of their squares), s: an error of an event's time is carried by the motion after it
+    /// (in free motion exactly, as a shift of time), so every later event and peak time books
+    /// it too. The rounding of separate events has independent signs, and each local estimate
+    /// is already a generous multiple of its rounding.
+    carried: f64,
+    /// The largest |q'| the run has met (at its samples and events), m/s: a shift of time dt
+    /// moves q by at most that times dt.
+    speed: f64,
     peak_errors: PeakErrors,
     flows: usize,
     evaluations: usize,
@@ -302,6 +316,8 @@ impl<'a> Run<'a> {
             min_q: initial.q,
             episode_peak: initial.q.abs(),
             event_errors: Vec::new(),
+            carried: 0.0,
+            speed: initial.qdot.abs(),
             peak_errors: PeakErrors::default(),
             flows: 0,
             evaluations: 0,
@@ -597,8 +613,19 @@ impl<'a> Run<'a> {
         } else {
             0.0
         };
-        let t_error = t_error + 2.0 * scan::ulp(p.t);
-        let error_q = error_q + 4.0 * f64::EPSILON * (p.q.abs() + flow.equilibrium().abs());
+        // The earlier events' errors, carried as a shift of time of the free part of the motion
+        // (the forced part keeps the floor's time): of the peak's time, and of its value by the
+        // free part's speed times that shift (at a peak of q the forced part's speed; nothing in
+        // free motion). The series form does not split the two: there the largest speed met.
+        let free_speed = if flow.splits_free_motion() {
+            p.free[1].abs()
+        } else {
+            self.speed
+        };
+        let t_error = t_error + 2.0 * scan::ulp(p.t) + self.carried;
+        let error_q = error_q
+            + 4.0 * f64::EPSILON * (p.q.abs() + flow.equilibrium().abs())
+            + free_speed.max(p.v.abs()) * self.carried;
         (error_q, t_error)
     }
 
@@ -618,6 +645,7 @@ impl<'a> Run<'a> {
             }
             let (p, force) = flow.point_with_force(t);
             self.advance_work_to(flow, &p, force);
+            self.speed = self.speed.max(p.v.abs());
             self.recorder.sample(
                 t,
                 self.mode,
@@ -734,7 +762,10 @@ impl<'a> Run<'a> {
             // The transverse error of q becomes an error of the time q reaches the guard.
             let crossing_time =
                 (error_q + ESTIMATE_SAFETY * level_error) / speed + 2.0 * scan::ulp(p.t);
-            self.event_errors.push(crossing_time);
+            // The earlier events' shift of time.
+            self.speed = self.speed.max(p.v.abs());
+            self.event_errors.push(crossing_time + self.carried);
+            self.carried = self.carried.hypot(crossing_time);
         }
         self.advance_work(flow, p.t);
         // The crossing lies between doubles: the rest of it, from q at the double found. Taken
