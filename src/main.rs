@@ -450,8 +450,9 @@ fn run_row(
         Err(flexrock_core::Error::invalid(
             flag,
             value,
-            "not an option of a row model: a row is solved by the exact method, and --check, \
-             --set and the solver flags do not apply to it",
+            "not an option of a row model: a row's method is its model file's (the exact \
+             method under the impact law, tsit45 with its rtol and atol under the compliant \
+             law), and --check, --set and the solver flags do not apply to it",
         )
         .into())
     };

@@ -434,6 +434,21 @@ fn solver_flags_are_refused_for_a_row() {
         assert!(stderr.contains(expected), "{flags:?}: {stderr}");
         assert!(!out.exists(), "{flags:?} left output");
     }
+    // The message says which method a row has, for either contact law (a compliant row is
+    // solved by tsit45, not by the exact method).
+    let o = run(
+        &repo("models/row-compliant.toml"),
+        &dir.join("compliant"),
+        &["--method", "exact"],
+    );
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains("--method = exact")
+            && stderr.contains("the exact method under the impact law")
+            && stderr.contains("tsit45 with its rtol and atol under the compliant law"),
+        "{stderr}"
+    );
     // --duration applies, and is checked as the flag.
     let o = run(&model, &dir.join("short"), &["--duration", "1.5"]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
