@@ -40,10 +40,10 @@ pub(crate) enum Command {
         #[arg(long)]
         out: Option<PathBuf>,
         /// Relative tolerance (overrides solver.rtol).
-        #[arg(long)]
+        #[arg(long, allow_negative_numbers = true)]
         rtol: Option<f64>,
         /// Absolute tolerance (overrides solver.atol).
-        #[arg(long)]
+        #[arg(long, allow_negative_numbers = true)]
         atol: Option<f64>,
         /// Integration method: exact (closed form, the default), bdf (implicit, the default of a
         /// [solver] section that gives rtol or atol), esdirk34, tr-bdf2 (implicit), tsit45
@@ -52,13 +52,13 @@ pub(crate) enum Command {
         #[arg(long)]
         method: Option<String>,
         /// Newmark time step, s (overrides solver.dt; needs method newmark).
-        #[arg(long)]
+        #[arg(long, allow_negative_numbers = true)]
         dt: Option<f64>,
         /// Newmark variant at events: compensate or substep (overrides solver.newmark_variant).
         #[arg(long)]
         variant: Option<String>,
         /// Simulated time, s (overrides simulation.duration).
-        #[arg(long)]
+        #[arg(long, allow_negative_numbers = true)]
         duration: Option<f64>,
         #[command(flatten)]
         set: SetArgs,
@@ -151,17 +151,17 @@ pub(crate) enum Command {
         #[arg(long)]
         out: Option<PathBuf>,
         /// Newmark time step, s [default: the file's solver.dt, else 0.02].
-        #[arg(long)]
+        #[arg(long, allow_negative_numbers = true)]
         dt: Option<f64>,
         /// Newmark variant at events: compensate or substep [default: the file's, else compensate].
         #[arg(long)]
         variant: Option<String>,
         /// Relative tolerance of an adaptive reference (the file's adaptive method, BDF when it
         /// names another) [default: none, the reference is the exact solution].
-        #[arg(long)]
+        #[arg(long, allow_negative_numbers = true)]
         reference_rtol: Option<f64>,
         /// Simulated time, s (overrides simulation.duration).
-        #[arg(long)]
+        #[arg(long, allow_negative_numbers = true)]
         duration: Option<f64>,
         #[command(flatten)]
         set: SetArgs,
@@ -184,10 +184,10 @@ pub(crate) enum Command {
         rtol: Vec<f64>,
         /// Relative tolerance of an adaptive reference (the file's adaptive method, BDF when it
         /// names another) [default: none, the reference is the exact solution].
-        #[arg(long)]
+        #[arg(long, allow_negative_numbers = true)]
         reference_rtol: Option<f64>,
         /// Simulated time, s (overrides simulation.duration).
-        #[arg(long)]
+        #[arg(long, allow_negative_numbers = true)]
         duration: Option<f64>,
         #[command(flatten)]
         set: SetArgs,
@@ -234,7 +234,7 @@ pub(crate) enum Command {
         #[arg(long)]
         scheme: Option<String>,
         /// Time step, s (overrides fem.dt).
-        #[arg(long)]
+        #[arg(long, allow_negative_numbers = true)]
         dt: Option<f64>,
         /// Also solve the SDOF model and compare the two (table, compare.csv, figures).
         #[arg(long, conflicts_with_all = ["modes", "pushover"])]
@@ -337,7 +337,7 @@ pub(crate) struct SweepArgs {
     #[arg(long)]
     pub(crate) scan: Option<usize>,
     /// Width of the final bracket of --find-min, in KEY's units [default: (HI - LO)/1e4].
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub(crate) tol: Option<f64>,
     /// The equation of Housner's rigid block searched beside the body by --find-min: the
     /// small-angle (linearised) one, or the full one [default: small-angle]. A full-form sweep's
@@ -451,7 +451,7 @@ pub(crate) struct RecordOptions {
     #[arg(long)]
     pub(crate) units: Option<String>,
     /// Sampling interval of a one-column CSV file, s.
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub(crate) dt: Option<f64>,
 }
 

@@ -312,6 +312,21 @@ fn command_line_overrides_are_checked_too() {
     assert_eq!(o.status.code(), Some(2));
     assert_mentions(&String::from_utf8_lossy(&o.stderr), &["solver.rtol", "-1"]);
     assert!(!out.exists());
+    // A negative number after a space is the flag's value, checked by its rule, not an unknown
+    // flag of its own.
+    for (flag, words) in [
+        (
+            "--duration",
+            &["--duration", "simulation.duration", "-1", "greater than 0"][..],
+        ),
+        ("--dt", &["solver.dt", "-1"][..]),
+        ("--atol", &["solver.atol", "-1"][..]),
+    ] {
+        let o = common::run_reference(&out, &[flag, "-1"]);
+        assert_eq!(o.status.code(), Some(2), "{flag}");
+        assert_mentions(&String::from_utf8_lossy(&o.stderr), words);
+        assert!(!out.exists(), "{flag}");
+    }
 }
 
 #[test]
