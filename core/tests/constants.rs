@@ -178,4 +178,7 @@ fn paper_ramp_coefficients() {
     let before = ramp.acceleration(0.412 - 1e-12);
     let after = 5.0 * (2.0 * std::f64::consts::PI * 0.412).sin();
     assert!((before - after).abs() < 1e-8);
+    // The floor starts at rest: 0, not the -0 that c1 < 0 times 0 is (tables print "-0").
+    let start = ramp.acceleration(0.0);
+    assert!(start == 0.0 && start.is_sign_positive(), "a(0) = {start}");
 }

@@ -166,7 +166,9 @@ impl FloorMotion for PaperSine {
     fn acceleration(&self, t: f64) -> f64 {
         if t < self.ramp {
             let [c1, c2, c3] = self.ramp_coefficients;
-            t * (c1 + t * (c2 + t * c3))
+            // + 0 leaves every value as it is but the start's: with c1 < 0, 0 times it is -0,
+            // which the tables would print as "-0".
+            t * (c1 + t * (c2 + t * c3)) + 0.0
         } else {
             self.amplitude * (2.0 * PI * t / self.period).sin()
         }
