@@ -82,6 +82,10 @@ fn props_prints_table_and_json() {
     let table = String::from_utf8_lossy(&o.stdout);
     assert!(table.contains("uplift displacement s_n"));
     assert!(table.contains("0.152365"));
+    assert!(
+        table.lines().all(|line| line == line.trim_end()),
+        "a line of the table ends in spaces"
+    );
     let o = flexrock(&["props", reference_model().to_str().unwrap(), "--json"]);
     let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     let t = v["constants"]["period"].as_f64().unwrap();

@@ -23,7 +23,8 @@ pub fn properties_table(model: &Model) -> String {
     let c = &model.constants;
     let mut t = String::new();
     let mut row = |name: &str, value: String, unit: &str, note: &str| {
-        let _ = writeln!(t, "  {name:<34} {value:>14} {unit:<7} {note}");
+        let line = format!("  {name:<34} {value:>14} {unit:<7} {note}");
+        let _ = writeln!(t, "{}", line.trim_end());
     };
     row("height H", fmt(b.height), "m", "");
     row("width B", fmt(b.width), "m", "");
