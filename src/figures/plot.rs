@@ -107,6 +107,9 @@ pub struct Panel {
     pub legend: Legend,
     /// Same length per unit on both axes (drawings of shapes).
     pub equal_aspect: bool,
+    /// A margin at both ends of the x axis, as the y axis has (a curve that is not a history in
+    /// time, whose ends would otherwise touch the frame).
+    pub pad_x: bool,
     /// Horizontal lines drawn in grey (e.g. +-s_n), with their legend text (empty: none).
     pub reference_lines: Vec<(f64, String)>,
     /// Horizontal dashed lines in dark grey (e.g. the overturning limit +-B), with their legend
@@ -597,7 +600,7 @@ fn axis_ranges(
         let span = if hi > lo { hi - lo } else { lo.abs().max(1.0) };
         (lo - fraction * span, hi + fraction * span)
     };
-    let (mut x0, mut x1) = if panel.log_x || panel.equal_aspect {
+    let (mut x0, mut x1) = if panel.log_x || panel.equal_aspect || panel.pad_x {
         pad(x0, x1, 0.03)
     } else {
         (x0, x1)

@@ -6,7 +6,7 @@
 //! - `plot_force.svg`: the model's restoring force F(q) over [-B, B] with the run's path on it
 //!   (Fig. 3); q against r (Fig. 12); s against r (Fig. 13);
 //! - `plot_energy.svg`: the energy books against t (kinetic, potential, their sum, input work,
-//!   damping work, energy lost at events); the energy residual over the run's energy scale.
+//!   damping work, net energy lost at events); the energy residual over the run's energy scale.
 //!
 //! The model's curves (F(q), V(q), Me q'^2/2, the energy jumps at events) come from the
 //! [`Automaton`] rebuilt from the constants in summary.json: no formula of the model is written
@@ -368,14 +368,16 @@ pub fn force_panels(data: &RunData, automaton: &Automaton) -> Vec<Panel> {
         .with(Series::line("model F(q)", restoring_force_curve(automaton), 0).with_width(1));
     // F has the sign of q: the upper left quarter is empty.
     force.legend = Legend::UpperLeft;
-    let q_r = Panel::new("Top displacement against rocking part", "r (m)", "q (m)")
+    let mut q_r = Panel::new("Top displacement against rocking part", "r (m)", "q (m)")
         .with(Series::line("", series(h, |r| (r.r, r.q)), 0));
-    let s_r = Panel::new("Flexural part against rocking part", "r (m)", "s (m)")
+    let mut s_r = Panel::new("Flexural part against rocking part", "r (m)", "s (m)")
         .with(Series::line("", series(h, |r| (r.r, r.s)), 0));
+    q_r.pad_x = true;
+    s_r.pad_x = true;
     vec![force, q_r, s_r]
 }
 
-/// The energy lost at events up to each event, J: minus the sum of the jumps of
+/// The net energy lost at events up to each event, J: minus the sum of the jumps of
 /// Me q'^2/2 + V(q) at them, as a step curve from the first to the last time of the history.
 pub fn energy_lost_at_events(data: &RunData, automaton: &Automaton) -> Vec<(f64, f64)> {
     let (t0, t1) = match (data.history.first(), data.history.last()) {
@@ -421,7 +423,7 @@ pub fn energy_panels(data: &RunData, automaton: &Automaton) -> Vec<Panel> {
             4,
         ))
         .with(curve(
-            "lost at events",
+            "net loss at events",
             energy_lost_at_events(data, automaton),
             5,
         ));
