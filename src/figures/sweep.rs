@@ -739,6 +739,11 @@ fn spectrum(plan: &Plan, table: &SweepTable, x: usize) -> Result<Vec<u8>> {
     let limit_scaled_column = table.column("rigid_limit_amplitude_over_g_tan_alpha")?;
     let mut limit_physical = Vec::new();
     let mut limit_scaled = Vec::new();
+    // Points solved without overturning up to HI: marked at HI, so that the figure does not
+    // leave them out silently (dimensionless where a rigid block's columns give g tan alpha).
+    let status_column = table.column("status")?;
+    let mut stands_physical = Vec::new();
+    let mut stands_scaled = Vec::new();
     for (r, row) in table.rows.iter().enumerate() {
         let point: usize = row[0].parse().unwrap_or(0);
         let Some(xv) = axis.number(plan.coordinates(point)[x]) else {
@@ -751,6 +756,17 @@ fn spectrum(plan: &Plan, table: &SweepTable, x: usize) -> Result<Vec<u8>> {
             physical.push((xv, min));
             if let Some(s) = table.number(r, y_scaled_column) {
                 scaled.push((xs, s));
+            }
+        } else if &row[status_column] == "ok" {
+            stands_physical.push((xv, find.hi));
+            let g_tan_alpha = [
+                (rigid_column, rigid_scaled_column),
+                (limit_column, limit_scaled_column),
+            ]
+            .into_iter()
+            .find_map(|(value, scaled)| Some(table.number(r, value)? / table.number(r, scaled)?));
+            if let Some(g_tan_alpha) = g_tan_alpha.filter(|v| v.is_finite() && *v > 0.0) {
+                stands_scaled.push((xs, find.hi / g_tan_alpha));
             }
         }
         for (column, points, x) in [
@@ -772,9 +788,15 @@ fn spectrum(plan: &Plan, table: &SweepTable, x: usize) -> Result<Vec<u8>> {
         &mut rigid_scaled,
         &mut limit_physical,
         &mut limit_scaled,
+        &mut stands_physical,
+        &mut stands_scaled,
     ] {
         sort(v);
     }
+    let stands = format!(
+        "elastic body stands up to {}",
+        crate::writers::significant(find.hi, 4)
+    );
     let housner = housner_label(&find.housner());
     let limit = format!(
         "rigid limit ({:.3} g B/H)",
@@ -782,16 +804,22 @@ fn spectrum(plan: &Plan, table: &SweepTable, x: usize) -> Result<Vec<u8>> {
     );
     // The two rigid curves nearly coincide: Housner's wide and solid underneath, the rigid
     // limit dashed on top of it, so that both show.
-    let curves =
-        |elastic: Vec<(f64, f64)>, rigid: Vec<(f64, f64)>, limit_curve: Vec<(f64, f64)>| {
-            vec![
-                Series::line(&housner, rigid, 1).with_width(4),
-                Series::line(&limit, limit_curve, 5).with_width(2).dashed(),
-                Series::line("elastic body", elastic, 2)
-                    .with_width(2)
-                    .with_markers(),
-            ]
-        };
+    let curves = |elastic: Vec<(f64, f64)>,
+                  rigid: Vec<(f64, f64)>,
+                  limit_curve: Vec<(f64, f64)>,
+                  standing: Vec<(f64, f64)>| {
+        let mut series = vec![
+            Series::line(&housner, rigid, 1).with_width(4),
+            Series::line(&limit, limit_curve, 5).with_width(2).dashed(),
+            Series::line("elastic body", elastic, 2)
+                .with_width(2)
+                .with_markers(),
+        ];
+        if !standing.is_empty() {
+            series.push(Series::markers(&stands, standing, 2, Marker::TriangleUp));
+        }
+        series
+    };
     let quantity = match find.key.as_str() {
         "excitation.amplitude" => "amplitude",
         "excitation.scale" => "scale factor",
@@ -799,13 +827,13 @@ fn spectrum(plan: &Plan, table: &SweepTable, x: usize) -> Result<Vec<u8>> {
     };
     let title = format!("Smallest overturning {quantity}");
     let mut left = Panel::new(&title, &axis_label(&axis.key), &axis_label(&find.key));
-    left.series = curves(physical, rigid_physical, limit_physical);
+    left.series = curves(physical, rigid_physical, limit_physical, stands_physical);
     left.legend = Legend::Outside;
     let mut panels = vec![left];
     if let Some((_, x_label)) = dx {
         let y_label = dimensionless(&find.key).map_or("a_p / (g tan α)", |d| d.1);
         let mut right = Panel::new(&format!("{title}, dimensionless"), x_label, y_label);
-        right.series = curves(scaled, rigid_scaled, limit_scaled);
+        right.series = curves(scaled, rigid_scaled, limit_scaled, stands_scaled);
         right.legend = Legend::Outside;
         panels.push(right);
     }
