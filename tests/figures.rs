@@ -384,6 +384,38 @@ fn the_housner_curve_shows_beside_the_rigid_limit_in_the_spectrum() {
     assert!(!svg.contains("alpha") && !svg.contains("omega"));
 }
 
+/// A period at which nothing overturns up to HI (0.2 s, as in the tutorial's spectrum) is marked
+/// at HI rather than left out of the figure without a word; a spectrum where every period
+/// overturns has no such entry.
+#[test]
+fn the_spectrum_marks_the_periods_that_stand_up_to_hi() {
+    let spectrum = |name: &str, periods: &str| {
+        let out = scratch_dir(name).join("spectrum");
+        run_ok(&[
+            "sweep",
+            repo("models/pulse-map.toml").to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+            "--vary",
+            &format!("excitation.period={periods}"),
+            "--find-min",
+            "excitation.amplitude=0.5:15",
+            "--quiet",
+        ]);
+        read(&out.join("spectrum.svg"))
+    };
+    let svg = spectrum("figures-spectrum-stands", "0.2,0.8");
+    assert!(
+        svg.contains("elastic body stands up to 15"),
+        "no entry for 0.2 s"
+    );
+    let svg = spectrum("figures-spectrum-all", "0.8,1.2");
+    assert!(
+        !svg.contains("stands up to"),
+        "an entry where every period overturns"
+    );
+}
+
 #[test]
 fn map_labels_are_quantities_and_the_colour_bar_is_labelled() {
     let out = scratch_dir("figures-map").join("map");

@@ -81,7 +81,7 @@ fn assert_figures(dir: &Path) {
             "potential V(q)",
             "input work",
             "damping work",
-            "lost at events",
+            "net loss at events",
             "Energy residual",
             "ΔE / E_s",
         ],
