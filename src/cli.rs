@@ -197,12 +197,16 @@ pub(crate) enum Command {
     /// Assemble the validation report (markdown) from the output directories of compare (both
     /// variants), converge and a run of the rigid-limit model.
     Report {
+        /// Output directory of `flexrock compare` with the compensate variant.
         #[arg(long)]
         compare_compensate: PathBuf,
+        /// Output directory of `flexrock compare` with the substep variant.
         #[arg(long)]
         compare_substep: PathBuf,
+        /// Output directory of `flexrock converge`.
         #[arg(long)]
         converge: PathBuf,
+        /// Output directory of `flexrock run` on the rigid-limit model.
         #[arg(long)]
         rigid: PathBuf,
         /// Directory of the figures, as the report links them (relative to the report).
@@ -386,6 +390,7 @@ pub(crate) enum SweepCommand {
     /// shard-K-of-N directories) into one, exactly as one process writes it; refuses gaps,
     /// overlaps and shards of different sweeps.
     Merge {
+        /// Directories of shards, or directories holding shard-K-of-N directories.
         #[arg(required = true)]
         dirs: Vec<PathBuf>,
         /// Output directory.
@@ -426,12 +431,14 @@ impl SetArgs {
 pub(crate) enum RecordCommand {
     /// Print what the reader understood: header, points, dt, duration, PGA and its time.
     Info {
+        /// The record file (PEER AT2 or CSV).
         file: PathBuf,
         #[command(flatten)]
         options: RecordOptions,
     },
     /// Convert to CSV with columns t,acc_m_s2 (to standard output, or --out FILE).
     Csv {
+        /// The record file (PEER AT2 or CSV).
         file: PathBuf,
         #[command(flatten)]
         options: RecordOptions,
