@@ -491,3 +491,28 @@ fn events_of_a_run_without_events_says_so() {
     assert!(!svg.contains("uplift ("));
     assert!(svg.contains("Top velocity"));
 }
+
+/// `flexrock plot` on a row's output says that it is a row's, and how a row's figures are drawn,
+/// rather than naming a single body's key that a row's summary lacks.
+#[test]
+fn plot_on_a_row_s_output_says_it_is_a_row_s() {
+    let dir = scratch_dir("plot-cli-row").join("row");
+    let o = flexrock(&[
+        "run",
+        common::repo("models/row-pair.toml").to_str().unwrap(),
+        "--out",
+        dir.to_str().unwrap(),
+        "--duration",
+        "1",
+    ]);
+    assert!(o.status.success(), "{}", stderr_of(&o));
+    let before = file_names(&dir);
+    let o = flexrock(&["plot", dir.to_str().unwrap()]);
+    let stderr = stderr_of(&o);
+    assert_eq!(o.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains("row of columns") && stderr.contains("flexrock run --plot"),
+        "{stderr}"
+    );
+    assert_eq!(file_names(&dir), before, "files were written or removed");
+}

@@ -394,6 +394,15 @@ fn parse_summary(bytes: &[u8], path: &Path) -> Result<RunSummaryFile> {
             "not a JSON object; expected the summary that `flexrock run` writes".to_string(),
         ));
     };
+    if map.contains_key("row") && map.contains_key("columns") {
+        return Err(fail(
+            path,
+            "the summary of a row of columns (history-K.csv for column K): `flexrock run \
+             --plot` draws a row's figures as it runs it; `flexrock plot` draws a single \
+             body's run"
+                .to_string(),
+        ));
+    }
     fn key<T: DeserializeOwned>(
         map: &serde_json::Map<String, serde_json::Value>,
         path: &Path,
