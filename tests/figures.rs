@@ -341,25 +341,35 @@ fn visible_share(under: &[Stroke], over: &[Stroke]) -> f64 {
     seen as f64 / all.max(1) as f64
 }
 
-#[test]
-fn the_housner_curve_shows_beside_the_rigid_limit_in_the_spectrum() {
-    let out = scratch_dir("figures-spectrum").join("spectrum");
-    run_ok(&[
+/// spectrum.svg of the pulse map's smallest overturning amplitude up to 15 m/s^2 at `periods`
+/// (comma-separated, s), with `extra` flags, in a scratch directory `name`.
+fn spectrum_svg(name: &str, periods: &str, extra: &[&str]) -> String {
+    let out = scratch_dir(name).join("spectrum");
+    let model = repo("models/pulse-map.toml");
+    let vary = format!("excitation.period={periods}");
+    let mut args = vec![
         "sweep",
-        repo("models/pulse-map.toml").to_str().unwrap(),
+        model.to_str().unwrap(),
         "--out",
         out.to_str().unwrap(),
         "--vary",
-        "excitation.period=0.5,0.8,1.2,2",
+        &vary,
         "--find-min",
         "excitation.amplitude=0.5:15",
-        "--scan",
-        "30",
-        "--tol",
-        "0.001",
         "--quiet",
-    ]);
-    let svg = read(&out.join("spectrum.svg"));
+    ];
+    args.extend_from_slice(extra);
+    run_ok(&args);
+    read(&out.join("spectrum.svg"))
+}
+
+#[test]
+fn the_housner_curve_shows_beside_the_rigid_limit_in_the_spectrum() {
+    let svg = spectrum_svg(
+        "figures-spectrum",
+        "0.5,0.8,1.2,2",
+        &["--scan", "30", "--tol", "0.001"],
+    );
     let elements = parse_svg(&svg);
     let (housner, legend_left) = legend_colour(&elements, "Housner");
     let (limit, _) = legend_colour(&elements, "rigid limit");
@@ -389,27 +399,12 @@ fn the_housner_curve_shows_beside_the_rigid_limit_in_the_spectrum() {
 /// overturns has no such entry.
 #[test]
 fn the_spectrum_marks_the_periods_that_stand_up_to_hi() {
-    let spectrum = |name: &str, periods: &str| {
-        let out = scratch_dir(name).join("spectrum");
-        run_ok(&[
-            "sweep",
-            repo("models/pulse-map.toml").to_str().unwrap(),
-            "--out",
-            out.to_str().unwrap(),
-            "--vary",
-            &format!("excitation.period={periods}"),
-            "--find-min",
-            "excitation.amplitude=0.5:15",
-            "--quiet",
-        ]);
-        read(&out.join("spectrum.svg"))
-    };
-    let svg = spectrum("figures-spectrum-stands", "0.2,0.8");
+    let svg = spectrum_svg("figures-spectrum-stands", "0.2,0.8", &[]);
     assert!(
         svg.contains("elastic body stands up to 15"),
         "no entry for 0.2 s"
     );
-    let svg = spectrum("figures-spectrum-all", "0.8,1.2");
+    let svg = spectrum_svg("figures-spectrum-all", "0.8,1.2", &[]);
     assert!(
         !svg.contains("stands up to"),
         "an entry where every period overturns"
