@@ -592,6 +592,33 @@ fn each_taylor_piece_of_the_ricker_wavelet_is_its_own_from_its_start() {
     }
 }
 
+/// A run that starts at rest away from 0 has its smallest q at t = 0, before any flow: the
+/// estimate of that peak is not zero (the initial q is the file's decimal rounded to a double,
+/// and an independent solver finds t = 0 as a root of q' only to its own rounding), as every
+/// other entry of the estimate is not.
+#[test]
+fn a_peak_at_the_initial_state_has_an_error_estimate() {
+    let model = Model::from_toml_str(
+        "[body]\nheight = 4.0\nwidth = 0.7\ndensity = 600.0\nyoungs_modulus = 5.0e6\n\
+         [excitation]\nkind = \"free\"\n[simulation]\nduration = 3.0\nq0 = -0.55\n\
+         [solver]\nmethod = \"exact\"\n",
+        &Overrides::default(),
+    )
+    .expect("the model reads");
+    let sol = flexrock_core::simulate::simulate(&model).expect("solves");
+    assert_eq!(sol.min_q.t, 0.0, "the smallest q is the initial one");
+    let e = sol.rounding.as_ref().expect("an estimate");
+    for (name, value) in [
+        ("max_q", e.max_q),
+        ("t_max_q", e.t_max_q),
+        ("min_q", e.min_q),
+        ("t_min_q", e.t_min_q),
+    ] {
+        assert!(value > 1e-30, "{name} estimate {value:e}");
+    }
+    assert!(e.event_time.iter().all(|&x| x > 0.0));
+}
+
 /// Each root of the paper's example (its 22 events and the extrema between them) is found in a
 /// few Newton steps. Once a step falls below half an ulp of t the double found is the root; the
 /// search used to halve the bracket from there down to two ulps, which took 1043 evaluations of

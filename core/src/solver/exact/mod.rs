@@ -274,6 +274,21 @@ impl Planned {
     }
 }
 
+impl PeakErrors {
+    /// The errors of the initial state as a peak: its q is the file's number rounded to a
+    /// double (half an ulp), and its time t = 0, which a root of q' found in other arithmetic
+    /// puts within rounding of it: an ulp of the run's duration.
+    fn initial(q0: f64, duration: f64) -> Self {
+        let (q, t) = (0.5 * scan::ulp(q0), scan::ulp(duration));
+        PeakErrors {
+            max_q: q,
+            t_max_q: t,
+            min_q: q,
+            t_min_q: t,
+        }
+    }
+}
+
 impl<'a> Run<'a> {
     /// A run of `automaton` from `initial` at t = 0 over [0, duration]; with `energy`, the
     /// energy books are kept.
@@ -318,7 +333,7 @@ impl<'a> Run<'a> {
             event_errors: Vec::new(),
             carried: 0.0,
             speed: initial.qdot.abs(),
-            peak_errors: PeakErrors::default(),
+            peak_errors: PeakErrors::initial(initial.q, duration),
             flows: 0,
             evaluations: 0,
             unresolved: 0,
