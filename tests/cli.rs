@@ -990,3 +990,26 @@ fn run_check_measures_the_run_against_the_exact_solution() {
     assert!(common::run_reference(&plain, &[]).status.success());
     assert!(!plain.join("check.json").exists());
 }
+
+/// A natural duration (a pulse's end and its tail, 0.58721358011 s + 20 s) is printed in the
+/// run's header to 12 significant digits, not to the 16 of its double.
+#[test]
+fn the_header_prints_a_natural_duration_to_12_digits() {
+    let out = common::scratch_dir("header-duration").join("out");
+    let o = flexrock(&[
+        "run",
+        common::repo("models/zhang-makris.toml").to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        stdout
+            .lines()
+            .next()
+            .unwrap_or("")
+            .contains("solution over 20.5872135801 s,"),
+        "{stdout}"
+    );
+}

@@ -278,7 +278,11 @@ pub fn run_report_text(model: &Model, report: &RunReport) -> String {
     let _ = writeln!(
         t,
         "flexrock {VERSION}: {} solution over {} s, T = {:.4} s, s_n = {:.6} m",
-        s.stats.method, model.duration, model.constants.period, model.constants.uplift_displacement
+        s.stats.method,
+        // A natural duration (a pulse's end and its tail) to 12 significant digits.
+        writers::significant(model.duration, 12),
+        model.constants.period,
+        model.constants.uplift_displacement
     );
     let _ = writeln!(t, "  excitation: {}", excitation_text(model.floor.as_ref()));
     let _ = writeln!(
