@@ -371,7 +371,8 @@ impl Constants {
         let Some(numbers) = numbers else {
             return Err(InvalidParameter::new(
                 "derived gravity parameter M g H^2/EI",
-                gravity_parameter,
+                // A derived number, to the digits that tell it from the limit.
+                crate::format::significant(gravity_parameter, 6),
                 &format!(
                     "the body buckles under its own weight: M g H^2/EI must be below \
                      {SELF_WEIGHT_BUCKLING_PARAMETER} (raise the flexural rigidity or lower the mass)"
