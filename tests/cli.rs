@@ -187,7 +187,12 @@ fn buckled_under_its_own_weight() {
         );
         assert_mentions(
             &stderr,
-            &["M g H^2/EI", quoted, "7.837", "buckles under its own weight"],
+            &[
+                "M g H^2/EI",
+                quoted,
+                "7.837",
+                "buckles under its own weight",
+            ],
         );
     }
 }
