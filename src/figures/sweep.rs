@@ -757,7 +757,7 @@ fn spectrum(plan: &Plan, table: &SweepTable, x: usize) -> Result<Vec<u8>> {
             if let Some(s) = table.number(r, y_scaled_column) {
                 scaled.push((xs, s));
             }
-        } else if &row[status_column] == "ok" {
+        } else if row[status_column] == *flexrock_core::sweep::Status::Ok.name() {
             stands_physical.push((xv, find.hi));
             let g_tan_alpha = [
                 (rigid_column, rigid_scaled_column),
@@ -829,12 +829,16 @@ fn spectrum(plan: &Plan, table: &SweepTable, x: usize) -> Result<Vec<u8>> {
     let mut left = Panel::new(&title, &axis_label(&axis.key), &axis_label(&find.key));
     left.series = curves(physical, rigid_physical, limit_physical, stands_physical);
     left.legend = Legend::Outside;
+    // A margin at both ends of the periods, so that the end markers (and a "stands" triangle at
+    // the first period) sit inside the frame.
+    left.pad_x = true;
     let mut panels = vec![left];
     if let Some((_, x_label)) = dx {
         let y_label = dimensionless(&find.key).map_or("a_p / (g tan α)", |d| d.1);
         let mut right = Panel::new(&format!("{title}, dimensionless"), x_label, y_label);
         right.series = curves(scaled, rigid_scaled, limit_scaled, stands_scaled);
         right.legend = Legend::Outside;
+        right.pad_x = true;
         panels.push(right);
     }
     crate::figures::plot::figure("spectrum.svg", &panels, 1, (1000, 480)).map(String::into_bytes)

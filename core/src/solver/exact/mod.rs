@@ -28,7 +28,8 @@
 //! time (the error of q over |q'|) and of each peak (of q, and of its time, the error of q'
 //! over |q''|). Carried: the local errors of the earlier events' times, added as a random walk,
 //! are added to every later event's and peak's time, as the shift of time they are in free
-//! motion (and to a peak's value, times the largest speed met). And measured: the spread of two
+//! motion (and to a peak's value, times the speed of the free part of the motion there, or the
+//! largest speed met where the flow does not split it off). And measured: the spread of two
 //! runs whose constants and initial state are moved by a few ulps (see [`solve`]), which
 //! carries a relative error of a few ulps in the model's constants through the whole run,
 //! grazing events and their amplification included.
