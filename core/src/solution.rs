@@ -316,6 +316,13 @@ impl<'a> Recorder<'a> {
         self.contact_work = work;
     }
 
+    /// Makes room for `samples` more samples (a solver that knows its grid allocates once).
+    pub fn reserve(&mut self, samples: usize) {
+        if self.history == History::Sampled {
+            self.samples.reserve(samples);
+        }
+    }
+
     /// A recorder that keeps no energy books: the solver integrates no work, and the solution's
     /// energy residual and scale are NaN (not computed). The exact method's runs without a
     /// history (sweeps, minimum searches) are such runs: their energy balance holds by

@@ -78,6 +78,16 @@ impl OutputGrid {
         }
     }
 
+    /// How many grid times are not yet emitted (the final time included).
+    pub fn remaining(&self) -> usize {
+        (self.count + 1).saturating_sub(self.next)
+    }
+
+    /// The grid's spacing, s.
+    pub fn spacing(&self) -> f64 {
+        self.output_dt
+    }
+
     /// Marks the next grid time emitted.
     pub fn advance(&mut self) {
         self.next += 1;

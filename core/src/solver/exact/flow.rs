@@ -656,6 +656,80 @@ impl Flow {
     /// cut where its terms fall below 1e-17 of the state (h times the flow's rate at most
     /// [`WORK_REACH`]).
     pub fn work_integrals(&self, end: &Point, force: [f64; 2], h: f64) -> (f64, f64) {
+        let data = self.work_data(end, force);
+        let terms = self.work_terms(h);
+        let (f, v) = self.work_series(&data, h, terms);
+        let (f, v) = (&f[..terms], &v[..terms]);
+        // Integrate over sigma in [0, 1] (s = -h sigma): sum of v_i w_j / (i + j + 1).
+        let (mut force_work, mut square) = (0.0, 0.0);
+        for (i, (&fi, &vi)) in f.iter().zip(v).enumerate() {
+            // sum_j v_j / (i + j + 1) over every j (fv) and over j >= i (vv): two sums in one
+            // loop, each in the order of j from -0 (as `sum` adds), so that they run side by
+            // side.
+            let (mut fv, mut vv) = (-0.0, -0.0);
+            for (j, (&vj, &w)) in v.iter().zip(&RECIPROCALS[i..]).enumerate() {
+                let term = vj * w;
+                fv += term;
+                if j >= i {
+                    vv += term;
+                }
+            }
+            force_work += fi * fv;
+            // v_i v_j twice for j > i, once for j = i.
+            square += vi * (2.0 * vv - vi * RECIPROCALS[2 * i]);
+        }
+        // v was scaled by -h (x' = v / -h), and ds = h d sigma.
+        (-force_work, square / h)
+    }
+
+    /// What the work integrals over a piece depend on besides its length and the data at its
+    /// end ([`Flow::work_data`]): the flow's k and c, and the kind of its forcing.
+    pub fn work_key(&self) -> WorkKey {
+        let (period, degree) = match &self.form {
+            Form::Oscillator(o) => (o.period, None),
+            Form::Series { degree, .. } => (0.0, Some(*degree)),
+        };
+        WorkKey {
+            k: self.k,
+            c: self.c,
+            period,
+            degree,
+        }
+    }
+
+    /// The data at the end of a piece that its work integrals follow from, linearly through
+    /// the series: x and x' there, then the forcing there, f and f' for the oscillator form
+    /// (f'' = -Omega^2 f gives the rest), and for the series form the polynomial's Taylor
+    /// coefficients about the end, f^(n)(end)/n!. Its length is [`WorkKey::len`].
+    #[inline]
+    pub fn work_data(&self, end: &Point, force: [f64; 2]) -> WorkData {
+        let mut data = [0.0; WORK_DATA];
+        data[0] = end.q - self.q_eq;
+        data[1] = end.v;
+        match &self.form {
+            Form::Oscillator(_) => {
+                data[2] = force[0];
+                data[3] = force[1];
+            }
+            Form::Series {
+                forcing, degree, ..
+            } => {
+                // Taylor shift of the polynomial from the anchor to the end.
+                let u = self.local(end.t);
+                let mut shifted = *forcing;
+                for i in 0..*degree {
+                    for j in (i..*degree).rev() {
+                        shifted[j] += u * shifted[j + 1];
+                    }
+                }
+                data[2..=*degree + 2].copy_from_slice(&shifted[..=*degree]);
+            }
+        }
+        data
+    }
+
+    /// Terms of the work integrals' series over a piece of length `h`.
+    pub fn work_terms(&self, h: f64) -> usize {
         let (k, c) = (self.k, self.c);
         // The series' terms shrink as (lambda h)^n / n!, lambda the free motion's rates
         // (|lambda| <= |c|/2 + (c^2/4 + |k|)^(1/2)) or the forcing's.
@@ -676,13 +750,26 @@ impl Flow {
         if let Form::Series { degree, .. } = &self.form {
             terms = terms.max((degree + 2).min(WORK_TERMS));
         }
+        terms
+    }
+
+    /// The first `terms` Taylor coefficients of f and of x' about the end of a piece of length
+    /// `h`, scaled by (-h)^n (x' also by -h), from the piece's [`Flow::work_data`]. Both are
+    /// linear in the data.
+    pub fn work_series(
+        &self,
+        data: &[f64],
+        h: f64,
+        terms: usize,
+    ) -> ([f64; WORK_TERMS], [f64; WORK_TERMS]) {
+        let (k, c) = (self.k, self.c);
         // The forcing's Taylor coefficients about the end, scaled by (-h)^n.
         let mut f = [0.0; WORK_TERMS];
         match &self.form {
             Form::Oscillator(o) => {
                 let big_omega = 2.0 * PI / o.period;
                 // f^(2m) = (-W^2)^m f, f^(2m+1) = (-W^2)^m f'.
-                let (mut even, mut odd) = (force[0], force[1] * -h);
+                let (mut even, mut odd) = (data[2], data[3] * -h);
                 let step = -(big_omega * h) * (big_omega * h);
                 for n in (0..terms).step_by(2) {
                     f[n] = even;
@@ -691,20 +778,10 @@ impl Flow {
                     odd *= step * RECIPROCAL_PAIRS[n + 1];
                 }
             }
-            Form::Series {
-                forcing, degree, ..
-            } => {
-                // Taylor shift of the polynomial from the anchor to the end.
-                let u = self.local(end.t);
-                let mut shifted = *forcing;
-                for i in 0..*degree {
-                    for j in (i..*degree).rev() {
-                        shifted[j] += u * shifted[j + 1];
-                    }
-                }
+            Form::Series { degree, .. } => {
                 let mut scale = 1.0;
                 for n in 0..=(*degree).min(terms - 1) {
-                    f[n] = shifted[n] * scale;
+                    f[n] = data[2 + n] * scale;
                     scale *= -h;
                 }
             }
@@ -713,34 +790,14 @@ impl Flow {
         // -h, (n+1) a_(n+1).
         let (kh2, ch, h2) = (k * h * h, c * -h, h * h);
         let mut v = [0.0; WORK_TERMS];
-        let (mut a0, mut a1) = (end.q - self.q_eq, end.v * -h);
+        let (mut a0, mut a1) = (data[0], data[1] * -h);
         v[0] = a1;
         for n in 0..terms - 1 {
             let a2 = (f[n] * h2 - kh2 * a0 - ch * (n + 1) as f64 * a1) * RECIPROCAL_PAIRS[n];
             v[n + 1] = (n + 2) as f64 * a2;
             (a0, a1) = (a1, a2);
         }
-        // Integrate over sigma in [0, 1] (s = -h sigma): sum of v_i w_j / (i + j + 1).
-        let (mut force_work, mut square) = (0.0, 0.0);
-        let (f, v) = (&f[..terms], &v[..terms]);
-        for (i, (&fi, &vi)) in f.iter().zip(v).enumerate() {
-            // sum_j v_j / (i + j + 1) over every j (fv) and over j >= i (vv): two sums in one
-            // loop, each in the order of j from -0 (as `sum` adds), so that they run side by
-            // side.
-            let (mut fv, mut vv) = (-0.0, -0.0);
-            for (j, (&vj, &w)) in v.iter().zip(&RECIPROCALS[i..]).enumerate() {
-                let term = vj * w;
-                fv += term;
-                if j >= i {
-                    vv += term;
-                }
-            }
-            force_work += fi * fv;
-            // v_i v_j twice for j > i, once for j = i.
-            square += vi * (2.0 * vv - vi * RECIPROCALS[2 * i]);
-        }
-        // v was scaled by -h (x' = v / -h), and ds = h d sigma.
-        (-force_work, square / h)
+        (f, v)
     }
 
     /// The fastest rate of the flow, 1/s: of its free motion and of its forcing.
@@ -863,9 +920,35 @@ impl Flow {
 }
 
 /// Most terms of the series of the work integrals.
-const WORK_TERMS: usize = 24;
+pub(crate) const WORK_TERMS: usize = 24;
+/// Longest [`WorkData`]: x, x' and a polynomial forcing's every coefficient.
+pub(crate) const WORK_DATA: usize = MAX_DEGREE + 3;
+/// The data at the end of a piece that its work integrals follow from ([`Flow::work_data`]).
+pub(crate) type WorkData = [f64; WORK_DATA];
+
+/// What a flow's work integrals depend on besides a piece's length and the data at its end
+/// ([`Flow::work_key`]): flows with equal keys have the same integrals over pieces of one length.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct WorkKey {
+    pub k: f64,
+    pub c: f64,
+    /// A sinusoid's period, s (oscillator form).
+    period: f64,
+    /// A polynomial's degree (series form).
+    degree: Option<usize>,
+}
+
+impl WorkKey {
+    /// The length of the flow's [`WorkData`].
+    pub fn len(&self) -> usize {
+        match self.degree {
+            None => 4,
+            Some(degree) => degree + 3,
+        }
+    }
+}
 /// 1 / (n + 1).
-const RECIPROCALS: [f64; 2 * SERIES_TERMS] = {
+pub(crate) const RECIPROCALS: [f64; 2 * SERIES_TERMS] = {
     let mut r = [0.0; 2 * SERIES_TERMS];
     let mut n = 0;
     while n < r.len() {

@@ -38,10 +38,13 @@
 //! against the flow's rates (one per sample of the history), each from the Taylor series of the
 //! motion and of the forcing about its end, whose products are integrated term by term to
 //! rounding; the energy residual therefore checks these integrals and the resets, not the
-//! solution.
+//! solution. The series are linear in the state and the forcing at the piece's end, so over
+//! pieces of the grid's spacing the integrals are quadratic forms of those, whose matrices are
+//! built once for each mode and kind of forcing and kept (`work.rs`).
 
 pub(crate) mod flow;
 pub(crate) mod scan;
+pub(crate) mod work;
 
 use std::time::Instant;
 
@@ -56,6 +59,7 @@ use crate::solver::{History, InitialState, OutputGrid, SolverError};
 
 use flow::{Flow, Point};
 use scan::{first_crossing, ScanError, Watch};
+use work::FormCache;
 
 /// The method's name in statistics, tables and model files.
 pub const NAME: &str = "exact";
@@ -119,8 +123,8 @@ pub fn solve(
         .map(|(shadow, _)| shadow)
     };
     // The shadow runs are independent of the run: with the `parallel` feature they run beside
-    // it on other cores (the same results, in less time on a machine with cores to spare).
-    let (main, (first, second)) = both(run, || both(|| shadow(0), || shadow(1)));
+    // it on another core (the same results, in less time on a machine with a core to spare).
+    let (main, (first, second)) = beside(run, || (shadow(0), shadow(1)));
     let (mut solution, mut estimate) = main?;
     for shadow in [first?, second?] {
         spread_into(&mut estimate, &solution, &shadow, duration);
@@ -130,16 +134,27 @@ pub fn solve(
     Ok(solution)
 }
 
-/// `a()` and `b()`, on two threads with the `parallel` feature.
+/// `main()` on this thread, and `aside()` beside it on the thread pool: the caller's thread
+/// starts the main run at once instead of waiting for a pool thread to wake (a join from
+/// outside the pool would hand both to the pool and wait). The shadow runs keep no history
+/// and are much shorter than the main run, so one pool thread takes both.
 #[cfg(feature = "parallel")]
-fn both<A: Send, B: Send>(a: impl FnOnce() -> A + Send, b: impl FnOnce() -> B + Send) -> (A, B) {
-    rayon::join(a, b)
+fn beside<A, B: Send>(main: impl FnOnce() -> A, aside: impl FnOnce() -> B + Send) -> (A, B) {
+    let mut other = None;
+    let first = rayon::in_place_scope(|scope| {
+        scope.spawn(|_| other = Some(aside()));
+        main()
+    });
+    (
+        first,
+        other.expect("a scope ends after the work it spawned"),
+    )
 }
 
-/// `a()` and `b()`.
+/// `main()`, then `aside()`.
 #[cfg(not(feature = "parallel"))]
-fn both<A, B>(a: impl FnOnce() -> A, b: impl FnOnce() -> B) -> (A, B) {
-    (a(), b())
+fn beside<A, B>(main: impl FnOnce() -> A, aside: impl FnOnce() -> B) -> (A, B) {
+    (main(), aside())
 }
 
 /// Runs that estimate the error of a run with a history.
@@ -195,6 +210,9 @@ struct Work {
     /// The work of a neighbour's contact force while the column is held against it (a row's
     /// persistent contact), J.
     contact: f64,
+    /// The integrands f x' and x'^2 at t, of the flow that reached it; None where the motion
+    /// may jump at t (an event's reset, a neighbour's impulse, a change of the linear form).
+    start: Option<[f64; 2]>,
 }
 
 /// Error estimates of the recorded peaks: of the value (m) and of its time (s).
@@ -249,6 +267,9 @@ pub(crate) struct Run<'a> {
     bond: Option<LinearForm>,
     /// Buffers of the scans (extrema found, intervals to search), kept from flow to flow.
     spare: (Vec<Point>, Vec<scan::Interval>),
+    /// The work integrals over the history's pieces as quadratic forms, kept from flow to flow
+    /// (`work.rs`).
+    work_forms: FormCache,
 }
 
 /// A flow planned by [`Run::plan`]: its first guard crossing, if any, and the extrema of q the
@@ -310,11 +331,15 @@ impl<'a> Run<'a> {
             automaton.initial_mode(initial.q),
             history,
         );
-        let recorder = if energy {
+        let mut recorder = if energy {
             recorder
         } else {
             recorder.without_energy_books()
         };
+        let grid = OutputGrid::for_history(history, duration, settings.output_dt);
+        // Room for the grid and for the two samples of each event (a guess: an eighth of the
+        // grid, or 64 events).
+        recorder.reserve(grid.remaining() + grid.remaining() / 8 + 128);
         Run {
             automaton,
             floor,
@@ -326,7 +351,7 @@ impl<'a> Run<'a> {
             energy,
             estimate: history == History::Sampled,
             recorder,
-            grid: OutputGrid::for_history(history, duration, settings.output_dt),
+            grid,
             work: Work::default(),
             max_q: initial.q,
             min_q: initial.q,
@@ -341,6 +366,7 @@ impl<'a> Run<'a> {
             first: true,
             bond: None,
             spare: (Vec::new(), Vec::new()),
+            work_forms: FormCache::default(),
         }
     }
 
@@ -568,6 +594,7 @@ impl<'a> Run<'a> {
             self.work.damping,
         );
         self.v = after;
+        self.work.start = None;
         budget.event(t).map_err(|m| self.failed(t, m))
     }
 
@@ -660,7 +687,7 @@ impl<'a> Run<'a> {
                 break;
             }
             let (p, force) = flow.point_with_force(t);
-            self.advance_work_to(flow, &p, force);
+            self.advance_work_to(flow, &p, force, true);
             self.speed = self.speed.max(p.v.abs());
             self.recorder.sample(
                 t,
@@ -681,13 +708,15 @@ impl<'a> Run<'a> {
             return;
         }
         let (p, force) = flow.point_with_force(t);
-        self.advance_work_to(flow, &p, force);
+        self.advance_work_to(flow, &p, force, false);
     }
 
     /// Integrates the input and damping power along `flow` up to the point `end` (with the
     /// forcing there): in pieces short against the flow's rates, each from the Taylor series of
-    /// the motion about its end ([`Flow::work_integrals`]).
-    fn advance_work_to(&mut self, flow: &Flow, end: &Point, force: [f64; 2]) {
+    /// the motion about its end ([`Flow::work_integrals`]). `sample`: `end` is a sample of the
+    /// history, so that a span of the grid's spacing will recur and its integrals are worth
+    /// keeping as quadratic forms ([`WorkForms`]).
+    fn advance_work_to(&mut self, flow: &Flow, end: &Point, force: [f64; 2], sample: bool) {
         if !self.energy {
             return;
         }
@@ -700,17 +729,25 @@ impl<'a> Run<'a> {
             .ceil()
             .clamp(1.0, 1e7) as usize;
         let h = span / pieces as f64;
+        let spacing = self.grid.spacing();
+        // Forms for a piece of the grid's spacing are built at the spacing itself (not at this
+        // span, which differs from it by the rounding of the grid's times), so that they, and
+        // the integrals they give, do not depend on which span came first.
+        let nominal = (sample && work::near(span, spacing, end.t)).then(|| spacing / pieces as f64);
         let (a, mode) = (self.automaton, self.mode);
         let (mut force_work, mut square) = (0.0, 0.0);
+        let mut start = self.work.start;
         for i in 1..=pieces {
-            let (fv, vv) = if i == pieces {
-                flow.work_integrals(end, force, end.t - (from + (i - 1) as f64 * h))
+            let ((fv, vv), integrands) = if i == pieces {
+                let last = end.t - (from + (i - 1) as f64 * h);
+                self.piece_work(flow, end, force, last, nominal, start)
             } else {
                 let (p, force) = flow.point_with_force(from + i as f64 * h);
-                flow.work_integrals(&p, force, h)
+                self.piece_work(flow, &p, force, h, nominal, start)
             };
             force_work += fv;
             square += vv;
+            start = Some(integrands);
         }
         // The flow's forcing is f = -beta_flow a: the column's own beta, or a held cluster's.
         let beta_flow = self.bond.map_or(a.participation(mode), |f| f.participation);
@@ -727,8 +764,12 @@ impl<'a> Run<'a> {
             Some(_) => a.input_power(mode, 1.0, 1.0) * floor_power,
         };
         let damping = a.damping_power(mode, 1.0) * square;
-        let contact = match (self.bond, a.linear_form(mode)) {
-            (Some(held), Some(own)) => {
+        // (The column's own form only where it is held: a lone column's pieces do not need it.)
+        let contact = match self
+            .bond
+            .and_then(|held| Some((held, a.linear_form(mode)?)))
+        {
+            Some((held, own)) => {
                 // Me (q'' - q''_own) q' integrated: with q'' from the held form and q''_own
                 // from the column's, (c - C) q'^2 + (k (q - e) - K (q - E)) q' + (beta - B) a q',
                 // whose middle term is an exact differential.
@@ -742,22 +783,51 @@ impl<'a> Run<'a> {
                     + 0.5 * (potential(end.q) - potential(q0))
                     + (own.participation - held.participation) * floor_power)
             }
-            _ => 0.0,
+            None => 0.0,
         };
         self.work = Work {
             t: end.t,
             input: self.work.input + input,
             damping: self.work.damping + damping,
             contact: self.work.contact + contact,
+            start,
         };
         if self.bond.is_some() {
             self.recorder.set_contact_work(self.work.contact);
         }
     }
 
+    /// The integrals of f x' and of x'^2 over the piece of `flow` of length `h` that ends at
+    /// `end`, and the integrands there: from the quadratic forms kept where they serve (with
+    /// the integrands at the piece's `start`, for the sliver by which its length differs from
+    /// theirs), from new ones of length `nominal` for a piece of the grid's spacing, and from
+    /// the piece's own series otherwise.
+    fn piece_work(
+        &mut self,
+        flow: &Flow,
+        end: &Point,
+        force: [f64; 2],
+        h: f64,
+        nominal: Option<f64>,
+        start: Option<[f64; 2]>,
+    ) -> ((f64, f64), [f64; 2]) {
+        let data = flow.work_data(end, force);
+        let integrands = [data[2] * data[1], data[1] * data[1]];
+        let forms = self.work_forms.serve(flow, h, end.t, nominal);
+        let integrals = match (forms, start) {
+            (Some(forms), Some(start)) => forms.integrals(&data, h, start),
+            _ => flow.work_integrals(end, force, h),
+        };
+        (integrals, integrands)
+    }
+
     /// Holds the column against a neighbour (`Some`: its flows follow that linear form from
     /// the next plan on) or lets it go (`None`).
     pub(crate) fn set_bond(&mut self, bond: Option<LinearForm>) {
+        if bond != self.bond {
+            // The forcing changes here.
+            self.work.start = None;
+        }
         self.bond = bond;
     }
 
@@ -784,6 +854,8 @@ impl<'a> Run<'a> {
             self.carried = self.carried.hypot(crossing_time);
         }
         self.advance_work(flow, p.t);
+        // The reset changes q' here.
+        self.work.start = None;
         // The crossing lies between doubles: the rest of it, from q at the double found. Taken
         // into the next flow's anchor, it keeps the rounding of event times (biased to the side
         // beyond the guard) from adding up over a chain of events. (p is the flow's point at
