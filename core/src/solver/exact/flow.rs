@@ -648,17 +648,17 @@ impl Flow {
         }
     }
 
-    /// The integrals of f x' and of x'^2 over `[end.t - h, end.t]`, from the Taylor series of the
-    /// motion about `end` (the point at the end, with the forcing there as
-    /// [`Flow::point_with_force`] gives it): the coefficients follow from x and x' there by the
+    /// The integrals of f x' and of x'^2 over the piece `[end.t - h, end.t]`, from the Taylor
+    /// series of the motion about its end, given by the piece's [`Flow::work_data`] (from the
+    /// point at the end, with the forcing there as [`Flow::point_with_force`] gives it): the
+    /// coefficients follow from x and x' there by the
     /// equation, a_(n+2) = (f_n - k a_n - c (n+1) a_(n+1)) / ((n+1)(n+2)), and the products are
     /// integrated term by term. No closed form is evaluated inside the piece, and the series is
     /// cut where its terms fall below 1e-17 of the state (h times the flow's rate at most
     /// [`WORK_REACH`]).
-    pub fn work_integrals(&self, end: &Point, force: [f64; 2], h: f64) -> (f64, f64) {
-        let data = self.work_data(end, force);
+    pub fn work_integrals(&self, data: &[f64], h: f64) -> (f64, f64) {
         let terms = self.work_terms(h);
-        let (f, v) = self.work_series(&data, h, terms);
+        let (f, v) = self.work_series(data, h, terms);
         let (f, v) = (&f[..terms], &v[..terms]);
         // Integrate over sigma in [0, 1] (s = -h sigma): sum of v_i w_j / (i + j + 1).
         let (mut force_work, mut square) = (0.0, 0.0);
@@ -700,10 +700,10 @@ impl Flow {
     /// The data at the end of a piece that its work integrals follow from, linearly through
     /// the series: x and x' there, then the forcing there, f and f' for the oscillator form
     /// (f'' = -Omega^2 f gives the rest), and for the series form the polynomial's Taylor
-    /// coefficients about the end, f^(n)(end)/n!. Its length is [`WorkKey::len`].
+    /// coefficients about the end, f^(n)(end)/n!. Its length is [`WorkKey::len`], at most N.
     #[inline]
-    pub fn work_data(&self, end: &Point, force: [f64; 2]) -> WorkData {
-        let mut data = [0.0; WORK_DATA];
+    pub fn work_data<const N: usize>(&self, end: &Point, force: [f64; 2]) -> [f64; N] {
+        let mut data = [0.0; N];
         data[0] = end.q - self.q_eq;
         data[1] = end.v;
         match &self.form {
@@ -716,13 +716,13 @@ impl Flow {
             } => {
                 // Taylor shift of the polynomial from the anchor to the end.
                 let u = self.local(end.t);
-                let mut shifted = *forcing;
+                let shifted = &mut data[2..=*degree + 2];
+                shifted.copy_from_slice(&forcing[..=*degree]);
                 for i in 0..*degree {
                     for j in (i..*degree).rev() {
                         shifted[j] += u * shifted[j + 1];
                     }
                 }
-                data[2..=*degree + 2].copy_from_slice(&shifted[..=*degree]);
             }
         }
         data

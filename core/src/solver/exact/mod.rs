@@ -811,14 +811,19 @@ impl<'a> Run<'a> {
         nominal: Option<f64>,
         start: Option<[f64; 2]>,
     ) -> ((f64, f64), [f64; 2]) {
-        let data = flow.work_data(end, force);
-        let integrands = [data[2] * data[1], data[1] * data[1]];
-        let forms = self.work_forms.serve(flow, h, end.t, nominal);
-        let integrals = match (forms, start) {
-            (Some(forms), Some(start)) => forms.integrals(&data, h, start),
-            _ => flow.work_integrals(end, force, h),
-        };
-        (integrals, integrands)
+        // The data at the end: as long as forms take where they serve, as long as the longest
+        // polynomial's otherwise.
+        let integrands = |data: &[f64]| [data[2] * data[1], data[1] * data[1]];
+        match (self.work_forms.serve(flow, h, end.t, nominal), start) {
+            (Some(forms), Some(start)) => {
+                let data = flow.work_data::<{ work::FORM_LEN }>(end, force);
+                (forms.integrals(&data, h, start), integrands(&data))
+            }
+            _ => {
+                let data = flow.work_data::<{ flow::WORK_DATA }>(end, force);
+                (flow.work_integrals(&data, h), integrands(&data))
+            }
+        }
     }
 
     /// Holds the column against a neighbour (`Some`: its flows follow that linear form from

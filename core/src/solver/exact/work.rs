@@ -20,7 +20,7 @@ use super::flow::{Flow, WorkData, WorkKey, RECIPROCALS, WORK_TERMS};
 /// Largest data of a flow whose work integrals are kept as quadratic forms: x, x' and a cubic's
 /// four coefficients (the ramp; a record's pieces are linear and a sinusoid has f and f'). The
 /// Ricker wavelet's pieces of degree 18 are integrated as series, piece by piece.
-const FORM_LEN: usize = 6;
+pub(crate) const FORM_LEN: usize = 6;
 
 /// Units in the last place of the piece's end time (the rounding of the grid's times) and of
 /// h by which a piece may be longer or shorter than the length the forms were built for.
@@ -113,17 +113,17 @@ impl WorkForms {
             force: [[0.0; FORM_LEN]; FORM_LEN],
             square: [[0.0; FORM_LEN]; FORM_LEN],
         };
-        for i in 0..len {
-            let (f_i, v_i) = (&series[i].0[..terms], &series[i].1[..terms]);
+        for (i, (f_i, v_i)) in series[..len].iter().enumerate() {
+            let (f_i, v_i) = (&f_i[..terms], &v_i[..terms]);
             // f is the forcing's alone: x and x' (the first two data) do not enter it.
             if i >= 2 {
-                for j in 0..len {
+                for (j, (_, v_j)) in series[..len].iter().enumerate() {
                     // As in Flow::work_integrals: v was scaled by -h, and ds = h d sigma.
-                    forms.force[i][j] = -products(f_i, &series[j].1[..terms]);
+                    forms.force[i][j] = -products(f_i, &v_j[..terms]);
                 }
             }
-            for j in i..len {
-                let square = products(v_i, &series[j].1[..terms]) / h;
+            for (j, (_, v_j)) in series[..len].iter().enumerate().skip(i) {
+                let square = products(v_i, &v_j[..terms]) / h;
                 forms.square[i][j] = square;
                 forms.square[j][i] = square;
             }
@@ -134,7 +134,7 @@ impl WorkForms {
     /// The integrals of f x' and of x'^2 over the piece of length `h` (the forms' own but for
     /// the rounding of the grid's times) that ends with `data`, with the integrands f x' and
     /// x'^2 at its `start`.
-    pub fn integrals(&self, data: &WorkData, h: f64, start: [f64; 2]) -> (f64, f64) {
+    pub fn integrals(&self, data: &[f64; FORM_LEN], h: f64, start: [f64; 2]) -> (f64, f64) {
         let (force, square) = match self.len {
             3 => self.forms::<3>(data),
             4 => self.forms::<4>(data),
@@ -148,24 +148,22 @@ impl WorkForms {
 
     /// The two quadratic forms of the first N data (N the forms' length; unused data are 0).
     #[inline(always)]
-    fn forms<const N: usize>(&self, data: &WorkData) -> (f64, f64) {
+    fn forms<const N: usize>(&self, data: &[f64; FORM_LEN]) -> (f64, f64) {
+        let data = &data[..N];
+        let dot = |row: &[f64; FORM_LEN]| {
+            row[..N]
+                .iter()
+                .zip(data)
+                .fold(0.0, |sum, (m, d)| sum + m * d)
+        };
+        let form = |matrix: &[[f64; FORM_LEN]; FORM_LEN], first: usize| {
+            data.iter()
+                .zip(matrix)
+                .skip(first)
+                .fold(0.0, |sum, (d, row)| sum + d * dot(row))
+        };
         // f is the forcing's alone: the rows of x and x' (the first two) are zero.
-        let mut force = 0.0;
-        for i in 2..N {
-            let mut f = 0.0;
-            for j in 0..N {
-                f += self.force[i][j] * data[j];
-            }
-            force += data[i] * f;
-        }
-        let mut square = 0.0;
-        for i in 0..N {
-            let mut s = 0.0;
-            for j in 0..N {
-                s += self.square[i][j] * data[j];
-            }
-            square += data[i] * s;
-        }
+        let (force, square) = (form(&self.force, 2), form(&self.square, 0));
         (force, square)
     }
 }
@@ -258,9 +256,12 @@ mod tests {
         sums
     }
 
+    /// A floor, a linear form (k, c, q_eq, beta), and q and q' at the anchor.
+    type Case = (ClosedForm, (f64, f64, f64, f64), f64, f64);
+
     /// Flows of every form the forms serve: before uplift under a sine, rocking in free motion
     /// (the saddle), and the series form under a record's linear piece and the ramp's cubic.
-    fn cases() -> Vec<(ClosedForm, (f64, f64, f64, f64), f64, f64)> {
+    fn cases() -> Vec<Case> {
         let pre = (394.0, 1.98, 0.0, 1.57);
         let rocking = (-3.1, -0.16, 0.175, 1.57);
         vec![
