@@ -429,8 +429,10 @@ fn warnings_reach_stderr_and_the_summary() {
         &stdout,
         &[
             "excitation: paper-sine",
-            "amplitude = 5",
-            "period = 1",
+            // Each parameter with its unit.
+            "amplitude = 5 m/s^2,",
+            "period = 1 s,",
+            "ramp = 0.412 s,",
             "peak floor acceleration",
         ],
     );

@@ -253,8 +253,9 @@ fn excitation_text(floor: &dyn FloorMotion) -> String {
                 // The peak is printed below, for every kind.
                 serde_json::Value::Number(_) if key == "pga" || key == "t_pga" => {}
                 serde_json::Value::Number(n) => parts.push(format!(
-                    "{key} = {}",
-                    n.as_f64().map_or_else(|| n.to_string(), writers::readable)
+                    "{key} = {}{}",
+                    n.as_f64().map_or_else(|| n.to_string(), writers::readable),
+                    parameter_unit(&key)
                 )),
                 serde_json::Value::String(text) if key != "kind" => {
                     parts.push(format!("{key} = {text}"))
@@ -269,6 +270,16 @@ fn excitation_text(floor: &dyn FloorMotion) -> String {
         peak / STANDARD_GRAVITY
     ));
     parts.join(", ")
+}
+
+/// The unit of an excitation's parameter (as [`FloorMotion::parameters`] names it), with its
+/// leading space; none for a count.
+fn parameter_unit(key: &str) -> &'static str {
+    match key {
+        "amplitude" => " m/s^2",
+        "period" | "end" | "ramp" | "center" | "dt" | "duration" => " s",
+        _ => "",
+    }
 }
 
 /// The short human summary printed after a run.
