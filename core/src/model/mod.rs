@@ -354,6 +354,17 @@ pub struct Overrides {
 pub const DT_WITHOUT_NEWMARK: &str = " (solver.dt is read only with solver.method = \"newmark\")";
 
 impl Overrides {
+    /// The `--set` settings of the body's keys, as given ("--set body.youngs_modulus=100000",
+    /// comma-separated); empty without any.
+    pub fn body_settings(&self) -> String {
+        self.settings
+            .iter()
+            .filter(|s| s.key.starts_with("body."))
+            .map(|s| format!("--set {}={}", s.key, s.value))
+            .collect::<Vec<_>>()
+            .join(", ")
+    }
+
     /// Whether a value from outside the model file set the key `key` (an error about it is then
     /// not the file's: the caller names it as it was given, e.g. by the flag that set it).
     pub fn sets(&self, key: &str) -> bool {
@@ -567,6 +578,20 @@ impl Model {
                     key,
                     value,
                     rule: format!("{rule}{hint}"),
+                }
+            }
+            // A number derived from the body's keys, some of them set from outside the file:
+            // the message names those settings too.
+            Error::InvalidParameter { key, value, rule }
+                if key.starts_with("derived ") && !overrides.body_settings().is_empty() =>
+            {
+                Error::InModel {
+                    path: path.to_path_buf(),
+                    source: Box::new(Error::InvalidParameter {
+                        key,
+                        value,
+                        rule: format!("{rule}; with {}", overrides.body_settings()),
+                    }),
                 }
             }
             // A record named from outside the file is not the file's either.
