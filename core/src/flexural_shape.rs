@@ -98,7 +98,7 @@ impl CantileverMode {
 }
 
 /// Gauss-Legendre nodes and weights on [0, 1].
-fn gauss_legendre(n: usize) -> Vec<(f64, f64)> {
+pub(crate) fn gauss_legendre(n: usize) -> Vec<(f64, f64)> {
     let mut rule = Vec::with_capacity(n);
     for i in 1..=n {
         let mut x = (std::f64::consts::PI * (i as f64 - 0.25) / (n as f64 + 0.5)).cos();

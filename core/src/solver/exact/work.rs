@@ -196,31 +196,6 @@ mod tests {
     use crate::double_double::DoubleDouble as Dd;
     use crate::excitation::ClosedForm;
 
-    /// Nodes and weights of n-point Gauss-Legendre quadrature on [0, 1] (Newton on P_n).
-    fn gauss_legendre(n: usize) -> Vec<(f64, f64)> {
-        (1..=n)
-            .map(|i| {
-                let mut x = (std::f64::consts::PI * (i as f64 - 0.25) / (n as f64 + 0.5)).cos();
-                let mut derivative = 0.0;
-                for _ in 0..100 {
-                    let (mut p0, mut p1) = (1.0, x);
-                    for k in 2..=n {
-                        let k = k as f64;
-                        (p0, p1) = (p1, ((2.0 * k - 1.0) * x * p1 - (k - 1.0) * p0) / k);
-                    }
-                    derivative = n as f64 * (x * p1 - p0) / (x * x - 1.0);
-                    let step = p1 / derivative;
-                    x -= step;
-                    if step.abs() < 1e-17 {
-                        break;
-                    }
-                }
-                let weight = 2.0 / ((1.0 - x * x) * derivative * derivative);
-                (0.5 * (1.0 + x), 0.5 * weight)
-            })
-            .collect()
-    }
-
     /// A flow of the linear form (k, c, q_eq, beta) under `floor` from (q, q') at t = 2 s.
     fn flow(linear: (f64, f64, f64, f64), floor: &ClosedForm, q: f64, v: f64) -> Flow {
         let (stiffness, damping, equilibrium, participation) = linear;
@@ -246,7 +221,7 @@ mod tests {
     /// forms are built from. And the scale they are compared at, h (|f| + |x'|) |x'|.
     fn quadrature(flow: &Flow, floor: &ClosedForm, beta: f64, end: f64, h: f64) -> [f64; 3] {
         let mut sums = [0.0; 3];
-        for (x, w) in gauss_legendre(12) {
+        for (x, w) in crate::flexural_shape::gauss_legendre(12) {
             let t = end - h + h * x;
             let (p, f) = (flow.point(t), -beta * floor.shape.value(t));
             sums[0] += w * h * f * p.v;
