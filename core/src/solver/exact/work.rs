@@ -13,10 +13,10 @@
 //! hundreds of ulps of h); the sliver of that length at the piece's start is added as its length
 //! times the integrands there (f x' and x'^2 at the end of the piece before, which the run
 //! keeps). What that leaves out is the sliver's length squared times the integrands' rate, a
-//! share of the piece's integral of the order of (sliver / h)^2: below 1e-24 on the paper's example
-//! (slivers up to 1e-15 s on h = 5 ms), 1e-12 at worst within the limits of a run (a sliver of
-//! a few ulps of 1e4 s on a piece of 10 ms cut in 200 for a stiff body), far below the books'
-//! rounding either way.
+//! share of the piece's integral of the order of (sliver / h)^2: below 1e-24 on the paper's
+//! example (slivers up to 1e-15 s on h = 5 ms), 1e-12 at worst within the limits of a run (a
+//! sliver of a few ulps of 1e4 s on a piece of 10 ms cut in 200 for a stiff body), far below
+//! the books' rounding either way.
 
 use super::flow::{Flow, WorkData, WorkKey, RECIPROCALS, WORK_TERMS};
 
