@@ -715,7 +715,7 @@ impl<'a> Run<'a> {
     /// forcing there): in pieces short against the flow's rates, each from the Taylor series of
     /// the motion about its end ([`Flow::work_integrals`]). `sample`: `end` is a sample of the
     /// history, so that a span of the grid's spacing will recur and its integrals are worth
-    /// keeping as quadratic forms ([`WorkForms`]).
+    /// keeping as quadratic forms (`work.rs`).
     fn advance_work_to(&mut self, flow: &Flow, end: &Point, force: [f64; 2], sample: bool) {
         if !self.energy {
             return;
