@@ -39,45 +39,6 @@ pub(crate) fn rule_with_hint(value: &str, rule: &str) -> String {
     }
 }
 
-/// Units of the model file's numeric keys, for the message about a unit suffix.
-const UNITS: [(&str, &str); 30] = [
-    ("body.height", "m"),
-    ("body.width", "m"),
-    ("body.depth", "m"),
-    ("body.density", "kg/m^3"),
-    ("body.mass", "kg"),
-    ("body.youngs_modulus", "Pa"),
-    ("body.flexural_rigidity", "N m^2"),
-    ("body.period", "s"),
-    ("body.damping_ratio", "a ratio, no unit"),
-    ("body.gravity", "m/s^2"),
-    ("body.poisson_ratio", "a ratio, no unit"),
-    ("excitation.amplitude", "m/s^2"),
-    ("excitation.period", "s"),
-    ("excitation.ramp", "s"),
-    ("excitation.cycles", "a count, no unit"),
-    ("excitation.center", "s"),
-    ("excitation.scale", "a factor, no unit"),
-    ("excitation.start", "s"),
-    ("excitation.end", "s"),
-    ("excitation.tail", "s"),
-    ("excitation.dt", "s"),
-    ("simulation.duration", "s"),
-    ("simulation.q0", "m"),
-    ("simulation.qdot0", "m/s"),
-    ("solver.rtol", "a ratio, no unit"),
-    ("solver.atol", "m"),
-    ("solver.output_dt", "s"),
-    ("solver.dt", "s"),
-    ("fem.dt", "s"),
-    ("fem.duration", "s"),
-];
-
-/// The unit of a model-file key, when it is a number with one.
-pub(crate) fn unit_of(key: &str) -> Option<&'static str> {
-    UNITS.iter().find(|(k, _)| *k == key).map(|(_, u)| *u)
-}
-
 /// A schema error message (from reading a model file's table) with a hint added: the closest
 /// field to an unknown one, or, for text where a number belongs that starts with a number (a
 /// unit suffix such as `0.3g` or `5MPa`), the unit the key takes.
@@ -99,7 +60,7 @@ pub(crate) fn schema_hint(message: &str) -> String {
             .starts_with(|c: char| c.is_ascii_digit() || c == '.');
         let key = backticked(message).last().copied().unwrap_or("");
         if starts_with_number {
-            let unit = match unit_of(key) {
+            let unit = match crate::units::unit_of_key(key) {
                 Some(unit) => format!("the unit {key} takes ({unit})"),
                 None => "the key's SI unit".to_string(),
             };

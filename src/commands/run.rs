@@ -273,12 +273,13 @@ fn excitation_text(floor: &dyn FloorMotion) -> String {
 }
 
 /// The unit of an excitation's parameter (as [`FloorMotion::parameters`] names it), with its
-/// leading space; none for a count.
-fn parameter_unit(key: &str) -> &'static str {
-    match key {
-        "amplitude" => " m/s^2",
-        "period" | "end" | "ramp" | "center" | "dt" | "duration" => " s",
-        _ => "",
+/// leading space: that of the model file's key of that name; a record's duration, which is no
+/// key, in s; none for a count or a factor.
+fn parameter_unit(key: &str) -> String {
+    match flexrock_core::unit_of_key(&format!("excitation.{key}")) {
+        Some(unit) if !unit.contains("no unit") => format!(" {unit}"),
+        None if key == "duration" => " s".to_string(),
+        _ => String::new(),
     }
 }
 

@@ -62,16 +62,19 @@ pub fn run_model(
 /// Runs `flexrock SUBCOMMAND model --out DIR` on a model text that must be refused: exit code 2,
 /// no output directory, no panic. Returns the error message.
 pub fn refused(subcommand: &str, name: &str, model_text: &str) -> String {
+    refused_with(subcommand, name, model_text, &[])
+}
+
+/// [`refused`] with more arguments after the model file (flags such as `--set`).
+pub fn refused_with(subcommand: &str, name: &str, model_text: &str, args: &[&str]) -> String {
     let dir = scratch_dir(&format!("refused-{subcommand}-{name}"));
     let model = dir.join("model.toml");
     std::fs::write(&model, model_text).unwrap();
     let out = dir.join("out");
-    let o = flexrock(&[
-        subcommand,
-        model.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+    let mut all = vec![subcommand, model.to_str().unwrap()];
+    all.extend_from_slice(args);
+    all.extend_from_slice(&["--out", out.to_str().unwrap()]);
+    let o = flexrock(&all);
     let stderr = String::from_utf8_lossy(&o.stderr).into_owned();
     assert_eq!(o.status.code(), Some(2), "{name}: {stderr}");
     assert!(!out.exists(), "{name}: output directory was created");

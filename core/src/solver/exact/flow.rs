@@ -921,10 +921,9 @@ impl Flow {
 
 /// Most terms of the series of the work integrals.
 pub(crate) const WORK_TERMS: usize = 24;
-/// Longest [`WorkData`]: x, x' and a polynomial forcing's every coefficient.
+/// Longest data of a piece ([`Flow::work_data`]): x, x' and a polynomial forcing's every
+/// coefficient.
 pub(crate) const WORK_DATA: usize = MAX_DEGREE + 3;
-/// The data at the end of a piece that its work integrals follow from ([`Flow::work_data`]).
-pub(crate) type WorkData = [f64; WORK_DATA];
 
 /// What a flow's work integrals depend on besides a piece's length and the data at its end
 /// ([`Flow::work_key`]): flows with equal keys have the same integrals over pieces of one length.
@@ -939,7 +938,7 @@ pub(crate) struct WorkKey {
 }
 
 impl WorkKey {
-    /// The length of the flow's [`WorkData`].
+    /// The length of the flow's [`Flow::work_data`].
     pub fn len(&self) -> usize {
         match self.degree {
             None => 4,

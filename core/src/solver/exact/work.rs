@@ -18,7 +18,7 @@
 //! sliver of a few ulps of 1e4 s on a piece of 10 ms cut in 200 for a stiff body), far below
 //! the books' rounding either way.
 
-use super::flow::{Flow, WorkData, WorkKey, RECIPROCALS, WORK_TERMS};
+use super::flow::{Flow, WorkKey, RECIPROCALS, WORK_TERMS};
 
 /// Largest data of a flow whose work integrals are kept as quadratic forms: x, x' and a cubic's
 /// four coefficients (the ramp; a record's pieces are linear and a sinusoid has f and f'). The
@@ -105,7 +105,7 @@ impl WorkForms {
         let terms = flow.work_terms(h);
         let mut series = [([0.0; WORK_TERMS], [0.0; WORK_TERMS]); FORM_LEN];
         for (i, unit) in series.iter_mut().enumerate().take(len) {
-            let mut data: WorkData = [0.0; super::flow::WORK_DATA];
+            let mut data = [0.0; FORM_LEN];
             data[i] = 1.0;
             *unit = flow.work_series(&data[..len], h, terms);
         }
