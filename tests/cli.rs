@@ -223,6 +223,14 @@ fn buckled_by_a_setting_names_the_setting() {
     );
     // Only the body's settings: the excitation's plays no part in M g H^2/EI.
     assert!(!stderr.contains("excitation.amplitude"), "{stderr}");
+    // An extreme value is quoted with its exponent, not as hundreds of digits.
+    let stderr = common::refused_with(
+        "run",
+        "buckled-by-extreme-set",
+        GOOD,
+        &["--set", "body.youngs_modulus=1e-300"],
+    );
+    assert_mentions(&stderr, &["with --set body.youngs_modulus=1e-300"]);
 }
 
 #[test]

@@ -360,7 +360,12 @@ impl Overrides {
         self.settings
             .iter()
             .filter(|s| s.key.starts_with("body."))
-            .map(|s| format!("--set {}={}", s.key, s.value))
+            .map(|s| match s.value {
+                // Shortest digits, with an exponent where large or small (1e-300, not 300
+                // digits of zeros).
+                toml::Value::Float(x) => format!("--set {}={x:?}", s.key),
+                ref other => format!("--set {}={other}", s.key),
+            })
             .collect::<Vec<_>>()
             .join(", ")
     }
