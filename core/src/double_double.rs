@@ -323,12 +323,14 @@ macro_rules! with_f64 {
     ($($trait:ident $method:ident),*) => {$(
         impl $trait<f64> for DoubleDouble {
             type Output = Self;
+            #[inline(always)]
             fn $method(self, other: f64) -> Self {
                 $trait::$method(self, DoubleDouble::exact(other))
             }
         }
         impl $trait<DoubleDouble> for f64 {
             type Output = DoubleDouble;
+            #[inline(always)]
             fn $method(self, other: DoubleDouble) -> DoubleDouble {
                 $trait::$method(DoubleDouble::exact(self), other)
             }

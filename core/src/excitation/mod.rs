@@ -72,6 +72,13 @@ pub trait FloorMotion: Send + Sync {
     /// that stretch ends: the exact solver's view of the motion. It must agree with
     /// [`FloorMotion::acceleration`] to rounding (or within the stated error bound).
     fn closed_form(&self, t: f64) -> ClosedForm;
+
+    /// The nominal length of the closed form's stretches where they are the intervals between
+    /// a record's samples (its dt, s), each linear: the exact solver carries the state across
+    /// such an interval by a recurrence it builds once for that length. None for other motions.
+    fn sample_interval(&self) -> Option<f64> {
+        None
+    }
 }
 
 /// No floor motion: free vibration or free rocking from the initial state.

@@ -104,6 +104,9 @@ impl FloorMotion for RecordedMotion {
             self.sample_times[k + 1],
         )
     }
+    fn sample_interval(&self) -> Option<f64> {
+        Some(self.dt)
+    }
     fn parameters(&self) -> serde_json::Value {
         let (peak, t_peak) = self.peak();
         serde_json::json!({

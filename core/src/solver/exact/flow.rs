@@ -16,16 +16,19 @@
 //!   enough (|k|^(1/2) tau, |c| tau <= 1/2) that [`SERIES_TERMS`] terms reach rounding.
 
 use crate::double_double::{fused, two_product, two_sum, DoubleDouble as Dd, TWO_PI};
+use std::cell::OnceCell;
 use std::f64::consts::PI;
 
 use crate::automaton::LinearForm;
 use crate::excitation::{ClosedForm, Shape, MAX_DEGREE};
 
+use super::step::Propagator;
+
 /// Terms of the series form: with rho = max(|k|^(1/2), |c|) tau <= 1/2 the first term left
 /// out is below 0.5^30 / 15! of the state, far below rounding.
 const SERIES_TERMS: usize = 30;
 /// Largest rho = max(|k|^(1/2), |c|, forcing rate) tau of a flow of the series form.
-const SERIES_REACH: f64 = 0.5;
+pub(crate) const SERIES_REACH: f64 = 0.5;
 /// Largest growth exponent (|sigma| + mu) tau of a flow of the oscillator form before it is
 /// re-anchored: e^30 keeps every term far from overflow.
 const OSCILLATOR_REACH: f64 = 30.0;
@@ -85,23 +88,94 @@ impl CompensatedHorner {
     }
 }
 
-/// What drives a flow, and how it is summed. One flow lives at a time, on the stack: the series
-/// form's arrays are not boxed, which would cost an allocation per sample of a record.
-#[allow(clippy::large_enum_variant)]
+/// What drives a flow, and how it is summed. One flow lives at a time, on the stack.
 #[derive(Debug, Clone)]
 enum Form {
     Oscillator(Oscillator),
-    Series {
-        /// Taylor coefficients of x about the anchor from its hi part and the forcing.
-        hi: [f64; SERIES_TERMS],
-        /// Those of the free motion from the anchor's lo part.
-        lo: [f64; SERIES_TERMS],
-        /// Terms summed: the rest lie below 2^-70 of the state over the flow.
-        terms: usize,
-        /// The forcing f as a polynomial in the time since the anchor, and its degree.
-        forcing: [f64; MAX_DEGREE + 1],
-        degree: usize,
-    },
+    Series(Series),
+}
+
+/// The series form: the Taylor series of x about the anchor.
+#[derive(Debug, Clone)]
+struct Series {
+    /// x and x' at the anchor, to twice the precision.
+    x: Dd,
+    v: Dd,
+    /// The flow's length, s.
+    span: f64,
+    /// The forcing f as a polynomial in the time since the anchor, and its degree.
+    forcing: [f64; MAX_DEGREE + 1],
+    degree: usize,
+    /// The coefficients, computed where a point inside the flow is first asked for (boxed:
+    /// most of a record's flows never need them, [`Series::end`]).
+    coefficients: OnceCell<Box<Coefficients>>,
+    /// The state (x, x') at the flow's end by the exact recurrence between a record's samples
+    /// (`step.rs`), where the flow is one whole interval of the record.
+    end: Option<(Dd, Dd)>,
+}
+
+/// The Taylor coefficients of a flow of the series form.
+#[derive(Debug, Clone)]
+struct Coefficients {
+    /// Terms summed: the rest lie below 2^-70 of the state over the flow.
+    terms: usize,
+    /// Of x about the anchor from its hi part with the forcing.
+    hi: [f64; SERIES_TERMS],
+    /// Of the free motion from the anchor's lo part.
+    lo: [f64; SERIES_TERMS],
+}
+
+impl Series {
+    /// The coefficients of the series, computed once.
+    fn coefficients(&self, k: f64, c: f64) -> &Coefficients {
+        self.coefficients.get_or_init(|| {
+            // The coefficients of the anchor's hi part with the forcing, and of its lo part
+            // without, in one loop; 1 / ((n+1)(n+2)) from a table (a division per term was most
+            // of the flow's cost). The extra rounding, an ulp of each coefficient, lies within
+            // the rounding the estimate books per term. The last two coefficients of each are
+            // carried in variables, not read back from the arrays: the recurrence is a chain,
+            // and a store read back at once lengthens each link.
+            let (x, v, f) = (self.x, self.v, &self.forcing);
+            // rho^n / n! below 2^-70 beyond the forcing's own terms, rho = the flow's reach.
+            let rho = k.abs().sqrt().max(c.abs()) * self.span;
+            let mut terms = self.degree + 3;
+            let mut tail = (1..=terms).fold(1.0, |acc, n| acc * rho * RECIPROCALS[n - 1]);
+            while terms < SERIES_TERMS && tail > 2f64.powi(-70) {
+                terms += 1;
+                tail *= rho * RECIPROCALS[terms - 1];
+            }
+            let terms = terms.min(SERIES_TERMS);
+            let (mut hi, mut lo) = ([0.0; SERIES_TERMS], [0.0; SERIES_TERMS]);
+            (hi[0], hi[1], lo[0], lo[1]) = (x.hi, v.hi, x.lo, v.lo);
+            let (mut hi_n, mut hi_next, mut lo_n, mut lo_next) = (x.hi, v.hi, x.lo, v.lo);
+            for n in 0..terms - 2 {
+                let forcing = if n <= self.degree { f[n] } else { 0.0 };
+                let hi_new = next_coefficient(forcing, k, c, n, hi_n, hi_next);
+                let lo_new = next_coefficient(0.0, k, c, n, lo_n, lo_next);
+                (hi[n + 2], lo[n + 2]) = (hi_new, lo_new);
+                (hi_n, hi_next, lo_n, lo_next) = (hi_next, hi_new, lo_next, lo_new);
+            }
+            Box::new(Coefficients { terms, hi, lo })
+        })
+    }
+
+    /// The first four coefficients of x (hi and lo parts added), without the rest.
+    fn first_coefficients(&self, k: f64, c: f64) -> [f64; 4] {
+        let (x, v, f) = (self.x, self.v, &self.forcing);
+        let f1 = if self.degree >= 1 { f[1] } else { 0.0 };
+        let hi2 = next_coefficient(f[0], k, c, 0, x.hi, v.hi);
+        let lo2 = next_coefficient(0.0, k, c, 0, x.lo, v.lo);
+        let hi3 = next_coefficient(f1, k, c, 1, v.hi, hi2);
+        let lo3 = next_coefficient(0.0, k, c, 1, v.lo, lo2);
+        [x.hi + x.lo, v.hi + v.lo, hi2 + lo2, hi3 + lo3]
+    }
+}
+
+/// The series' recurrence, a_(n+2) = (f_n - k a_n - c (n+1) a_(n+1)) / ((n+1)(n+2)).
+#[inline(always)]
+fn next_coefficient(forcing: f64, k: f64, c: f64, n: usize, a_n: f64, a_next: f64) -> f64 {
+    let (cn, pair) = (c * (n + 1) as f64, RECIPROCAL_PAIRS[n]);
+    (forcing - k * a_n - cn * a_next) * pair
 }
 
 /// The oscillator form: the free motion from the anchor and a sinusoid's steady state.
@@ -243,7 +317,9 @@ pub(crate) struct Flow {
 impl Flow {
     /// The flow of `linear` from state (q, q') at time `anchor` + `anchor_lo` (|anchor_lo| below
     /// an ulp of `anchor`), under the floor's closed form `floor`, ending at `end` at the latest
-    /// (the end of the stretch or of the run).
+    /// (the end of the stretch or of the run). `step`: the exact recurrence over a record's
+    /// interval for this mode, which gives the state at the flow's end where the flow is one
+    /// whole interval.
     #[allow(clippy::too_many_arguments)]
     pub fn new(
         linear: &LinearForm,
@@ -253,6 +329,7 @@ impl Flow {
         q: Dd,
         v: Dd,
         end: f64,
+        step: Option<&Propagator>,
     ) -> Self {
         let (k, c, beta) = (linear.stiffness, linear.damping, linear.participation);
         let q_eq = linear.equilibrium;
@@ -326,6 +403,7 @@ impl Flow {
                         &coefficients,
                         MAX_DEGREE,
                         force_error + beta.abs() * remainder,
+                        None,
                     )
                 }
             }
@@ -348,6 +426,7 @@ impl Flow {
                     &coefficients,
                     degree,
                     force_error,
+                    step,
                 )
             }
         }
@@ -445,6 +524,7 @@ impl Flow {
         floor: &[f64; MAX_DEGREE + 1],
         degree: usize,
         force_error: f64,
+        step: Option<&Propagator>,
     ) -> Self {
         // The forcing f = -beta a as a polynomial in u = t - anchor (Taylor shift from origin).
         let shift = (anchor - origin) + anchor_lo;
@@ -455,36 +535,14 @@ impl Flow {
                 f[j] += shift * f[j + 1];
             }
         }
-        for value in f.iter_mut() {
+        for value in f[..=degree].iter_mut() {
             *value *= -beta;
         }
         let span = (until - anchor).max(0.0);
-        // rho^n / n! below 2^-70 beyond the forcing's own terms, rho = the flow's reach.
-        let rho = k.abs().sqrt().max(c.abs()) * span;
-        let mut terms = degree + 3;
-        let mut tail = (1..=terms).fold(1.0, |acc, n| acc * rho * RECIPROCALS[n - 1]);
-        while terms < SERIES_TERMS && tail > 2f64.powi(-70) {
-            terms += 1;
-            tail *= rho * RECIPROCALS[terms - 1];
-        }
-        let terms = terms.min(SERIES_TERMS);
-        // The coefficients of the anchor's hi part with the forcing, and of its lo part without,
-        // in one loop; 1 / ((n+1)(n+2)) from a table (a division per term was most of the
-        // flow's cost). The extra rounding, an ulp of each coefficient, lies within the
-        // rounding the estimate books per term.
-        // The last two coefficients of each are carried in variables, not read back from the
-        // arrays: the recurrence is a chain, and a store read back at once lengthens each link.
-        let (mut hi, mut lo) = ([0.0; SERIES_TERMS], [0.0; SERIES_TERMS]);
-        (hi[0], hi[1], lo[0], lo[1]) = (x.hi, v.hi, x.lo, v.lo);
-        let (mut hi_n, mut hi_next, mut lo_n, mut lo_next) = (x.hi, v.hi, x.lo, v.lo);
-        for n in 0..terms - 2 {
-            let forcing = if n <= degree { f[n] } else { 0.0 };
-            let (cn, pair) = (c * (n + 1) as f64, RECIPROCAL_PAIRS[n]);
-            let hi_new = (forcing - k * hi_n - cn * hi_next) * pair;
-            let lo_new = (0.0 - k * lo_n - cn * lo_next) * pair;
-            (hi[n + 2], lo[n + 2]) = (hi_new, lo_new);
-            (hi_n, hi_next, lo_n, lo_next) = (hi_next, hi_new, lo_next, lo_new);
-        }
+        // A whole interval of a record, from its sample on: the exact recurrence gives its end.
+        let end = step
+            .filter(|p| degree <= 1 && shift == 0.0 && p.serves(k, c, span, until))
+            .map(|p| p.advance(x, v, f[0], f[1], span));
         let force_bound = f[..=degree]
             .iter()
             .rev()
@@ -506,13 +564,15 @@ impl Flow {
             force_rate_bound,
             force_curvature_bound,
             force_error,
-            form: Form::Series {
-                hi,
-                lo,
-                terms,
+            form: Form::Series(Series {
+                x,
+                v,
+                span,
                 forcing: f,
                 degree,
-            },
+                coefficients: OnceCell::new(),
+                end,
+            }),
         }
     }
 
@@ -524,6 +584,11 @@ impl Flow {
     /// The mode's k.
     pub fn stiffness(&self) -> f64 {
         self.k
+    }
+
+    /// The mode's c.
+    pub fn damping(&self) -> f64 {
+        self.c
     }
 
     /// The state (q, q') at `t`, compensated: the next flow's anchor.
@@ -541,8 +606,13 @@ impl Flow {
     fn state_with(&self, t: f64, point: impl FnOnce() -> Point) -> (Dd, Dd) {
         let u = self.local(t);
         match &self.form {
-            Form::Series { hi, lo, terms, .. } => {
-                series_state(&hi[..*terms], &lo[..*terms], u, self.q_eq)
+            Form::Series(Series {
+                end: Some((x, v)), ..
+            }) if t == self.until => (*x + self.q_eq, *v),
+            Form::Series(series) => {
+                let Coefficients { terms, hi, lo } = series.coefficients(self.k, self.c);
+                let terms = *terms;
+                series_state(&hi[..terms], &lo[..terms], u, self.q_eq)
             }
             Form::Oscillator(_) => {
                 let p = point();
@@ -567,7 +637,7 @@ impl Flow {
                     (Dd::exact(p.q), Dd::exact(p.v))
                 }
             },
-            Form::Series { .. } => {
+            Form::Series(_) => {
                 let (q, v) = self.state(t);
                 (Dd::new(q.hi, q.lo), Dd::new(v.hi, v.lo))
             }
@@ -604,26 +674,34 @@ impl Flow {
                     [f, df],
                 )
             }
-            Form::Series { hi, lo, .. } if u == 0.0 => {
+            Form::Series(series) if u == 0.0 => {
                 // At the anchor (a flow that starts on a record's sample): the first
                 // coefficients, as the sums below give them there.
-                let a = |n: usize| hi[n] + lo[n];
+                let a = series.first_coefficients(k, c);
                 (
                     Point {
                         t,
-                        q: (hi[0] + lo[0]) + self.q_eq,
-                        v: a(1),
-                        acc: 2.0 * a(2),
-                        jerk: 3.0 * (2.0 * a(3)),
+                        q: a[0] + self.q_eq,
+                        v: a[1],
+                        acc: 2.0 * a[2],
+                        jerk: 3.0 * (2.0 * a[3]),
                         free: [0.0; 2],
                     },
                     [0.0; 2],
                 )
             }
-            Form::Series { hi, lo, terms, .. } => {
+            Form::Series(Series {
+                end: Some((x, v)), ..
+            }) if t == self.until => {
+                // A record's whole interval: its end from the exact recurrence.
+                self.point_from_state(t, *x, *v)
+            }
+            Form::Series(series) => {
+                let Coefficients { terms, hi, lo } = series.coefficients(k, c);
+                let terms = *terms;
                 // x and its first three derivatives by Horner, hi and lo together.
                 let mut d = [0.0; 4];
-                for n in (0..*terms).rev() {
+                for n in (0..terms).rev() {
                     let a = hi[n] + lo[n];
                     d[3] = d[3] * u + d[2] * 3.0;
                     d[2] = d[2] * u + d[1] * 2.0;
@@ -632,7 +710,7 @@ impl Flow {
                 }
                 // x itself from its hi part with the anchor's lo part added apart, so that the
                 // anchor's extra precision is not lost in the sum.
-                let x = horner(&hi[..*terms], u) + horner(&lo[..*terms], u);
+                let x = horner(&hi[..terms], u) + horner(&lo[..terms], u);
                 (
                     Point {
                         t,
@@ -646,6 +724,52 @@ impl Flow {
                 )
             }
         }
+    }
+
+    /// For a flow that is one whole interval of a record (whose end the exact recurrence gives,
+    /// `step.rs`): x and x' at its anchor and the forcing's value and slope there.
+    pub fn interval_data(&self) -> Option<(Dd, Dd, f64, f64)> {
+        match &self.form {
+            Form::Series(Series {
+                end: Some(_),
+                x,
+                v,
+                forcing,
+                degree,
+                ..
+            }) => Some((
+                *x,
+                *v,
+                forcing[0],
+                if *degree >= 1 { forcing[1] } else { 0.0 },
+            )),
+            _ => None,
+        }
+    }
+
+    /// The point at `t` of a flow that is a record's whole interval ([`Flow::interval_data`]),
+    /// from x and x' there (by the exact recurrence): x'' and x''' by the equation.
+    pub fn point_from_state(&self, t: f64, x: Dd, v: Dd) -> (Point, [f64; 2]) {
+        let (k, c) = (self.k, self.c);
+        let (f0, f1) = match &self.form {
+            Form::Series(Series {
+                forcing, degree, ..
+            }) => (forcing[0], if *degree >= 1 { forcing[1] } else { 0.0 }),
+            Form::Oscillator(_) => unreachable!("a record's interval is of the series form"),
+        };
+        let (x, v) = (x.value(), v.value());
+        let acc = (f0 + f1 * self.local(t)) - k * x - c * v;
+        (
+            Point {
+                t,
+                q: x + self.q_eq,
+                v,
+                acc,
+                jerk: f1 - k * v - c * acc,
+                free: [0.0; 2],
+            },
+            [0.0; 2],
+        )
     }
 
     /// The integrals of f x' and of x'^2 over the piece `[end.t - h, end.t]`, from the Taylor
@@ -687,7 +811,7 @@ impl Flow {
     pub fn work_key(&self) -> WorkKey {
         let (period, degree) = match &self.form {
             Form::Oscillator(o) => (o.period, None),
-            Form::Series { degree, .. } => (0.0, Some(*degree)),
+            Form::Series(Series { degree, .. }) => (0.0, Some(*degree)),
         };
         WorkKey {
             k: self.k,
@@ -711,9 +835,9 @@ impl Flow {
                 data[2] = force[0];
                 data[3] = force[1];
             }
-            Form::Series {
+            Form::Series(Series {
                 forcing, degree, ..
-            } => {
+            }) => {
                 // Taylor shift of the polynomial from the anchor to the end.
                 let u = self.local(end.t);
                 let shifted = &mut data[2..=*degree + 2];
@@ -736,7 +860,7 @@ impl Flow {
         let free = 0.5 * c.abs() + (0.25 * c * c + k.abs()).sqrt();
         let rho = match &self.form {
             Form::Oscillator(o) => free.max(2.0 * PI / o.period),
-            Form::Series { .. } => free,
+            Form::Series(_) => free,
         } * h;
         let mut terms = 4;
         let mut tail = rho.powi(4) / 24.0;
@@ -747,7 +871,7 @@ impl Flow {
         // A polynomial forcing's every coefficient enters (those of x up to its degree + 2): the
         // bound above follows the free motion's rates, and a polynomial can change faster (the
         // Ricker wavelet's pieces of degree 18 under a slow rocking motion).
-        if let Form::Series { degree, .. } = &self.form {
+        if let Form::Series(Series { degree, .. }) = &self.form {
             terms = terms.max((degree + 2).min(WORK_TERMS));
         }
         terms
@@ -778,7 +902,7 @@ impl Flow {
                     odd *= step * RECIPROCAL_PAIRS[n + 1];
                 }
             }
-            Form::Series { degree, .. } => {
+            Form::Series(Series { degree, .. }) => {
                 let mut scale = 1.0;
                 for n in 0..=(*degree).min(terms - 1) {
                     f[n] = data[2 + n] * scale;
@@ -805,7 +929,7 @@ impl Flow {
         let free = self.k.abs().sqrt().max(self.c.abs());
         match &self.form {
             Form::Oscillator(o) => free.max(2.0 * PI / o.period),
-            Form::Series { .. } => free,
+            Form::Series(_) => free,
         }
     }
 
@@ -906,9 +1030,11 @@ impl Flow {
                 free * (1.0 + (o.omega + o.sigma.abs()) * u.abs())
                     + steady * (1.0 + 2.0 * PI * t.abs() / o.period)
             }
-            Form::Series { hi, terms, .. } => {
+            Form::Series(series) => {
                 // Carried compensated: only the rounding of the coefficients beyond the anchor's
-                // own (each a few ulps) is left.
+                // own (each a few ulps) is left (a record's interval carried by the exact
+                // recurrence has less: its coefficients are carried to twice the precision).
+                let Coefficients { terms, hi, .. } = series.coefficients(self.k, self.c);
                 let x = horner_abs(&hi[2..*terms], u.abs()) * u * u;
                 x * (1.0 + 1.0 / w)
             }

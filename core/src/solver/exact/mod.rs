@@ -44,6 +44,7 @@
 
 pub(crate) mod flow;
 pub(crate) mod scan;
+pub(crate) mod step;
 pub(crate) mod work;
 
 use std::time::Instant;
@@ -53,12 +54,13 @@ use serde::Serialize;
 use super::budget::RunBudget;
 use crate::automaton::{Automaton, EventKind, Guard, LinearForm, Mode};
 use crate::double_double::DoubleDouble as Dd;
-use crate::excitation::FloorMotion;
+use crate::excitation::{FloorMotion, Shape};
 use crate::solution::{Recorder, RoundingEstimate, Solution, SolverStats};
 use crate::solver::{History, InitialState, OutputGrid, SolverError};
 
 use flow::{Flow, Point};
 use scan::{first_crossing, ScanError, Watch};
+use step::StepCache;
 use work::FormCache;
 
 /// The method's name in statistics, tables and model files.
@@ -270,6 +272,9 @@ pub(crate) struct Run<'a> {
     /// The work integrals over the history's pieces as quadratic forms, kept from flow to flow
     /// (`work.rs`).
     work_forms: FormCache,
+    /// The exact recurrence over a record's interval for the modes met, kept from flow to flow
+    /// (`step.rs`).
+    steps: StepCache,
 }
 
 /// A flow planned by [`Run::plan`]: its first guard crossing, if any, and the extrema of q the
@@ -367,6 +372,7 @@ impl<'a> Run<'a> {
             bond: None,
             spare: (Vec::new(), Vec::new()),
             work_forms: FormCache::default(),
+            steps: StepCache::default(),
         }
     }
 
@@ -437,6 +443,21 @@ impl<'a> Run<'a> {
                 ),
             ));
         }
+        // A record's whole interval from its sample on: the exact recurrence serves it.
+        let step = match (stretch.shape, self.floor.sample_interval()) {
+            (Shape::Polynomial { origin, .. }, Some(interval))
+                if origin == self.t && self.t_lo == 0.0 && stretch.until <= end =>
+            {
+                self.steps.serve(
+                    linear.stiffness,
+                    linear.damping,
+                    stretch.until - self.t,
+                    stretch.until,
+                    interval,
+                )
+            }
+            _ => None,
+        };
         let flow = Box::new(Flow::new(
             &linear,
             &stretch,
@@ -445,6 +466,7 @@ impl<'a> Run<'a> {
             self.q,
             self.v,
             stretch.until.min(end),
+            step,
         ));
         self.flows += 1;
         budget
@@ -686,7 +708,10 @@ impl<'a> Run<'a> {
             if t > until || (!inclusive && t == until) {
                 break;
             }
-            let (p, force) = flow.point_with_force(t);
+            let (p, force) = match self.interval_point(flow, t) {
+                Some(found) => found,
+                None => flow.point_with_force(t),
+            };
             self.advance_work_to(flow, &p, force, true);
             self.speed = self.speed.max(p.v.abs());
             self.recorder.sample(
@@ -700,6 +725,25 @@ impl<'a> Run<'a> {
             );
             self.grid.advance();
         }
+    }
+
+    /// The point at `t` inside a flow that is one whole interval of a record, by the exact
+    /// recurrence over the time since the interval's start (a multiple of the grid's spacing, so
+    /// that the recurrence is built once for each such offset, and kept); None where the flow
+    /// is not such an interval or `t` is not at such an offset.
+    fn interval_point(&mut self, flow: &Flow, t: f64) -> Option<(Point, [f64; 2])> {
+        let (x, v, f0, f1) = flow.interval_data()?;
+        let u = t - flow.anchor;
+        let spacing = self.grid.spacing();
+        let nominal = (u / spacing).round() * spacing;
+        if nominal.is_nan() || nominal <= 0.0 {
+            return None;
+        }
+        let step = self
+            .steps
+            .serve(flow.stiffness(), flow.damping(), u, t, nominal)?;
+        let (x, v) = step.sample(x, v, f0, f1, u);
+        Some(flow.point_from_state(t, Dd::exact(x), Dd::exact(v)))
     }
 
     /// Integrates the input and damping power along `flow` up to `t`.

@@ -216,6 +216,7 @@ mod tests {
             Dd::exact(q),
             Dd::exact(v),
             floor.until.min(3.0),
+            None,
         )
     }
 
