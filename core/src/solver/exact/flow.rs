@@ -14,6 +14,10 @@
 //!   whose coefficients follow from the equation, a_(n+2) = (f_n - k a_n - c (n+1) a_(n+1)) /
 //!   ((n+1)(n+2)). It is summed with compensated Horner, and a flow of this form is kept short
 //!   enough (|k|^(1/2) tau, |c| tau <= 1/2) that [`SERIES_TERMS`] terms reach rounding.
+//!   A flow over a record's whole interval takes its end from the exact recurrence between the
+//!   record's samples instead (`step.rs`), and computes its coefficients only where a point
+//!   inside it is asked for (to look for an event or an extremum, or for a sample of the
+//!   history at an offset the recurrence is not kept for).
 
 use crate::double_double::{fused, two_product, two_sum, DoubleDouble as Dd, TWO_PI};
 use std::cell::OnceCell;

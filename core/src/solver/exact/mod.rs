@@ -8,7 +8,9 @@
 //! nothing at all for free motion, a steady state for a sinusoid, and for polynomial pieces (a
 //! record's linear pieces between samples, the ramp's cubic, the Ricker wavelet's Taylor pieces
 //! with their stated remainder) the Taylor series of the solution, summed to rounding
-//! (`flow.rs`). The automaton is the only model: the solver reads each mode's coefficients, its
+//! (`flow.rs`); across a record's whole interval between two samples, the exact piecewise-linear
+//! recurrence, a 2x4 matrix built once for each mode to twice the precision (`step.rs`). The
+//! automaton is the only model: the solver reads each mode's coefficients, its
 //! guards and its resets from it.
 //!
 //! Events (`scan.rs`): the first guard crossing of each flow is bracketed between consecutive
