@@ -161,6 +161,11 @@ fn beside<A, B>(main: impl FnOnce() -> A, aside: impl FnOnce() -> B) -> (A, B) {
     (main(), aside())
 }
 
+/// Most samples of the history inside one of a record's intervals for which the run keeps the
+/// exact recurrence over their offsets ([`Run::interval_point`]): with the interval's own and
+/// those of three modes, [`step::KEPT`] recurrences.
+const OFFSETS_KEPT: usize = 3;
+
 /// Runs that estimate the error of a run with a history.
 pub const SHADOW_RUNS: usize = 2;
 const _: () = assert!(SHADOW_RUNS == 2, "solve runs two shadow runs");
@@ -732,11 +737,18 @@ impl<'a> Run<'a> {
     /// The point at `t` inside a flow that is one whole interval of a record, by the exact
     /// recurrence over the time since the interval's start (a multiple of the grid's spacing, so
     /// that the recurrence is built once for each such offset, and kept); None where the flow
-    /// is not such an interval or `t` is not at such an offset.
+    /// is not such an interval or `t` is not at such an offset. Only where an interval holds at
+    /// most [`OFFSETS_KEPT`] samples: a finer grid would need more recurrences than are kept
+    /// (each built anew, at the cost of many samples), and there the series, computed once for
+    /// the interval, serves its samples.
     fn interval_point(&mut self, flow: &Flow, t: f64) -> Option<(Point, [f64; 2])> {
         let (x, v, f0, f1) = flow.interval_data()?;
         let u = t - flow.anchor;
         let spacing = self.grid.spacing();
+        // (An interval of length h holds about h / spacing - 1 samples inside it.)
+        if flow.until - flow.anchor > (OFFSETS_KEPT as f64 + 1.5) * spacing {
+            return None;
+        }
         let nominal = (u / spacing).round() * spacing;
         if nominal.is_nan() || nominal <= 0.0 {
             return None;

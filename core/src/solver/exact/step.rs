@@ -30,7 +30,7 @@ use crate::double_double::{fused, two_product, two_sum, DoubleDouble as Dd};
 /// Propagators kept at once: a run meets at most three modes' forms (before uplift and rocking
 /// about either toe; in a row, also those of the clusters it is held in), each over the
 /// record's interval and over the offsets of the history's samples within it.
-const KEPT: usize = 12;
+pub(crate) const KEPT: usize = 12;
 
 /// Most terms of the series of a unit datum: with rho = max(|k|^(1/2), |c|) h <= 1/2 the terms
 /// fall below 2^-112 of the first by the 27th.
