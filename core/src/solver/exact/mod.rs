@@ -45,6 +45,7 @@
 //! built once for each mode and kind of forcing and kept (`work.rs`).
 
 pub(crate) mod flow;
+pub(crate) mod kept;
 pub(crate) mod scan;
 pub(crate) mod step;
 pub(crate) mod work;

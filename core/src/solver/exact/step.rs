@@ -24,6 +24,7 @@
 //! d^2/2 x''' for x'), whose remainder, of the order of d^3, lies below 1e-40 of the state.
 
 use super::flow::SERIES_REACH;
+use super::kept::Kept;
 use super::work::near;
 use crate::double_double::{fused, two_product, two_sum, DoubleDouble as Dd};
 
@@ -168,11 +169,7 @@ fn unit_response(k: f64, c: f64, h: f64, datum: usize) -> (Dd, Dd) {
 /// The propagators a run has built, the last [`KEPT`] of them.
 #[derive(Debug, Default)]
 pub(crate) struct StepCache {
-    kept: Vec<Propagator>,
-    /// The slot the next new propagator takes once every slot is in use.
-    next: usize,
-    /// The slot that served last (tried first: a mode's flows follow each other).
-    last: usize,
+    kept: Kept<Propagator, KEPT>,
 }
 
 impl StepCache {
@@ -193,29 +190,10 @@ impl StepCache {
         }
         // A kept propagator of this k and c over the nominal interval serves (any other over
         // an interval near `span` would be the same one: kept lengths are nominal ones).
-        let serves = |p: &Propagator| p.k == k && p.c == c && p.h == nominal;
-        let found = if self.kept.get(self.last).is_some_and(serves) {
-            Some(self.last)
-        } else {
-            self.kept.iter().position(serves)
-        };
-        let slot = match found {
-            Some(slot) => slot,
-            None => {
-                let built = Propagator::new(k, c, nominal)?;
-                if self.kept.len() < KEPT {
-                    self.kept.push(built);
-                    self.kept.len() - 1
-                } else {
-                    let slot = self.next;
-                    self.kept[slot] = built;
-                    self.next = (slot + 1) % KEPT;
-                    slot
-                }
-            }
-        };
-        self.last = slot;
-        Some(&self.kept[slot])
+        self.kept.serve(
+            |p: &Propagator| p.k == k && p.c == c && p.h == nominal,
+            || Propagator::new(k, c, nominal),
+        )
     }
 }
 

@@ -19,6 +19,7 @@
 //! the books' rounding either way.
 
 use super::flow::{Flow, WorkKey, RECIPROCALS, WORK_TERMS};
+use super::kept::Kept;
 
 /// Largest data of a flow whose work integrals are kept as quadratic forms: x, x' and a cubic's
 /// four coefficients (the ramp; a record's pieces are linear and a sinusoid has f and f'). The
@@ -36,11 +37,7 @@ const KEPT: usize = 4;
 /// The forms a run has built, the last [`KEPT`] of them.
 #[derive(Debug, Default)]
 pub(crate) struct FormCache {
-    kept: Vec<WorkForms>,
-    /// The slot the next new forms take once every slot is in use.
-    next: usize,
-    /// The slot that served last (tried first: a flow's samples share their forms).
-    last: usize,
+    kept: Kept<WorkForms, KEPT>,
 }
 
 impl FormCache {
@@ -55,30 +52,10 @@ impl FormCache {
         nominal: Option<f64>,
     ) -> Option<&WorkForms> {
         let key = flow.work_key();
-        let serves = |f: &WorkForms| f.key == key && near(h, f.h, t);
-        let found = if self.kept.get(self.last).is_some_and(serves) {
-            Some(self.last)
-        } else {
-            self.kept.iter().position(serves)
-        };
-        let slot = match found {
-            Some(slot) => slot,
-            None => {
-                let nominal = nominal.filter(|&n| near(h, n, t))?;
-                let forms = WorkForms::new(flow, nominal)?;
-                if self.kept.len() < KEPT {
-                    self.kept.push(forms);
-                    self.kept.len() - 1
-                } else {
-                    let slot = self.next;
-                    self.kept[slot] = forms;
-                    self.next = (slot + 1) % KEPT;
-                    slot
-                }
-            }
-        };
-        self.last = slot;
-        Some(&self.kept[slot])
+        self.kept.serve(
+            |f: &WorkForms| f.key == key && near(h, f.h, t),
+            || WorkForms::new(flow, nominal.filter(|&n| near(h, n, t))?),
+        )
     }
 }
 
