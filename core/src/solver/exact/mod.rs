@@ -746,8 +746,9 @@ impl<'a> Run<'a> {
         let (x, v, f0, f1) = flow.interval_data()?;
         let u = t - flow.anchor;
         let spacing = self.grid.spacing();
-        // (An interval of length h holds about h / spacing - 1 samples inside it.)
-        if flow.until - flow.anchor > (OFFSETS_KEPT as f64 + 1.5) * spacing {
+        // (An interval of length h holds fewer than h / spacing samples inside it; the grid's
+        // rounding aside.)
+        if flow.until - flow.anchor > (OFFSETS_KEPT as f64 + 1.0) * spacing * (1.0 + 1e-9) {
             return None;
         }
         let nominal = (u / spacing).round() * spacing;
