@@ -277,6 +277,9 @@ pub(crate) struct Run<'a> {
     bond: Option<LinearForm>,
     /// Buffers of the scans (extrema found, intervals to search), kept from flow to flow.
     spare: (Vec<Point>, Vec<scan::Interval>),
+    /// The last flow's box, which the next flow takes instead of an allocation of its own (a
+    /// record has a flow per sample).
+    spare_flow: Option<Box<Flow>>,
     /// The work integrals over the history's pieces as quadratic forms, kept from flow to flow
     /// (`work.rs`).
     work_forms: FormCache,
@@ -379,6 +382,7 @@ impl<'a> Run<'a> {
             first: true,
             bond: None,
             spare: (Vec::new(), Vec::new()),
+            spare_flow: None,
             work_forms: FormCache::default(),
             steps: StepCache::default(),
         }
@@ -466,7 +470,7 @@ impl<'a> Run<'a> {
             }
             _ => None,
         };
-        let flow = Box::new(Flow::new(
+        let new = Flow::new(
             &linear,
             &stretch,
             self.t,
@@ -475,7 +479,14 @@ impl<'a> Run<'a> {
             self.v,
             stretch.until.min(end),
             step,
-        ));
+        );
+        let flow = match self.spare_flow.take() {
+            Some(mut spare) => {
+                *spare = new;
+                spare
+            }
+            None => Box::new(new),
+        };
         self.flows += 1;
         budget
             .step(self.t, self.flows)
@@ -552,11 +563,11 @@ impl<'a> Run<'a> {
         extrema.clear();
         self.spare.0 = extrema;
         self.emit(&flow, stop, true);
-        match found {
+        let going = match found {
             Some((p, guard)) => {
                 self.event(&flow, p, guard);
                 budget.event(p.t).map_err(|m| self.failed(p.t, m))?;
-                Ok(true)
+                true
             }
             None => {
                 self.advance_work(&flow, flow.until);
@@ -566,9 +577,11 @@ impl<'a> Run<'a> {
                 self.t = flow.until;
                 self.t_lo = 0.0;
                 self.peak(&flow, &finish);
-                Ok(self.t < end)
+                self.t < end
             }
-        }
+        };
+        self.spare_flow = Some(flow);
+        Ok(going)
     }
 
     /// Takes `planned` up to `t` (before its stop) and stays there, re-anchored at the state
