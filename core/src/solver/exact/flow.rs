@@ -163,16 +163,33 @@ impl Series {
         })
     }
 
+    /// The forcing's value and slope at the anchor, f(0) and f'(0).
+    fn linear_forcing(&self) -> [f64; 2] {
+        let slope = if self.degree >= 1 {
+            self.forcing[1]
+        } else {
+            0.0
+        };
+        [self.forcing[0], slope]
+    }
+
     /// The first four coefficients of x (hi and lo parts added), without the rest.
     fn first_coefficients(&self, k: f64, c: f64) -> [f64; 4] {
-        let (x, v, f) = (self.x, self.v, &self.forcing);
-        let f1 = if self.degree >= 1 { f[1] } else { 0.0 };
-        let hi2 = next_coefficient(f[0], k, c, 0, x.hi, v.hi);
+        let (x, v) = (self.x, self.v);
+        let [f0, f1] = self.linear_forcing();
+        let hi2 = next_coefficient(f0, k, c, 0, x.hi, v.hi);
         let lo2 = next_coefficient(0.0, k, c, 0, x.lo, v.lo);
         let hi3 = next_coefficient(f1, k, c, 1, v.hi, hi2);
         let lo3 = next_coefficient(0.0, k, c, 1, v.lo, lo2);
         [x.hi + x.lo, v.hi + v.lo, hi2 + lo2, hi3 + lo3]
     }
+}
+
+/// x'' and x''' from the mode's equation x'' + c x' + k x = f at a point, given f and f' there.
+#[inline(always)]
+pub(crate) fn by_the_equation(k: f64, c: f64, [f, df]: [f64; 2], x: f64, v: f64) -> (f64, f64) {
+    let acc = f - k * x - c * v;
+    (acc, df - k * v - c * acc)
 }
 
 /// The series' recurrence, a_(n+2) = (f_n - k a_n - c (n+1) a_(n+1)) / ((n+1)(n+2)).
@@ -546,7 +563,7 @@ impl Flow {
         // A whole interval of a record, from its sample on: the exact recurrence gives its end.
         let end = step
             .filter(|p| degree <= 1 && shift == 0.0 && p.serves(k, c, span, until))
-            .map(|p| p.advance(x, v, f[0], f[1], span));
+            .map(|p| p.advance(x, v, [f[0], f[1]], span));
         let force_bound = f[..=degree]
             .iter()
             .rev()
@@ -665,14 +682,14 @@ impl Flow {
                 let [xp, vp, f, df] = o.steady(t);
                 let x = xh + xp;
                 let v = vh + vp;
-                let acc = f - k * x - c * v;
+                let (acc, jerk) = by_the_equation(k, c, [f, df], x, v);
                 (
                     Point {
                         t,
                         q: x + self.q_eq,
                         v,
                         acc,
-                        jerk: df - k * v - c * acc,
+                        jerk,
                         free: [xh, vh],
                     },
                     [f, df],
@@ -694,11 +711,13 @@ impl Flow {
                     [0.0; 2],
                 )
             }
-            Form::Series(Series {
-                end: Some((x, v)), ..
-            }) if t == self.until => {
+            Form::Series(
+                series @ Series {
+                    end: Some((x, v)), ..
+                },
+            ) if t == self.until => {
                 // A record's whole interval: its end from the exact recurrence.
-                self.point_from_state(t, *x, *v)
+                self.point_from_state(t, x.value(), v.value(), series.linear_forcing())
             }
             Form::Series(series) => {
                 let Coefficients { terms, hi, lo } = series.coefficients(k, c);
@@ -732,44 +751,34 @@ impl Flow {
 
     /// For a flow that is one whole interval of a record (whose end the exact recurrence gives,
     /// `step.rs`): x and x' at its anchor and the forcing's value and slope there.
-    pub fn interval_data(&self) -> Option<(Dd, Dd, f64, f64)> {
+    pub fn interval_data(&self) -> Option<(Dd, Dd, [f64; 2])> {
         match &self.form {
-            Form::Series(Series {
-                end: Some(_),
-                x,
-                v,
-                forcing,
-                degree,
-                ..
-            }) => Some((
-                *x,
-                *v,
-                forcing[0],
-                if *degree >= 1 { forcing[1] } else { 0.0 },
-            )),
+            Form::Series(series @ Series { end: Some(_), .. }) => {
+                Some((series.x, series.v, series.linear_forcing()))
+            }
             _ => None,
         }
     }
 
     /// The point at `t` of a flow that is a record's whole interval ([`Flow::interval_data`]),
-    /// from x and x' there (by the exact recurrence): x'' and x''' by the equation.
-    pub fn point_from_state(&self, t: f64, x: Dd, v: Dd) -> (Point, [f64; 2]) {
-        let (k, c) = (self.k, self.c);
-        let (f0, f1) = match &self.form {
-            Form::Series(Series {
-                forcing, degree, ..
-            }) => (forcing[0], if *degree >= 1 { forcing[1] } else { 0.0 }),
-            Form::Oscillator(_) => unreachable!("a record's interval is of the series form"),
-        };
-        let (x, v) = (x.value(), v.value());
-        let acc = (f0 + f1 * self.local(t)) - k * x - c * v;
+    /// from x and x' there (by the exact recurrence) and the forcing's value and slope at the
+    /// anchor: x'' and x''' by the equation.
+    pub fn point_from_state(
+        &self,
+        t: f64,
+        x: f64,
+        v: f64,
+        [f0, f1]: [f64; 2],
+    ) -> (Point, [f64; 2]) {
+        let force = [f0 + f1 * self.local(t), f1];
+        let (acc, jerk) = by_the_equation(self.k, self.c, force, x, v);
         (
             Point {
                 t,
                 q: x + self.q_eq,
                 v,
                 acc,
-                jerk: f1 - k * v - c * acc,
+                jerk,
                 free: [0.0; 2],
             },
             [0.0; 2],

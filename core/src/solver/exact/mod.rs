@@ -455,19 +455,16 @@ impl<'a> Run<'a> {
                 ),
             ));
         }
-        // A record's whole interval from its sample on: the exact recurrence serves it.
+        // A record's interval: the exact recurrence over it, which the flow takes where it is
+        // the whole interval (`Flow::new`).
         let step = match (stretch.shape, self.floor.sample_interval()) {
-            (Shape::Polynomial { origin, .. }, Some(interval))
-                if origin == self.t && self.t_lo == 0.0 && stretch.until <= end =>
-            {
-                self.steps.serve(
-                    linear.stiffness,
-                    linear.damping,
-                    stretch.until - self.t,
-                    stretch.until,
-                    interval,
-                )
-            }
+            (Shape::Polynomial { .. }, Some(interval)) => self.steps.serve(
+                linear.stiffness,
+                linear.damping,
+                stretch.until - self.t,
+                stretch.until,
+                interval,
+            ),
             _ => None,
         };
         let new = Flow::new(
@@ -756,7 +753,7 @@ impl<'a> Run<'a> {
     /// (each built anew, at the cost of many samples), and there the series, computed once for
     /// the interval, serves its samples.
     fn interval_point(&mut self, flow: &Flow, t: f64) -> Option<(Point, [f64; 2])> {
-        let (x, v, f0, f1) = flow.interval_data()?;
+        let (x, v, forcing) = flow.interval_data()?;
         let u = t - flow.anchor;
         let spacing = self.grid.spacing();
         // (An interval of length h holds fewer than h / spacing samples inside it; the grid's
@@ -771,8 +768,8 @@ impl<'a> Run<'a> {
         let step = self
             .steps
             .serve(flow.stiffness(), flow.damping(), u, t, nominal)?;
-        let (x, v) = step.sample(x, v, f0, f1, u);
-        Some(flow.point_from_state(t, Dd::exact(x), Dd::exact(v)))
+        let (x, v) = step.sample(x, v, forcing, u);
+        Some(flow.point_from_state(t, x, v, forcing))
     }
 
     /// Integrates the input and damping power along `flow` up to `t`.

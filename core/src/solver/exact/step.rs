@@ -23,7 +23,7 @@
 //! of t). That sliver, of length d, is added by the Taylor step d x' + d^2/2 x'' (and d x'' +
 //! d^2/2 x''' for x'), whose remainder, of the order of d^3, lies below 1e-40 of the state.
 
-use super::flow::SERIES_REACH;
+use super::flow::{by_the_equation, SERIES_REACH};
 use super::kept::Kept;
 use super::work::near;
 use crate::double_double::{fused, two_product, two_sum, DoubleDouble as Dd};
@@ -76,7 +76,7 @@ impl Propagator {
 
     /// x and x' after `span` as [`Propagator::advance`] gives them, but each to the working
     /// precision only: a sample of the history, from which the motion does not go on.
-    pub fn sample(&self, x: Dd, v: Dd, f0: f64, f1: f64, span: f64) -> (f64, f64) {
+    pub fn sample(&self, x: Dd, v: Dd, [f0, f1]: [f64; 2], span: f64) -> (f64, f64) {
         let row = |m: &[Dd; 4]| {
             m[0].hi * x.hi
                 + (m[1].hi * v.hi
@@ -86,28 +86,28 @@ impl Propagator {
         let (mut xe, mut ve) = (row(&self.x), row(&self.v));
         let d = span - self.h;
         if d != 0.0 {
-            let acc = (f0 + f1 * self.h) - self.k * xe - self.c * ve;
+            let (acc, _) = by_the_equation(self.k, self.c, [f0 + f1 * self.h, f1], xe, ve);
             (xe, ve) = (xe + d * ve, ve + d * acc);
         }
         (xe, ve)
     }
 
     /// The state (x, x') after `span` (this propagator's length but for a sliver) from the
-    /// state `x`, `v` at the interval's start, under the forcing `f0 + f1 u`.
-    pub fn advance(&self, x: Dd, v: Dd, f0: f64, f1: f64, span: f64) -> (Dd, Dd) {
-        advance(self, x, v, f0, f1, span)
+    /// state `x`, `v` at the interval's start, under the forcing f = forcing[0] + forcing[1] u.
+    pub fn advance(&self, x: Dd, v: Dd, forcing: [f64; 2], span: f64) -> (Dd, Dd) {
+        advance(self, x, v, forcing, span)
     }
 }
 
 fused! {
     /// [`Propagator::advance`], its products to twice the precision.
-    fn advance(p: &Propagator, x: Dd, v: Dd, f0: f64, f1: f64, span: f64) -> (Dd, Dd) {
+    fn advance(p: &Propagator, x: Dd, v: Dd, forcing: [f64; 2], span: f64) -> (Dd, Dd) {
+        let [f0, f1] = forcing;
         let (mut xe, mut ve) = (row(&p.x, x, v, f0, f1), row(&p.v, x, v, f0, f1));
         let d = span - p.h;
         if d != 0.0 {
             // The sliver, by the Taylor step from h; the equation gives x'' and x'''.
-            let acc = (f0 + f1 * p.h) - p.k * xe.hi - p.c * ve.hi;
-            let jerk = f1 - p.k * ve.hi - p.c * acc;
+            let (acc, jerk) = by_the_equation(p.k, p.c, [f0 + f1 * p.h, f1], xe.hi, ve.hi);
             let half = 0.5 * d * d;
             xe = xe + (Dd::exact(d) * ve.hi + half * acc);
             ve = ve + (Dd::exact(d) * acc + half * jerk);
@@ -247,7 +247,12 @@ mod tests {
         for (k, c, h) in MODES {
             let p = Propagator::new(k, c, h).expect("within the series' reach");
             for data in DATA {
-                let (x, v) = p.advance(Dd::exact(data[0]), Dd::exact(data[1]), data[2], data[3], h);
+                let (x, v) = p.advance(
+                    Dd::exact(data[0]),
+                    Dd::exact(data[1]),
+                    [data[2], data[3]],
+                    h,
+                );
                 let (xe, ve) = closed_form(k, c, data, h);
                 // The scale: the state and the forcing's part over the interval.
                 let scale =
@@ -275,9 +280,9 @@ mod tests {
             for data in DATA {
                 // Free motion (the forcing's slope would differ between the two halves).
                 let (x0, v0) = (Dd::new(data[0], data[0] * 1e-17), Dd::exact(data[1]));
-                let (x1, v1) = one.advance(x0, v0, data[2], 0.0, h);
-                let (x1, v1) = one.advance(x1, v1, data[2], 0.0, h);
-                let (x2, v2) = two.advance(x0, v0, data[2], 0.0, 2.0 * h);
+                let (x1, v1) = one.advance(x0, v0, [data[2], 0.0], h);
+                let (x1, v1) = one.advance(x1, v1, [data[2], 0.0], h);
+                let (x2, v2) = two.advance(x0, v0, [data[2], 0.0], 2.0 * h);
                 let scale = data[0].abs() + data[1].abs() * h + data[2].abs() * h * h;
                 let (dx, dv) = ((x1 - x2).value(), (v1 - v2).value());
                 assert!(
@@ -299,8 +304,8 @@ mod tests {
                 let own = Propagator::new(k, c, span).unwrap();
                 for data in DATA {
                     let (x0, v0) = (Dd::exact(data[0]), Dd::exact(data[1]));
-                    let (x, v) = p.advance(x0, v0, data[2], data[3], span);
-                    let (xo, vo) = own.advance(x0, v0, data[2], data[3], span);
+                    let (x, v) = p.advance(x0, v0, [data[2], data[3]], span);
+                    let (xo, vo) = own.advance(x0, v0, [data[2], data[3]], span);
                     let scale = data[0].abs() + data[1].abs() * h + data[2].abs() * h * h;
                     let (dx, dv) = ((x - xo).value(), (v - vo).value());
                     assert!(
@@ -308,7 +313,7 @@ mod tests {
                         "k = {k}, sliver {sliver:e}: {dx:e}, {dv:e} apart"
                     );
                     // The history's sample, to the working precision, agrees to rounding.
-                    let (xs, vs) = p.sample(x0, v0, data[2], data[3], span);
+                    let (xs, vs) = p.sample(x0, v0, [data[2], data[3]], span);
                     assert!(
                         (xs - x.value()).abs() <= 4.0 * f64::EPSILON * scale
                             && (vs - v.value()).abs() * h <= 4.0 * f64::EPSILON * scale,
