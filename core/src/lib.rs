@@ -156,4 +156,4 @@ pub use simulate::{properties, simulate, simulate_peaks, simulate_with, Properti
 pub use solution::Solution;
 pub use solver::SolverSettings;
 pub use sweep::Sweep;
-pub use units::{unit_of_key, STANDARD_GRAVITY};
+pub use units::{unit_of_key, Unit, STANDARD_GRAVITY};

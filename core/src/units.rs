@@ -6,41 +6,70 @@ pub const STANDARD_GRAVITY: f64 = 9.80665;
 
 /// Units of the model file's numeric keys (for the message about a unit suffix, and for the
 /// run header's excitation parameters).
-const UNITS: [(&str, &str); 30] = [
-    ("body.height", "m"),
-    ("body.width", "m"),
-    ("body.depth", "m"),
-    ("body.density", "kg/m^3"),
-    ("body.mass", "kg"),
-    ("body.youngs_modulus", "Pa"),
-    ("body.flexural_rigidity", "N m^2"),
-    ("body.period", "s"),
-    ("body.damping_ratio", "a ratio, no unit"),
-    ("body.gravity", "m/s^2"),
-    ("body.poisson_ratio", "a ratio, no unit"),
-    ("excitation.amplitude", "m/s^2"),
-    ("excitation.period", "s"),
-    ("excitation.ramp", "s"),
-    ("excitation.cycles", "a count, no unit"),
-    ("excitation.center", "s"),
-    ("excitation.scale", "a factor, no unit"),
-    ("excitation.start", "s"),
-    ("excitation.end", "s"),
-    ("excitation.tail", "s"),
-    ("excitation.dt", "s"),
-    ("simulation.duration", "s"),
-    ("simulation.q0", "m"),
-    ("simulation.qdot0", "m/s"),
-    ("solver.rtol", "a ratio, no unit"),
-    ("solver.atol", "m"),
-    ("solver.output_dt", "s"),
-    ("solver.dt", "s"),
-    ("fem.dt", "s"),
-    ("fem.duration", "s"),
+const UNITS: [(&str, Unit); 30] = [
+    ("body.height", Unit::Si("m")),
+    ("body.width", Unit::Si("m")),
+    ("body.depth", Unit::Si("m")),
+    ("body.density", Unit::Si("kg/m^3")),
+    ("body.mass", Unit::Si("kg")),
+    ("body.youngs_modulus", Unit::Si("Pa")),
+    ("body.flexural_rigidity", Unit::Si("N m^2")),
+    ("body.period", Unit::Si("s")),
+    ("body.damping_ratio", Unit::Dimensionless("a ratio")),
+    ("body.gravity", Unit::Si("m/s^2")),
+    ("body.poisson_ratio", Unit::Dimensionless("a ratio")),
+    ("excitation.amplitude", Unit::Si("m/s^2")),
+    ("excitation.period", Unit::Si("s")),
+    ("excitation.ramp", Unit::Si("s")),
+    ("excitation.cycles", Unit::Dimensionless("a count")),
+    ("excitation.center", Unit::Si("s")),
+    ("excitation.scale", Unit::Dimensionless("a factor")),
+    ("excitation.start", Unit::Si("s")),
+    ("excitation.end", Unit::Si("s")),
+    ("excitation.tail", Unit::Si("s")),
+    ("excitation.dt", Unit::Si("s")),
+    ("simulation.duration", Unit::Si("s")),
+    ("simulation.q0", Unit::Si("m")),
+    ("simulation.qdot0", Unit::Si("m/s")),
+    ("solver.rtol", Unit::Dimensionless("a ratio")),
+    ("solver.atol", Unit::Si("m")),
+    ("solver.output_dt", Unit::Si("s")),
+    ("solver.dt", Unit::Si("s")),
+    ("fem.dt", Unit::Si("s")),
+    ("fem.duration", Unit::Si("s")),
 ];
 
-/// The unit of a model-file's numeric key (`excitation.amplitude`: "m/s^2"; a count or a ratio
-/// says that it has none, "a count, no unit"); None for a key that is not a number.
-pub fn unit_of_key(key: &str) -> Option<&'static str> {
+/// The unit a number of the model file is in.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Unit {
+    /// An SI unit, by its symbol ("m/s^2").
+    Si(&'static str),
+    /// None: what the number is instead ("a ratio", "a count", "a factor").
+    Dimensionless(&'static str),
+}
+
+impl Unit {
+    /// The unit's symbol; None for a number without one.
+    pub fn symbol(self) -> Option<&'static str> {
+        match self {
+            Unit::Si(symbol) => Some(symbol),
+            Unit::Dimensionless(_) => None,
+        }
+    }
+}
+
+impl std::fmt::Display for Unit {
+    /// The symbol, or what the number is: "m/s^2", "a count, no unit".
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Unit::Si(symbol) => f.write_str(symbol),
+            Unit::Dimensionless(what) => write!(f, "{what}, no unit"),
+        }
+    }
+}
+
+/// The unit of a model file's numeric key (`excitation.amplitude`: m/s^2; `excitation.cycles`:
+/// none, a count); None for a key that is not a number.
+pub fn unit_of_key(key: &str) -> Option<Unit> {
     UNITS.iter().find(|(k, _)| *k == key).map(|(_, u)| *u)
 }

@@ -277,9 +277,11 @@ fn excitation_text(floor: &dyn FloorMotion) -> String {
 /// key, in s; none for a count or a factor.
 fn parameter_unit(key: &str) -> String {
     match flexrock_core::unit_of_key(&format!("excitation.{key}")) {
-        Some(unit) if !unit.contains("no unit") => format!(" {unit}"),
+        Some(unit) => unit
+            .symbol()
+            .map_or_else(String::new, |symbol| format!(" {symbol}")),
         None if key == "duration" => " s".to_string(),
-        _ => String::new(),
+        None => String::new(),
     }
 }
 
