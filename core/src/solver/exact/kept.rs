@@ -9,6 +9,8 @@ pub(crate) struct Kept<T, const N: usize> {
     next: usize,
     /// The slot that served last (tried first: consecutive flows mostly share their items).
     last: usize,
+    /// Items built so far: a slot keeps its item while this stays the same.
+    builds: usize,
 }
 
 impl<T, const N: usize> Default for Kept<T, N> {
@@ -17,6 +19,7 @@ impl<T, const N: usize> Default for Kept<T, N> {
             items: Vec::new(),
             next: 0,
             last: 0,
+            builds: 0,
         }
     }
 }
@@ -38,6 +41,7 @@ impl<T, const N: usize> Kept<T, N> {
             Some(slot) => slot,
             None => {
                 let built = build()?;
+                self.builds += 1;
                 if self.items.len() < N {
                     self.items.push(built);
                     self.items.len() - 1
@@ -51,6 +55,20 @@ impl<T, const N: usize> Kept<T, N> {
         };
         self.last = slot;
         Some(&self.items[slot])
+    }
+
+    /// The slot that served last, and the number of items built so far: a handle on that item,
+    /// valid while no other is built ([`Kept::get`]).
+    pub fn last(&self) -> (usize, usize) {
+        (self.last, self.builds)
+    }
+
+    /// The item in `slot`, if `builds` items have been built (none has taken its place since
+    /// [`Kept::last`] gave the handle).
+    pub fn get(&self, (slot, builds): (usize, usize)) -> Option<&T> {
+        (builds == self.builds)
+            .then(|| self.items.get(slot))
+            .flatten()
     }
 }
 
@@ -76,8 +94,17 @@ mod tests {
         for wanted in [1, 2, 1, 3, 2, 1] {
             assert_eq!(serve(&mut kept, wanted), wanted);
         }
-        // 1 and 2 are built, served again; 3 takes 1's slot, 2 is still kept, 1 is built again.
-        assert_eq!(built, [1, 2, 3, 1]);
         assert!(kept.serve(|&item| item == 9, || None).is_none());
+        // A handle names the item that served last until another is built (2 again, in 3's
+        // slot; 1 is still kept; 4 is built).
+        serve(&mut kept, 2);
+        let handle = kept.last();
+        assert_eq!(kept.get(handle), Some(&2));
+        serve(&mut kept, 1);
+        assert_eq!(kept.get(handle), Some(&2));
+        serve(&mut kept, 4);
+        assert_eq!(kept.get(handle), None);
+        // 1 and 2 are built, served again; 3 takes 1's slot, 2 is still kept, 1 is built again.
+        assert_eq!(built, [1, 2, 3, 1, 2, 4]);
     }
 }

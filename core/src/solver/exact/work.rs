@@ -57,6 +57,16 @@ impl FormCache {
             || WorkForms::new(flow, nominal.filter(|&n| near(h, n, t))?),
         )
     }
+
+    /// A handle on the forms that served last ([`FormCache::get`]).
+    pub fn last(&self) -> (usize, usize) {
+        self.kept.last()
+    }
+
+    /// The forms a handle from [`FormCache::last`] names, while no other forms have been built.
+    pub fn get(&self, handle: (usize, usize)) -> Option<&WorkForms> {
+        self.kept.get(handle)
+    }
 }
 
 /// The work integrals over pieces of length `h` of the flows with one [`WorkKey`], as
@@ -109,6 +119,11 @@ impl WorkForms {
             }
         }
         Some(forms)
+    }
+
+    /// The length of the pieces the forms were built for, s.
+    pub fn length(&self) -> f64 {
+        self.h
     }
 
     /// The integrals of f x' and of x'^2 over the piece of length `h` (the forms' own but for
