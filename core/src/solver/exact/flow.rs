@@ -220,6 +220,8 @@ struct Oscillator {
     xs: f64,
     xc: f64,
     period: f64,
+    /// 2 pi / the period, rad/s.
+    big_omega: f64,
     /// 1 / the period, to twice the precision (for the phase).
     frequency_twice: Dd,
     /// Forcing f = fs sin(phi) + fc cos(phi).
@@ -284,6 +286,7 @@ impl Oscillator {
     /// The free motion x_h = e^(sigma u) [C h0 + S (g0 - sigma h0)] and its rate
     /// x_h' = e^(sigma u) [C g0 + S (sigma g0 - k h0)] at u, and the sizes of the terms summed
     /// for each (for the rounding estimate).
+    #[inline(always)]
     fn free(&self, k: f64, u: f64) -> [f64; 4] {
         if let Some(saddle) = &self.saddle {
             return saddle.at(u);
@@ -305,7 +308,7 @@ impl Oscillator {
         if self.xs == 0.0 && self.xc == 0.0 && self.fs == 0.0 && self.fc == 0.0 {
             return [0.0; 4];
         }
-        let big_omega = 2.0 * PI / self.period;
+        let big_omega = self.big_omega;
         let (s, co) = phase(t, 0.0, self.frequency_twice);
         [
             self.xs * s + self.xc * co,
@@ -526,6 +529,7 @@ impl Flow {
                 xs,
                 xc,
                 period,
+                big_omega,
                 frequency_twice,
                 fs,
                 fc,
@@ -874,7 +878,7 @@ impl Flow {
         // (|lambda| <= |c|/2 + (c^2/4 + |k|)^(1/2)) or the forcing's.
         let free = 0.5 * c.abs() + (0.25 * c * c + k.abs()).sqrt();
         let rho = match &self.form {
-            Form::Oscillator(o) => free.max(2.0 * PI / o.period),
+            Form::Oscillator(o) => free.max(o.big_omega),
             Form::Series(_) => free,
         } * h;
         let mut terms = 4;
@@ -906,7 +910,7 @@ impl Flow {
         let mut f = [0.0; WORK_TERMS];
         match &self.form {
             Form::Oscillator(o) => {
-                let big_omega = 2.0 * PI / o.period;
+                let big_omega = o.big_omega;
                 // f^(2m) = (-W^2)^m f, f^(2m+1) = (-W^2)^m f'.
                 let (mut even, mut odd) = (data[2], data[3] * -h);
                 let step = -(big_omega * h) * (big_omega * h);
@@ -943,7 +947,7 @@ impl Flow {
     pub fn rate(&self) -> f64 {
         let free = self.k.abs().sqrt().max(self.c.abs());
         match &self.form {
-            Form::Oscillator(o) => free.max(2.0 * PI / o.period),
+            Form::Oscillator(o) => free.max(o.big_omega),
             Form::Series(_) => free,
         }
     }
@@ -995,7 +999,7 @@ impl Flow {
             );
             let zh = ((w + c.abs()) * h).exp() * (w * w * xh * xh + vh * vh).sqrt();
             let amplitude = (o.xs * o.xs + o.xc * o.xc).sqrt();
-            let big_omega = 2.0 * PI / o.period;
+            let big_omega = o.big_omega;
             let steady = |n: i32| amplitude * big_omega.powi(n);
             let h2 = (w + c.abs()) * zh;
             let h3 = w * w * zh + c.abs() * h2;
