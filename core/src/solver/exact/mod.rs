@@ -1065,12 +1065,21 @@ mod tests {
     /// A whole run of the exact method, its history, events, energy books and error estimates,
     /// as text that tells every double apart (wall time left out).
     fn run_text(file: &str, duration: f64) -> String {
+        run_text_with(file, duration, &[])
+    }
+
+    /// As [`run_text`], with `settings` ("section.key=value") over the file's.
+    fn run_text_with(file: &str, duration: f64, settings: &[&str]) -> String {
         let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
             .join("../models")
             .join(file);
         let overrides = Overrides {
             method: Some(super::NAME.to_string()),
             duration: Some(duration),
+            settings: settings
+                .iter()
+                .map(|text| crate::model::Setting::parse(text).expect("a setting"))
+                .collect(),
             ..Overrides::default()
         };
         let model = Model::load(&path, &overrides).expect("the model loads");
@@ -1101,19 +1110,28 @@ mod tests {
 
     /// The short way to a sample's energy books (`Run::sample_work`) gives the run the general
     /// path gives, to the bit (history, energy books, events and estimates): the paper's example
-    /// (the oscillator form, before uplift and rocking, its ramp's cubic and its sine) and 8 s of
-    /// El Centro (a record's linear pieces). Most of the paper's pieces take it.
+    /// (the oscillator form, before uplift and rocking, its ramp's cubic and its sine), the same
+    /// with a ramp of 0.42 s (whose flow ends on a sample, and the sine's flow follows without an
+    /// event: its first sample must not take the ramp's forms), a sine pulse and 8 s of El Centro (a record's linear pieces). Most of the paper's
+    /// pieces take it.
     #[test]
     fn the_short_way_to_a_samples_books_is_the_general_path_to_the_bit() {
-        for (file, duration, least) in [
-            ("ichinose1986.toml", 6.0, 1_000),
-            ("elcentro1940.toml", 8.0, 1),
+        for (file, duration, settings, least) in [
+            ("ichinose1986.toml", 6.0, &[][..], 1_000),
+            (
+                "ichinose1986.toml",
+                6.0,
+                &["excitation.ramp=0.42"][..],
+                1_000,
+            ),
+            ("sine-pulse.toml", 6.8, &[][..], 1_000),
+            ("elcentro1940.toml", 8.0, &[][..], 1),
         ] {
             SHORT_PIECES.set(0);
-            let short = run_text(file, duration);
+            let short = run_text_with(file, duration, settings);
             let taken = SHORT_PIECES.get();
             SHORT_WAY.set(false);
-            let general = run_text(file, duration);
+            let general = run_text_with(file, duration, settings);
             SHORT_WAY.set(true);
             assert!(taken >= least, "{file}: {taken} pieces the short way");
             assert!(short == general, "{file}: the runs differ");
