@@ -299,17 +299,45 @@ pub(crate) struct Run<'a> {
 /// ([`Run::advance_work_to`]) and to the same bits, without searching for them again.
 #[derive(Debug, Clone, Copy)]
 struct SampleBooks {
-    /// The flow's number ([`Run::flows`] when it was planned) and mode.
+    /// The flow's number ([`Run::flows`] when it was planned; a flow keeps one mode, an event
+    /// ends it).
     flow: usize,
-    mode: Mode,
     /// The kept forms ([`FormCache::last`]).
     forms: (usize, usize),
-    /// The flow's rate (the pieces a span is cut into follow from it).
+    /// The flow's rate (the pieces a span is cut into follow from it, [`work_pieces`]).
     rate: f64,
-    /// The input work is this times the integral of f x' (none where the flow's beta is 0), the
-    /// damping work this times that of x'^2.
+    factors: WorkFactors,
+}
+
+/// What turns a lone column's integrals of f x' and of x'^2 over a piece into its input and
+/// damping work, J.
+#[derive(Debug, Clone, Copy)]
+struct WorkFactors {
+    /// The input power -beta Me a q' is Me times f q' (f = -beta a): this times the integral of
+    /// f x'; none where beta is 0 (no input).
     input: Option<f64>,
+    /// The damping power's factor on q'^2.
     damping: f64,
+}
+
+impl WorkFactors {
+    /// The factors of `mode`'s flows, whose forcing is f = -`beta` a.
+    fn of(automaton: &Automaton, mode: Mode, beta: f64) -> Self {
+        WorkFactors {
+            input: (beta != 0.0).then(|| automaton.input_power(mode, 1.0, 1.0) / -beta),
+            damping: automaton.damping_power(mode, 1.0),
+        }
+    }
+
+    /// The input work of a piece whose integral of f x' is `force_work`.
+    fn input(&self, force_work: f64) -> f64 {
+        self.input.map_or(0.0, |factor| factor * force_work)
+    }
+}
+
+/// The pieces a span of the energy books is cut into: each short against the flow's `rate`.
+fn work_pieces(span: f64, rate: f64) -> usize {
+    (span * rate / flow::WORK_REACH).ceil().clamp(1.0, 1e7) as usize
 }
 
 /// A flow planned by [`Run::plan`]: its first guard crossing, if any, and the extrema of q the
@@ -820,9 +848,7 @@ impl<'a> Run<'a> {
         if span <= 0.0 {
             return;
         }
-        let pieces = (span * flow.rate() / flow::WORK_REACH)
-            .ceil()
-            .clamp(1.0, 1e7) as usize;
+        let pieces = work_pieces(span, flow.rate());
         let h = span / pieces as f64;
         let spacing = self.grid.spacing();
         // Forms for a piece of the grid's spacing are built at the spacing itself (not at this
@@ -853,24 +879,22 @@ impl<'a> Run<'a> {
         } else {
             0.0
         };
-        // The input power -beta Me a q' with the column's own beta: Me times the integral of
-        // f q' for a column on its own (f = -beta a).
+        let factors = WorkFactors::of(a, mode, beta_flow);
+        // The input power with the column's own beta (a held column's beta differs from its
+        // cluster's).
         let input = match self.bond {
-            None if beta_flow != 0.0 => a.input_power(mode, 1.0, 1.0) / -beta_flow * force_work,
-            None => 0.0,
+            None => factors.input(force_work),
             Some(_) => a.input_power(mode, 1.0, 1.0) * floor_power,
         };
-        let damping = a.damping_power(mode, 1.0) * square;
+        let damping = factors.damping * square;
         // A sample's piece, whole and by kept forms, of a lone column: the flow's next ones
         // take the short way.
         self.sample_books =
             (sample && pieces == 1 && by_forms && self.bond.is_none()).then(|| SampleBooks {
                 flow: self.flows,
-                mode,
                 forms: self.work_forms.last(),
                 rate: flow.rate(),
-                input: (beta_flow != 0.0).then(|| a.input_power(mode, 1.0, 1.0) / -beta_flow),
-                damping: a.damping_power(mode, 1.0),
+                factors,
             });
         // (The column's own form only where it is held: a lone column's pieces do not need it.)
         let contact = match self
@@ -893,13 +917,7 @@ impl<'a> Run<'a> {
             }
             None => 0.0,
         };
-        self.work = Work {
-            t: end.t,
-            input: self.work.input + input,
-            damping: self.work.damping + damping,
-            contact: self.work.contact + contact,
-            start,
-        };
+        self.book_work(end.t, [input, damping, contact], start);
         if self.bond.is_some() {
             self.recorder.set_contact_work(self.work.contact);
         }
@@ -946,7 +964,7 @@ impl<'a> Run<'a> {
         let (Some(books), Some(start)) = (self.sample_books, self.work.start) else {
             return false;
         };
-        if books.flow != self.flows || books.mode != self.mode || self.bond.is_some() {
+        if books.flow != self.flows || self.bond.is_some() {
             return false;
         }
         let Some(forms) = self.work_forms.get(books.forms) else {
@@ -954,7 +972,7 @@ impl<'a> Run<'a> {
         };
         let span = end.t - self.work.t;
         // (The general path's count of pieces, and the forms' test of a length.)
-        let whole = (span * books.rate / flow::WORK_REACH).ceil() <= 1.0;
+        let whole = work_pieces(span, books.rate) == 1;
         if !(span > 0.0 && whole && work::near(span, forms.length(), end.t)) {
             return false;
         }
@@ -962,16 +980,27 @@ impl<'a> Run<'a> {
         let (force_work, square) = forms.integrals(&data, span, start);
         // The same sums as the general path's, from 0.
         let (force_work, square) = (0.0 + force_work, 0.0 + square);
-        self.work = Work {
-            t: end.t,
-            input: self.work.input + books.input.map_or(0.0, |input| input * force_work),
-            damping: self.work.damping + books.damping * square,
-            contact: self.work.contact + 0.0,
-            start: Some([data[2] * data[1], data[1] * data[1]]),
-        };
+        let factors = books.factors;
+        self.book_work(
+            end.t,
+            [factors.input(force_work), factors.damping * square, 0.0],
+            Some([data[2] * data[1], data[1] * data[1]]),
+        );
         #[cfg(test)]
         tests::SHORT_PIECES.set(tests::SHORT_PIECES.get() + 1);
         true
+    }
+
+    /// Adds a piece's input, damping and contact work (J) to the books, which now reach `t`,
+    /// with the integrands f x' and x'^2 there (`start`, for the next piece).
+    fn book_work(&mut self, t: f64, [input, damping, contact]: [f64; 3], start: Option<[f64; 2]>) {
+        self.work = Work {
+            t,
+            input: self.work.input + input,
+            damping: self.work.damping + damping,
+            contact: self.work.contact + contact,
+            start,
+        };
     }
 
     /// Holds the column against a neighbour (`Some`: its flows follow that linear form from

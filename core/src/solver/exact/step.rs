@@ -373,7 +373,7 @@ mod tests {
                 q,
                 v,
                 floor.until,
-                step_again(&mut cache, k, c, h, floor.until),
+                cache.serve(k, c, h, floor.until, h),
             );
             assert!(late.interval_data().is_none());
             // Another mode's propagator does not serve.
@@ -384,10 +384,6 @@ mod tests {
                 floor.until
             ));
         }
-    }
-
-    fn step_again(cache: &mut StepCache, k: f64, c: f64, h: f64, t: f64) -> Option<&Propagator> {
-        cache.serve(k, c, h, t, h)
     }
 
     #[test]
