@@ -32,6 +32,7 @@ use row::{RigidMinima, RunOutcome, Scales};
 
 use crate::error::{Error, Result};
 use crate::model::{read_schema, Model, Overrides, PreparedSchema, RecordCache, Setting};
+use crate::record::Record;
 use crate::rigid::{RigidBlock, RigidForm, RigidOverturning};
 
 /// Simulations per chunk, roughly: a chunk is the most a kill can lose.
@@ -160,6 +161,9 @@ pub struct Request {
     pub rigid_overturning: Option<RigidOverturning>,
     /// Housner's block's own coefficient of restitution [default: Housner's].
     pub rigid_restitution: Option<f64>,
+    /// Records held in memory (the Python bindings' ground motions), each under the path the
+    /// model's `excitation.path` names it by: a point reads it from here, not from a file.
+    pub records: Vec<(String, Record)>,
 }
 
 /// A sweep file: the axes, settings and search of a sweep, written as on the command line.
@@ -274,6 +278,8 @@ pub struct Sweep {
     /// typed the pattern), not to the model file.
     paths_base: PathBuf,
     records: RecordCache,
+    /// The records held in memory, by their paths joined to `base_dir`, with their digests.
+    in_memory: Vec<(PathBuf, String)>,
 }
 
 impl Sweep {
@@ -481,6 +487,17 @@ impl Sweep {
             row_columns,
         };
         let schema = PreparedSchema::new(table, &request.settings, source);
+        let records = RecordCache::default();
+        let in_memory = request
+            .records
+            .into_iter()
+            .map(|(path, record)| {
+                let path = base_dir.join(path);
+                let digest = record_digest(&record);
+                records.insert(&path, record);
+                (path, digest)
+            })
+            .collect();
         let mut sweep = Sweep {
             plan,
             schema,
@@ -488,7 +505,8 @@ impl Sweep {
             base_dir: base_dir.to_path_buf(),
             settings: request.settings,
             paths_base: here.to_path_buf(),
-            records: RecordCache::default(),
+            records,
+            in_memory,
         };
         sweep.plan.records = sweep.record_inputs();
         Ok(sweep)
@@ -536,9 +554,13 @@ impl Sweep {
             if excitation.kind != "record" {
                 continue;
             }
-            let sha256 = match read_record_bytes(&self.base_dir.join(path)) {
-                Ok(bytes) => sha256_hex(&bytes),
-                Err(e) => format!("unreadable: {e}"),
+            let path = self.base_dir.join(path);
+            let sha256 = match self.in_memory.iter().find(|(p, _)| *p == path) {
+                Some((_, digest)) => digest.clone(),
+                None => match read_record_bytes(&path) {
+                    Ok(bytes) => sha256_hex(&bytes),
+                    Err(e) => format!("unreadable: {e}"),
+                },
             };
             // Into the cache now; a point whose record is bad reports it in its own row.
             if self.plan.row_columns.is_some() {
@@ -647,6 +669,19 @@ impl Sweep {
     /// feature); `done` is called as each point finishes, from the thread that computed it.
     pub fn rows(&self, points: std::ops::Range<usize>, done: &(dyn Fn() + Sync)) -> Vec<Row> {
         self.rows_as(points, done, |_, row| row)
+    }
+
+    /// The rows of the points `points`, in point order, or None once `stop()` is true: each
+    /// point asks before it starts, so that a caller who stops waiting (the Python bindings on
+    /// Ctrl-C) waits for no more than the points under way.
+    pub fn rows_until(
+        &self,
+        points: std::ops::Range<usize>,
+        stop: &(dyn Fn() -> bool + Sync),
+    ) -> Option<Vec<Row>> {
+        in_order(points, |i| (!stop()).then(|| self.evaluate(i)))
+            .into_iter()
+            .collect()
     }
 
     /// `with(index, row)` of the points `points`, in point order; each computed in parallel
@@ -842,12 +877,28 @@ pub fn sha256_hex_of(parts: &[&[u8]]) -> String {
     for part in parts {
         hasher.update(part);
     }
-    let digest = hasher.finalize();
-    let mut text = String::with_capacity(64);
-    for byte in digest {
+    hex(&hasher.finalize())
+}
+
+/// `bytes` as lower-case hex digits, two a byte.
+fn hex(bytes: &[u8]) -> String {
+    let mut text = String::with_capacity(2 * bytes.len());
+    for byte in bytes {
         text.push_str(&format!("{byte:02x}"));
     }
     text
+}
+
+/// SHA-256 (hex) of a record held in memory: of its interval and its samples, each as the
+/// little-endian bytes of its float.
+fn record_digest(record: &Record) -> String {
+    use sha2::{Digest as _, Sha256};
+    let mut hasher = Sha256::new();
+    hasher.update(record.dt.to_le_bytes());
+    for v in &record.values {
+        hasher.update(v.to_le_bytes());
+    }
+    hex(&hasher.finalize())
 }
 
 /// The bytes of a record file, read as the record reader reads it (a regular file of bounded
