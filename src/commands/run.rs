@@ -235,7 +235,15 @@ pub fn run_to_dir_checked(
         set.stage_each(&crate::figures::run::figures(&data)?)?;
     }
     let files = set.commit()?;
-    let warnings = warnings(model, &solution);
+    let mut warnings = warnings(model, &solution);
+    let rows = solution.samples.len();
+    if rows > writers::run_dir::MAX_HISTORY_ROWS {
+        warnings.push(format!(
+            "history.csv has {rows} rows (the grid's and two per event), more than `flexrock \
+             plot` reads ({}); a shorter duration gives fewer",
+            writers::run_dir::MAX_HISTORY_ROWS
+        ));
+    }
     Ok(RunReport {
         solution,
         files,

@@ -15,6 +15,7 @@ use serde::de::DeserializeOwned;
 use crate::error::{Error, Result};
 use crate::writers::{EPISODE_COLUMNS, EVENT_COLUMNS, HISTORY_COLUMNS};
 use flexrock_core::constants::Constants;
+use flexrock_core::run_tables::MAX_HISTORY_ROW_BYTES;
 use flexrock_core::solution::{Event, Sample};
 
 /// The sampled history of a run.
@@ -26,12 +27,18 @@ pub const EPISODES_FILE: &str = "episodes.csv";
 /// The summary of a run.
 pub const SUMMARY_FILE: &str = "summary.json";
 
-/// Largest history.csv read, bytes (1 GiB). `run` writes at most 1e6 grid rows (about 170 MB)
-/// plus two rows per event.
-pub const MAX_HISTORY_BYTES: u64 = 1 << 30;
+/// Largest history.csv read, bytes (1.5 GiB): [`MAX_HISTORY_ROWS`] rows of the widest
+/// ([`MAX_HISTORY_ROW_BYTES`]) fit.
+pub const MAX_HISTORY_BYTES: u64 = 3 << 29;
 /// Most rows of history.csv read: the 1e6 grid rows `run` allows and room for 1.5e6 events
 /// (about 350 MB in memory).
 pub const MAX_HISTORY_ROWS: usize = 4_000_000;
+
+const _: () = assert!(
+    (MAX_HISTORY_ROWS as u64 + 1) * MAX_HISTORY_ROW_BYTES as u64 <= MAX_HISTORY_BYTES,
+    "a history of MAX_HISTORY_ROWS rows must be readable"
+);
+
 /// Largest events.csv read, bytes (256 MiB).
 pub const MAX_EVENTS_BYTES: u64 = 256 << 20;
 /// Largest summary.json read, bytes (16 MiB; `run` writes a few kB).
