@@ -1,7 +1,7 @@
 //! `flexrock criteria`: the overturning criteria study of [`flexrock_core::criteria`] on the
 //! body of a model file, written as criteria.csv, continuity.csv, fit.json, criteria.json and
-//! two figures (SVG and PNG); the wall time goes to timings.json, so that every other file is
-//! byte-stable.
+//! two figures (SVG and PNG); the wall time and the commit flexrock was built from go to
+//! timings.json, so that every other file is byte-stable.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -17,6 +17,7 @@ use flexrock_core::format::shortest;
 use flexrock_core::rigid_criteria::{
     ishiyama_acceleration, ishiyama_velocity, ISHIYAMA_VELOCITY_COEFFICIENT,
 };
+use flexrock_core::simulate::{COMMIT, DIRTY};
 
 /// Column names of criteria.csv (a contract), units in the names.
 pub const CRITERIA_COLUMNS: [&str; 25] = [
@@ -343,7 +344,11 @@ pub fn run(
         files.push((leak(format!("{name}.svg")), svg));
         files.push((leak(format!("{name}.png")), png));
     }
-    let timings = serde_json::json!({ "wall_time_s": start.elapsed().as_secs_f64() });
+    // The wall time and the commit flexrock was built from change from run to run while the
+    // results do not: they go to timings.json.
+    let mut timings = serde_json::json!({ "wall_time_s": start.elapsed().as_secs_f64() });
+    timings["flexrock_commit"] = COMMIT.into();
+    timings["flexrock_dirty"] = DIRTY.into();
     files.push(("timings.json", writers::json_bytes(&timings)));
     let files = writers::write_atomically(out, &files)?;
     Ok(CriteriaReport {

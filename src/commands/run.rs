@@ -191,6 +191,8 @@ pub fn run_to_dir_checked(
     );
     // The small files are written and synced while history.csv is formatted (on every core),
     // then history.csv and the figures; the set is put in place as one.
+    let mut run_summary = summary(model, &solution);
+    timings.take_commit("summary.json", &mut run_summary.provenance);
     let mut small = vec![
         ("events.csv", writers::events_csv(&solution.events)),
         (

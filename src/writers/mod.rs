@@ -7,6 +7,7 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use crate::error::{Error, Result};
+use flexrock_core::simulate::{Commit, Provenance};
 use flexrock_core::solution::{Episode, Event, Sample};
 
 pub use flexrock_core::run_tables::{
@@ -177,6 +178,37 @@ impl Timings {
             self.times.insert(key.to_string(), (*wall_time_s).into());
             *wall_time_s = f64::NAN;
         }
+    }
+
+    /// With [`WallTimes::Apart`], records the commit flexrock was built from under `file`
+    /// (`summary.json/flexrock_commit`, `.../flexrock_dirty`) and takes it out of `provenance`;
+    /// otherwise leaves it alone. Like a wall time, it changes while the result does not.
+    pub fn take_commit(&mut self, file: &str, provenance: &mut Provenance) {
+        if self.mode == WallTimes::Apart {
+            if let Some(commit) = provenance.build.take() {
+                self.insert_commit(file, commit);
+            }
+        }
+    }
+
+    /// The provenance of `file`, a summary of results computed from `model`: with
+    /// [`WallTimes::Apart`] without the commit, which goes to timings.json ([`Self::take_commit`]).
+    pub fn provenance(&mut self, file: &str, model: &flexrock_core::model::Model) -> Provenance {
+        let mut provenance = Provenance::of(model);
+        self.take_commit(file, &mut provenance);
+        provenance
+    }
+
+    /// Records `commit` under `file` (for a file whose summary never holds it).
+    pub fn insert_commit(&mut self, file: &str, commit: Commit) {
+        self.times.insert(
+            format!("{file}/flexrock_commit"),
+            commit.flexrock_commit.into(),
+        );
+        self.times.insert(
+            format!("{file}/flexrock_dirty"),
+            commit.flexrock_dirty.into(),
+        );
     }
 
     /// `timings.json` for the set of files a command writes, with [`WallTimes::Apart`].
