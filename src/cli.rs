@@ -370,7 +370,7 @@ pub(crate) struct SweepArgs {
     /// Points per chunk (what a kill can lose) [default: about 1024 simulations' worth].
     #[arg(long)]
     pub(crate) chunk_size: Option<usize>,
-    /// Threads [default: every core].
+    /// Threads, 1 to 1024 [default: one per core].
     #[arg(long)]
     pub(crate) threads: Option<usize>,
     /// Replace the results of another sweep (or a damaged result of this one) in the output

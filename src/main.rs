@@ -33,6 +33,8 @@ impl flexrock::commands::sweep::store::Progress for ProgressBar {
 fn sweep(args: SweepArgs) -> flexrock::Result<Output> {
     use flexrock::commands::sweep::store;
     use flexrock_core::sweep::{axis, Request, Sweep};
+    // Before anything is read or computed: the threads asked for, or refused.
+    flexrock::commands::sweep::start_threads(args.threads)?;
     if let Some(SweepCommand::Merge { dirs, out }) = args.command {
         let report = store::merge(&dirs, &out)?;
         return Ok(Output {
@@ -89,19 +91,6 @@ fn sweep(args: SweepArgs) -> flexrock::Result<Output> {
         Some(text) => Some(store::Shard::parse(text)?),
         None => store::Shard::from_slurm(|name| std::env::var(name).ok())?,
     };
-    if let Some(threads) = args.threads {
-        if threads == 0 {
-            return Err(flexrock::Error::invalid(
-                "--threads",
-                0,
-                "must be at least 1",
-            ));
-        }
-        // Fails only if a pool exists already, which it cannot here.
-        let _ = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build_global();
-    }
     let out = args.out.unwrap_or_else(|| default_out_dir(&path, "-sweep"));
     let bar = if args.quiet {
         indicatif::ProgressBar::hidden()

@@ -219,12 +219,16 @@ pub fn run_to_dir_checked(
     order.push("timings.json");
     let set = writers::FileSet::begin(out_dir, &order)?;
     let history = std::thread::scope(|scope| {
-        let staged = scope.spawn(|| set.stage_each(&small));
+        let staged = std::thread::Builder::new().spawn_scoped(scope, || set.stage_each(&small));
         let history = writers::history_csv(&solution.samples);
-        staged
-            .join()
-            .unwrap_or_else(|e| std::panic::resume_unwind(e))
-            .map(|()| history)
+        match staged {
+            Ok(thread) => thread
+                .join()
+                .unwrap_or_else(|e| std::panic::resume_unwind(e)),
+            // No thread to be had: staged here instead.
+            Err(_) => set.stage_each(&small),
+        }
+        .map(|()| history)
     })?;
     set.stage("history.csv", &[&history])?;
     if plots {

@@ -354,7 +354,8 @@ impl FileSet {
     }
 
     /// Stages each of `files` (name, bytes), each on a thread of its own: the disk syncs them
-    /// at once, not one after another.
+    /// at once, not one after another. A file whose thread the system cannot start is staged
+    /// on this one.
     pub fn stage_each<N, B>(&self, files: &[(N, B)]) -> Result<()>
     where
         N: AsRef<str> + Sync,
@@ -362,13 +363,24 @@ impl FileSet {
     {
         let stage = |(name, bytes): &(N, B)| self.stage(name.as_ref(), &[bytes.as_ref()]);
         std::thread::scope(|scope| {
+            let mut here = Vec::new();
             let threads: Vec<_> = files
                 .get(1..)
                 .unwrap_or_default()
                 .iter()
-                .map(|file| scope.spawn(move || stage(file)))
+                .filter_map(|file| {
+                    let started =
+                        std::thread::Builder::new().spawn_scoped(scope, move || stage(file));
+                    if started.is_err() {
+                        here.push(file);
+                    }
+                    started.ok()
+                })
                 .collect();
-            let first = files.first().map_or(Ok(()), stage);
+            let first = here
+                .into_iter()
+                .map(stage)
+                .fold(files.first().map_or(Ok(()), stage), Result::and);
             threads
                 .into_iter()
                 .map(|thread| {
