@@ -199,10 +199,7 @@ pub fn run_to_dir_checked(
             "episodes.csv",
             writers::episodes_csv(&solution.episodes, model.body.height),
         ),
-        (
-            "summary.json",
-            writers::json_bytes(&summary(model, &solution)),
-        ),
+        ("summary.json", writers::json_bytes(&run_summary)),
     ];
     if let Some(check) = &check {
         small.push(("check.json", writers::json_bytes(check)));
