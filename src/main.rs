@@ -246,7 +246,12 @@ fn execute(command: Command) -> flexrock::Result<Output> {
             )
         }
         Command::Plot(args) => plot(args),
-        Command::Events { dir, csv, json } => events(&dir, csv, json),
+        Command::Events {
+            dir,
+            csv,
+            json,
+            episodes,
+        } => events(&dir, csv, json, episodes),
         Command::Completions { shell } => {
             let mut script = Vec::new();
             clap_complete::generate(
@@ -501,17 +506,27 @@ fn plot(args: PlotArgs) -> flexrock::Result<Output> {
 }
 
 /// `flexrock events`: the event table of a run directory, or its episodes as CSV or JSON.
-fn events(dir: &std::path::Path, csv: bool, json: bool) -> flexrock::Result<Output> {
-    use flexrock::writers::run_dir::{episodes_json, read_episodes_csv, EPISODES_FILE};
-    if csv || json {
-        let bytes = read_episodes_csv(dir)?;
-        if csv {
+fn events(
+    dir: &std::path::Path,
+    csv: bool,
+    json: bool,
+    episodes: bool,
+) -> flexrock::Result<Output> {
+    use flexrock::writers::run_dir::{read_table_csv, table_json, RunTable};
+    let table = if episodes {
+        RunTable::Episodes
+    } else {
+        RunTable::Events
+    };
+    if csv || json || episodes {
+        let bytes = read_table_csv(dir, table)?;
+        if !json {
             return Ok(Output {
                 stdout: bytes,
                 warnings: Vec::new(),
             });
         }
-        let value = episodes_json(&bytes, &dir.join(EPISODES_FILE))?;
+        let value = table_json(&bytes, &dir.join(table.file()), table)?;
         return Ok(Output {
             stdout: flexrock::writers::json_bytes(&value),
             warnings: Vec::new(),

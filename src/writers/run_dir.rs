@@ -120,23 +120,51 @@ pub fn read_events(dir: &Path) -> Result<Vec<Event>> {
     )
 }
 
-/// episodes.csv of a run directory: its bytes, after checking that its header is
-/// [`EPISODE_COLUMNS`] and every row has as many fields.
-pub fn read_episodes_csv(dir: &Path) -> Result<Vec<u8>> {
-    let path = dir.join(EPISODES_FILE);
+/// A table of a run directory as `flexrock events` prints it: events.csv, or episodes.csv.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum RunTable {
+    /// events.csv, columns [`EVENT_COLUMNS`].
+    Events,
+    /// episodes.csv, columns [`EPISODE_COLUMNS`].
+    Episodes,
+}
+
+impl RunTable {
+    /// The file's name.
+    pub fn file(self) -> &'static str {
+        match self {
+            RunTable::Events => EVENTS_FILE,
+            RunTable::Episodes => EPISODES_FILE,
+        }
+    }
+
+    /// Its columns.
+    pub fn columns(self) -> &'static [&'static str] {
+        match self {
+            RunTable::Events => &EVENT_COLUMNS,
+            RunTable::Episodes => &EPISODE_COLUMNS,
+        }
+    }
+}
+
+/// A table of a run directory: its bytes, after checking that its header is the table's
+/// columns and every row has as many fields.
+pub fn read_table_csv(dir: &Path, table: RunTable) -> Result<Vec<u8>> {
+    let path = dir.join(table.file());
     let bytes = read_whole(&path, MAX_EVENTS_BYTES)?;
-    episode_rows(&bytes, &path)?;
+    table_rows(&bytes, &path, table.columns())?;
     Ok(bytes)
 }
 
-/// The rows of episodes.csv as JSON objects by column name: numbers as numbers, empty fields
-/// as null, words as strings.
-pub fn episodes_json(bytes: &[u8], path: &Path) -> Result<serde_json::Value> {
-    let rows = episode_rows(bytes, path)?;
+/// The rows of a table as JSON objects by column name: numbers as numbers, empty fields as
+/// null, words as strings.
+pub fn table_json(bytes: &[u8], path: &Path, table: RunTable) -> Result<serde_json::Value> {
+    let columns = table.columns();
+    let rows = table_rows(bytes, path, columns)?;
     Ok(serde_json::Value::Array(
         rows.into_iter()
             .map(|row| {
-                let object = EPISODE_COLUMNS
+                let object = columns
                     .iter()
                     .zip(row)
                     .map(|(column, field)| {
@@ -162,7 +190,7 @@ pub fn episodes_json(bytes: &[u8], path: &Path) -> Result<serde_json::Value> {
     ))
 }
 
-fn episode_rows(bytes: &[u8], path: &Path) -> Result<Vec<Vec<String>>> {
+fn table_rows(bytes: &[u8], path: &Path, columns: &[&str]) -> Result<Vec<Vec<String>>> {
     let mut reader = csv::ReaderBuilder::new().from_reader(bytes);
     let header: Vec<String> = reader
         .headers()
@@ -170,13 +198,13 @@ fn episode_rows(bytes: &[u8], path: &Path) -> Result<Vec<Vec<String>>> {
         .iter()
         .map(str::to_string)
         .collect();
-    if header != EPISODE_COLUMNS {
+    if header != columns {
         return Err(fail(
             path,
             format!(
                 "has the columns {}; expected {}",
                 header.join(","),
-                EPISODE_COLUMNS.join(",")
+                columns.join(",")
             ),
         ));
     }
