@@ -505,7 +505,8 @@ fn plot(args: PlotArgs) -> flexrock::Result<Output> {
     ))
 }
 
-/// `flexrock events`: the event table of a run directory, or its episodes as CSV or JSON.
+/// `flexrock events`: the events of a run directory as a table, CSV or JSON, or its episodes as
+/// CSV or JSON.
 fn events(
     dir: &std::path::Path,
     csv: bool,
