@@ -455,7 +455,7 @@ mod tests {
         assert_eq!(longest.len(), MAX_NUMBER_CHARS);
         for x in [
             1e-300,
-            4.9406564584124654e-324,
+            f64::MIN_POSITIVE,
             -1.2345678901234567e-300,
             1e308,
         ] {
