@@ -872,7 +872,7 @@ mod tests {
         for s in &samples {
             let mut fields: Vec<String> = [s.t, s.q, s.qdot, s.s, s.r]
                 .into_iter()
-                .map(|x| format!("{x}"))
+                .map(number)
                 .collect();
             fields.push(s.mode.name().to_string());
             fields.extend(
@@ -884,7 +884,7 @@ mod tests {
                     s.work_damping,
                 ]
                 .into_iter()
-                .map(|x| format!("{x}")),
+                .map(number),
             );
             expected.write_record(&fields).unwrap();
         }
