@@ -453,12 +453,7 @@ mod tests {
         let longest = number(-1.2345678901234566e-18);
         assert_eq!(longest, "-0.0000000000000000012345678901234566");
         assert_eq!(longest.len(), MAX_NUMBER_CHARS);
-        for x in [
-            1e-300,
-            f64::MIN_POSITIVE,
-            -1.2345678901234567e-300,
-            1e308,
-        ] {
+        for x in [1e-300, f64::MIN_POSITIVE, -1.2345678901234567e-300, 1e308] {
             assert!(number(x).len() <= 24, "{x:e}");
             assert_eq!(number(x).parse::<f64>().unwrap(), x);
         }
