@@ -86,19 +86,23 @@ pub(crate) enum Command {
     /// with the events marked on every panel), plot_force (F(q), q against r, s against r) and
     /// plot_energy (energy balance and residual), as SVG, PNG or both.
     Plot(PlotArgs),
-    /// Print the event log of a run directory (its events.csv) as a table, or with --csv or
-    /// --json its rocking episodes (episodes.csv): one row per episode with its side, start,
-    /// end, duration, peak |q| and rotation, floor acceleration at uplift and q' before and
-    /// after each impact.
+    /// Print the event log of a run directory (its events.csv) as a table, as CSV (--csv) or
+    /// as JSON (--json); with --episodes its rocking episodes (episodes.csv) instead, as CSV or
+    /// JSON: one row per episode with its side, start, end, duration, peak |q| and rotation,
+    /// floor acceleration at uplift and q' before and after each impact.
     Events {
         /// Output directory of `flexrock run`.
         dir: PathBuf,
-        /// Print the rocking episodes as CSV (the run's episodes.csv).
+        /// Print the table as CSV (the run's events.csv, or its episodes.csv).
         #[arg(long, conflicts_with = "json")]
         csv: bool,
-        /// Print the rocking episodes as JSON: an array of objects by column name.
+        /// Print the table as JSON: an array of objects by column name.
         #[arg(long)]
         json: bool,
+        /// Print the rocking episodes (episodes.csv) instead of the events: as CSV, or as JSON
+        /// with --json.
+        #[arg(long)]
+        episodes: bool,
     },
     /// Parametric study: run the model at every point of a grid of model-file keys (or search
     /// the smallest overturning value at each), one row per point in sweep.csv, with sweep.json
@@ -370,7 +374,7 @@ pub(crate) struct SweepArgs {
     /// Points per chunk (what a kill can lose) [default: about 1024 simulations' worth].
     #[arg(long)]
     pub(crate) chunk_size: Option<usize>,
-    /// Threads [default: every core].
+    /// Threads, 1 to 1024 [default: one per core].
     #[arg(long)]
     pub(crate) threads: Option<usize>,
     /// Replace the results of another sweep (or a damaged result of this one) in the output

@@ -33,6 +33,8 @@ impl flexrock::commands::sweep::store::Progress for ProgressBar {
 fn sweep(args: SweepArgs) -> flexrock::Result<Output> {
     use flexrock::commands::sweep::store;
     use flexrock_core::sweep::{axis, Request, Sweep};
+    // Before anything is read or computed: the threads asked for, or refused.
+    flexrock::commands::sweep::start_threads(args.threads)?;
     if let Some(SweepCommand::Merge { dirs, out }) = args.command {
         let report = store::merge(&dirs, &out)?;
         return Ok(Output {
@@ -89,19 +91,6 @@ fn sweep(args: SweepArgs) -> flexrock::Result<Output> {
         Some(text) => Some(store::Shard::parse(text)?),
         None => store::Shard::from_slurm(|name| std::env::var(name).ok())?,
     };
-    if let Some(threads) = args.threads {
-        if threads == 0 {
-            return Err(flexrock::Error::invalid(
-                "--threads",
-                0,
-                "must be at least 1",
-            ));
-        }
-        // Fails only if a pool exists already, which it cannot here.
-        let _ = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build_global();
-    }
     let out = args.out.unwrap_or_else(|| default_out_dir(&path, "-sweep"));
     let bar = if args.quiet {
         indicatif::ProgressBar::hidden()
@@ -257,7 +246,12 @@ fn execute(command: Command) -> flexrock::Result<Output> {
             )
         }
         Command::Plot(args) => plot(args),
-        Command::Events { dir, csv, json } => events(&dir, csv, json),
+        Command::Events {
+            dir,
+            csv,
+            json,
+            episodes,
+        } => events(&dir, csv, json, episodes),
         Command::Completions { shell } => {
             let mut script = Vec::new();
             clap_complete::generate(
@@ -511,18 +505,29 @@ fn plot(args: PlotArgs) -> flexrock::Result<Output> {
     ))
 }
 
-/// `flexrock events`: the event table of a run directory, or its episodes as CSV or JSON.
-fn events(dir: &std::path::Path, csv: bool, json: bool) -> flexrock::Result<Output> {
-    use flexrock::writers::run_dir::{episodes_json, read_episodes_csv, EPISODES_FILE};
-    if csv || json {
-        let bytes = read_episodes_csv(dir)?;
-        if csv {
+/// `flexrock events`: the events of a run directory as a table, CSV or JSON, or its episodes as
+/// CSV or JSON.
+fn events(
+    dir: &std::path::Path,
+    csv: bool,
+    json: bool,
+    episodes: bool,
+) -> flexrock::Result<Output> {
+    use flexrock::writers::run_dir::{read_table_csv, table_json, RunTable};
+    let table = if episodes {
+        RunTable::Episodes
+    } else {
+        RunTable::Events
+    };
+    if csv || json || episodes {
+        let bytes = read_table_csv(dir, table)?;
+        if !json {
             return Ok(Output {
                 stdout: bytes,
                 warnings: Vec::new(),
             });
         }
-        let value = episodes_json(&bytes, &dir.join(EPISODES_FILE))?;
+        let value = table_json(&bytes, &dir.join(table.file()), table)?;
         return Ok(Output {
             stdout: flexrock::writers::json_bytes(&value),
             warnings: Vec::new(),

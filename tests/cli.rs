@@ -789,12 +789,17 @@ fn episodes_agree_with_the_event_log_and_the_history() {
             "{row:?}: {sampled}"
         );
     }
-    let csv_out = flexrock(&["events", out.to_str().unwrap(), "--csv"]);
+    let csv_out = flexrock(&["events", out.to_str().unwrap(), "--episodes"]);
     assert_eq!(
         csv_out.stdout,
         std::fs::read(out.join("episodes.csv")).unwrap()
     );
-    let json_out = flexrock(&["events", out.to_str().unwrap(), "--json"]);
+    let csv_out = flexrock(&["events", out.to_str().unwrap(), "--episodes", "--csv"]);
+    assert_eq!(
+        csv_out.stdout,
+        std::fs::read(out.join("episodes.csv")).unwrap()
+    );
+    let json_out = flexrock(&["events", out.to_str().unwrap(), "--episodes", "--json"]);
     let json: serde_json::Value = serde_json::from_slice(&json_out.stdout).unwrap();
     let json = json.as_array().unwrap();
     assert_eq!(json.len(), rows.len());
@@ -807,11 +812,34 @@ fn episodes_agree_with_the_event_log_and_the_history() {
             }
         }
     }
+    // The events themselves, as CSV and as JSON: events.csv's rows, by column name.
+    let events_csv = std::fs::read(out.join("events.csv")).unwrap();
+    assert_eq!(
+        flexrock(&["events", out.to_str().unwrap(), "--csv"]).stdout,
+        events_csv
+    );
+    let json_out = flexrock(&["events", out.to_str().unwrap(), "--json"]);
+    let json: serde_json::Value = serde_json::from_slice(&json_out.stdout).unwrap();
+    let json = json.as_array().unwrap();
+    let mut reader = csv::Reader::from_reader(&events_csv[..]);
+    let header = reader.headers().unwrap().clone();
+    let events: Vec<csv::StringRecord> = reader.records().map(Result::unwrap).collect();
+    assert!(!events.is_empty());
+    assert_eq!(json.len(), events.len());
+    for (object, row) in json.iter().zip(&events) {
+        assert_eq!(object.as_object().unwrap().len(), header.len());
+        for (column, text) in header.iter().zip(row) {
+            match &object[column] {
+                serde_json::Value::String(s) => assert_eq!(s, text, "{column}"),
+                value => assert_eq!(value.as_f64().unwrap(), text.parse::<f64>().unwrap()),
+            }
+        }
+    }
     // Both at once, or a directory without episodes.csv, is refused.
     let both = flexrock(&["events", out.to_str().unwrap(), "--csv", "--json"]);
     assert_eq!(both.status.code(), Some(2));
     std::fs::remove_file(out.join("episodes.csv")).unwrap();
-    let missing = flexrock(&["events", out.to_str().unwrap(), "--csv"]);
+    let missing = flexrock(&["events", out.to_str().unwrap(), "--episodes"]);
     assert_eq!(missing.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&missing.stderr).contains("episodes.csv"));
 }

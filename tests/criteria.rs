@@ -37,6 +37,21 @@ fn the_committed_results_have_the_columns_the_command_writes() {
     ] {
         let text = std::fs::read_to_string(dir.join(file)).unwrap();
         assert_eq!(text.lines().next().unwrap(), columns.join(","), "{file}");
+        // A body that could not be run (it buckles under its own weight) has empty fields
+        // where its flexibility, period and p would be, never NaN.
+        let mut reader = csv::Reader::from_reader(text.as_bytes());
+        let mut empty = 0;
+        for record in reader.records() {
+            let record = record.unwrap();
+            for (column, field) in columns.iter().zip(record.iter()) {
+                assert!(
+                    !field.eq_ignore_ascii_case("nan"),
+                    "{file}: {column} = {field}"
+                );
+                empty += usize::from(field.is_empty() && column.contains("phi"));
+            }
+        }
+        assert!(empty > 0, "{file}: no body that could not be run");
     }
 }
 

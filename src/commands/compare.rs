@@ -182,7 +182,7 @@ pub fn run_compare(
     let comparison = compare(&reference, &newmark, output_dt, max_shift);
 
     let summary = CompareSummary {
-        provenance: crate::commands::run::Provenance::of(model),
+        provenance: timings.provenance("compare.json", model),
         period: model.constants.period,
         s_n: model.constants.uplift_displacement,
         duration: model.duration,

@@ -158,7 +158,7 @@ pub fn run_converge(
         }
     }
     let summary = ConvergeSummary {
-        provenance: crate::commands::run::Provenance::of(model),
+        provenance: timings.provenance("convergence.json", model),
         reference_method: reference_settings.label(),
         reference_rtol: options.reference_rtol,
         reference_statistics: reference.stats.clone(),

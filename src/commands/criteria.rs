@@ -1,7 +1,7 @@
 //! `flexrock criteria`: the overturning criteria study of [`flexrock_core::criteria`] on the
 //! body of a model file, written as criteria.csv, continuity.csv, fit.json, criteria.json and
-//! two figures (SVG and PNG); the wall time goes to timings.json, so that every other file is
-//! byte-stable.
+//! two figures (SVG and PNG); the wall time and the commit flexrock was built from go to
+//! timings.json, so that every other file is byte-stable.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -17,6 +17,7 @@ use flexrock_core::format::shortest;
 use flexrock_core::rigid_criteria::{
     ishiyama_acceleration, ishiyama_velocity, ISHIYAMA_VELOCITY_COEFFICIENT,
 };
+use flexrock_core::simulate::{COMMIT, DIRTY};
 
 /// Column names of criteria.csv (a contract), units in the names.
 pub const CRITERIA_COLUMNS: [&str; 25] = [
@@ -93,9 +94,9 @@ fn criteria_csv(points: &[Point], g: Geometry) -> Vec<u8> {
             p.excitation.clone(),
             opt(p.period),
             shortest(p.youngs_modulus),
-            shortest(p.flexibility),
-            shortest(p.pre_uplift_period),
-            shortest(p.p),
+            opt(p.flexibility),
+            opt(p.pre_uplift_period),
+            opt(p.p),
             opt(p.critical_pga),
             opt(p.critical_pgv()),
             opt(p.critical_pga.map(|a| a / a_i)),
@@ -130,7 +131,7 @@ fn continuity_csv(decades: &[continuity::Decade]) -> Vec<u8> {
             shortest(d.slenderness),
             d.excitations.to_string(),
             shortest(d.youngs_modulus),
-            shortest(d.flexibility),
+            opt(d.flexibility),
             opt(d.max_abs_difference_rigid_limit),
             opt(d.max_abs_difference_rigid_full),
             d.points.to_string(),
@@ -181,7 +182,7 @@ struct Unconservative {
     excitation: String,
     period_s: Option<f64>,
     youngs_modulus_pa: f64,
-    phi: f64,
+    phi: Option<f64>,
     critical_pga_m_per_s2: Option<f64>,
     rigid_full_pga_m_per_s2: Option<f64>,
     relative_difference: Option<f64>,
@@ -343,7 +344,11 @@ pub fn run(
         files.push((leak(format!("{name}.svg")), svg));
         files.push((leak(format!("{name}.png")), png));
     }
-    let timings = serde_json::json!({ "wall_time_s": start.elapsed().as_secs_f64() });
+    // The wall time and the commit flexrock was built from change from run to run while the
+    // results do not: they go to timings.json.
+    let mut timings = serde_json::json!({ "wall_time_s": start.elapsed().as_secs_f64() });
+    timings["flexrock_commit"] = COMMIT.into();
+    timings["flexrock_dirty"] = DIRTY.into();
     files.push(("timings.json", writers::json_bytes(&timings)));
     let files = writers::write_atomically(out, &files)?;
     Ok(CriteriaReport {
@@ -380,12 +385,12 @@ pub fn report_text(report: &CriteriaReport) -> String {
     for d in &report.decades {
         let _ = writeln!(
             t,
-            "  {:<11} {:>6} {:<7} {:>9.2e} {:>8.4} {:>22} {:>22}",
+            "  {:<11} {:>6} {:<7} {:>9.2e} {:>8} {:>22} {:>22}",
             d.self_weight,
             shortest(d.slenderness),
             d.excitations,
             d.youngs_modulus,
-            d.flexibility,
+            d.flexibility.map_or("-".into(), |x| format!("{x:.4}")),
             d.max_abs_difference_rigid_limit
                 .map_or("-".into(), |x| format!("{x:.5}")),
             d.max_abs_difference_rigid_full

@@ -294,11 +294,17 @@ fn render(charts: Vec<(&'static str, Panel)>) -> Result<Vec<(&'static str, Vec<u
 }
 
 /// The files of a run: CSVs, summary and figures.
-fn run_files(model: &Model, a: &FemAnalysis) -> Result<Vec<(&'static str, Vec<u8>)>> {
+fn run_files(
+    model: &Model,
+    a: &FemAnalysis,
+    timings: &mut writers::Timings,
+) -> Result<Vec<(&'static str, Vec<u8>)>> {
+    let mut fem_summary = summary(model, a);
+    timings.take_commit("fem_summary.json", &mut fem_summary.provenance);
     let mut files = vec![
         ("fem_history.csv", history_csv(model, &a.result.steps)),
         ("fem_events.csv", events_csv(&a.result)),
-        ("fem_summary.json", writers::json_bytes(&summary(model, a))),
+        ("fem_summary.json", writers::json_bytes(&fem_summary)),
     ];
     files.extend(render(figures(model, a))?);
     Ok(files)
@@ -336,8 +342,8 @@ pub fn fem(
     out_dir: &Path,
     wall_times: writers::WallTimes,
 ) -> Result<FemReport> {
-    let (analysis, timings) = analyse_timed(model, setup, wall_times)?;
-    let mut files = run_files(model, &analysis)?;
+    let (analysis, mut timings) = analyse_timed(model, setup, wall_times)?;
+    let mut files = run_files(model, &analysis, &mut timings)?;
     files.extend(timings.file());
     let files = writers::write_atomically(out_dir, &files)?;
     Ok(FemReport {
@@ -442,10 +448,10 @@ pub fn compare(
     out_dir: &Path,
     wall_times: writers::WallTimes,
 ) -> Result<FemReport> {
-    let (analysis, timings) = analyse_timed(model, setup, wall_times)?;
+    let (analysis, mut timings) = analyse_timed(model, setup, wall_times)?;
     let sdof = crate::commands::run::simulate(model)?;
     let comparison = compare_solutions(model, &sdof, &analysis);
-    let mut files = run_files(model, &analysis)?;
+    let mut files = run_files(model, &analysis, &mut timings)?;
     files.push(("compare.csv", comparison_csv(&comparison)));
     files.push(("compare.json", writers::json_bytes(&comparison)));
     files.push(("sdof_history.csv", writers::history_csv(&sdof.samples)));

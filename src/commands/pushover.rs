@@ -135,12 +135,11 @@ pub fn run(
     let mut timings = writers::Timings::new(wall_times);
     timings.take("pushover.json/wall_time_s", &mut analysis.wall_time_s);
     let svg = plot::figure("pushover.svg", &[figure(model, &analysis)], 1, (900, 550))?;
+    let mut pushover_summary = summary(model, &analysis);
+    timings.take_commit("pushover.json", &mut pushover_summary.provenance);
     let mut files = vec![
         ("pushover.csv", curves_csv(model, &analysis)),
-        (
-            "pushover.json",
-            writers::json_bytes(&summary(model, &analysis)),
-        ),
+        ("pushover.json", writers::json_bytes(&pushover_summary)),
         ("pushover.svg", svg.into_bytes()),
     ];
     files.extend(timings.file());

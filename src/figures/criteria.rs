@@ -72,7 +72,10 @@ pub fn plane(points: &[Point], g: Geometry) -> Vec<Panel> {
                 .copied()
                 .filter(|p| p.youngs_modulus == *e)
                 .collect();
-            let phi = same[0].flexibility;
+            // A body that could not be run (it buckles) has no flexibility and no points.
+            let Some(phi) = same.iter().find_map(|p| p.flexibility) else {
+                continue;
+            };
             let color = k + 1;
             panel = panel.with(
                 Series::line(
@@ -182,14 +185,14 @@ pub fn against_flexibility(points: &[Point], fits: &[Fit], g: Geometry) -> Vec<P
                 .iter()
                 .filter_map(|p| {
                     let a_i = ishiyama_acceleration(p.width, p.height, g.gravity);
-                    Some((p.flexibility, p.critical_pga? / a_i))
+                    Some((p.flexibility?, p.critical_pga? / a_i))
                 })
                 .collect();
             let v_pts = held
                 .iter()
                 .filter_map(|p| {
                     let v_i = ishiyama_velocity(p.width, p.height);
-                    Some((p.flexibility, p.critical_pgv()? / v_i))
+                    Some((p.flexibility?, p.critical_pgv()? / v_i))
                 })
                 .collect();
             // Held-out records: one legend entry per slenderness.
@@ -219,11 +222,11 @@ pub fn against_flexibility(points: &[Point], fits: &[Fit], g: Geometry) -> Vec<P
             .collect();
         let limit = mine
             .iter()
-            .filter_map(|d| Some((d.flexibility, d.max_abs_difference_rigid_limit?)))
+            .filter_map(|d| Some((d.flexibility?, d.max_abs_difference_rigid_limit?)))
             .collect();
         let full = mine
             .iter()
-            .filter_map(|d| Some((d.flexibility, d.max_abs_difference_rigid_full?)))
+            .filter_map(|d| Some((d.flexibility?, d.max_abs_difference_rigid_full?)))
             .collect();
         cont = cont
             .with(Series::line(&format!("vs rigid limit, {sw}"), limit, 2 * k + 1).with_markers())

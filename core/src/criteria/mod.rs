@@ -194,12 +194,12 @@ pub struct Point {
     pub period: Option<f64>,
     /// E, Pa.
     pub youngs_modulus: f64,
-    /// phi = p T.
-    pub flexibility: f64,
-    /// T, s.
-    pub pre_uplift_period: f64,
-    /// p, rad/s.
-    pub p: f64,
+    /// phi = p T; None for a body that could not be run (`reason` says why).
+    pub flexibility: Option<f64>,
+    /// T, s; None likewise.
+    pub pre_uplift_period: Option<f64>,
+    /// p, rad/s; None likewise.
+    pub p: Option<f64>,
     /// The floor's peak acceleration per unit of the searched key (1 for the pulses).
     pub pga_per_unit: f64,
     /// The floor's peak velocity per unit of the searched key, m/s.
@@ -396,10 +396,7 @@ fn run_body(
                 let (ie, ip) = (c[0], if is_record { 0 } else { c[1] });
                 let (pga_unit, pgv_unit, small_angle) = per_period[ip];
                 let scales = row.scales.unwrap_or_default();
-                let (t, p) = (
-                    scales.period.unwrap_or(f64::NAN),
-                    scales.p.unwrap_or(f64::NAN),
-                );
+                let (t, p) = (scales.period, scales.p);
                 let to_pga = |x: Option<f64>| x.map(|v| v * pga_unit);
                 let mut point = Point {
                     self_weight: self_weight.clone(),
@@ -409,7 +406,7 @@ fn run_body(
                     excitation: excitation.name(),
                     period: periods[ip],
                     youngs_modulus: study.youngs_moduli[ie],
-                    flexibility: p * t,
+                    flexibility: p.zip(t).map(|(p, t)| p * t),
                     pre_uplift_period: t,
                     p,
                     pga_per_unit: pga_unit,

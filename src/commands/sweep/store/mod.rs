@@ -67,6 +67,13 @@ pub struct Counts {
 pub struct SweepSummary {
     /// Version of flexrock that wrote it.
     pub flexrock_version: String,
+    /// The commit that flexrock was built from, or "unknown" (and empty in a sweep.json written
+    /// before it was recorded).
+    #[serde(default)]
+    pub flexrock_commit: String,
+    /// Whether the program's sources differed from that commit; null when unknown.
+    #[serde(default)]
+    pub flexrock_dirty: Option<bool>,
     /// What was computed.
     pub plan: Plan,
     /// Set for a shard's directory; absent for a whole sweep (also a merged one).
@@ -575,6 +582,8 @@ fn finish(
     names.push(SUMMARY_FILE.to_string());
     let summary = SweepSummary {
         flexrock_version: crate::commands::run::VERSION.to_string(),
+        flexrock_commit: flexrock_core::simulate::COMMIT.to_string(),
+        flexrock_dirty: flexrock_core::simulate::DIRTY,
         plan: plan.clone(),
         shard,
         points: range,
