@@ -278,9 +278,10 @@ pub fn convert(format: Format, name: &str, svg: &str, dpi: f64) -> Result<Vec<u8
     }
 }
 
-/// Gives the SVG `svg` that plotters drew in dots its size on paper (width and height in mm,
-/// the drawing's coordinates unchanged), and a description `desc` (what each panel shows).
-pub fn on_paper(svg: String, desc: &str) -> String {
+/// Gives the SVG `svg` that plotters drew in whole dots its size on paper, `size` (width and
+/// height, mm; the drawing's coordinates unchanged, so scaled by less than a dot's rounding),
+/// and a description `desc` (what each panel shows).
+pub fn on_paper(svg: String, (width_mm, height_mm): (f64, f64), desc: &str) -> String {
     let Some(end) = svg.find('>') else {
         return svg;
     };
@@ -294,8 +295,7 @@ pub fn on_paper(svg: String, desc: &str) -> String {
     };
     let mut out = format!(
         "<svg width=\"{:.2}mm\" height=\"{:.2}mm\" viewBox=\"0 0 {w} {h}\" xmlns=\"http://www.w3.org/2000/svg\">\n",
-        mm(w),
-        mm(h)
+        width_mm, height_mm
     );
     if !desc.is_empty() {
         out.push_str("<desc>");
@@ -338,7 +338,7 @@ mod tests {
             "<svg width=\"{w}\" height=\"{h}\" viewBox=\"0 0 {w} {h}\" xmlns=\"http://www.w3.org/2000/svg\">\n\
              <text x=\"10\" y=\"100\" font-family=\"sans-serif\" font-size=\"40\">Aq</text></svg>"
         );
-        let svg = on_paper(svg, "a test");
+        let svg = on_paper(svg, (85.0, 42.5), "a test");
         assert!(svg.starts_with("<svg width=\"85.00mm\" height=\"42.50mm\""), "{svg}");
         let png = convert(Format::Png, "t.png", &svg, 300.0).unwrap();
         let decoder = png::Decoder::new(std::io::Cursor::new(png));

@@ -451,7 +451,8 @@ pub fn svg(name: &str, figure: &Figure, page: &Page) -> Result<String> {
             format!("{}: {what} against {}", panel_label(i), p.x_label)
         })
         .collect();
-    Ok(page::on_paper(svg, &desc.join("; ")))
+    let size = (page.width, page.height.unwrap_or(page::mm(layout.height)));
+    Ok(page::on_paper(svg, size, &desc.join("; ")))
 }
 
 /// "(a)", "(b)", ... for panel `i`.
@@ -656,23 +657,23 @@ fn padded_ranges(panel: &Panel, extent: (f64, f64, f64, f64)) -> (f64, f64, f64,
 
 /// A number as a tick label: the decimals of `step`, the minus sign U+2212, no "-0".
 fn tick_text(v: f64, step: f64) -> String {
-    let decimals = if step >= 1.0 {
-        0
-    } else {
-        (-(step.log10()).floor() as i32 + i32::from(nice_mantissa(step) == 2.5)).max(0) as usize
-    };
+    // The fewest decimals that write the step exactly (2.5 needs one, 0.25 two).
+    let decimals = (0..12)
+        .find(|&d| {
+            let scaled = step * 10f64.powi(d);
+            (scaled - scaled.round()).abs() <= 1e-9 * scaled.max(1.0)
+        })
+        .unwrap_or(12) as usize;
     let text = format!("{v:.decimals$}");
-    let zero = text.trim_start_matches('-').chars().all(|c| c == '0' || c == '.');
+    let zero = text
+        .trim_start_matches('-')
+        .chars()
+        .all(|c| c == '0' || c == '.');
     if zero {
         "0".to_string()
     } else {
         text.replace('-', "−")
     }
-}
-
-fn nice_mantissa(step: f64) -> f64 {
-    let m = step / 10f64.powf(step.log10().floor());
-    (m * 10.0).round() / 10.0
 }
 
 /// Superscript digits and minus of `n`.
@@ -705,7 +706,7 @@ fn linear_ticks(lo: f64, hi: f64, max: usize) -> Ticks {
     'search: for k in [base, base * 10.0] {
         for m in [1.0, 2.0, 2.5, 5.0] {
             let s = m * k;
-            if (hi / s).floor() - (lo / s).ceil() + 1.0 <= max {
+            if (hi / s + 1e-9).floor() - (lo / s - 1e-9).ceil() + 1.0 <= max {
                 step = s;
                 break 'search;
             }
@@ -714,8 +715,9 @@ fn linear_ticks(lo: f64, hi: f64, max: usize) -> Ticks {
     if !step.is_finite() {
         step = base * 10.0;
     }
-    let first = (lo / step).ceil() as i64;
-    let last = (hi / step).floor() as i64;
+    // Within rounding of a multiple of the step (0.3 / 0.1 = 2.9999999999999996) counts.
+    let first = (lo / step - 1e-9).ceil() as i64;
+    let last = (hi / step + 1e-9).floor() as i64;
     let big = lo.abs().max(hi.abs());
     let exponent = if big >= 1e4 || (big < 1e-3 && big > 0.0) {
         Some(big.log10().floor() as i64)
@@ -1559,9 +1561,12 @@ mod tests {
         assert_eq!(labels, ["−0.3", "−0.2", "−0.1", "0", "0.1", "0.2", "0.3"]);
         let t = linear_ticks(0.0, 25_000.0, 6);
         assert_eq!(t.major[1].1, "0.5×10⁴");
-        let t = linear_ticks(-2.0, 8.0, 5);
+        let t = linear_ticks(-5.2, 8.4, 6);
         let labels: Vec<&str> = t.major.iter().map(|(_, s)| s.as_str()).collect();
-        assert_eq!(labels, ["−2", "0", "2", "4", "6", "8"][..labels.len()].to_vec());
+        // Every label with the step's decimals, as a journal sets them.
+        assert_eq!(labels, ["−5.0", "−2.5", "0", "2.5", "5.0", "7.5"]);
+        assert_eq!(tick_text(0.5, 0.25), "0.50");
+        assert_eq!(tick_text(-1e-17, 0.25), "0");
     }
 
     #[test]
@@ -1579,7 +1584,10 @@ mod tests {
         let texts: Vec<&str> = svg
             .split("<text")
             .skip(1)
-            .map(|t| t.split('>').nth(1).unwrap_or("").trim())
+            .map(|t| {
+                let inner = t.split('>').nth(1).unwrap_or("");
+                inner.split('<').next().unwrap_or("").trim()
+            })
             .collect();
         for text in ["(a)", "(b)", "y (m)", "z (m)", "sine", "limit"] {
             assert_eq!(texts.iter().filter(|t| **t == text).count(), 1, "{text}");
@@ -1595,8 +1603,13 @@ mod tests {
         small.height = Some(40.0);
         let e = svg("s.svg", &Figure::new(panels.clone(), 1), &small).unwrap_err();
         assert!(e.to_string().contains("--height"), "{e}");
-        let e = svg("s.svg", &Figure::new(panels, 6), &page(60.0)).unwrap_err();
-        assert!(e.to_string().contains("--width"), "{e}");
+        // Six panels across do not fit on 60 mm: they wrap to fewer across, each at least
+        // MIN_ACROSS_MM wide.
+        let layout = Layout::of("w.svg", &Figure::new(panels, 6), &page(60.0)).unwrap();
+        let lefts: std::collections::BTreeSet<i64> =
+            layout.panels.iter().map(|p| p.area.0 as i64).collect();
+        assert!(lefts.len() < 6, "{lefts:?}");
+        assert!(layout.panels.iter().all(|p| p.area.2 >= dots(MIN_ACROSS_MM)));
     }
 
     #[test]

@@ -862,7 +862,7 @@ mod tests {
                         restitution,
                     };
                     let label = housner_label(&options);
-                    assert!(label.chars().count() <= 48, "{label}");
+                    assert!(label.chars().count() <= 52, "{label}");
                     assert_eq!(label.contains("full eq."), form == RigidForm::Full, "{label}");
                     assert_eq!(
                         label.contains("small-angle eq."),
