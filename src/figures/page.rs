@@ -261,9 +261,10 @@ pub fn convert(format: Format, name: &str, svg: &str, dpi: f64) -> Result<Vec<u8
         Format::Png => {
             let scale = (dpi / 96.0) as f32;
             let size = tree.size();
+            // To the nearest pixel (3.5 in at 96 dpi is 336, not 336.00000001 rounded up).
             let (w, h) = (
-                (size.width() * scale).ceil() as u32,
-                (size.height() * scale).ceil() as u32,
+                (size.width() * scale).round().max(1.0) as u32,
+                (size.height() * scale).round().max(1.0) as u32,
             );
             let mut pixmap = resvg::tiny_skia::Pixmap::new(w, h)
                 .ok_or_else(|| fail(format!("cannot make an image of {w} × {h} pixels")))?;
@@ -293,9 +294,12 @@ pub fn on_paper(svg: String, (width_mm, height_mm): (f64, f64), desc: &str) -> S
     let (Some(w), Some(h)) = (number("width"), number("height")) else {
         return svg;
     };
+    // To a hundredth of a millimetre, in the fewest digits: 85mm, 137.58mm.
+    let length = |v: f64| flexrock_core::format::shortest((v * 100.0).round() / 100.0);
     let mut out = format!(
-        "<svg width=\"{:.2}mm\" height=\"{:.2}mm\" viewBox=\"0 0 {w} {h}\" xmlns=\"http://www.w3.org/2000/svg\">\n",
-        width_mm, height_mm
+        "<svg width=\"{}mm\" height=\"{}mm\" viewBox=\"0 0 {w} {h}\" xmlns=\"http://www.w3.org/2000/svg\">\n",
+        length(width_mm),
+        length(height_mm)
     );
     if !desc.is_empty() {
         out.push_str("<desc>");
@@ -339,7 +343,7 @@ mod tests {
              <text x=\"10\" y=\"100\" font-family=\"sans-serif\" font-size=\"40\">Aq</text></svg>"
         );
         let svg = on_paper(svg, (85.0, 42.5), "a test");
-        assert!(svg.starts_with("<svg width=\"85.00mm\" height=\"42.50mm\""), "{svg}");
+        assert!(svg.starts_with("<svg width=\"85mm\" height=\"42.5mm\""), "{svg}");
         let png = convert(Format::Png, "t.png", &svg, 300.0).unwrap();
         let decoder = png::Decoder::new(std::io::Cursor::new(png));
         let info = decoder.read_info().unwrap();

@@ -1018,14 +1018,17 @@ impl Layout {
                 if !panel.title.is_empty() {
                     text = format!("{text} {}", panel.title);
                 }
-                let (_, top, _, _) = layout.area;
+                let (left, top, w, _) = layout.area;
+                // Set smaller (down to 6 pt) where it would run into the next panel's.
+                let room = left + w - layout.cell_left;
+                let size = (PANEL_PT * room / text_width(&text, PANEL_PT)).clamp(6.0, PANEL_PT);
                 root.draw(&Text::new(
                     text,
                     (
                         layout.cell_left.round() as i32,
                         (top - pt(TICK_PT) * 0.6).round() as i32,
                     ),
-                    font(PANEL_PT, Pos::new(HPos::Left, VPos::Bottom)),
+                    font(size, Pos::new(HPos::Left, VPos::Bottom)),
                 ))?;
             } else if !panel.title.is_empty() {
                 let (left, top, w, _) = layout.area;
@@ -1245,9 +1248,13 @@ where
         ) else {
             continue;
         };
+        // A dot wider and taller on the right and below, within the plotting area, so that
+        // neighbours overlap and no seam of the background shows between them in any viewer.
+        let (l, r) = (sx(ax).min(sx(bx)), sx(ax).max(sx(bx)) + 1.0);
+        let (t, b) = (sy(by).min(sy(ay)), sy(by).max(sy(ay)) + 1.0);
         root.draw(&rect(
-            (clip_x(sx(ax)), clip_y(sy(by))),
-            (clip_x(sx(bx)), clip_y(sy(ay))),
+            (clip_x(l), clip_y(t)),
+            (clip_x(r), clip_y(b)),
             RGBColor(c.rgb.0, c.rgb.1, c.rgb.2),
         ))?;
     }
@@ -1580,7 +1587,7 @@ mod tests {
         a.reference_lines = vec![(0.5, "limit".to_string()), (-0.5, String::new())];
         let b = Panel::new("", "x (s)", "z (m)").with(sine);
         let svg = svg("a.svg", &Figure::new(vec![a, b], 1).shared_x(), &page(85.0)).unwrap();
-        assert!(svg.starts_with("<svg width=\"85.00mm\""));
+        assert!(svg.starts_with("<svg width=\"85mm\""));
         let texts: Vec<&str> = svg
             .split("<text")
             .skip(1)

@@ -106,7 +106,9 @@ pub fn panels(model: &RowModel, solution: &RowSolution) -> Vec<Panel> {
             crate::writers::significant(1e3 * contact.clearance, 4),
             crate::writers::significant(contact.height, 4)
         );
-        gaps = gaps.with(Series::line(&name, points, c + 1).with_dash(DASHES[c % DASHES.len()]));
+        // The gaps in colours after the columns' (a colour means one thing in the figure).
+        let color = model.bodies.len() + 1 + c;
+        gaps = gaps.with(Series::line(&name, points, color).with_dash(DASHES[c % DASHES.len()]));
     }
     gaps.reference_lines = vec![(0.0, "contact".to_string())];
     // Held contact (persistent contact), and under the compliant law every stretch of contact,
@@ -119,7 +121,7 @@ pub fn panels(model: &RowModel, solution: &RowSolution) -> Vec<Panel> {
                 Span {
                     from,
                     to: to.unwrap_or(solution.final_time),
-                    color: contact + 1,
+                    color: model.bodies.len() + 1 + contact,
                     label: format!("{contact}|{} {what} ({count})", contact + 1),
                     strong,
                 }
@@ -404,11 +406,11 @@ pub fn shape_panels(
     let metres_per_pixel = 1.3 * tallest / crate::figures::page::dots(SHAPE_PLOT_MM);
     for (time, state) in times.iter().zip(states) {
         let title = if time.why.is_empty() {
-            format!("t = {} s", crate::writers::significant(time.t, 6))
+            format!("t = {} s", crate::writers::significant(time.t, 4))
         } else {
             format!(
                 "t = {} s, {}",
-                crate::writers::significant(time.t, 5),
+                crate::writers::significant(time.t, 3),
                 time.why
             )
         };

@@ -66,6 +66,23 @@ pub fn files(
     Ok(files)
 }
 
+/// The figure files a sweep writes with its table: SVG, and the verdict maps of a row as PNG
+/// too (as they always were).
+pub fn sweep_files(plan: &Plan, table: &SweepTable) -> Result<Vec<(String, Vec<u8>)>> {
+    use crate::figures::page::Format;
+    let mut files = Vec::new();
+    for (stem, figure) in figures(plan, table)? {
+        let formats: &[Format] = if stem == VERDICTS {
+            &[Format::Svg, Format::Png]
+        } else {
+            &[Format::Svg]
+        };
+        let options = FigureOptions::default().with_formats(formats);
+        files.extend(plot::files(stem, &figure, &options, PAGE_MM)?);
+    }
+    Ok(files)
+}
+
 /// The stem of the figure of a sweep over records and an intensity.
 pub const IDA: &str = "ida";
 /// The stem of the maps of a row sweep over two numeric axes: each column's verdict.
@@ -776,14 +793,14 @@ fn spectrum(plan: &Plan, table: &SweepTable, x: usize) -> Result<Option<Figure>>
         "model's rigid limit: uplift at {:.3} g B/H",
         flexrock_core::constants::ModeShapeIntegrals::exact().rigid_limit_uplift_factor()
     );
-    // The two rigid curves nearly coincide: Housner's wide, grey and solid underneath, the
+    // The two rigid curves nearly coincide: Housner's wide, orange and solid underneath, the
     // rigid limit thin, dashed and black on top of it, so that both show where they meet.
     let curves = |elastic: Vec<(f64, f64)>,
                   rigid: Vec<(f64, f64)>,
                   limit_curve: Vec<(f64, f64)>,
                   standing: Vec<(f64, f64)>| {
         let mut series = vec![
-            Series::line(&housner, rigid, 7).with_width(2.4),
+            Series::line(&housner, rigid, 4).with_width(2.4),
             Series::line(&limit, limit_curve, 0)
                 .with_width(0.8)
                 .with_dash(Dash::Dashed),

@@ -569,7 +569,7 @@ fn finish(
     let set = writers::FileSet::begin(dir, &names)?;
     let (figures, table_sha256) = rayon::join(
         || match shard {
-            None => figure::files(plan, &table, &crate::figures::page::FigureOptions::default()),
+            None => figure::sweep_files(plan, &table),
             Some(_) => Ok(Vec::new()),
         },
         || -> Result<String> {
