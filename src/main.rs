@@ -3,10 +3,7 @@
 
 mod cli;
 
-use cli::{
-    Cli, Command, PlotArgs, RecordCommand, RecordOptions, SetArgs, SweepArgs,
-    SweepCommand,
-};
+use cli::{Cli, Command, PlotArgs, RecordCommand, RecordOptions, SetArgs, SweepArgs, SweepCommand};
 
 use std::io::Write as _;
 use std::path::PathBuf;
@@ -495,31 +492,31 @@ fn run_row(
 fn plot(args: PlotArgs) -> flexrock::Result<Output> {
     use flexrock::figures::page::Format;
     let figure = args.figure.options(&[Format::Svg]);
-    let written = if args.dir.join("sweep.json").is_file() && !args.dir.join("summary.json").exists()
-    {
-        for (flag, given) in [("--from", args.from), ("--to", args.to)] {
-            if let Some(t) = given {
-                return Err(flexrock_core::Error::InvalidParameter {
-                    key: flag.to_string(),
-                    value: t.to_string(),
-                    rule: format!(
-                        "applies to a run's figures only; {} is a sweep's directory",
-                        args.dir.display()
-                    ),
+    let written =
+        if args.dir.join("sweep.json").is_file() && !args.dir.join("summary.json").exists() {
+            for (flag, given) in [("--from", args.from), ("--to", args.to)] {
+                if let Some(t) = given {
+                    return Err(flexrock_core::Error::InvalidParameter {
+                        key: flag.to_string(),
+                        value: t.to_string(),
+                        rule: format!(
+                            "applies to a run's figures only; {} is a sweep's directory",
+                            args.dir.display()
+                        ),
+                    }
+                    .into());
                 }
-                .into());
             }
-        }
-        flexrock::commands::sweep::store::plot_dir(&args.dir, &figure)?
-    } else {
-        let options = flexrock::figures::run::PlotOptions {
-            formats: figure.formats,
-            sizes: figure.sizes,
-            from: args.from,
-            to: args.to,
+            flexrock::commands::sweep::store::plot_dir(&args.dir, &figure)?
+        } else {
+            let options = flexrock::figures::run::PlotOptions {
+                formats: figure.formats,
+                sizes: figure.sizes,
+                from: args.from,
+                to: args.to,
+            };
+            flexrock::figures::run::plot_dir_with(&args.dir, &options)?
         };
-        flexrock::figures::run::plot_dir_with(&args.dir, &options)?
-    };
     Ok(Output::text(
         written
             .iter()

@@ -63,32 +63,31 @@ impl SweepTable {
         path: &Path,
     ) -> Result<SweepTable> {
         use rayon::prelude::*;
-        let read =
-            |piece: &mut Piece| -> Result<Vec<csv::StringRecord>> {
-                if let Some(records) = piece.records.take() {
-                    return Ok(records);
-                }
-                csv::ReaderBuilder::new()
-                    .has_headers(false)
-                    .from_reader(piece.rows.as_slice())
-                    .records()
-                    .map(|record| {
-                        let malformed = |message: String| Error::ReadResult {
-                            path: path.to_path_buf(),
-                            message: format!("a malformed row: {message}"),
-                        };
-                        let record = record.map_err(|e| malformed(e.to_string()))?;
-                        if record.len() != columns.len() {
-                            return Err(malformed(format!(
-                                "{} fields under {} columns",
-                                record.len(),
-                                columns.len()
-                            )));
-                        }
-                        Ok(record)
-                    })
-                    .collect()
-            };
+        let read = |piece: &mut Piece| -> Result<Vec<csv::StringRecord>> {
+            if let Some(records) = piece.records.take() {
+                return Ok(records);
+            }
+            csv::ReaderBuilder::new()
+                .has_headers(false)
+                .from_reader(piece.rows.as_slice())
+                .records()
+                .map(|record| {
+                    let malformed = |message: String| Error::ReadResult {
+                        path: path.to_path_buf(),
+                        message: format!("a malformed row: {message}"),
+                    };
+                    let record = record.map_err(|e| malformed(e.to_string()))?;
+                    if record.len() != columns.len() {
+                        return Err(malformed(format!(
+                            "{} fields under {} columns",
+                            record.len(),
+                            columns.len()
+                        )));
+                    }
+                    Ok(record)
+                })
+                .collect()
+        };
         let parts: Vec<Vec<csv::StringRecord>> =
             pieces.par_iter_mut().map(read).collect::<Result<_>>()?;
         Ok(SweepTable {
@@ -166,7 +165,8 @@ impl SweepTable {
             path: path.to_path_buf(),
             message,
         };
-        let mut reader = csv::Reader::from_path(path).map_err(|e| unreadable(format!("cannot read it: {e}")))?;
+        let mut reader =
+            csv::Reader::from_path(path).map_err(|e| unreadable(format!("cannot read it: {e}")))?;
         let columns: Vec<String> = reader
             .headers()
             .map_err(|e| unreadable(format!("cannot read its header: {e}")))?

@@ -387,7 +387,12 @@ fn the_housner_curve_shows_beside_the_rigid_limit_in_the_spectrum() {
         .attr("viewBox")
         .and_then(|v| v.split_whitespace().nth(3)?.parse().ok())
         .expect("a viewBox");
-    let panel = (0.0, label("(a)").number("y"), label("(b)").number("x"), height);
+    let panel = (
+        0.0,
+        label("(a)").number("y"),
+        label("(b)").number("x"),
+        height,
+    );
     let under = series_strokes(&elements, &housner, panel);
     let over = series_strokes(&elements, &limit, panel);
     assert!(!under.is_empty() && !over.is_empty());
@@ -522,9 +527,16 @@ fn plot_motion_marks_the_events_on_every_panel() {
         }
     }
     for i in 0..3 {
-        assert!(rug[i] >= n_events, "panel {i}: a rug of {} for {n_events} events ({rug:?})", rug[i]);
+        assert!(
+            rug[i] >= n_events,
+            "panel {i}: a rug of {} for {n_events} events ({rug:?})",
+            rug[i]
+        );
     }
-    assert!(triangles[3] >= n_events, "{triangles:?} triangles for {n_events} events");
+    assert!(
+        triangles[3] >= n_events,
+        "{triangles:?} triangles for {n_events} events"
+    );
     // One legend for the figure, one entry per kind of event.
     assert_eq!(
         elements
@@ -637,7 +649,14 @@ fn plot_writes_png_of_the_size_asked_and_svg_by_default() {
     assert!(!run.join("plot_motion.png").exists());
     // 85 mm by 120 mm at 300 dpi: 1003.9 by 1417.3 dots, to the nearest pixel.
     run_ok(&[
-        "plot", dir, "--format", "svg,pdf,png", "--width", "85mm", "--height", "12cm",
+        "plot",
+        dir,
+        "--format",
+        "svg,pdf,png",
+        "--width",
+        "85mm",
+        "--height",
+        "12cm",
     ]);
     for stem in ["plot_motion", "plot_force", "plot_energy"] {
         let png = run.join(format!("{stem}.png"));
@@ -647,7 +666,10 @@ fn plot_writes_png_of_the_size_asked_and_svg_by_default() {
         );
         assert_eq!(png_size(&png), (1004, 1417), "{stem}");
         let svg = read(&run.join(format!("{stem}.svg")));
-        assert!(svg.starts_with("<svg width=\"85mm\" height=\"120mm\""), "{stem}");
+        assert!(
+            svg.starts_with("<svg width=\"85mm\" height=\"120mm\""),
+            "{stem}"
+        );
         let pdf = std::fs::read(run.join(format!("{stem}.pdf"))).unwrap();
         assert!(pdf.starts_with(b"%PDF-"), "{stem}");
     }
@@ -712,6 +734,10 @@ fn plot_refuses_bad_windows_and_sizes_naming_the_flag() {
     for bad in ["85 furlongs", "mm"] {
         let o = flexrock(&["plot", dir, "--width", bad]);
         assert_eq!(o.status.code(), Some(2), "{bad}");
-        assert!(stderr_of(&o).contains("--width"), "{bad}: {}", stderr_of(&o));
+        assert!(
+            stderr_of(&o).contains("--width"),
+            "{bad}: {}",
+            stderr_of(&o)
+        );
     }
 }

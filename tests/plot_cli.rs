@@ -70,7 +70,15 @@ fn assert_figures(dir: &Path) {
             "landing (",
             "±sₙ",
         ],
-        &["(a)", "(c)", "F (N)", "r (m)", "s (m)", "this run", "model F(q)"],
+        &[
+            "(a)",
+            "(c)",
+            "F (N)",
+            "r (m)",
+            "s (m)",
+            "this run",
+            "model F(q)",
+        ],
         &[
             "(a)",
             "(b)",

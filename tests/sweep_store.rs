@@ -728,7 +728,9 @@ fn a_map_over_unsorted_lists_draws_each_cell_once_in_order() {
     // (which ends above the panel label "(a)") and left of the second panel's label "(b)". A
     // run of cells of one colour up a column is one rectangle.
     let label = |text: &str| -> (f64, f64) {
-        let at = svg.find(&format!(">\n{text}\n</text>")).expect("a panel label");
+        let at = svg
+            .find(&format!(">\n{text}\n</text>"))
+            .expect("a panel label");
         let tag = &svg[svg[..at].rfind("<text").unwrap()..at];
         let n = |name: &str| -> f64 {
             let start = tag.find(&format!(" {name}=\"")).unwrap() + name.len() + 3;

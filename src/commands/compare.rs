@@ -296,18 +296,8 @@ fn relations_figure(reference: &Solution, other: &Solution, label: &str) -> Resu
         ..Panel::default()
     };
     let panels = [
-        panel(
-            "",
-            "r (m)",
-            "q (m)",
-            |x| (x.r, x.q),
-        ),
-        panel(
-            "",
-            "r (m)",
-            "s (m)",
-            |x| (x.r, x.s),
-        ),
+        panel("", "r (m)", "q (m)", |x| (x.r, x.q)),
+        panel("", "r (m)", "s (m)", |x| (x.r, x.s)),
     ];
     plot::double_column_svg(
         "compare_relations.svg",

@@ -59,8 +59,8 @@ pub const CONTINUITY_COLUMNS: [&str; 8] = [
     "points",
 ];
 
-pub use crate::geometry::Geometry;
 use crate::figures::page::{FigureOptions, Format, PAGE_MM};
+pub use crate::geometry::Geometry;
 
 /// The formats the study's figures are written in unless asked otherwise.
 pub const FIGURE_FORMATS: [Format; 2] = [Format::Svg, Format::Png];

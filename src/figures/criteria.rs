@@ -2,8 +2,8 @@
 //! flexibility's critical points and Ishiyama's two lines, and the critical values against the
 //! flexibility phi = p T with the fitted criterion and the continuity with the rigid block.
 
-use crate::geometry::Geometry;
 use crate::figures::plot::{Marker, Panel, Series, VerticalLine};
+use crate::geometry::Geometry;
 use flexrock_core::criteria::fit::{Fit, Surface};
 use flexrock_core::criteria::{continuity, Point};
 use flexrock_core::format::shortest;
@@ -115,11 +115,7 @@ pub fn plane(points: &[Point], g: Geometry) -> Vec<Panel> {
 /// the held-out records, a colour per slenderness, the paper's self-weight solid and the
 /// consistent one dashed; and the largest relative difference from the rigid blocks against phi.
 pub fn against_flexibility(points: &[Point], fits: &[Fit], g: Geometry) -> Vec<Panel> {
-    let mut acc = Panel::new(
-        "",
-        "flexibility φ = p T",
-        "smallest critical PGA / (g B/H)",
-    );
+    let mut acc = Panel::new("", "flexibility φ = p T", "smallest critical PGA / (g B/H)");
     let mut vel = Panel::new(
         "",
         "flexibility φ = p T",

@@ -45,9 +45,7 @@ impl Length {
     /// The length given by `text`, or a message saying what it must be.
     pub fn parse(text: &str) -> std::result::Result<Length, String> {
         let t = text.trim();
-        let split = t
-            .find(|c: char| c.is_ascii_alphabetic())
-            .unwrap_or(t.len());
+        let split = t.find(|c: char| c.is_ascii_alphabetic()).unwrap_or(t.len());
         let (number, unit) = t.split_at(split);
         let value: f64 = number.trim().parse().map_err(|_| {
             format!("a length must be a number with a unit, e.g. 85mm, 8.5cm, 3.5in, 250pt or 600px (got {text:?})")
@@ -58,11 +56,9 @@ impl Length {
             "in" => MM_PER_INCH,
             "pt" => MM_PER_INCH / 72.0,
             "" | "px" => MM_PER_INCH / 96.0,
-            other => {
-                return Err(format!(
-                    "unknown unit {other:?}: use mm, cm, in, pt or px (a bare number is px, 1/96 in)"
-                ))
-            }
+            other => return Err(format!(
+                "unknown unit {other:?}: use mm, cm, in, pt or px (a bare number is px, 1/96 in)"
+            )),
         };
         if !value.is_finite() || value <= 0.0 {
             return Err(format!("a length must be positive (got {text:?})"));
@@ -343,12 +339,18 @@ mod tests {
              <text x=\"10\" y=\"100\" font-family=\"sans-serif\" font-size=\"40\">Aq</text></svg>"
         );
         let svg = on_paper(svg, (85.0, 42.5), "a test");
-        assert!(svg.starts_with("<svg width=\"85mm\" height=\"42.5mm\""), "{svg}");
+        assert!(
+            svg.starts_with("<svg width=\"85mm\" height=\"42.5mm\""),
+            "{svg}"
+        );
         let png = convert(Format::Png, "t.png", &svg, 300.0).unwrap();
         let decoder = png::Decoder::new(std::io::Cursor::new(png));
         let info = decoder.read_info().unwrap();
         let (pw, ph) = (info.info().width, info.info().height);
-        assert!((1004..=1005).contains(&pw) && (502..=503).contains(&ph), "{pw} × {ph}");
+        assert!(
+            (1004..=1005).contains(&pw) && (502..=503).contains(&ph),
+            "{pw} × {ph}"
+        );
         let pdf = convert(Format::Pdf, "t.pdf", &svg, 300.0).unwrap();
         let text = String::from_utf8_lossy(&pdf);
         assert!(text.starts_with("%PDF-"));

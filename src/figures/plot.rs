@@ -17,8 +17,8 @@ use plotters::style::text_anchor::{HPos, Pos, VPos};
 use plotters::style::FontTransform;
 
 use crate::error::{Error, Result};
-pub use crate::figures::page::{Format, Page};
 use crate::figures::page::{self, dots, pt, FigureOptions};
+pub use crate::figures::page::{Format, Page};
 
 /// One line of a panel.
 #[derive(Debug, Clone)]
@@ -763,7 +763,9 @@ fn log_ticks(lo: f64, hi: f64, max: usize) -> Ticks {
         }
     };
     let (e0, e1) = (lo.floor() as i64, hi.ceil() as i64);
-    let decades: Vec<i64> = (e0..=e1).filter(|&e| (lo..=hi).contains(&(e as f64))).collect();
+    let decades: Vec<i64> = (e0..=e1)
+        .filter(|&e| (lo..=hi).contains(&(e as f64)))
+        .collect();
     let mut ticks = Ticks::default();
     if decades.len() >= 2 {
         let every = decades.len().div_ceil(max.max(2));
@@ -824,6 +826,7 @@ fn linear_on_log(lo: f64, hi: f64, max: usize) -> Ticks {
 /// as fit with a label every `per_label(text)` dots.
 fn fit_ticks(log: bool, lo: f64, hi: f64, length: f64, per_label: impl Fn(&str) -> f64) -> Ticks {
     let mut max = 10;
+    let mut fewest: Option<Ticks> = None;
     loop {
         let ticks = if log {
             log_ticks(lo, hi, max)
@@ -831,14 +834,33 @@ fn fit_ticks(log: bool, lo: f64, hi: f64, length: f64, per_label: impl Fn(&str) 
             linear_ticks(lo, hi, max)
         };
         let n = ticks.major.len();
-        let need: f64 = ticks.major.iter().map(|(_, t)| per_label(t)).fold(0.0, f64::max);
-        if n <= 2 || need * n as f64 <= length {
+        let need: f64 = ticks
+            .major
+            .iter()
+            .map(|(_, t)| per_label(t))
+            .fold(0.0, f64::max);
+        if need * n as f64 <= length {
+            // Where this step leaves fewer than two labels, the two ends of the finer step
+            // before it, if they fit (a label each at the ends of the axis is far apart).
+            if let (Some(before), 0 | 1) = (&fewest, n) {
+                let (first, last) = (before.major.first(), before.major.last());
+                if let (Some(a), Some(b)) = (first, last) {
+                    let need = per_label(&a.1).max(per_label(&b.1));
+                    if before.major.len() >= 2 && 2.0 * need <= length {
+                        return Ticks {
+                            major: vec![a.clone(), b.clone()],
+                            minor: Vec::new(),
+                        };
+                    }
+                }
+            }
             return ticks;
         }
-        max = (n - 1).min(max - 1);
-        if max < 2 {
+        if max <= 2 {
             return ticks;
         }
+        max = (n.saturating_sub(1)).clamp(2, max - 1);
+        fewest = Some(ticks);
     }
 }
 
@@ -847,7 +869,10 @@ impl Layout {
         let bad_size = |message: String| {
             Error::from(flexrock_core::Error::InvalidParameter {
                 key: "--height".to_string(),
-                value: format!("{} mm", flexrock_core::format::significant(page.height.unwrap_or(0.0), 4)),
+                value: format!(
+                    "{} mm",
+                    flexrock_core::format::significant(page.height.unwrap_or(0.0), 4)
+                ),
                 rule: format!("{message} ({name})"),
             })
         };
@@ -893,7 +918,10 @@ impl Layout {
         };
         let x_axis_h = pt(TICK_LEN_PT) + pt(GAP_PT) + pt(TICK_PT) * 1.2 + pt(LABEL_PT) * 1.3;
         let x_axes = if figure.shared_x { 1 } else { rows };
-        let fixed = 2.0 * margin + legend_h + rows as f64 * label_h + x_axes as f64 * x_axis_h
+        let fixed = 2.0 * margin
+            + legend_h
+            + rows as f64 * label_h
+            + x_axes as f64 * x_axis_h
             + if figure.shared_x { 0.0 } else { 0.0 };
         // Horizontal parts: the y axis's labels (measured below), the plotting area, a margin
         // for the last x tick label's half.
@@ -912,7 +940,8 @@ impl Layout {
                 }
                 plot_h
             }
-            None => ((cell_w - guess_y_labels - right_pad) / figure.aspect).max(dots(figure.min_plot_mm)),
+            None => ((cell_w - guess_y_labels - right_pad) / figure.aspect)
+                .max(dots(figure.min_plot_mm)),
         };
         let height = page.height.map_or(fixed + rows as f64 * plot_h, dots);
         // Ranges: shared down a column when asked.
@@ -924,8 +953,14 @@ impl Layout {
         if figure.shared_x {
             for c in 0..columns {
                 let members: Vec<usize> = (c..figure.panels.len()).step_by(columns).collect();
-                let lo = members.iter().map(|&i| ranges[i].0).fold(f64::MAX, f64::min);
-                let hi = members.iter().map(|&i| ranges[i].1).fold(f64::MIN, f64::max);
+                let lo = members
+                    .iter()
+                    .map(|&i| ranges[i].0)
+                    .fold(f64::MAX, f64::min);
+                let hi = members
+                    .iter()
+                    .map(|&i| ranges[i].1)
+                    .fold(f64::MIN, f64::max);
                 for &i in &members {
                     ranges[i].0 = lo;
                     ranges[i].1 = hi;
@@ -981,7 +1016,7 @@ impl Layout {
                 y_t = fit_ticks(panel.log_y, r.2, r.3, plot_h, |_| pt(TICK_PT) * 2.2);
             }
             let x_ticks = fit_ticks(panel.log_x, r.0, r.1, plot_w, |s| {
-                text_width(s, TICK_PT) + pt(TICK_PT) * 1.2
+                text_width(s, TICK_PT) + pt(TICK_PT) * 0.8
             });
             let bottom_row = row + 1 == rows || i + columns >= figure.panels.len();
             panels.push(PanelLayout {
@@ -1092,7 +1127,10 @@ where
     let pattern: Vec<f64> = dash.pattern().iter().map(|&p| pt(p)).collect();
     if pattern.is_empty() {
         root.draw(&PathElement::new(
-            points.iter().map(|&(x, y)| (dot(x), dot(y))).collect::<Vec<_>>(),
+            points
+                .iter()
+                .map(|&(x, y)| (dot(x), dot(y)))
+                .collect::<Vec<_>>(),
             style,
         ))?;
         return Ok(());
@@ -1192,10 +1230,17 @@ where
         Swatch::Line(c, width, dash) => {
             draw_path(root, &line, colour(c).stroke_width(width_dots(width)), dash)?
         }
-        Swatch::Grey(v, dash) => draw_path(root, &line, grey(v).stroke_width(width_dots(0.6)), dash)?,
+        Swatch::Grey(v, dash) => {
+            draw_path(root, &line, grey(v).stroke_width(width_dots(0.6)), dash)?
+        }
         Swatch::Marker(c, m, through) => {
             if let Some(dash) = through {
-                draw_path(root, &line, colour(c).stroke_width(width_dots(LINE_PT)), dash)?;
+                draw_path(
+                    root,
+                    &line,
+                    colour(c).stroke_width(width_dots(LINE_PT)),
+                    dash,
+                )?;
             }
             draw_marker(root, m, colour(c), (x + w / 2.0, mid))?
         }
@@ -1211,8 +1256,14 @@ where
                 (dot(x + w * 0.2), dot(mid - pt(LEGEND_PT) * 0.45)),
                 (dot(x + w * 0.8), dot(mid + pt(LEGEND_PT) * 0.45)),
             ];
-            root.draw(&Rectangle::new(corners, RGBColor(rgb.0, rgb.1, rgb.2).filled()))?;
-            root.draw(&Rectangle::new(corners, grey(120).stroke_width(width_dots(0.4))))?
+            root.draw(&Rectangle::new(
+                corners,
+                RGBColor(rgb.0, rgb.1, rgb.2).filled(),
+            ))?;
+            root.draw(&Rectangle::new(
+                corners,
+                grey(120).stroke_width(width_dots(0.4)),
+            ))?
         }
     }
     Ok(())
@@ -1428,7 +1479,10 @@ where
         let size = (LABEL_PT * h / text_width(&panel.y_label, LABEL_PT)).clamp(6.0, LABEL_PT);
         root.draw(&Text::new(
             panel.y_label.clone(),
-            (dot(layout.cell_left + pt(LABEL_PT) * 0.1), dot(top + h / 2.0)),
+            (
+                dot(layout.cell_left + pt(LABEL_PT) * 0.1),
+                dot(top + h / 2.0),
+            ),
             font(size, Pos::new(HPos::Center, VPos::Top)).transform(FontTransform::Rotate270),
         ))?;
     }
@@ -1616,7 +1670,10 @@ mod tests {
         let lefts: std::collections::BTreeSet<i64> =
             layout.panels.iter().map(|p| p.area.0 as i64).collect();
         assert!(lefts.len() < 6, "{lefts:?}");
-        assert!(layout.panels.iter().all(|p| p.area.2 >= dots(MIN_ACROSS_MM)));
+        assert!(layout
+            .panels
+            .iter()
+            .all(|p| p.area.2 >= dots(MIN_ACROSS_MM)));
     }
 
     #[test]
@@ -1710,9 +1767,24 @@ mod tests {
     fn markers_rugs_and_dashes_draw() {
         let mut panel = Panel::new("", "t (s)", "q' (m/s)")
             .with(Series::line("q'", vec![(0.0, 0.0), (1.0, 1.0), (2.0, -1.0)], 0).dashed())
-            .with(Series::markers("uplift", vec![(1.0, 1.0)], 1, Marker::TriangleUp))
-            .with(Series::markers("stands", vec![(2.0, -1.0)], 2, Marker::OpenTriangleUp))
-            .with(Series::markers("overturn", vec![(2.0, 0.0)], 4, Marker::Cross));
+            .with(Series::markers(
+                "uplift",
+                vec![(1.0, 1.0)],
+                1,
+                Marker::TriangleUp,
+            ))
+            .with(Series::markers(
+                "stands",
+                vec![(2.0, -1.0)],
+                2,
+                Marker::OpenTriangleUp,
+            ))
+            .with(Series::markers(
+                "overturn",
+                vec![(2.0, 0.0)],
+                4,
+                Marker::Cross,
+            ));
         panel.rug.push(RugMark {
             x: 1.0,
             color: 1,

@@ -286,15 +286,16 @@ pub fn motion_panels(data: &RunData) -> Vec<Panel> {
         series(h, |r| (r.t, r.floor_acc)),
         0,
     ));
-    let mut q = Panel::new("", "t (s)", "q (m)").with(Series::line(
-        "",
-        series(h, |r| (r.t, r.q)),
-        0,
-    ));
+    let mut q =
+        Panel::new("", "t (s)", "q (m)").with(Series::line("", series(h, |r| (r.t, r.q)), 0));
     q.reference_lines = pair(s_n, s_n_label.clone());
     q.dashed_lines = pair(b, b_label);
     let mut parts = Panel::new("", "t (s)", "s, r (m)")
-        .with(Series::line("s, flexural part", series(h, |r| (r.t, r.s)), 2))
+        .with(Series::line(
+            "s, flexural part",
+            series(h, |r| (r.t, r.s)),
+            2,
+        ))
         .with(
             Series::line("r, rocking part", series(h, |r| (r.t, r.r)), 1).with_dash(Dash::Dashed),
         );

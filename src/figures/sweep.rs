@@ -19,7 +19,6 @@ use flexrock_core::sweep::Plan;
 
 pub use crate::sweep_table::SweepTable;
 
-
 /// The figures of a sweep, as (file stem, figure): the map, the spectrum, the IDA curves or a
 /// row's verdict maps, whichever its axes make.
 pub fn figures(plan: &Plan, table: &SweepTable) -> Result<Vec<(&'static str, Figure)>> {
@@ -28,10 +27,12 @@ pub fn figures(plan: &Plan, table: &SweepTable) -> Result<Vec<(&'static str, Fig
         .collect();
     if let Some(n) = plan.row_columns {
         return match (plan.axes.len(), numeric.as_slice()) {
-            (2, [x, y]) => Ok(crate::figures::sweep_row::verdict_maps(plan, table, n, *x, *y)?
-                .map(|f| (VERDICTS, f))
-                .into_iter()
-                .collect()),
+            (2, [x, y]) => Ok(
+                crate::figures::sweep_row::verdict_maps(plan, table, n, *x, *y)?
+                    .map(|f| (VERDICTS, f))
+                    .into_iter()
+                    .collect(),
+            ),
             _ => Ok(Vec::new()),
         };
     }
@@ -101,7 +102,6 @@ pub fn figure_files() -> Vec<String> {
     }
     names
 }
-
 
 /// True for a sweep whose numeric axis `x` scales the excitation (excitation.scale or
 /// excitation.amplitude) beside an axis of records (excitation.path), or is excitation.scale
@@ -251,7 +251,10 @@ pub fn ida_figure(data: &IdaData) -> Figure {
     let mut stacked = 0usize;
     let mut k = 0;
     while k < firsts.len() {
-        let same = firsts[k..].iter().take_while(|f| f.0 == firsts[k].0).count();
+        let same = firsts[k..]
+            .iter()
+            .take_while(|f| f.0 == firsts[k].0)
+            .count();
         for (j, &(x, color)) in firsts[k..k + same].iter().enumerate() {
             panel = panel.with(Series::markers(
                 "",
@@ -442,7 +445,6 @@ pub(crate) fn drawable(values: &[f64]) -> bool {
     !e.is_empty() && e.iter().all(|x| x.is_finite()) && e.windows(2).all(|w| w[0] < w[1])
 }
 
-
 /// The map over axes `x` and `y` (indices into the plan's axes).
 /// None when the axes cannot be drawn as cells (values too close to tell apart in the figure's
 /// arithmetic).
@@ -605,7 +607,13 @@ fn cell_edges(centres: &[f64], log: bool) -> Vec<f64> {
 
 /// One map: the cells coloured by class, overturned black, unsolved white with a grey cross,
 /// and the boundary between overturned and standing cells.
-fn map_panel(cells: &[Vec<MapCell>], xs: &[f64], ys: &[f64], x_label: &str, y_label: &str) -> Panel {
+fn map_panel(
+    cells: &[Vec<MapCell>],
+    xs: &[f64],
+    ys: &[f64],
+    x_label: &str,
+    y_label: &str,
+) -> Panel {
     // Cells in ascending order of both coordinates, whatever the order the axes were given in.
     let (ox, oy) = (ascending(xs), ascending(ys));
     let sorted = |v: &[f64], order: &[usize]| order.iter().map(|&i| v[i]).collect::<Vec<f64>>();
@@ -658,17 +666,24 @@ fn map_panel(cells: &[Vec<MapCell>], xs: &[f64], ys: &[f64], x_label: &str, y_la
         for j in 0..cells[i].len() {
             let here = cells[i][j].overturned;
             if i + 1 < cells.len() && cells[i + 1][j].overturned != here {
-                boundary.extend([(ex[i + 1], ey[j]), (ex[i + 1], ey[j + 1]), (f64::NAN, f64::NAN)]);
+                boundary.extend([
+                    (ex[i + 1], ey[j]),
+                    (ex[i + 1], ey[j + 1]),
+                    (f64::NAN, f64::NAN),
+                ]);
             }
             if j + 1 < cells[i].len() && cells[i][j + 1].overturned != here {
-                boundary.extend([(ex[i], ey[j + 1]), (ex[i + 1], ey[j + 1]), (f64::NAN, f64::NAN)]);
+                boundary.extend([
+                    (ex[i], ey[j + 1]),
+                    (ex[i + 1], ey[j + 1]),
+                    (f64::NAN, f64::NAN),
+                ]);
             }
         }
     }
     if !boundary.is_empty() {
-        panel = panel.with(
-            Series::line("boundary of overturning", boundary, BOUNDARY).with_width(1.3),
-        );
+        panel =
+            panel.with(Series::line("boundary of overturning", boundary, BOUNDARY).with_width(1.3));
     }
     panel
 }
@@ -809,16 +824,21 @@ fn spectrum(plan: &Plan, table: &SweepTable, x: usize) -> Result<Option<Figure>>
                 .with_markers(),
         ];
         if !standing.is_empty() {
-            series.push(Series::markers(&stands, standing, 2, Marker::OpenTriangleUp));
+            series.push(Series::markers(
+                &stands,
+                standing,
+                2,
+                Marker::OpenTriangleUp,
+            ));
         }
         series
     };
     // The periods on a log axis, as the literature draws spectra, when they span a factor of
     // three or more.
     let spans_decades = |v: &[(f64, f64)]| {
-        let (lo, hi) = v
-            .iter()
-            .fold((f64::INFINITY, 0.0f64), |(lo, hi), p| (lo.min(p.0), hi.max(p.0)));
+        let (lo, hi) = v.iter().fold((f64::INFINITY, 0.0f64), |(lo, hi), p| {
+            (lo.min(p.0), hi.max(p.0))
+        });
         lo > 0.0 && hi / lo >= 3.0
     };
     let log_left = spans_decades(&rigid_physical) || spans_decades(&physical);
@@ -880,7 +900,11 @@ mod tests {
                     };
                     let label = housner_label(&options);
                     assert!(label.chars().count() <= 52, "{label}");
-                    assert_eq!(label.contains("full eq."), form == RigidForm::Full, "{label}");
+                    assert_eq!(
+                        label.contains("full eq."),
+                        form == RigidForm::Full,
+                        "{label}"
+                    );
                     assert_eq!(
                         label.contains("small-angle eq."),
                         form != RigidForm::Full,

@@ -24,8 +24,16 @@ enum Class {
 /// The classes in the legend's order, with their colours (Okabe and Ito's, told apart in the
 /// common colour-vision deficiencies, and by lightness in greyscale) and labels.
 const LEGEND: [(Class, (u8, u8, u8), &str); 5] = [
-    (Class::Saved, (0, 114, 178), "saved: overturns alone, stands in the row"),
-    (Class::Toppled, (213, 94, 0), "toppled: stands alone, overturns in the row"),
+    (
+        Class::Saved,
+        (0, 114, 178),
+        "saved: overturns alone, stands in the row",
+    ),
+    (
+        Class::Toppled,
+        (213, 94, 0),
+        "toppled: stands alone, overturns in the row",
+    ),
     (Class::OverturnsBoth, (45, 45, 45), "overturns both"),
     (Class::StandsBoth, (222, 222, 222), "stands both"),
     (

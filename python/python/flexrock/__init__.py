@@ -30,6 +30,15 @@ from . import _native
 from ._native import FlexrockError, GroundMotion, Model, Result, RowResult, __version__
 from ._sweep import SweepResult
 
+
+def __getattr__(name: str):
+    # flexrock.figures needs matplotlib (the [figures] extra): imported on first use only.
+    if name == "figures":
+        import importlib
+
+        return importlib.import_module(".figures", __name__)
+    raise AttributeError(f"module 'flexrock' has no attribute {name!r}")
+
 __all__ = [
     "FlexrockError",
     "GroundMotion",

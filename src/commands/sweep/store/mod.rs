@@ -504,7 +504,8 @@ pub fn plot_dir(dir: &Path, options: &crate::figures::page::FigureOptions) -> Re
     if verify::sha256_hex_of(&[bytes.as_slice()]) != summary.table_sha256 {
         return Err(Error::SweepStore {
             path: table_path,
-            message: "is not the table sweep.json was written with (its SHA-256 differs)".to_string(),
+            message: "is not the table sweep.json was written with (its SHA-256 differs)"
+                .to_string(),
         });
     }
     let table = crate::sweep_table::SweepTable::read(&table_path)?;
