@@ -56,9 +56,11 @@ impl Length {
             "in" => MM_PER_INCH,
             "pt" => MM_PER_INCH / 72.0,
             "" | "px" => MM_PER_INCH / 96.0,
-            other => return Err(format!(
+            other => {
+                return Err(format!(
                 "unknown unit {other:?}: use mm, cm, in, pt or px (a bare number is px, 1/96 in)"
-            )),
+            ))
+            }
         };
         if !value.is_finite() || value <= 0.0 {
             return Err(format!("a length must be positive (got {text:?})"));

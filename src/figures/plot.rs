@@ -918,11 +918,7 @@ impl Layout {
         };
         let x_axis_h = pt(TICK_LEN_PT) + pt(GAP_PT) + pt(TICK_PT) * 1.2 + pt(LABEL_PT) * 1.3;
         let x_axes = if figure.shared_x { 1 } else { rows };
-        let fixed = 2.0 * margin
-            + legend_h
-            + rows as f64 * label_h
-            + x_axes as f64 * x_axis_h
-            + if figure.shared_x { 0.0 } else { 0.0 };
+        let fixed = 2.0 * margin + legend_h + rows as f64 * label_h + x_axes as f64 * x_axis_h;
         // Horizontal parts: the y axis's labels (measured below), the plotting area, a margin
         // for the last x tick label's half.
         let right_pad = pt(TICK_PT) * 1.6;

@@ -581,7 +581,7 @@ fn class_colour(value: f64) -> (u8, u8, u8) {
 /// steps between its sorted values vary less in log10 than as they are (a log-spaced grid, or
 /// omega_p/p of evenly spaced periods), relative to their mean.
 fn log_scale(values: &[f64]) -> bool {
-    if values.len() < 3 || values.iter().any(|&v| !(v > 0.0)) {
+    if values.len() < 3 || !values.iter().all(|&v| v > 0.0) {
         return false;
     }
     let spread = |v: Vec<f64>| {
