@@ -1,5 +1,5 @@
 //! sweep.csv read back ([`SweepTable`]), from the file or from the rows a sweep just computed
-//! ([`Piece`]), and the counts of its rows ([`Counts`]): what the sweep's store writes and its
+//! (their pieces), and the counts of its rows ([`Counts`]): what the sweep's store writes and its
 //! figures draw from.
 
 use std::path::Path;
