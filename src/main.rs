@@ -3,10 +3,7 @@
 
 mod cli;
 
-use cli::{
-    Cli, Command, PlotArgs, PlotFormat, RecordCommand, RecordOptions, SetArgs, SweepArgs,
-    SweepCommand,
-};
+use cli::{Cli, Command, PlotArgs, RecordCommand, RecordOptions, SetArgs, SweepArgs, SweepCommand};
 
 use std::io::Write as _;
 use std::path::PathBuf;
@@ -193,10 +190,13 @@ fn execute(command: Command) -> flexrock::Result<Output> {
         Command::Criteria {
             model,
             out,
+            figure,
             slenderness,
             record,
             check_record,
         } => {
+            let figure_options = figure.options(&flexrock::commands::criteria::FIGURE_FORMATS);
+            figure_options.sizes.check()?;
             flexrock::writers::check_creatable(&out)?;
             let report = flexrock::commands::criteria::run(
                 &model,
@@ -204,6 +204,7 @@ fn execute(command: Command) -> flexrock::Result<Output> {
                 &record,
                 &check_record,
                 &out,
+                &figure_options,
             )?;
             Ok(Output {
                 stdout: flexrock::commands::criteria::report_text(&report).into_bytes(),
@@ -481,22 +482,35 @@ fn run_row(
     })
 }
 
-/// `flexrock plot`: the figures of a run directory.
+/// `flexrock plot`: the figures of a run or sweep directory.
 fn plot(args: PlotArgs) -> flexrock::Result<Output> {
-    use flexrock::figures::plot::Format;
-    let formats = match args.format {
-        PlotFormat::Svg => vec![Format::Svg],
-        PlotFormat::Png => vec![Format::Png],
-        PlotFormat::Both => vec![Format::Svg, Format::Png],
-    };
-    let options = flexrock::figures::run::PlotOptions {
-        formats,
-        width: args.width,
-        height: args.height,
-        from: args.from,
-        to: args.to,
-    };
-    let written = flexrock::figures::run::plot_dir_with(&args.dir, &options)?;
+    use flexrock::figures::page::Format;
+    let figure = args.figure.options(&[Format::Svg]);
+    let written =
+        if args.dir.join("sweep.json").is_file() && !args.dir.join("summary.json").exists() {
+            for (flag, given) in [("--from", args.from), ("--to", args.to)] {
+                if let Some(t) = given {
+                    return Err(flexrock_core::Error::InvalidParameter {
+                        key: flag.to_string(),
+                        value: t.to_string(),
+                        rule: format!(
+                            "applies to a run's figures only; {} is a sweep's directory",
+                            args.dir.display()
+                        ),
+                    }
+                    .into());
+                }
+            }
+            flexrock::commands::sweep::store::plot_dir(&args.dir, &figure)?
+        } else {
+            let options = flexrock::figures::run::PlotOptions {
+                formats: figure.formats,
+                sizes: figure.sizes,
+                from: args.from,
+                to: args.to,
+            };
+            flexrock::figures::run::plot_dir_with(&args.dir, &options)?
+        };
     Ok(Output::text(
         written
             .iter()

@@ -60,24 +60,11 @@ pub const CONTINUITY_COLUMNS: [&str; 8] = [
     "points",
 ];
 
-/// The model file's body: its height, width and gravity (the study's other slendernesses
-/// keep its height and gravity).
-#[derive(Debug, Clone, Copy, Serialize)]
-pub struct Geometry {
-    /// H, m.
-    pub height: f64,
-    /// B, m.
-    pub width: f64,
-    /// g, m/s^2.
-    pub gravity: f64,
-}
+use crate::figures::page::{FigureOptions, Format, PAGE_MM};
+pub use crate::geometry::Geometry;
 
-impl Geometry {
-    /// B/H of the model file's body.
-    pub fn slenderness(&self) -> f64 {
-        self.width / self.height
-    }
-}
+/// The formats the study's figures are written in unless asked otherwise.
+pub const FIGURE_FORMATS: [Format; 2] = [Format::Svg, Format::Png];
 
 fn opt(x: Option<f64>) -> String {
     x.map(shortest).unwrap_or_default()
@@ -203,13 +190,14 @@ pub struct CriteriaReport {
 /// Runs the study on the body of `model`, at its own slenderness and at `slendernesses` (B/H,
 /// the model's height kept), with the sines and pulses and the records `fitted` (used for the
 /// fit) and `held_out` (only checked against it); writes everything into `out` (all files or
-/// none).
+/// none), the figures in the formats and size of `figure_options`.
 pub fn run(
     model: &Path,
     slendernesses: &[f64],
     fitted: &[PathBuf],
     held_out: &[PathBuf],
     out: &Path,
+    figure_options: &FigureOptions,
 ) -> Result<CriteriaReport> {
     let start = std::time::Instant::now();
     if let Some(bad) = slendernesses
@@ -323,26 +311,14 @@ pub fn run(
         ("fit.json", writers::json_bytes(&fits)),
         ("criteria.json", writers::json_bytes(&summary)),
     ];
-    for (name, panels, columns, size) in [
-        ("criteria-plane", plane, 1, (1100u32, 1300u32)),
-        ("criteria-flexibility", against, 1, (1000, 1500)),
+    for (name, panels, aspect) in [
+        ("criteria-plane", plane, 1.5),
+        ("criteria-flexibility", against, 2.2),
     ] {
-        let svg = crate::figures::plot::figure_sized(
-            crate::figures::plot::Format::Svg,
-            name,
-            &panels,
-            columns,
-            size,
-        )?;
-        let png = crate::figures::plot::figure_sized(
-            crate::figures::plot::Format::Png,
-            name,
-            &panels,
-            columns,
-            size,
-        )?;
-        files.push((leak(format!("{name}.svg")), svg));
-        files.push((leak(format!("{name}.png")), png));
+        let figure = crate::figures::plot::Figure::new(panels, 1).aspect(aspect, 40.0);
+        for (file, bytes) in crate::figures::plot::files(name, &figure, figure_options, PAGE_MM)? {
+            files.push((leak(file), bytes));
+        }
     }
     // The wall time and the commit flexrock was built from change from run to run while the
     // results do not: they go to timings.json.

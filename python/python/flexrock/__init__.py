@@ -31,6 +31,15 @@ from ._native import FlexrockError, GroundMotion, Model, Result, RowResult, __ve
 from ._records import Records
 from ._sweep import SweepResult
 
+
+def __getattr__(name: str):
+    # flexrock.figures needs matplotlib (the [figures] extra): imported on first use only.
+    if name == "figures":
+        import importlib
+
+        return importlib.import_module(".figures", __name__)
+    raise AttributeError(f"module 'flexrock' has no attribute {name!r}")
+
 __all__ = [
     "FlexrockError",
     "GroundMotion",
