@@ -465,7 +465,7 @@ fn run_row(
         }
     }
     if let Some(setting) = overrides.settings.first() {
-        return refuse("--set", format!("{setting:?}"));
+        return refuse(&format!("--set {}", setting.key), setting.value_text());
     }
     let model = flexrock_core::model::RowModel::load(path, overrides.duration)
         .map_err(|e| e.renamed("simulation.duration", "--duration"))?;

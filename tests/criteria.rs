@@ -70,7 +70,7 @@ fn a_slenderness_out_of_range_is_refused_by_name_and_nothing_is_written() {
         assert_eq!(o.status.code(), Some(2), "{bad}");
         let err = String::from_utf8_lossy(&o.stderr);
         assert!(err.contains("--slenderness"), "{err}");
-        assert!(err.contains("at most 1"), "{err}");
+        assert!(err.contains("above 0 and below 1"), "{err}");
         assert!(!out.exists(), "an output directory was made");
     }
 }

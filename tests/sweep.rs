@@ -267,6 +267,13 @@ fn bad_requests_are_refused_before_anything_is_written() {
             "--chunk-size",
         ),
         (
+            "search beyond 20 g",
+            vec!["--find-min", "excitation.amplitude=1:250"],
+            "--find-min excitation.amplitude = 1:250: the search interval must lie within the \
+             model's rules, and at its upper end, excitation.amplitude = 250, the model is \
+             refused",
+        ),
+        (
             "rigid form without a search",
             vec!["--vary", "excitation.period=1,2", "--rigid-form", "full"],
             "--rigid-form",
@@ -1314,4 +1321,24 @@ fn no_derived_column_holds_a_value_where_its_source_is_empty() {
         }
     }
     assert!(empty >= 1, "every point overturned: {rows:?}");
+}
+
+/// A sweep keeps no history, so the limit on history rows does not make a point of 1e4 s (2e6
+/// rows of 0.005 s) invalid.
+#[test]
+fn a_point_of_the_longest_duration_runs() {
+    let dir = scratch_dir("sweep-longest");
+    run(&[
+        "sweep",
+        pulse_model().to_str().unwrap(),
+        "--out",
+        dir.to_str().unwrap(),
+        "--vary",
+        "simulation.duration=1e4",
+        "--set",
+        "solver.method=exact",
+        "--quiet",
+    ]);
+    let rows = crate::common::sweep_rows(&dir);
+    assert_eq!(rows[0]["status"], "ok", "{}", rows[0]["reason"]);
 }

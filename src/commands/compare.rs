@@ -362,11 +362,15 @@ pub fn compare_text(model: &Model, report: &CompareReport) -> String {
             cell(p.time_difference(), 6),
         );
     }
-    let _ = writeln!(
-        t,
-        "  event times: max |difference| {:.6} s, mean {:.6} s",
-        e.max_abs_time_difference, e.mean_abs_time_difference
-    );
+    if e.n_matched == 0 {
+        let _ = writeln!(t, "  event times: no event matched, none to time");
+    } else {
+        let _ = writeln!(
+            t,
+            "  event times: max |difference| {:.6} s, mean {:.6} s",
+            e.max_abs_time_difference, e.mean_abs_time_difference
+        );
+    }
     let p = &c.peaks;
     let _ = writeln!(
         t,

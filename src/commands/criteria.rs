@@ -226,7 +226,8 @@ pub fn run(
         list
     };
     let study = Study::standard(records, list);
-    let points = criteria::run(model, &study)?;
+    let points =
+        criteria::run(model, &study).map_err(|e| e.renamed("slenderness", "--slenderness"))?;
     let own = geometry.slenderness();
     let mut all_slendernesses: Vec<f64> = points.iter().map(|p| p.slenderness).collect();
     all_slendernesses.sort_by(f64::total_cmp);

@@ -66,7 +66,7 @@ impl PlotOptions {
                 if !t.is_finite() || t < 0.0 {
                     return Err(bad(
                         flag,
-                        t.to_string(),
+                        flexrock_core::format::shortest(t),
                         "must be a finite time in seconds, 0 or more".to_string(),
                     ));
                 }
@@ -76,8 +76,11 @@ impl PlotOptions {
             if from >= to {
                 return Err(bad(
                     "--from",
-                    from.to_string(),
-                    format!("must be less than --to ({to} s)"),
+                    flexrock_core::format::shortest(from),
+                    format!(
+                        "must be less than --to ({} s)",
+                        flexrock_core::format::shortest(to)
+                    ),
                 ));
             }
         }

@@ -492,7 +492,7 @@ impl Sweep {
             .records
             .into_iter()
             .map(|(path, record)| {
-                let path = base_dir.join(path);
+                let path = crate::model::record_path(base_dir, &path);
                 let digest = record_digest(&record);
                 records.insert(&path, record);
                 (path, digest)
@@ -509,7 +509,43 @@ impl Sweep {
             in_memory,
         };
         sweep.plan.records = sweep.record_inputs();
+        if let Some(find) = &sweep.plan.find_min {
+            sweep.check_search_ends(find)?;
+        }
         Ok(sweep)
+    }
+
+    /// Refuses a minimum search whose interval reaches beyond the model's rules: at the first
+    /// point, the model must be valid at both ends when it is at one of them (a search whose
+    /// upper end is beyond 20 g, say, would make every point invalid). Where both ends are
+    /// refused, the points' rows say why.
+    fn check_search_ends(&self, find: &FindMin) -> Result<()> {
+        let first = self.settings_at(0);
+        let at = |value: f64| {
+            let mut settings = first.clone();
+            settings.push(Setting::number(&find.key, value));
+            self.model(&settings).err()
+        };
+        let (end, value, e) = match (at(find.lo), at(find.hi)) {
+            (None, Some(e)) => ("upper", find.hi, e),
+            (Some(e), None) => ("lower", find.lo, e),
+            _ => return Ok(()),
+        };
+        Err(Error::invalid(
+            &format!("find_min {}", find.key),
+            format!(
+                "{}:{}",
+                crate::format::shortest(find.lo),
+                crate::format::shortest(find.hi)
+            ),
+            &format!(
+                "the search interval must lie within the model's rules, and at its {end} end, \
+                 {} = {}, the model is refused: {}",
+                find.key,
+                crate::format::shortest(value),
+                reason(&e)
+            ),
+        ))
     }
 
     /// The record files the sweep reads and their digests: the model's own `excitation.path`
@@ -554,7 +590,7 @@ impl Sweep {
             if excitation.kind != "record" {
                 continue;
             }
-            let path = self.base_dir.join(path);
+            let path = crate::model::record_path(&self.base_dir, path);
             let sha256 = match self.in_memory.iter().find(|(p, _)| *p == path) {
                 Some((_, digest)) => digest.clone(),
                 None => match read_record_bytes(&path) {
@@ -661,8 +697,7 @@ impl Sweep {
         debug_assert!(settings.starts_with(&self.settings));
         let further = settings.get(self.settings.len()..).unwrap_or_default();
         let file = self.schema.read(further, &self.source)?;
-        let overrides = Overrides::default();
-        Model::from_file_cached(file, &overrides, &self.base_dir, &self.records)
+        Model::for_peaks(file, &self.base_dir, &self.records)
     }
 
     /// The rows of the points `points`, in point order (in parallel with the `parallel`
