@@ -31,7 +31,7 @@ pub use row::{Cell, Layout, Outcome, Row, Status};
 use row::{RigidMinima, RunOutcome, Scales};
 
 use crate::error::{Error, Result};
-use crate::model::{read_schema, Model, Overrides, PreparedSchema, RecordCache, Setting};
+use crate::model::{read_schema, Model, PreparedSchema, RecordCache, Setting};
 use crate::record::Record;
 use crate::rigid::{RigidBlock, RigidForm, RigidOverturning};
 
