@@ -3,7 +3,7 @@
 //! argument that holds the bad value (`acceleration[17]`, `dt`, `time[3]`) rather than a file
 //! and line.
 
-use super::{Record, MAX_RECORD_BYTES, MIN_DT, MIN_SAMPLES, RELATIVE_DT_TOLERANCE};
+use super::{Record, RecordMeta, MAX_RECORD_BYTES, MIN_DT, MIN_SAMPLES, RELATIVE_DT_TOLERANCE};
 use crate::invalid::InvalidParameter;
 
 /// Most samples a record in memory may have: as many as the largest record file can hold
@@ -72,6 +72,7 @@ pub fn record_from_samples(
         title: Vec::new(),
         dt,
         values,
+        meta: RecordMeta::of_format("arrays"),
     })
 }
 
