@@ -34,7 +34,7 @@ impl Model {
     ) -> flexrock_core::Result<flexrock_core::model::Model> {
         if let Some(motion) = &self.ground_motion {
             let mut table = self.base_table()?;
-            table.insert("excitation".to_owned(), motion.excitation_table());
+            with_motion(&mut table, motion);
             let file = read_schema(&table, &overrides.settings, &self.source())?;
             let records = RecordCache::default();
             records.insert(
@@ -81,7 +81,7 @@ impl Model {
     fn effective(&self) -> PyResult<toml::Table> {
         let mut base = self.base_table().map_err(err)?;
         if let Some(motion) = &self.ground_motion {
-            base.insert("excitation".to_owned(), motion.excitation_table());
+            with_motion(&mut base, motion);
         }
         let mut table = effective_table(&base, &self.settings, &self.source()).map_err(err)?;
         if let (Some(path), None) = (&self.path, &self.ground_motion) {
@@ -119,6 +119,16 @@ impl Model {
             settings: self.settings.clone(),
             ..Overrides::default()
         }
+    }
+}
+
+/// The model file's table under a ground motion given as arrays: its `[excitation]` replaced,
+/// and its `simulation.duration` dropped, which was the file's excitation's: the motion runs
+/// for its own length (and its tail) unless a duration is set on the model.
+fn with_motion(table: &mut toml::Table, motion: &Motion) {
+    table.insert("excitation".to_owned(), motion.excitation_table());
+    if let Some(simulation) = table.get_mut("simulation").and_then(|s| s.as_table_mut()) {
+        simulation.remove("duration");
     }
 }
 

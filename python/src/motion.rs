@@ -9,9 +9,10 @@ use std::sync::Arc;
 use numpy::PyArray1;
 use pyo3::prelude::*;
 
+use flexrock_core::excitation::RecordedMotion;
 use flexrock_core::record::{
-    acceleration_unit, dt_from_times, read_record as read_record_file, record_from_samples, Record,
-    RecordFormat,
+    acceleration_unit, dt_from_times, read_record as read_record_file, record_from_samples,
+    resolve_units, Record, RecordFormat,
 };
 
 use crate::FlexrockError;
@@ -26,6 +27,16 @@ pub(crate) struct Motion {
 }
 
 impl Motion {
+    /// The motion these samples are, in m/s^2, with the record file's metadata.
+    pub(crate) fn recorded(&self) -> RecordedMotion {
+        RecordedMotion::new(
+            self.record.source.clone(),
+            self.record.dt,
+            self.record.values.iter().map(|v| v * self.factor).collect(),
+        )
+        .with_meta(self.record.meta.clone())
+    }
+
     /// The `[excitation]` table of a model under this motion (the record taken from memory).
     pub(crate) fn excitation_table(&self) -> toml::Value {
         let mut t = toml::Table::new();
@@ -159,6 +170,23 @@ impl GroundMotion {
         self.motion.record.duration()
     }
 
+    /// What the record file says about itself: a dict of ``format`` and the ``units`` it
+    /// declares, and its ``event``, ``date``, ``station``, ``component``, ``magnitude`` and
+    /// ``distance_km`` (None where the file does not give one).
+    #[getter]
+    fn metadata<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let text = serde_json::to_string(&self.motion.record.meta)
+            .map_err(|e| FlexrockError::new_err(e.to_string()))?;
+        py.import("json")?.call_method1("loads", (text,))
+    }
+
+    /// A short name for a legend: event, station and component where the file gives them,
+    /// else the source.
+    #[getter]
+    fn label(&self) -> String {
+        self.motion.record.meta.label(&self.motion.record.source)
+    }
+
     fn __len__(&self) -> usize {
         self.motion.record.values.len()
     }
@@ -174,7 +202,8 @@ impl GroundMotion {
     }
 }
 
-/// Reads a record file (PEER AT2 or CSV) into a GroundMotion.
+/// Reads a record file (PEER AT2, COSMOS V1/V2, ESM/ITACA, CSV or text) into a GroundMotion;
+/// `units` for a file that does not say its own.
 #[pyfunction]
 #[pyo3(signature = (path, format=None, dt=None, units=None))]
 pub(crate) fn read_record(
@@ -188,19 +217,20 @@ pub(crate) fn read_record(
         .transpose()
         .map_err(invalid)?;
     let record = read_record_file(&path, format, dt).map_err(invalid)?;
-    let is_at2 =
-        format.or_else(|| RecordFormat::from_extension(&path)) == Some(RecordFormat::PeerAt2);
-    let units = match (units, is_at2) {
-        (Some(u), _) => u,
-        (None, true) => "g",
-        (None, false) => {
-            return Err(FlexrockError::new_err(format!(
-                "units = None: required for CSV records: {}",
-                flexrock_core::record::UNIT_NAMES
-            )))
-        }
-    };
-    let (units, factor) = unit(units)?;
+    if units.is_none() && record.meta.units.is_none() {
+        return Err(FlexrockError::new_err(format!(
+            "units = None: required for {} records whose file does not say the unit of its \
+             values ({}): {}",
+            match record.meta.format {
+                "csv" => "CSV",
+                "peer-at2" => "AT2",
+                other => other,
+            },
+            record.source,
+            flexrock_core::record::UNIT_NAMES
+        )));
+    }
+    let (units, factor) = resolve_units(&record, "units", units).map_err(invalid)?;
     Ok(GroundMotion {
         motion: Arc::new(Motion {
             record,

@@ -167,6 +167,13 @@ pub(crate) fn simulate(
         None
     };
     let m = rebuilt.as_ref().unwrap_or(&model.model);
+    // A record cut short by the duration is said (a UserWarning at the caller of
+    // flexrock.simulate), as the command line says it.
+    if let Some(text) = flexrock_core::simulate::record_truncation(m) {
+        let category = py.get_type::<pyo3::exceptions::PyUserWarning>();
+        let text = std::ffi::CString::new(text).unwrap_or_default();
+        PyErr::warn(py, category.as_any(), &text, 2)?;
+    }
     let solution = py.detach(|| flexrock_core::simulate(m)).map_err(err)?;
     let summary = json(py, &flexrock_core::summary::summary(m, &solution))?.unbind();
     result_of(py, &solution, m.body.height, summary)

@@ -3,7 +3,7 @@
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 
-use flexrock_core::sweep::{Axis, Cell, Interval, Request, Row, Status, Sweep};
+use flexrock_core::sweep::{Axis, Cell, Interval, Request, Sweep};
 
 use crate::model::{toml_value, Model};
 use crate::FlexrockError;
@@ -119,9 +119,9 @@ pub(crate) fn sweep<'py>(
         kinds.push(if axis.is_numeric() { "float" } else { "str" });
     }
     let first = columns.len();
-    columns.extend(Row::columns(find));
+    columns.extend(plan.result_columns());
     // The kinds of the result columns, from a row without values.
-    let empty = Row::failure(Status::Invalid, String::new()).cells(find);
+    let empty = plan.empty_cells();
     kinds.extend(empty.iter().map(|c| c.kind().name()));
     let values: Vec<Bound<'py, PyList>> = (0..columns.len()).map(|_| PyList::empty(py)).collect();
     for (index, row) in rows.iter().enumerate() {
