@@ -108,8 +108,9 @@ pub(crate) enum Command {
     /// Parametric study: run the model at every point of a grid of model-file keys (or search
     /// the smallest overturning value at each), one row per point in sweep.csv, with sweep.json
     /// and a figure (SVG): a map over two numeric axes, a spectrum of a minimum search, or for
-    /// records (excitation.path) against excitation.scale or excitation.amplitude an
-    /// incremental dynamic analysis (ida.svg). A row model (a [row] table) gives each column's
+    /// records (excitation.path) against excitation.scale an incremental dynamic analysis
+    /// (ida.svg); a sweep over records adds each record's metadata and intensity measures to
+    /// its rows. A row model (a [row] table) gives each column's
     /// outcome in the row and alone, with a verdict (saved, toppled, same) and, over two numeric
     /// axes, verdicts.svg and verdicts.png. Re-running the same command resumes an interrupted sweep.
     Sweep(SweepArgs),
@@ -489,19 +490,62 @@ impl SetArgs {
 
 #[derive(Subcommand)]
 pub(crate) enum RecordCommand {
-    /// Print what the reader understood: header, points, dt, duration, PGA and its time.
+    /// Print what the reader understood (format, header, event, station, component, magnitude,
+    /// distance, points, dt, duration, units) and the intensity measures: PGA, PGV, PGD (exact
+    /// integrals, peaks between samples included), Arias intensity, CAV, and Sa at --period.
     Info {
-        /// The record file (PEER AT2 or CSV).
+        /// The record file (PEER AT2, COSMOS V1/V2, ESM/ITACA, CSV or text).
         file: PathBuf,
         #[command(flatten)]
         options: RecordOptions,
+        #[command(flatten)]
+        oscillator: OscillatorOptions,
     },
     /// Convert to CSV with columns t,acc_m_s2 (to standard output, or --out FILE).
     Csv {
-        /// The record file (PEER AT2 or CSV).
+        /// The record file (PEER AT2, COSMOS V1/V2, ESM/ITACA, CSV or text).
         file: PathBuf,
         #[command(flatten)]
         options: RecordOptions,
+        /// Write to this file (atomically) instead of standard output.
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
+    /// The metadata and intensity measures of records, one CSV row each (to standard output,
+    /// or --out FILE): event, date, station, component, magnitude, distance_km, pga_g, pgv_m_s,
+    /// pgd_m, arias_m_s, cav_m_s, sa_g (at --period) and the times of the peaks. A directory or a
+    /// list file (*.list: PATH [scale=FACTOR] [vertical=PATH] a line) is a suite of records.
+    Intensity {
+        /// Record files, directories of records, or list files.
+        #[arg(required = true)]
+        files: Vec<PathBuf>,
+        #[command(flatten)]
+        options: RecordOptions,
+        /// The period of Sa, s [default: none, the sa_g column is left empty].
+        #[arg(long, allow_negative_numbers = true)]
+        period: Option<f64>,
+        /// The damping ratio of Sa's oscillator.
+        #[arg(long, default_value_t = flexrock_core::intensity::DEFAULT_DAMPING, allow_negative_numbers = true)]
+        damping: f64,
+        /// Write to this file (atomically) instead of standard output.
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
+    /// The pseudo-acceleration response spectrum Sa(T) as CSV (to standard output, or --out
+    /// FILE): period_s, damping, sa_g, sa_m_s2, sd_m, t_peak_s, sa_at_samples_g. Sa is the exact
+    /// response's peak, between samples included; sa_at_samples_g, the peak over the samples.
+    Spectrum {
+        /// The record file (PEER AT2, COSMOS V1/V2, ESM/ITACA, CSV or text).
+        file: PathBuf,
+        #[command(flatten)]
+        options: RecordOptions,
+        /// Periods, s, separated by commas [default: 0.01 s to 10 s, 20 a decade on a
+        /// logarithmic scale].
+        #[arg(long, value_delimiter = ',', allow_negative_numbers = true)]
+        periods: Vec<f64>,
+        /// The damping ratio of the oscillators.
+        #[arg(long, default_value_t = flexrock_core::intensity::DEFAULT_DAMPING, allow_negative_numbers = true)]
+        damping: f64,
         /// Write to this file (atomically) instead of standard output.
         #[arg(long)]
         out: Option<PathBuf>,
@@ -510,16 +554,27 @@ pub(crate) enum RecordCommand {
 
 #[derive(clap::Args)]
 pub(crate) struct RecordOptions {
-    /// peer-at2 or csv [default: from the extension].
+    /// peer-at2, csv, text, cosmos or esm [default: from the extension, else the first line].
     #[arg(long)]
     pub(crate) format: Option<String>,
-    /// Units of the values: g, m/s2 or cm/s2 [default: g for AT2; for CSV the unit its header
-    /// names (acc_m_s2, as `record csv` writes), else required].
+    /// Units of the values, for a file whose header does not say them: g, m/s2 or cm/s2 (a
+    /// unit that contradicts the file's is refused).
     #[arg(long)]
     pub(crate) units: Option<String>,
-    /// Sampling interval of a one-column CSV file, s.
+    /// Sampling interval of a one-column CSV or text file, s.
     #[arg(long, allow_negative_numbers = true)]
     pub(crate) dt: Option<f64>,
+}
+
+/// The oscillators of `record info`'s Sa lines.
+#[derive(clap::Args)]
+pub(crate) struct OscillatorOptions {
+    /// Periods of Sa, s, separated by commas [default: none].
+    #[arg(long, value_delimiter = ',', allow_negative_numbers = true)]
+    pub(crate) period: Vec<f64>,
+    /// The damping ratio of Sa's oscillators.
+    #[arg(long, default_value_t = flexrock_core::intensity::DEFAULT_DAMPING, allow_negative_numbers = true)]
+    pub(crate) damping: f64,
 }
 
 /// The default lists of `converge` and the reference tolerance, as a user types them; the

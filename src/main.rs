@@ -556,26 +556,75 @@ fn events(
 
 /// `flexrock record info` and `flexrock record csv`.
 fn record(command: RecordCommand) -> flexrock::Result<Output> {
-    Ok(match command {
-        RecordCommand::Info { file, options } => {
+    // Standard output, or the file `out` written atomically.
+    let emit = |bytes: Vec<u8>, out: Option<PathBuf>| -> flexrock::Result<Output> {
+        match out {
+            Some(path) => {
+                flexrock::writers::write_file_atomically(&path, &bytes)?;
+                Ok(Output::default())
+            }
+            None => Ok(Output {
+                stdout: bytes,
+                warnings: Vec::new(),
+            }),
+        }
+    };
+    match command {
+        RecordCommand::Info {
+            file,
+            options,
+            oscillator,
+        } => {
+            record_command::check_periods(&oscillator.period, oscillator.damping)?;
             let record = load_record(&file, &options)?;
-            Output::text(record_command::info_text(&record))
+            Ok(Output::text(record_command::info_text(
+                &record,
+                &oscillator.period,
+                oscillator.damping,
+            )?))
         }
         RecordCommand::Csv { file, options, out } => {
             let record = load_record(&file, &options)?;
-            let bytes = record_command::csv_bytes(&record);
-            match out {
-                Some(path) => {
-                    flexrock::writers::write_file_atomically(&path, &bytes)?;
-                    Output::default()
-                }
-                None => Output {
-                    stdout: bytes,
-                    warnings: Vec::new(),
-                },
-            }
+            emit(record_command::csv_bytes(&record), out)
         }
-    })
+        RecordCommand::Intensity {
+            files,
+            options,
+            period,
+            damping,
+            out,
+        } => {
+            let periods: Vec<f64> = period.into_iter().collect();
+            record_command::check_periods(&periods, damping)?;
+            let mut records = Vec::new();
+            for (path, scale) in record_command::expand_inputs(&files)? {
+                records.push((load_record(&path, &options)?, scale));
+            }
+            emit(
+                record_command::intensity_csv(&records, period, damping)?,
+                out,
+            )
+        }
+        RecordCommand::Spectrum {
+            file,
+            options,
+            periods,
+            damping,
+            out,
+        } => {
+            let periods = if periods.is_empty() {
+                flexrock_core::intensity::default_periods()
+            } else {
+                periods
+            };
+            record_command::check_periods(&periods, damping)?;
+            let record = load_record(&file, &options)?;
+            emit(
+                record_command::spectrum_csv(&record, &periods, damping)?,
+                out,
+            )
+        }
+    }
 }
 
 /// `flexrock compare`: Newmark against the adaptive reference, files into `out`.

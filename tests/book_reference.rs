@@ -150,6 +150,19 @@ fn the_output_tables_list_exactly_the_columns_the_writers_write() {
         .collect();
     assert_eq!(find_min, strings(&search));
     assert_eq!(scales, strings(&Scales::default().named().map(|(n, _)| n)));
+    // A sweep over records: its record columns; `record intensity` and `record spectrum`.
+    assert_eq!(
+        listed(&text, "columns: sweep.csv record"),
+        Row::record_columns()
+    );
+    assert_eq!(
+        listed(&text, "columns: record intensity"),
+        flexrock::commands::record::intensity_columns()
+    );
+    assert_eq!(
+        listed(&text, "columns: record spectrum"),
+        strings(&flexrock::commands::record::SPECTRUM_COLUMNS)
+    );
     // A row's: the row's run, then each column's, named `cI_...` on the page.
     let row = flexrock_core::sweep::rows::RowOutcome::columns(1);
     assert_eq!(listed(&text, "columns: sweep.csv row"), row[..5]);

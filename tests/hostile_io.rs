@@ -741,7 +741,9 @@ fn a_record_converted_to_csv_reads_back_with_the_same_pga() {
 fn numbers_and_counts_read_as_people_write_them() {
     // 4399 samples at 0.01 s: (n - 1) dt = 43.980000000000004 in floating point.
     let dir = scratch_dir("hostile-readable");
-    let mut text = String::from("title\nline 2\nline 3\nNPTS=  4399, DT= .01000 SEC\n");
+    let mut text = String::from(
+        "title\nline 2\nACCELERATION TIME SERIES IN UNITS OF G\nNPTS=  4399, DT= .01000 SEC\n",
+    );
     for k in 0..4399 {
         text.push_str(&format!("{:10.5}", 0.001 * (k % 7) as f64));
         if k % 8 == 7 {

@@ -51,7 +51,7 @@
 //!   (book/src/model.md §2-§5);
 //! - [`automaton`]: the hybrid automaton (modes, right-hand sides, guards, resets);
 //! - [`excitation`]: floor motions behind the [`excitation::FloorMotion`] trait; [`record`]:
-//!   recorded ground motions read from their files;
+//!   recorded ground motions read from their files; [`intensity`]: their intensity measures;
 //! - [`solver`]: solvers that drive the automaton (the adaptive diffsol driver, Newmark, the
 //!   run budget); [`solution`]: what they return; [`simulate`](mod@simulate): a model solved
 //!   with the solver it names, and [`properties`];
@@ -123,6 +123,7 @@ pub mod fem_check;
 pub mod findings;
 mod flexural_shape;
 pub mod format;
+pub mod intensity;
 mod invalid;
 mod limits;
 pub mod model;

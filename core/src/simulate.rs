@@ -196,11 +196,30 @@ pub fn properties(model: &Model) -> Properties<'_> {
 /// Share of the energy scale above which the energy residual is reported as a warning.
 pub const ENERGY_RESIDUAL_WARNING_SHARE: f64 = 1e-2;
 
-/// The warnings of a run: an energy residual beyond [`ENERGY_RESIDUAL_WARNING_SHARE`] of the
-/// energy scale, a gravity parameter beyond [`SELF_WEIGHT_WARNING_SHARE`] of buckling, and a run
-/// that ended while the body was rocking.
+/// The warning of a model whose duration ends before its record does: the rest of the record
+/// is not applied. None where the record is applied whole (or there is none).
+pub fn record_truncation(model: &Model) -> Option<String> {
+    let record = model.floor.recorded()?;
+    let end = record.end();
+    // A duration within rounding of the record's end applies it whole.
+    (model.duration < end * (1.0 - 1e-12)).then(|| {
+        format!(
+            "the run lasts {} s (simulation.duration) but the record lasts {} s: its last {} s \
+             are not applied; leave simulation.duration out to run the whole record",
+            crate::format::readable(model.duration),
+            crate::format::readable(end),
+            crate::format::readable(end - model.duration)
+        )
+    })
+}
+
+/// The warnings of a run: a record cut short by the duration ([`record_truncation`]), an
+/// energy residual beyond [`ENERGY_RESIDUAL_WARNING_SHARE`] of the energy scale, a gravity
+/// parameter beyond [`SELF_WEIGHT_WARNING_SHARE`] of buckling, and a run that ended while the
+/// body was rocking.
 pub fn warnings(model: &Model, solution: &Solution) -> Vec<String> {
     let mut warnings = Vec::new();
+    warnings.extend(record_truncation(model));
     let scale = solution.energy_scale;
     if solution.energy_residual_share() > ENERGY_RESIDUAL_WARNING_SHARE {
         warnings.push(format!(

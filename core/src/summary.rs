@@ -102,10 +102,26 @@ pub fn summary<'a>(model: &'a Model, solution: &'a Solution) -> RunSummary<'a> {
         statistics: &solution.stats,
         constants: &model.constants,
         body: &model.body,
-        excitation: model.floor.parameters(),
+        excitation: excitation_parameters(model),
         initial_state: model.initial,
         duration: model.duration,
         inputs: &model.file,
         error_estimate: solution.rounding.as_ref(),
     }
+}
+
+/// The floor motion's parameters; a record's intensity measures with its Sa(T, 5 %) at the
+/// body's pre-uplift period T.
+fn excitation_parameters(model: &Model) -> serde_json::Value {
+    use crate::intensity;
+    let mut parameters = model.floor.parameters();
+    if let Some(record) = model.floor.recorded() {
+        let period = model.constants.period;
+        if let Ok(measures) =
+            intensity::intensity_measures(record, period, intensity::DEFAULT_DAMPING)
+        {
+            parameters["intensity"] = serde_json::json!(measures);
+        }
+    }
+    parameters
 }

@@ -1,6 +1,6 @@
 //! The core's modules form layers with no circle: units and formatting at the bottom, then the
-//! physics (body, flexural shape, constants, automaton, excitations, records), then the numerics
-//! (solution, solvers, rigid block, finite elements), then the model file and simulation, then
+//! physics (body, flexural shape, constants, automaton, records, excitations), then the numerics
+//! (solution, solvers, intensity measures, rigid block, finite elements), then the model file and simulation, then
 //! the analyses (comparisons, convergence studies, the finite element checks). Every `crate::`
 //! path in a module's code (its tests aside) must name a module listed before it.
 
@@ -8,7 +8,7 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 /// The modules from the bottom up. A module may use only the modules before it.
-const LAYERS: [&str; 32] = [
+const LAYERS: [&str; 33] = [
     // units and formatting
     "units",
     "format",
@@ -22,12 +22,13 @@ const LAYERS: [&str; 32] = [
     "flexural_shape",
     "constants",
     "automaton",
-    "excitation",
     "record",
+    "excitation",
     // numerics
     "solution",
     "run_tables",
     "solver",
+    "intensity",
     "rigid",
     "rigid_criteria",
     "row",

@@ -5,6 +5,7 @@
 //! computes it; nothing is written to disk.
 
 mod analysis;
+mod intensity;
 mod interrupt;
 mod model;
 mod motion;
@@ -47,5 +48,7 @@ fn flexrock_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(analysis::compare, m)?)?;
     m.add_function(wrap_pyfunction!(analysis::converge, m)?)?;
     m.add_function(wrap_pyfunction!(analysis::fem_check, m)?)?;
+    m.add_function(wrap_pyfunction!(intensity::intensity_measures, m)?)?;
+    m.add_function(wrap_pyfunction!(intensity::response_spectrum, m)?)?;
     Ok(())
 }

@@ -63,7 +63,7 @@ fn build(
         };
     };
     let mut table = parse_table(text, source)?;
-    table.insert("excitation".to_owned(), motion.excitation_table());
+    with_motion(&mut table, motion);
     let file = read_schema(&table, &overrides.settings, source)?;
     let records = RecordCache::default();
     records.insert(
@@ -119,7 +119,7 @@ impl State {
     pub(crate) fn table_with_motion(&self) -> flexrock_core::Result<toml::Table> {
         let mut table = self.base_table()?;
         if let Some(motion) = &self.ground_motion {
-            table.insert("excitation".to_owned(), motion.excitation_table());
+            with_motion(&mut table, motion);
         }
         Ok(table)
     }
@@ -263,6 +263,16 @@ impl Model {
         }
         *state = state.with(settings)?;
         Ok(())
+    }
+}
+
+/// The model file's table under a ground motion given as arrays: its `[excitation]` replaced,
+/// and its `simulation.duration` dropped, which was the file's excitation's: the motion runs
+/// for its own length (and its tail) unless a duration is set on the model.
+fn with_motion(table: &mut toml::Table, motion: &Motion) {
+    table.insert("excitation".to_owned(), motion.excitation_table());
+    if let Some(simulation) = table.get_mut("simulation").and_then(|s| s.as_table_mut()) {
+        simulation.remove("duration");
     }
 }
 

@@ -11,9 +11,10 @@ use numpy::{PyArray1, PyReadonlyArray1};
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyTuple};
 
+use flexrock_core::excitation::RecordedMotion;
 use flexrock_core::record::{
-    acceleration_unit, dt_from_times, read_record as read_record_file, record_from_samples, Record,
-    RecordFormat, MAX_RECORD_BYTES, MAX_RECORD_SAMPLES,
+    acceleration_unit, dt_from_times, read_record as read_record_file, record_from_samples,
+    resolve_units, Record, RecordFormat, MAX_RECORD_BYTES, MAX_RECORD_SAMPLES,
 };
 
 use crate::FlexrockError;
@@ -28,6 +29,16 @@ pub(crate) struct Motion {
 }
 
 impl Motion {
+    /// The motion these samples are, in m/s^2, with the record file's metadata.
+    pub(crate) fn recorded(&self) -> RecordedMotion {
+        RecordedMotion::new(
+            self.record.source.clone(),
+            self.record.dt,
+            self.record.values.iter().map(|v| v * self.factor).collect(),
+        )
+        .with_meta(self.record.meta.clone())
+    }
+
     /// The `[excitation]` table of a model under this motion (the record taken from memory).
     pub(crate) fn excitation_table(&self) -> toml::Value {
         let mut t = toml::Table::new();
@@ -268,6 +279,23 @@ impl GroundMotion {
         write_whole(&path, text.as_bytes())
     }
 
+    /// What the record file says about itself: a dict of ``format`` and the ``units`` it
+    /// declares, and its ``event``, ``date``, ``station``, ``component``, ``magnitude`` and
+    /// ``distance_km`` (None where the file does not give one).
+    #[getter]
+    fn metadata<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let text = serde_json::to_string(&self.motion.record.meta)
+            .map_err(|e| FlexrockError::new_err(e.to_string()))?;
+        py.import("json")?.call_method1("loads", (text,))
+    }
+
+    /// A short name for a legend: event, station and component where the file gives them,
+    /// else the source.
+    #[getter]
+    fn label(&self) -> String {
+        self.motion.record.meta.label(&self.motion.record.source)
+    }
+
     fn __len__(&self) -> usize {
         self.motion.record.values.len()
     }
@@ -361,7 +389,8 @@ fn write_whole(path: &Path, bytes: &[u8]) -> PyResult<()> {
     Ok(())
 }
 
-/// Reads a record file (PEER AT2 or CSV) into a GroundMotion.
+/// Reads a record file (PEER AT2, COSMOS V1/V2, ESM/ITACA, CSV or text) into a GroundMotion;
+/// `units` for a file that does not say its own.
 #[pyfunction]
 #[pyo3(signature = (path, format=None, dt=None, units=None))]
 pub(crate) fn read_record(
@@ -375,19 +404,20 @@ pub(crate) fn read_record(
         .transpose()
         .map_err(invalid)?;
     let record = read_record_file(&path, format, dt).map_err(invalid)?;
-    let is_at2 =
-        format.or_else(|| RecordFormat::from_extension(&path)) == Some(RecordFormat::PeerAt2);
-    let units = match (units, is_at2) {
-        (Some(u), _) => u,
-        (None, true) => "g",
-        (None, false) => {
-            return Err(FlexrockError::new_err(format!(
-                "units = None: required for CSV records: {}",
-                flexrock_core::record::UNIT_NAMES
-            )))
-        }
-    };
-    let (units, factor) = unit(units)?;
+    if units.is_none() && record.meta.units.is_none() {
+        return Err(FlexrockError::new_err(format!(
+            "units = None: required for {} records whose file does not say the unit of its \
+             values ({}): {}",
+            match record.meta.format {
+                "csv" => "CSV",
+                "peer-at2" => "AT2",
+                other => other,
+            },
+            record.source,
+            flexrock_core::record::UNIT_NAMES
+        )));
+    }
+    let (units, factor) = resolve_units(&record, "units", units).map_err(invalid)?;
     Ok(GroundMotion {
         motion: Arc::new(Motion {
             record,

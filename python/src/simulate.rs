@@ -170,6 +170,13 @@ pub(crate) fn simulate(
     } else {
         state.model
     };
+    // A record cut short by the duration is said (a UserWarning at the caller of
+    // flexrock.simulate), as the command line says it.
+    if let Some(text) = flexrock_core::simulate::record_truncation(&m) {
+        let category = py.get_type::<pyo3::exceptions::PyUserWarning>();
+        let text = std::ffi::CString::new(text).unwrap_or_default();
+        PyErr::warn(py, category.as_any(), &text, 2)?;
+    }
     let solving = Arc::clone(&m);
     let solution = interrupt::run(py, move || flexrock_core::simulate(&solving))?.map_err(err)?;
     let summary = json(py, &flexrock_core::summary::summary(&m, &solution))?.unbind();

@@ -11,7 +11,7 @@ use pyo3::types::{PyDict, PyFloat, PyList, PyString};
 
 use flexrock_core::sweep::axis::MAX_AXIS_VALUES;
 use flexrock_core::sweep::row::Kind;
-use flexrock_core::sweep::{Axis, Cell, Interval, Layout, Plan, Request, Row, Status, Sweep};
+use flexrock_core::sweep::{Axis, Cell, Interval, Layout, Plan, Request, Row, Sweep};
 
 use crate::interrupt;
 use crate::model::{short_repr, toml_value, Model};
@@ -135,9 +135,9 @@ impl Table {
                 Kind::Text
             });
         }
-        names.extend(Row::columns(layout));
+        names.extend(plan.result_columns());
         // The kinds of the result columns, from a row without values.
-        let empty = Row::failure(Status::Invalid, String::new()).cells(layout);
+        let empty = plan.empty_cells();
         kinds.extend(empty.iter().map(Cell::kind));
         let per_point: usize = kinds.iter().map(|&k| Column::bytes_per_cell(k)).sum();
         let bytes = points.checked_mul(per_point);

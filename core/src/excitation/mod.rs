@@ -100,6 +100,12 @@ pub trait FloorMotion: Send + Sync {
     /// [`FloorMotion::acceleration`] to rounding (or within the stated error bound).
     fn closed_form(&self, t: f64) -> ClosedForm;
 
+    /// The recorded ground motion this is, for its metadata and intensity measures; None for
+    /// the analytic motions.
+    fn recorded(&self) -> Option<&RecordedMotion> {
+        None
+    }
+
     /// The nominal length of the closed form's stretches where they are the intervals between
     /// a record's samples (its dt, s), each linear: the exact solver carries the state across
     /// such an interval by a recurrence it builds once for that length. None for other motions.

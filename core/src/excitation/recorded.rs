@@ -3,6 +3,7 @@
 use serde::Serialize;
 
 use super::{ClosedForm, FloorMotion, Shape};
+use crate::record::RecordMeta;
 
 /// Floor acceleration given by samples a_k at t_k = k dt (k = 0..n-1, already in m/s^2 and
 /// trimmed), linear between samples and zero after the last one: after the record the floor is
@@ -17,6 +18,9 @@ pub struct RecordedMotion {
     values: Vec<f64>,
     #[serde(skip)]
     sample_times: Vec<f64>,
+    /// What the record file says about itself (event, station, component, units...).
+    #[serde(skip)]
+    meta: RecordMeta,
 }
 
 impl RecordedMotion {
@@ -28,7 +32,19 @@ impl RecordedMotion {
             dt,
             values,
             sample_times,
+            meta: RecordMeta::default(),
         }
+    }
+
+    /// The motion with the metadata of its record file.
+    pub fn with_meta(mut self, meta: RecordMeta) -> Self {
+        self.meta = meta;
+        self
+    }
+
+    /// What the record file says about itself.
+    pub fn meta(&self) -> &RecordMeta {
+        &self.meta
     }
 
     /// Time of the last sample, s.
@@ -57,6 +73,9 @@ impl RecordedMotion {
 }
 
 impl FloorMotion for RecordedMotion {
+    fn recorded(&self) -> Option<&RecordedMotion> {
+        Some(self)
+    }
     fn quiet_after(&self) -> Option<f64> {
         Some(self.end())
     }
@@ -117,6 +136,7 @@ impl FloorMotion for RecordedMotion {
             "duration": self.end(),
             "pga": peak,
             "t_pga": t_peak,
+            "record": self.meta,
         })
     }
 }

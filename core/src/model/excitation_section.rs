@@ -283,6 +283,13 @@ impl Key {
     }
 }
 
+/// The names of the `[excitation]` keys kind `kind` takes besides `kind` (a sweep refuses an
+/// axis over any other); None for a name that is no kind.
+pub(crate) fn keys_of_kind(kind: &str) -> Option<Vec<&'static str>> {
+    let kind = Kind::ALL.into_iter().find(|k| k.name() == kind)?;
+    Some(kind.keys().iter().map(|k| k.name()).collect())
+}
+
 /// A value an `[excitation]` section gives; written out only for a message.
 #[derive(Debug, Clone, Copy)]
 enum Given<'a> {
@@ -548,20 +555,9 @@ fn recorded_motion(
             key: "excitation.path".to_string(),
             source: e,
         })?;
-    let is_at2 = matches!(format, Some(RecordFormat::PeerAt2))
-        || (format.is_none() && RecordFormat::from_extension(&path) == Some(RecordFormat::PeerAt2));
-    let units = match (s.units.as_deref(), is_at2) {
-        (Some(u), _) => u,
-        (None, true) => "g",
-        (None, false) => {
-            return Err(Error::invalid(
-                "excitation.units",
-                "(missing)",
-                &format!("required for CSV records: {}", crate::record::UNIT_NAMES),
-            ))
-        }
-    };
-    let (units, unit_factor) = crate::record::acceleration_unit("excitation.units", units)?;
+    // The file's declared unit, else the key's; both, disagreeing, are refused.
+    let (units, unit_factor) =
+        crate::record::resolve_units(&record, "excitation.units", s.units.as_deref())?;
     let scale = s.scale.unwrap_or(1.0);
     if !scale.is_finite() {
         return Err(Error::invalid(
@@ -616,7 +612,8 @@ fn recorded_motion(
             ),
             record.dt,
             values,
-        ),
+        )
+        .with_meta(record.meta.clone()),
         tail,
         unscaled,
     ))

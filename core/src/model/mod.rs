@@ -16,6 +16,7 @@ pub use setting::{check_key, model_dir, value_text, Setting};
 pub use table::{default_value, effective_table, schema_keys, value_in_effect};
 
 use excitation_section::floor_from_section;
+pub(crate) use excitation_section::keys_of_kind;
 pub use excitation_section::STANDARD_GRAVITY;
 pub use excitation_section::{record_path, RecordCache};
 pub use fem_section::{

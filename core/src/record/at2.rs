@@ -4,7 +4,18 @@
 //!
 //! Four header lines, then the values:
 //!
-//! - lines 1-3: free text (database, event/station/component, units); kept in [`Record::title`];
+//! - lines 1-3: free text (database, event/station/component, units); kept in [`Record::title`].
+//!   Line 3 says what the file holds and in which unit, as `ACCELERATION TIME SERIES IN UNITS
+//!   OF G` (PEER NGA-West2), `ACCELERATION TIME HISTORY IN UNITS OF G. FILTER POINTS: ...`
+//!   (older PEER files), `... IN UNITS OF CM/SEC/SEC` or `The units are (g)`: the unit is the
+//!   word after `UNITS OF` or `UNITS ARE` (any letter case, parentheses and a final `.`
+//!   dropped), read by [`unit_of`]. A file whose line 3 says `VELOCITY` or `DISPLACEMENT`, or
+//!   names a unit of velocity or displacement, is refused; a unit not known is refused; a line
+//!   3 that names no unit leaves the unit to the user. Line 2 gives the event, date, station
+//!   and component where it has their form, `<event>, <date>, <station>, <component>` (PEER
+//!   NGA-West2: `Imperial Valley-02, 5/19/1940, El Centro Array #9, 180`), with the date
+//!   (`M/D/YY` or `M/D/YYYY`) inside the event's field or after it, and a time (`14:06`) after
+//!   the date skipped (older PEER files: `BORAH PEAK EQ, 10/28/83, 14:06, ANL-767 ..., 196`);
 //! - line 4: the number of points and the sampling interval, as `NPTS=<count>, DT=<seconds>`
 //!   with case-insensitive keys, an optional comma and an optional unit word (`SEC`, `S`,
 //!   `SECS`, `SECOND`, `SECONDS`; a trailing comma as in PEER NGA files), e.g.
@@ -25,7 +36,8 @@
 
 use super::{
     check_dt, check_samples, numbered_lines, parse_number, quote, strip_byte_order_mark,
-    strip_prefix_ignore_case, Location, NumberError, Record, RecordError,
+    strip_prefix_ignore_case, unit_of, Location, NumberError, Quantity, Record, RecordError,
+    RecordMeta,
 };
 
 /// What the 4th line of an AT2 file must look like (used in messages).
@@ -259,10 +271,126 @@ pub fn parse_at2(text: &str, source: &str) -> Result<Record, RecordError> {
     }
 
     check_samples(&values, &file)?;
+    let mut meta = RecordMeta::of_format("peer-at2");
+    if let Some(line) = title.get(2) {
+        if let Some((units, said)) = at2_units(line, || Location::line(source, 3))? {
+            meta.units = Some(units);
+            meta.units_said = format!("line 3 {said:?}");
+        }
+    }
+    if let Some(line) = title.get(1) {
+        event_fields(line, &mut meta);
+    }
     Ok(Record {
         source: file,
         title,
         dt,
         values,
+        meta,
     })
+}
+
+/// The unit of acceleration an AT2 file's 3rd line declares, with the line as written; None
+/// where it names none. A velocity or displacement file is refused, and so is a unit not known.
+fn at2_units(
+    line: &str,
+    at: impl Fn() -> Location,
+) -> Result<Option<(&'static str, String)>, RecordError> {
+    let upper = line.to_ascii_uppercase();
+    let said = quote(line.trim());
+    for quantity in [Quantity::Velocity, Quantity::Displacement] {
+        if upper.contains(&quantity.name().to_ascii_uppercase()) {
+            return Err(RecordError::NotAcceleration {
+                at: at(),
+                quantity,
+                found: said,
+            });
+        }
+    }
+    let Some(word) = ["UNITS OF", "UNITS ARE"].iter().find_map(|lead| {
+        let rest = &line[upper.find(lead)? + lead.len()..];
+        let rest = rest.trim_start().trim_start_matches('(').trim_start();
+        let end = rest
+            .find(|c: char| c.is_whitespace() || matches!(c, ',' | ')' | ';'))
+            .unwrap_or(rest.len());
+        Some(rest[..end].trim_end_matches('.').to_string())
+    }) else {
+        return Ok(None);
+    };
+    match unit_of(&word) {
+        Some((Quantity::Acceleration, name)) => Ok(Some((name, said))),
+        Some((quantity, _)) => Err(RecordError::NotAcceleration {
+            at: at(),
+            quantity,
+            found: said,
+        }),
+        None => Err(RecordError::UnknownUnit {
+            at: at(),
+            found: word,
+        }),
+    }
+}
+
+/// A date as PEER files write it, `M/D/YY` or `M/D/YYYY` (US order): `YYYY-MM-DD` for a full
+/// year, else as written. None for anything else.
+fn peer_date(word: &str) -> Option<String> {
+    let parts: Vec<&str> = word.split('/').collect();
+    let [month, day, year] = parts.as_slice() else {
+        return None;
+    };
+    let digits = |p: &str, widths: &[usize]| {
+        widths.contains(&p.len()) && p.bytes().all(|b| b.is_ascii_digit())
+    };
+    if !(digits(month, &[1, 2]) && digits(day, &[1, 2]) && digits(year, &[2, 4])) {
+        return None;
+    }
+    let (m, d): (u32, u32) = (month.parse().ok()?, day.parse().ok()?);
+    if !((1..=12).contains(&m) && (1..=31).contains(&d)) {
+        return None;
+    }
+    Some(if year.len() == 4 {
+        format!("{year}-{m:02}-{d:02}")
+    } else {
+        word.to_string()
+    })
+}
+
+/// The event, date, station and component of an AT2 file's 2nd line, where it has the form
+/// `<event> [<date>], [<date>,] [<time>,] <station>, <component>`; nothing where no date is
+/// found (the line is then free text, as in the El Centro "Peknold" file).
+fn event_fields(line: &str, meta: &mut RecordMeta) {
+    let fields: Vec<&str> = line.split(',').map(str::trim).collect();
+    let date_at = fields.iter().enumerate().find_map(|(i, field)| {
+        let words: Vec<&str> = field.split_whitespace().collect();
+        words
+            .iter()
+            .position(|w| peer_date(w).is_some())
+            .map(|w| (i, w, words))
+    });
+    let Some((field, word, words)) = date_at else {
+        return;
+    };
+    meta.date = peer_date(words[word]);
+    let event = if word > 0 {
+        words[..word].join(" ")
+    } else if field > 0 {
+        fields[..field].join(", ")
+    } else {
+        String::new()
+    };
+    meta.event = (!event.is_empty()).then_some(event);
+    // After the date: a time (`14:06`, `0230`) in its own field is skipped.
+    let is_time = |f: &str| !f.is_empty() && f.chars().all(|c| c.is_ascii_digit() || c == ':');
+    let rest: Vec<&str> = fields[field + 1..]
+        .iter()
+        .copied()
+        .skip_while(|f| is_time(f))
+        .collect();
+    // The component: the last field, without a parenthesis after it (`180 (USGS STATION 117)`).
+    if let [station @ .., component] = rest.as_slice() {
+        let component = component.split(" (").next().unwrap_or("").trim();
+        meta.component = (!component.is_empty()).then(|| component.to_string());
+        let station = station.join(", ");
+        meta.station = (!station.is_empty()).then_some(station);
+    }
 }

@@ -1,15 +1,38 @@
-//! CSV records.
+//! CSV and text records.
 //!
-//! Comma-separated, one row per sample, either two columns `t, acc` (the time column must start
-//! at 0 and be uniformly spaced to 1e-6 relative; dt is derived from it) or one column `acc`
-//! (dt must be given by the caller). An optional first row of non-numeric column names is
-//! kept in [`Record::title`]. `#` starts a comment that runs to the end of the line; blank
-//! lines are skipped.
+//! Comma-separated (CSV) or whitespace-separated (text), one row per sample, either two columns
+//! `t, acc` (the time column must start at 0 and be uniformly spaced to 1e-6 relative; dt is
+//! derived from it) or one column `acc` (dt must be given by the caller). An optional first
+//! row of non-numeric column names is kept in [`Record::title`]; where the acceleration's
+//! column is named `acc_m_s2`, `acc_g` or `acc_cm_s2` (as `flexrock record csv` writes it),
+//! that is the unit the file declares. `#` starts a comment that runs to the end of the line;
+//! blank lines are skipped.
 
 use super::{
     check_dt, check_samples, dt_agrees, numbered_lines, parse_number, quote, strip_byte_order_mark,
-    Location, NumberError, Record, RecordError, RELATIVE_DT_TOLERANCE,
+    Location, NumberError, Record, RecordError, RecordMeta, RELATIVE_DT_TOLERANCE,
 };
+
+/// Acceleration column names that declare their unit, with that unit: the names `flexrock
+/// record csv` writes.
+pub const UNIT_COLUMNS: [(&str, &str); 3] =
+    [("acc_m_s2", "m/s2"), ("acc_g", "g"), ("acc_cm_s2", "cm/s2")];
+
+/// How the fields of a row are separated.
+#[derive(Clone, Copy)]
+enum Separator {
+    Comma,
+    Whitespace,
+}
+
+impl Separator {
+    fn split(self, content: &str) -> Vec<&str> {
+        match self {
+            Separator::Comma => content.split(',').map(str::trim).collect(),
+            Separator::Whitespace => content.split_whitespace().collect(),
+        }
+    }
+}
 
 /// One CSV data row: its line number and its numbers.
 struct CsvRow {
@@ -20,6 +43,20 @@ struct CsvRow {
 /// Reads a CSV record from its text: two columns `t, acc` (uniform t from 0; dt derived and, if
 /// `dt` is given, checked against it) or one column `acc` (then `dt` is required).
 pub fn parse_csv(text: &str, source: &str, dt: Option<f64>) -> Result<Record, RecordError> {
+    parse_columns(text, source, dt, Separator::Comma)
+}
+
+/// Reads a text record (columns separated by spaces or tabs) by the rules of [`parse_csv`].
+pub fn parse_text(text: &str, source: &str, dt: Option<f64>) -> Result<Record, RecordError> {
+    parse_columns(text, source, dt, Separator::Whitespace)
+}
+
+fn parse_columns(
+    text: &str,
+    source: &str,
+    dt: Option<f64>,
+    separator: Separator,
+) -> Result<Record, RecordError> {
     let text = strip_byte_order_mark(text);
     if text.trim().is_empty() {
         return Err(RecordError::Empty {
@@ -36,7 +73,7 @@ pub fn parse_csv(text: &str, source: &str, dt: Option<f64>) -> Result<Record, Re
             continue;
         }
         let at = || Location::line(source, line_number);
-        let fields: Vec<&str> = content.split(',').map(str::trim).collect();
+        let fields = separator.split(content);
 
         match column_count {
             None => {
@@ -117,11 +154,26 @@ pub fn parse_csv(text: &str, source: &str, dt: Option<f64>) -> Result<Record, Re
         .filter_map(|row| row.fields.last().copied())
         .collect();
     check_samples(&values, source)?;
+    let mut meta = RecordMeta::of_format(match separator {
+        Separator::Comma => "csv",
+        Separator::Whitespace => "text",
+    });
+    if let Some(header) = title.first() {
+        let column = separator.split(header).last().copied().unwrap_or("");
+        if let Some((name, unit)) = UNIT_COLUMNS
+            .iter()
+            .find(|(name, _)| column.eq_ignore_ascii_case(name))
+        {
+            meta.units = Some(unit);
+            meta.units_said = format!("its column {name}");
+        }
+    }
     Ok(Record {
         source: source.to_string(),
         title,
         dt: record_dt,
         values,
+        meta,
     })
 }
 

@@ -89,8 +89,9 @@ pub enum RecordError {
 
     /// The format was not given and the extension does not tell it.
     #[error(
-        "{file}: cannot tell the record format from the extension \
-         (expected .AT2 or .csv, found {extension:?}); give the format explicitly"
+        "{file}: cannot tell the record format from the extension (expected .AT2, .csv, .txt, \
+         .dat, .V1, .V2, .V1c, .V2c or .ASC, found {extension:?}) nor from the first line; give \
+         the format explicitly"
     )]
     UnknownFormat {
         /// The record file.
@@ -306,5 +307,42 @@ pub enum RecordError {
         given: f64,
         /// The dt of the file, s.
         found: f64,
+    },
+
+    /// The file holds a velocity or a displacement, not an acceleration.
+    #[error(
+        "{at}: the file holds a {} time series ({found:?}), not an acceleration; flexrock reads \
+         ground accelerations only and does not differentiate: give the acceleration record of \
+         the same motion",
+        .quantity.name()
+    )]
+    NotAcceleration {
+        /// Where the file says what it holds.
+        at: Location,
+        /// What it holds.
+        quantity: super::Quantity,
+        /// The words that say so.
+        found: String,
+    },
+
+    /// A header names a unit flexrock does not know.
+    #[error(
+        "{at}: unknown unit {found:?} (the units of acceleration read: g, cm/s2 (also written \
+         cm/sec/sec, cm/s^2, gal), m/s2)"
+    )]
+    UnknownUnit {
+        /// Where in the file.
+        at: Location,
+        /// The unit as written.
+        found: String,
+    },
+
+    /// A header breaks a rule of its format.
+    #[error("{at}: {rule}")]
+    HeaderRule {
+        /// Where in the file.
+        at: Location,
+        /// The rule, with what was found.
+        rule: String,
     },
 }

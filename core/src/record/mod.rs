@@ -1,5 +1,14 @@
-//! Ground-motion records: reading accelerograms from PEER "AT2" files ([`parse_at2`]) and
-//! simple CSV files ([`parse_csv`]); each format's layout is described in its own module.
+//! Ground-motion records: reading accelerograms from PEER "AT2" files ([`parse_at2`]), COSMOS
+//! V1/V2 files ([`parse_cosmos`]), ESM/ITACA ASCII files ([`parse_esm`]), CSV files
+//! ([`parse_csv`]) and whitespace-separated text ([`parse_text`]); each format's layout is
+//! described in its own module. Each reader keeps what the file says about itself
+//! ([`RecordMeta`]: the units of its values where it declares them, the event, station,
+//! component, magnitude and distance where it gives them), and refuses a file that holds a
+//! velocity or a displacement rather than an acceleration, naming what it holds. No reader
+//! corrects a baseline or filters: the samples are the file's.
+//!
+//! [`suite`] reads a suite of records (a directory, or a list file); the records' intensity
+//! measures are [`crate::intensity`]'s.
 //!
 //! # Files
 //!
@@ -11,17 +20,24 @@
 //! expected and found. No input, however malformed, makes the readers panic.
 
 mod at2;
+mod cosmos;
 mod csv;
 mod error;
+mod esm;
+mod meta;
 mod samples;
+pub mod suite;
 #[cfg(test)]
 mod tests;
 
 use std::path::Path;
 
 pub use at2::parse_at2;
-pub use csv::parse_csv;
+pub use cosmos::parse_cosmos;
+pub use csv::{parse_csv, parse_text};
 pub use error::{Location, RecordError};
+pub use esm::parse_esm;
+pub use meta::{resolve_units, unit_of, Quantity, RecordMeta};
 pub use samples::{check_sample_dt, dt_from_times, record_from_samples, MAX_RECORD_SAMPLES};
 
 /// An accelerogram sampled at a uniform interval.
@@ -36,6 +52,8 @@ pub struct Record {
     pub dt: f64,
     /// The values as in the file (units of the file, e.g. g).
     pub values: Vec<f64>,
+    /// What the file says about itself: its units, event, station, component...
+    pub meta: RecordMeta,
 }
 
 impl Record {
@@ -88,31 +106,88 @@ pub enum RecordFormat {
     PeerAt2,
     /// Comma-separated values: `t, acc` or `acc`.
     Csv,
+    /// Whitespace-separated columns: `t acc` or `acc`.
+    Text,
+    /// COSMOS Strong Motion Data Format, V1 or V2 (one channel).
+    Cosmos,
+    /// ESM (Engineering Strong Motion database) or ITACA ASCII: `KEY: VALUE` lines, then values.
+    Esm,
 }
 
 impl RecordFormat {
-    /// The format named `name` (`peer-at2`, `csv`) by a model file key or flag `key`.
-    pub fn from_name(key: &str, name: &str) -> Result<Self, crate::invalid::InvalidParameter> {
-        match name {
-            "peer-at2" => Ok(Self::PeerAt2),
-            "csv" => Ok(Self::Csv),
-            other => Err(crate::invalid::InvalidParameter::new(
-                key,
-                format!("\"{other}\""),
-                "must be \"peer-at2\" or \"csv\"",
-            )),
+    /// Every format, in the order of [`RecordFormat::NAMES`].
+    pub const ALL: [RecordFormat; 5] = [
+        RecordFormat::PeerAt2,
+        RecordFormat::Csv,
+        RecordFormat::Text,
+        RecordFormat::Cosmos,
+        RecordFormat::Esm,
+    ];
+
+    /// The names of the formats as a model file or a flag gives them, for messages.
+    pub const NAMES: &'static str = "\"peer-at2\", \"csv\", \"text\", \"cosmos\" or \"esm\"";
+
+    /// The format's name in a model file, a flag and a record's metadata.
+    pub fn name(self) -> &'static str {
+        match self {
+            RecordFormat::PeerAt2 => "peer-at2",
+            RecordFormat::Csv => "csv",
+            RecordFormat::Text => "text",
+            RecordFormat::Cosmos => "cosmos",
+            RecordFormat::Esm => "esm",
         }
     }
 
-    /// The format implied by a file's extension (`.AT2`/`.at2`, `.csv`; any letter case).
+    /// The format named `name` by a model file key or flag `key`.
+    pub fn from_name(key: &str, name: &str) -> Result<Self, crate::invalid::InvalidParameter> {
+        Self::ALL
+            .into_iter()
+            .find(|f| f.name() == name)
+            .ok_or_else(|| {
+                crate::invalid::InvalidParameter::new(
+                    key,
+                    format!("\"{name}\""),
+                    &format!("must be {}", Self::NAMES),
+                )
+            })
+    }
+
+    /// The format implied by a file's extension, any letter case: `.AT2` (PEER; also its
+    /// velocity and displacement files `.VT2` and `.DT2`, which the reader refuses by what their
+    /// header says they hold), `.csv`, `.txt` and `.dat` (text), `.V1`, `.V2`, `.V1c`, `.V2c`
+    /// (COSMOS), `.ASC` (ESM).
     pub fn from_extension(path: &Path) -> Option<Self> {
-        let extension = path.extension()?.to_str()?;
-        if extension.eq_ignore_ascii_case("at2") {
-            Some(Self::PeerAt2)
-        } else if extension.eq_ignore_ascii_case("csv") {
-            Some(Self::Csv)
+        let extension = path.extension()?.to_str()?.to_ascii_lowercase();
+        Some(match extension.as_str() {
+            "at2" | "vt2" | "dt2" => Self::PeerAt2,
+            "csv" => Self::Csv,
+            "txt" | "dat" => Self::Text,
+            "v1" | "v2" | "v1c" | "v2c" => Self::Cosmos,
+            "asc" => Self::Esm,
+            _ => return None,
+        })
+    }
+
+    /// The format a file's first line shows: COSMOS files name their layout there
+    /// (`Corrected acceleration    (Format v01.20 with 13 text lines)`), ESM and ITACA files
+    /// start with `EVENT_NAME:`.
+    pub fn from_content(text: &str) -> Option<Self> {
+        let first = strip_byte_order_mark(text).lines().next()?;
+        if first.starts_with("EVENT_NAME:") {
+            Some(Self::Esm)
+        } else if first.to_ascii_lowercase().contains("(format v") {
+            Some(Self::Cosmos)
         } else {
             None
+        }
+    }
+
+    /// The format of the file `path` of text `text`: its extension's for `.AT2`, `.csv`, COSMOS
+    /// and ESM extensions; else the one its first line shows; else text for `.txt` and `.dat`.
+    pub fn detect(path: &Path, text: &str) -> Option<Self> {
+        match Self::from_extension(path) {
+            Some(Self::Text) | None => Self::from_content(text).or(Self::from_extension(path)),
+            known => known,
         }
     }
 }
@@ -289,9 +364,9 @@ fn read_bounded(path: &Path, source: &str) -> Result<Vec<u8>, RecordError> {
     Ok(bytes)
 }
 
-/// Reads a record file. Without `format`, the extension decides (`.AT2`/`.at2`: PEER AT2,
-/// `.csv`: CSV). `dt` is required for one-column CSV; otherwise, if given, it must agree with
-/// the file's dt to 1e-6 relative.
+/// Reads a record file. Without `format`, [`RecordFormat::detect`] tells it from the extension
+/// and the first line. `dt` is required for one-column CSV and text; otherwise, if given, it
+/// must agree with the file's dt to 1e-6 relative.
 pub fn read_record(
     path: &Path,
     format: Option<RecordFormat>,
@@ -320,7 +395,9 @@ fn read_named(
     dt: Option<f64>,
 ) -> Result<Record, RecordError> {
     let source = name.to_string();
-    let format = match format.or_else(|| RecordFormat::from_extension(path)) {
+    let bytes = read_bounded(path, &source)?;
+    let text = decode_utf8(bytes, &source)?;
+    let format = match format.or_else(|| RecordFormat::detect(path, &text)) {
         Some(format) => format,
         None => {
             return Err(RecordError::UnknownFormat {
@@ -332,23 +409,22 @@ fn read_named(
             })
         }
     };
-    let bytes = read_bounded(path, &source)?;
-    let text = decode_utf8(bytes, &source)?;
-    match format {
-        RecordFormat::Csv => parse_csv(&text, &source, dt),
-        RecordFormat::PeerAt2 => {
-            let record = parse_at2(&text, &source)?;
-            if let Some(given) = dt {
-                let given = check_dt(given, Location::file(&source))?;
-                if !dt_agrees(given, record.dt) {
-                    return Err(RecordError::DtConflict {
-                        file: source,
-                        given,
-                        found: record.dt,
-                    });
-                }
-            }
-            Ok(record)
+    let record = match format {
+        RecordFormat::Csv => return parse_csv(&text, &source, dt),
+        RecordFormat::Text => return parse_text(&text, &source, dt),
+        RecordFormat::PeerAt2 => parse_at2(&text, &source)?,
+        RecordFormat::Cosmos => parse_cosmos(&text, &source)?,
+        RecordFormat::Esm => parse_esm(&text, &source)?,
+    };
+    if let Some(given) = dt {
+        let given = check_dt(given, Location::file(&source))?;
+        if !dt_agrees(given, record.dt) {
+            return Err(RecordError::DtConflict {
+                file: source,
+                given,
+                found: record.dt,
+            });
         }
     }
+    Ok(record)
 }

@@ -4,7 +4,8 @@
 //! and line.
 
 use super::{
-    dt_rule, DtRule, Record, MAX_RECORD_BYTES, MIN_DT, MIN_SAMPLES, RELATIVE_DT_TOLERANCE,
+    dt_rule, DtRule, Record, RecordMeta, MAX_RECORD_BYTES, MIN_DT, MIN_SAMPLES,
+    RELATIVE_DT_TOLERANCE,
 };
 use crate::invalid::InvalidParameter;
 
@@ -71,6 +72,7 @@ pub fn record_from_samples(
         title: Vec::new(),
         dt,
         values,
+        meta: RecordMeta::of_format("arrays"),
     })
 }
 

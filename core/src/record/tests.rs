@@ -486,11 +486,48 @@ fn read_record_reports_missing_files_and_unknown_extensions() {
         message.starts_with(&format!("{missing}: cannot read the file: ")),
         "{message}"
     );
-    let message = error_message(read_record(Path::new("record.txt"), None, None));
+    // A file whose extension and first line name no format (this one starts "# Validation").
+    let provenance = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../validation/records/PROVENANCE.md"
+    );
+    let message = error_message(read_record(Path::new(provenance), None, None));
     assert!(
-        message.starts_with("record.txt: cannot tell the record format from the extension"),
+        message.starts_with(&format!(
+            "{provenance}: cannot tell the record format from the extension"
+        )) && message.contains("found \"md\""),
         "{message}"
     );
+    for (name, format) in [
+        ("a.txt", RecordFormat::Text),
+        ("a.DAT", RecordFormat::Text),
+        ("a.V2", RecordFormat::Cosmos),
+        ("a.v1c", RecordFormat::Cosmos),
+        ("IT.AQG..HNE.D.20090330.215717.X.ACC.ASC", RecordFormat::Esm),
+    ] {
+        assert_eq!(RecordFormat::from_extension(Path::new(name)), Some(format));
+    }
+    // The first line tells a COSMOS or ESM file whatever its name, but for the AT2 and CSV
+    // extensions, which decide.
+    let cosmos = "Corrected acceleration    (Format v01.20 with 13 text lines)\n";
+    let esm = "EVENT_NAME: L'Aquila\n";
+    assert_eq!(
+        RecordFormat::detect(Path::new("a.txt"), cosmos),
+        Some(RecordFormat::Cosmos)
+    );
+    assert_eq!(
+        RecordFormat::detect(Path::new("a"), esm),
+        Some(RecordFormat::Esm)
+    );
+    assert_eq!(
+        RecordFormat::detect(Path::new("a.AT2"), esm),
+        Some(RecordFormat::PeerAt2)
+    );
+    assert_eq!(
+        RecordFormat::detect(Path::new("a.txt"), "0 1\n"),
+        Some(RecordFormat::Text)
+    );
+    assert_eq!(RecordFormat::detect(Path::new("a"), "0 1\n"), None);
     assert_eq!(
         RecordFormat::from_extension(Path::new("a/b/X.at2")),
         Some(RecordFormat::PeerAt2)
@@ -509,12 +546,333 @@ fn peak_and_duration_of_small_records() {
         title: Vec::new(),
         dt: 0.5,
         values: vec![0.1, -0.4, 0.4, 0.2],
+        meta: RecordMeta::default(),
     };
     assert_eq!(record.peak(), (-0.4, 0.5));
     assert_eq!(record.duration(), 1.5);
     record.values.clear();
     assert_eq!(record.peak(), (0.0, 0.0));
     assert_eq!(record.duration(), 0.0);
+}
+
+// --- the test fixtures: every format and unit ---------------------------------------------
+
+/// The samples every fixture under tests/data/records holds, in its own unit (in g, or times
+/// 100 in cm/s^2): exact binary fractions, written and read without rounding.
+const FIXTURE_VALUES: [f64; 6] = [0.0, 0.125, -0.25, 0.5, -0.375, 0.0625];
+
+fn fixture_path(name: &str) -> String {
+    format!(
+        "{}/../tests/data/records/{name}",
+        env!("CARGO_MANIFEST_DIR")
+    )
+}
+
+fn fixture(name: &str) -> String {
+    read_text(&fixture_path(name))
+}
+
+fn read_fixture(name: &str) -> Result<Record, RecordError> {
+    read_record(Path::new(&fixture_path(name)), None, None)
+}
+
+fn scaled(factor: f64) -> Vec<f64> {
+    FIXTURE_VALUES.iter().map(|v| v * factor).collect()
+}
+
+#[test]
+fn at2_files_are_read_in_the_unit_their_header_says() {
+    for (name, unit, factor) in [
+        ("nga-g.AT2", "g", 1.0),
+        ("nga-cmss.AT2", "cm/s2", 100.0),
+        ("nga-mss.AT2", "m/s2", 1.0),
+    ] {
+        let record = read_fixture(name).unwrap();
+        assert_eq!(record.values, scaled(factor), "{name}");
+        assert_eq!(record.meta.units, Some(unit), "{name}");
+        assert_eq!(record.meta.format, "peer-at2");
+        // The NGA-West2 line 2: event, date, station, component.
+        assert_eq!(record.meta.event.as_deref(), Some("Imperial Valley-02"));
+        assert_eq!(record.meta.date.as_deref(), Some("1940-05-19"));
+        assert_eq!(record.meta.station.as_deref(), Some("El Centro Array #9"));
+        assert_eq!(record.meta.component.as_deref(), Some("180"));
+        assert_eq!(
+            record.meta.label("x"),
+            "Imperial Valley-02, El Centro Array #9, 180"
+        );
+        // The file's unit is the one used; another given is refused, naming both.
+        assert_eq!(resolve_units(&record, "u", None).unwrap().0, unit);
+        assert_eq!(resolve_units(&record, "u", Some(unit)).unwrap().0, unit);
+        let other = if unit == "g" { "m/s2" } else { "g" };
+        let e = resolve_units(&record, "excitation.units", Some(other))
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.starts_with(&format!(
+                "excitation.units = \"{other}\": contradicts the record file"
+            )) && e.contains(&format!("says its values are in {unit}"))
+                && e.contains("line 3"),
+            "{e}"
+        );
+    }
+    let factor = |name: &str| {
+        let record = read_fixture(name).unwrap();
+        resolve_units(&record, "u", None).unwrap().1
+    };
+    assert_eq!(factor("nga-g.AT2"), 9.80665);
+    assert_eq!(factor("nga-cmss.AT2"), 0.01);
+    assert_eq!(factor("nga-mss.AT2"), 1.0);
+}
+
+#[test]
+fn velocity_and_displacement_files_are_refused_by_name() {
+    for (name, holds) in [
+        ("nga-velocity.VT2", "velocity"),
+        ("nga-displacement.DT2", "displacement"),
+        ("cosmos-velocity.V2", "velocity"),
+        ("esm-velocity.ASC", "velocity"),
+    ] {
+        let e = error_message(read_fixture(name));
+        assert!(
+            e.contains(&format!("the file holds a {holds} time series"))
+                && e.contains("flexrock reads ground accelerations only"),
+            "{name}: {e}"
+        );
+    }
+    let e = error_message(read_fixture("nga-velocity.VT2"));
+    assert!(
+        e.ends_with(
+            "nga-velocity.VT2 line 3: the file holds a velocity time series (\"VELOCITY \
+             TIME SERIES IN UNITS OF CM/S\"), not an acceleration; flexrock reads ground \
+             accelerations only and does not differentiate: give the acceleration record of the \
+             same motion"
+        ),
+        "{e}"
+    );
+    // A velocity unit in an acceleration's header is refused the same way.
+    let text = fixture("nga-g.AT2").replace("UNITS OF G", "UNITS OF CM/SEC");
+    let e = error_message(parse_at2(&text, "v.AT2"));
+    assert!(
+        e.starts_with("v.AT2 line 3: the file holds a velocity"),
+        "{e}"
+    );
+}
+
+#[test]
+fn a_header_silent_on_units_leaves_them_to_the_user_and_an_unknown_unit_is_refused() {
+    let record = read_fixture("no-units.AT2").unwrap();
+    assert_eq!(record.meta.units, None);
+    assert_eq!(record.meta.event, None);
+    let e = resolve_units(&record, "excitation.units", None)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.starts_with("excitation.units = (missing): required: the record file")
+            && e.contains("does not say the unit of its values"),
+        "{e}"
+    );
+    assert_eq!(
+        resolve_units(&record, "excitation.units", Some("cm/s2")).unwrap(),
+        ("cm/s2", 0.01)
+    );
+    let e = error_message(read_fixture("furlongs.AT2"));
+    assert!(
+        e.ends_with(
+            "furlongs.AT2 line 3: unknown unit \"FURLONG/FORTNIGHT\" (the units of \
+             acceleration read: g, cm/s2 (also written cm/sec/sec, cm/s^2, gal), m/s2)"
+        ),
+        "{e}"
+    );
+}
+
+#[test]
+fn the_shipped_at2_files_give_their_event_station_and_component() {
+    let meta = |name: &str| {
+        let path = format!(
+            "{}/../validation/records/{name}",
+            env!("CARGO_MANIFEST_DIR")
+        );
+        read_record(Path::new(&path), None, None).unwrap().meta
+    };
+    let m = meta("ANLA196.AT2");
+    assert_eq!(m.units, Some("g"));
+    assert_eq!(
+        (m.event.as_deref(), m.date.as_deref()),
+        (Some("BORAH PEAK EQ"), Some("10/28/83"))
+    );
+    assert_eq!(
+        m.station.as_deref(),
+        Some("ANL-767 REACTOR PLANT (BASEMENT)")
+    );
+    assert_eq!(m.component.as_deref(), Some("196"));
+    let m = meta("A-ELC180.AT2");
+    assert_eq!(m.label("x"), "BORREGO MOUNTAIN, EL CENTRO ARRAY #9, 180");
+    assert_eq!(meta("HEN-E.AT2").label("x"), "CHI-CHI, HEN, E");
+    assert_eq!(meta("PBFEAS.AT2").label("x"), "BORAH PEAK, PBF, EAST");
+    // El Centro's line 2 is free text: no event is made up; its line 3 says "(g)".
+    let m = meta("elCentro.AT2");
+    assert_eq!(
+        (m.units, m.label("elCentro.AT2").as_str()),
+        (Some("g"), "elCentro.AT2")
+    );
+}
+
+#[test]
+fn cosmos_files_are_read_with_their_header() {
+    let record = read_fixture("cosmos-cmss.V2").unwrap();
+    assert_eq!(record.values, scaled(100.0));
+    assert_eq!(record.dt, 0.01);
+    let m = &record.meta;
+    assert_eq!((m.format, m.units), ("cosmos", Some("cm/s2")));
+    assert_eq!(m.event.as_deref(), Some("Synthetic Test Earthquake"));
+    assert_eq!(m.date.as_deref(), Some("1999-09-20"));
+    assert_eq!(m.station.as_deref(), Some("TW-TST"));
+    assert_eq!(m.component.as_deref(), Some("090"));
+    assert_eq!((m.magnitude, m.distance_km), (Some(7.6), Some(12.5)));
+    let record = read_fixture("cosmos-g.V1").unwrap();
+    assert_eq!(record.values, scaled(1.0));
+    assert_eq!(record.meta.units, Some("g"));
+}
+
+#[test]
+fn cosmos_headers_that_break_a_rule_are_refused_naming_the_line() {
+    let text = fixture("cosmos-cmss.V2");
+    let refused = |from: &str, to: &str| {
+        assert!(text.contains(from), "{from}");
+        error_message(parse_cosmos(&text.replacen(from, to, 1), "c.V2"))
+    };
+    // The sampling interval unknown (real 62 is the 2nd value of the header's 13th line).
+    let e = refused(
+        "    -999.000000      10.000000       0.060000",
+        "    -999.000000    -999.000000       0.060000",
+    );
+    assert!(
+        e.contains("no sampling interval (real value 62, ms)"),
+        "{e}"
+    );
+    // The length in the header against NPTS x dt.
+    let e = refused(
+        "      10.000000       0.060000",
+        "      10.000000       0.090000",
+    );
+    assert!(
+        e.contains("the record's length in the real header (value 63) is 0.09 s"),
+        "{e}"
+    );
+    // NPTS against the values.
+    let e = refused("       6 acceleration pts", "       7 acceleration pts");
+    assert!(
+        e.contains(
+            "c.V2 line 52: the acceleration data ends here with 6 values, fewer than \
+             the 7 its count line gives"
+        ),
+        "{e}"
+    );
+    let e = refused("       6 acceleration pts", "       5 acceleration pts");
+    assert!(
+        e.contains("c.V2 line 51: more values than the NPTS = 5 the data line (line 49) gives"),
+        "{e}"
+    );
+    // The unit's code against its word, and against integer 3.
+    let e = refused("units=cm/sec2(04)", "units=cm/sec2(02)");
+    assert!(
+        e.contains("the data line's unit code, 2, is not the unit \"cm/sec2\""),
+        "{e}"
+    );
+    let e = refused("       2       1       4", "       2       1       2");
+    assert!(
+        e.contains("integer header value 3 (the unit's code), 2"),
+        "{e}"
+    );
+    // The data's quantity in integer 2.
+    let e = refused("       2       1       4", "       2       2       4");
+    assert!(
+        e.contains("the file holds a velocity time series (\"integer header value 2 = 2\")"),
+        "{e}"
+    );
+    // Counts of header lines and values.
+    let e = refused("follow on  10 lines", "follow on  11 lines");
+    assert!(
+        e.contains(
+            "c.V2 line 24: the integer header takes 10 lines, not the 11 its count line gives"
+        ),
+        "{e}"
+    );
+    let e = refused("   2 Comment line(s)", "   3 Comment line(s)");
+    assert!(
+        e.contains("expected a comment line starting with \"|\""),
+        "{e}"
+    );
+    let e = refused("with 13 text lines", "with 12 text lines");
+    assert!(
+        e.contains("expected the integer header's count line"),
+        "{e}"
+    );
+    let e = refused("Corrected acceleration", "Raw acceleration counts");
+    assert!(
+        e.contains("c.V2 line 1: the file holds \"raw acceleration counts\""),
+        "{e}"
+    );
+    let e = refused("       6 velocity", "1.0\n       6 velocity");
+    assert!(e.contains("more values than the NPTS = 6"), "{e}");
+    let two = format!("{text}{text}");
+    let e = error_message(parse_cosmos(&two, "c.V2"));
+    assert!(e.contains("the file holds more than one channel"), "{e}");
+}
+
+#[test]
+fn esm_files_are_read_with_their_header() {
+    let record = read_fixture("esm-cmss.ASC").unwrap();
+    assert_eq!(record.values, scaled(100.0));
+    assert_eq!(record.dt, 0.01);
+    let m = &record.meta;
+    assert_eq!((m.format, m.units), ("esm", Some("cm/s2")));
+    assert_eq!(m.event.as_deref(), Some("L'AQUILA MAINSHOCK (SYNTHETIC)"));
+    assert_eq!(m.date.as_deref(), Some("2009-04-06"));
+    assert_eq!(m.station.as_deref(), Some("IT.AQV"));
+    assert_eq!(m.component.as_deref(), Some("HNE"));
+    assert_eq!((m.magnitude, m.distance_km), (Some(6.1), Some(4.9)));
+    let e = error_message(read_fixture("esm-short.ASC"));
+    assert!(
+        e.contains("line 26: NDATA = 7 but the file has 6 values (truncated file?)"),
+        "{e}"
+    );
+    let text = fixture("esm-cmss.ASC");
+    let e = error_message(parse_esm(&text.replace("UNITS: cm/s^2\n", ""), "e.ASC"));
+    assert!(e.contains("the header has no UNITS line"), "{e}");
+    let e = error_message(parse_esm(
+        &text.replace("UNITS: cm/s^2", "UNITS: counts"),
+        "e.ASC",
+    ));
+    assert!(e.contains("e.ASC line 29: unknown unit \"counts\""), "{e}");
+    let e = error_message(parse_esm(
+        &text.replace(
+            "DATA_TYPE: ACCELERATION",
+            "DATA_TYPE: ACCELERATION RESPONSE SPECTRUM",
+        ),
+        "e.ASC",
+    ));
+    assert!(
+        e.contains("DATA_TYPE is \"ACCELERATION RESPONSE SPECTRUM\""),
+        "{e}"
+    );
+    // A magnitude of the event's own key wins; an empty one is not given.
+    let with_event = text.replace("MAGNITUDE_W: 6.1", "EVENT_MAGNITUDE: 6.3\nMAGNITUDE_W:");
+    let m = parse_esm(&with_event, "e.ASC").unwrap().meta;
+    assert_eq!(m.magnitude, Some(6.3));
+}
+
+#[test]
+fn text_columns_are_read_like_csv_with_their_unit_from_the_header() {
+    let record = read_fixture("text-g.txt").unwrap();
+    assert_eq!(record.values, scaled(1.0));
+    assert_eq!(record.dt, 0.01);
+    assert_eq!((record.meta.format, record.meta.units), ("text", Some("g")));
+    let one = parse_text("0.5\n-0.25\n", "one.txt", Some(0.02)).unwrap();
+    assert_eq!(
+        (one.values, one.dt, one.meta.units),
+        (vec![0.5, -0.25], 0.02, None)
+    );
 }
 
 // --- no panic, whatever the input ---------------------------------------------------------
@@ -561,6 +919,9 @@ fn apply_edits(text: &str, edits: &[Edit]) -> String {
 
 fn parse_everything(text: &str) {
     let _ = parse_at2(text, "fuzz.AT2");
+    let _ = parse_cosmos(text, "fuzz.V2");
+    let _ = parse_esm(text, "fuzz.ASC");
+    let _ = parse_text(text, "fuzz.txt", Some(0.01));
     let _ = parse_csv(text, "fuzz.csv", None);
     let _ = parse_csv(text, "fuzz.csv", Some(0.01));
     let _ = parse_csv(text, "fuzz.csv", Some(-1.0));
@@ -588,6 +949,15 @@ proptest! {
         let mutated = apply_edits(SMALL_AT2, &edits);
         parse_everything(&mutated);
         parse_everything(&mutated.replace('\n', "\r\n"));
+    }
+
+    #[test]
+    fn mutated_cosmos_and_esm_texts_do_not_panic(
+        edits in prop::collection::vec(edit_strategy(), 1..12)
+    ) {
+        for name in ["cosmos-cmss.V2", "esm-cmss.ASC"] {
+            parse_everything(&apply_edits(&fixture(name), &edits));
+        }
     }
 
     #[test]

@@ -27,7 +27,7 @@ use serde::{Deserialize, Serialize};
 
 pub use axis::{Axis, Interval};
 pub use find_min::{FindMin, HousnerOptions};
-pub use row::{Cell, Layout, Outcome, Row, Status};
+pub use row::{Cell, Layout, Outcome, RecordCells, Row, Status};
 use row::{RigidMinima, RunOutcome, Scales};
 
 use crate::error::{Error, Result};
@@ -87,8 +87,34 @@ impl Plan {
     pub fn columns(&self) -> Vec<String> {
         let mut columns = vec!["point".to_string()];
         columns.extend(self.axes.iter().map(|a| a.key.clone()));
-        columns.extend(Row::columns(self.layout()));
+        columns.extend(self.result_columns());
         columns
+    }
+
+    /// The result columns of sweep.csv (after the point number and the axes): a row's
+    /// ([`Row::columns`]), then in a sweep over records the record's ([`Row::record_columns`]).
+    pub fn result_columns(&self) -> Vec<String> {
+        let mut columns = Row::columns(self.layout());
+        if self.reads_records() {
+            columns.extend(Row::record_columns());
+        }
+        columns
+    }
+
+    /// The cells of a row without values, in the order of [`Plan::result_columns`] (their
+    /// kinds are the columns').
+    pub fn empty_cells(&self) -> Vec<Cell> {
+        let mut row = Row::failure(Status::Invalid, String::new());
+        if self.reads_records() {
+            row.record = Some(RecordCells::default());
+        }
+        row.cells(self.layout())
+    }
+
+    /// True for a single body's sweep that reads record files: its rows carry each point's
+    /// record (metadata and intensity measures).
+    pub fn reads_records(&self) -> bool {
+        self.row_columns.is_none() && !self.records.is_empty()
     }
 
     /// The result columns the sweep has: runs, or a minimum search with its rigid block's form.
@@ -464,6 +490,7 @@ impl Sweep {
                 });
             }
         }
+        check_kinds_take(&table, &request.settings, &request.axes, find_min.as_ref())?;
         let simulations_per_point = find_min.as_ref().map_or(1, |f| f.scan + 16);
         let chunk_size = request
             .chunk_size
@@ -686,6 +713,7 @@ impl Sweep {
                 reason: String::new(),
                 outcome: Some(Outcome::Row(rows::RowOutcome::of(&solution, &alone))),
                 scales: None,
+                record: None,
             },
             Err(e) => Row::failure(Status::Failed, reason(&e)),
         }
@@ -741,10 +769,18 @@ impl Sweep {
         if self.plan.row_columns.is_some() {
             return self.row_point(&settings);
         }
-        match &self.plan.find_min {
+        let mut row = match &self.plan.find_min {
             None => self.run_point(&settings),
             Some(find) => self.search_point(&settings, find),
+        };
+        // Every row of a sweep over records has the record's cells (empty where unknown), and
+        // no row of another sweep has them: the columns are the plan's.
+        if self.plan.reads_records() {
+            row.record.get_or_insert_with(RecordCells::default);
+        } else {
+            row.record = None;
         }
+        row
     }
 
     fn run_point(&self, settings: &[Setting]) -> Row {
@@ -752,6 +788,7 @@ impl Sweep {
             Ok(model) => model,
             Err(e) => return Row::failure(Status::Invalid, reason(&e)),
         };
+        let record = self.plan.reads_records().then(|| RecordCells::of(&model));
         let scales = Some(Scales::of(&model));
         match crate::simulate::simulate_peaks(&model) {
             Ok(solution) => Row {
@@ -759,9 +796,11 @@ impl Sweep {
                 reason: String::new(),
                 outcome: Some(Outcome::Run(RunOutcome::of(&model, &solution))),
                 scales,
+                record,
             },
             Err(e) => Row {
                 scales,
+                record,
                 ..Row::failure(Status::Failed, reason(&e))
             },
         }
@@ -797,6 +836,18 @@ impl Sweep {
                         _ => None,
                     },
                 };
+                // The record's measures at the smallest overturning value likewise.
+                let record = self.plan.reads_records().then(|| {
+                    let at_value = |value: f64| {
+                        self.model(&at(value))
+                            .map(|m| RecordCells::of(&m))
+                            .unwrap_or_default()
+                    };
+                    match outcome.min_overturning {
+                        Some(value) => at_value(value),
+                        None => at_value(find.lo).common(&at_value(find.hi)),
+                    }
+                });
                 let rigid_minimum =
                     |block: fn(
                         f64,
@@ -864,6 +915,7 @@ impl Sweep {
                     reason: String::new(),
                     outcome: Some(Outcome::Minimum(outcome, rigid)),
                     scales,
+                    record,
                 }
             }
             Err((value, (status, e))) => Row::failure(
@@ -965,6 +1017,87 @@ fn row_schema(table: &toml::Table, settings: &[Setting], source: &Path) -> Resul
             message,
         }),
     }
+}
+
+/// Refuses an axis (or a minimum search) over an `[excitation]` key that no kind of the sweep
+/// takes, before any point runs: every point would be invalid (`excitation.amplitude` of a
+/// record, whose intensity is `excitation.scale`). The kinds are the values of an
+/// `excitation.kind` axis, else the kind the model file and the `--set` keys give.
+fn check_kinds_take(
+    table: &toml::Table,
+    settings: &[Setting],
+    axes: &[Axis],
+    find_min: Option<&FindMin>,
+) -> Result<()> {
+    let kinds: Vec<String> = match axes.iter().find(|a| a.key == "excitation.kind") {
+        Some(axis) => axis.values.clone(),
+        None => {
+            let set = settings.iter().rev().find(|s| s.key == "excitation.kind");
+            let kind = match set {
+                Some(s) => s.value.as_str().map(str::to_string),
+                None => table
+                    .get("excitation")
+                    .and_then(|e| e.get("kind"))
+                    .and_then(|k| k.as_str())
+                    .map(str::to_string),
+            };
+            kind.into_iter().collect()
+        }
+    };
+    let keys = axes
+        .iter()
+        .map(|a| {
+            (
+                format!("vary {}", a.key),
+                a.key.as_str(),
+                a.values.join(","),
+            )
+        })
+        .chain(find_min.map(|f| {
+            (
+                format!("find_min {}", f.key),
+                f.key.as_str(),
+                format!(
+                    "{}:{}",
+                    crate::format::shortest(f.lo),
+                    crate::format::shortest(f.hi)
+                ),
+            )
+        }));
+    for (name, key, values) in keys {
+        let Some(field) = key.strip_prefix("excitation.").filter(|f| *f != "kind") else {
+            continue;
+        };
+        let taken: Vec<(&str, Vec<&str>)> = kinds
+            .iter()
+            .filter_map(|kind| Some((kind.as_str(), crate::model::keys_of_kind(kind)?)))
+            .collect();
+        // A kind the schema does not know is the points' business (each says so).
+        if taken.len() < kinds.len() || taken.iter().any(|(_, keys)| keys.contains(&field)) {
+            continue;
+        }
+        let hint = if field == "amplitude" && kinds.iter().any(|k| k == "record") {
+            "; a record's intensity is swept with excitation.scale"
+        } else {
+            ""
+        };
+        let described: Vec<String> = taken
+            .iter()
+            .map(|(kind, keys)| match keys.as_slice() {
+                [] => format!("kind = \"{kind}\" takes no key"),
+                keys => format!("kind = \"{kind}\" takes {}", keys.join(", ")),
+            })
+            .collect();
+        return Err(Error::invalid(
+            &name,
+            values,
+            &format!(
+                "cannot be swept: {key} is not a parameter of the sweep's excitation ({}){hint}",
+                described.join("; ")
+            ),
+        ));
+    }
+    Ok(())
 }
 
 /// An error as one line of a CSV field.

@@ -7,8 +7,11 @@
 
 use crate::automaton::EventKind;
 use crate::format::push_shortest;
+use crate::intensity::{self, GroundMeasures};
 use crate::model::Model;
+use crate::record::RecordMeta;
 use crate::solution::Solution;
+use crate::units::STANDARD_GRAVITY;
 
 use super::find_min::HousnerOptions;
 use super::rows::RowOutcome;
@@ -227,6 +230,79 @@ impl Scales {
             ),
             ("omega_p_over_p", Cell::Float(self.omega_p_over_p)),
             ("T_over_Tp", Cell::Float(self.period_over_excitation_period)),
+        ]
+    }
+}
+
+/// A point's record, in a sweep over records: what its file says about itself, and the
+/// intensity measures of the motion the point applies (the record scaled and trimmed). A
+/// number is None (an empty field) where it is not known: the file does not give it, the
+/// point's model is invalid, or (in a minimum search that found no overturning value) it
+/// depends on the searched key.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct RecordCells {
+    /// The record file's metadata.
+    pub meta: Option<RecordMeta>,
+    /// PGA, PGV, PGD, Arias intensity and CAV.
+    pub ground: Option<GroundMeasures>,
+    /// Sa(T, 5 %) at the body's pre-uplift period T, m/s^2.
+    pub sa: Option<f64>,
+}
+
+impl RecordCells {
+    /// The record of a point's model (all empty for an analytic motion).
+    pub fn of(model: &Model) -> RecordCells {
+        let Some(record) = model.floor.recorded() else {
+            return RecordCells::default();
+        };
+        RecordCells {
+            meta: Some(record.meta().clone()),
+            ground: Some(intensity::ground_measures(record)),
+            sa: intensity::spectral_acceleration(
+                record,
+                model.constants.period,
+                intensity::DEFAULT_DAMPING,
+            )
+            .ok()
+            .map(|s| s.sa),
+        }
+    }
+
+    /// What `self` and `other` share; the rest None (see [`Scales::common`]).
+    pub fn common(&self, other: &RecordCells) -> RecordCells {
+        let keep = |a: Option<f64>, b: Option<f64>| a.filter(|_| a == b);
+        let ground = match (self.ground, other.ground) {
+            (Some(a), Some(b)) if a == b => Some(a),
+            _ => None,
+        };
+        RecordCells {
+            meta: self.meta.clone().filter(|m| Some(m) == other.meta.as_ref()),
+            ground,
+            sa: keep(self.sa, other.sa),
+        }
+    }
+
+    /// The cells, by column name: the metadata, then the measures (PGA and Sa in g, the
+    /// others in SI units).
+    pub fn named(&self) -> [(&'static str, Cell); 12] {
+        let meta = self.meta.as_ref();
+        let text = |f: fn(&RecordMeta) -> &Option<String>| {
+            Cell::Text(meta.and_then(|m| f(m).clone()).filter(|t| !t.is_empty()))
+        };
+        let ground = |f: fn(&GroundMeasures) -> f64| Cell::Float(self.ground.as_ref().map(f));
+        [
+            ("event", text(|m| &m.event)),
+            ("date", text(|m| &m.date)),
+            ("station", text(|m| &m.station)),
+            ("component", text(|m| &m.component)),
+            ("magnitude", Cell::Float(meta.and_then(|m| m.magnitude))),
+            ("distance_km", Cell::Float(meta.and_then(|m| m.distance_km))),
+            ("pga_g", ground(|g| g.pga / STANDARD_GRAVITY)),
+            ("pgv_m_s", ground(|g| g.pgv)),
+            ("pgd_m", ground(|g| g.pgd)),
+            ("arias_m_s", ground(|g| g.arias)),
+            ("cav_m_s", ground(|g| g.cav)),
+            ("sa_g", Cell::Float(self.sa.map(|sa| sa / STANDARD_GRAVITY))),
         ]
     }
 }
@@ -458,6 +534,9 @@ pub struct Row {
     pub outcome: Option<Outcome>,
     /// Its body and excitation numbers, when its model is valid.
     pub scales: Option<Scales>,
+    /// Its record, in a sweep over records (every row of such a sweep has it, empty where
+    /// nothing is known); None in other sweeps, whose rows have no record columns.
+    pub record: Option<RecordCells>,
 }
 
 impl Row {
@@ -468,6 +547,7 @@ impl Row {
             reason,
             outcome: None,
             scales: None,
+            record: None,
         }
     }
 
@@ -525,7 +605,18 @@ impl Row {
             Some(scales) => cells.extend(values(scales.named())),
             None => cells.extend(emptied(Scales::default().named())),
         }
+        if let Some(record) = &self.record {
+            cells.extend(values(record.named()));
+        }
         cells
+    }
+
+    /// The names of the record columns, after [`Row::columns`] in a sweep over records.
+    pub fn record_columns() -> Vec<String> {
+        names(RecordCells::default().named())
+            .into_iter()
+            .map(String::from)
+            .collect()
     }
 
     /// The result fields as sweep.csv holds them, in the order of [`Row::columns`].
@@ -550,6 +641,7 @@ mod tests {
                 ..RunOutcome::default()
             })),
             scales: Some(Scales::default()),
+            record: None,
         };
         let failed = Row::failure(Status::Failed, "a reason".into());
         for layout in [
@@ -629,6 +721,7 @@ mod tests {
                 },
             )),
             scales: None,
+            record: None,
         };
         let fields = row.fields(Layout::Minimum(full()));
         assert_eq!(fields.len(), columns.len());
@@ -658,6 +751,7 @@ mod tests {
                 RigidMinima::with_options(every_choice()),
             )),
             scales: None,
+            record: None,
         };
         let fields = row.fields(Layout::Minimum(every_choice()));
         assert_eq!(fields.len(), columns.len());

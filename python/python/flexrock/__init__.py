@@ -52,8 +52,10 @@ __all__ = [
     "compare",
     "converge",
     "fem_check",
+    "intensity_measures",
     "props",
     "read_record",
+    "response_spectrum",
     "simulate",
     "simulate_row",
     "sweep",
@@ -358,18 +360,23 @@ def read_record(
     ----------
     path : str or os.PathLike
         The record file, relative to the current directory.
-    format : {"peer-at2", "csv"}, optional
-        The file's layout; by default from the extension (.AT2, .csv).
+    format : {"peer-at2", "csv", "text", "cosmos", "esm"}, optional
+        The file's layout; by default from the extension (.AT2, .csv, .txt, .dat, .V1, .V2,
+        .ASC) and the first line.
     dt : float, optional
-        Sampling interval, s: required for a one-column CSV file; otherwise it must agree with
-        the file's.
+        Sampling interval, s: required for a one-column CSV or text file; otherwise it must
+        agree with the file's.
     units : {"g", "m/s2", "cm/s2"}, optional
-        The units of the file's values; "g" by default for AT2 files, required for CSV.
+        The units of the file's values, for a file that does not say them (a CSV file without
+        a unit column); one that contradicts the file's header is refused.
 
     Returns
     -------
     GroundMotion
-        ``dt``, ``acceleration`` (m/s^2, numpy), ``units`` and ``source`` (the path).
+        ``dt``, ``acceleration`` (m/s^2, numpy), ``units``, ``source`` (the path),
+        ``metadata`` (a dict: ``format``, ``units``, ``event``, ``date``, ``station``,
+        ``component``, ``magnitude``, ``distance_km``, None where the file gives none) and
+        ``label`` (event, station and component, for a legend).
 
     Raises
     ------
@@ -604,3 +611,63 @@ def fem_check(
     """
     return _native.fem_check(model, nx=nx, ny=ny, dt=dt, scheme=scheme)
 
+
+def intensity_measures(motion, period: Optional[float] = None, damping: float = 0.05) -> dict:
+    """A ground motion's intensity measures, computed exactly.
+
+    The motion is the samples, linear between them, as flexrock applies it: PGA; PGV and PGD
+    from the exact integrals from rest (peaks between samples included); the Arias intensity
+    pi/(2 g) * integral of a^2 dt (g = 9.80665 m/s^2); CAV, integral of |a| dt; and Sa, the
+    pseudo-acceleration omega^2 max |u| of the damped oscillator, u solved exactly (peak
+    between samples included). No baseline correction and no filtering.
+
+    Parameters
+    ----------
+    motion : GroundMotion or Model
+        A GroundMotion, or a Model whose excitation is a record (its motion scaled and trimmed
+        as the model applies it).
+    period : float, optional
+        The period of Sa, s; by default the body's pre-uplift period T for a Model, none (no
+        Sa) for a GroundMotion.
+    damping : float
+        The damping ratio of Sa's oscillator (default 5 %).
+
+    Returns
+    -------
+    dict
+        ``pga`` (m/s^2), ``pga_g``, ``t_pga`` (s), ``pgv`` (m/s), ``t_pgv``, ``pgd`` (m),
+        ``t_pgd``, ``arias`` (m/s), ``cav`` (m/s); with a period also ``sa`` (m/s^2), ``sa_g``,
+        ``sd`` (m), ``t_sa`` (s), ``sa_at_samples`` (m/s^2, the peak over the samples alone),
+        ``period`` and ``damping``.
+
+    Examples
+    --------
+    >>> gm = flexrock.read_record("validation/records/elCentro.AT2")
+    >>> flexrock.intensity_measures(gm, period=1.0)["sa_g"]
+    """
+    return _native.intensity_measures(motion, period=period, damping=damping)
+
+
+def response_spectrum(motion, periods=None, damping: float = 0.05) -> dict:
+    """The pseudo-acceleration response spectrum of a ground motion (see `intensity_measures`).
+
+    Parameters
+    ----------
+    motion : GroundMotion or Model
+        As for `intensity_measures`.
+    periods : sequence of float, optional
+        Periods, s (default: 0.01 s to 10 s, 20 a decade on a logarithmic scale).
+    damping : float
+        The damping ratio of the oscillators (default 5 %).
+
+    Returns
+    -------
+    dict of numpy.ndarray
+        ``period`` (s), ``sa`` (m/s^2), ``sd`` (m), ``t_peak`` (s), ``sa_at_samples`` (m/s^2).
+
+    Examples
+    --------
+    >>> spectrum = flexrock.response_spectrum(flexrock.read_record("validation/records/elCentro.AT2"))
+    >>> spectrum["sa"].max() / 9.80665
+    """
+    return _native.response_spectrum(motion, periods=periods, damping=damping)

@@ -48,6 +48,7 @@
 
 pub(crate) mod flow;
 pub(crate) mod kept;
+pub(crate) mod oscillator;
 pub(crate) mod scan;
 pub(crate) mod step;
 pub(crate) mod work;
