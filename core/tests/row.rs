@@ -591,7 +591,11 @@ fn identical_columns_never_touch_however_small_the_gap() {
             let solved = flexrock_core::simulate::simulate_row(&model)
                 .unwrap_or_else(|e| panic!("gap {gap}, {floor}: {e}"));
             assert!(solved.impacts.is_empty());
-            let single = alone(&at_rest(model.bodies[0].clone()), model.floor.as_ref(), *duration);
+            let single = alone(
+                &at_rest(model.bodies[0].clone()),
+                model.floor.as_ref(),
+                *duration,
+            );
             assert!(single.events.len() >= 2, "the columns should rock");
             for column in &solved.columns {
                 same_digits(column, &single, &format!("gap {gap}, {floor}"));

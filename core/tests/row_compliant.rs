@@ -402,7 +402,10 @@ fn a_pair_beside_its_copy_moves_as_the_pair_alone() {
     for (c, own) in [(0, 0), (2, 0)] {
         let mine: Vec<_> = solved.contacts.iter().filter(|s| s.contact == c).collect();
         assert_eq!(mine.len(), alone.contacts.len(), "contact {c}: {mine:?}");
-        for (a, b) in mine.iter().zip(alone.contacts.iter().filter(|s| s.contact == own)) {
+        for (a, b) in mine
+            .iter()
+            .zip(alone.contacts.iter().filter(|s| s.contact == own))
+        {
             assert!((a.t_start - b.t_start).abs() < 1e-7, "{a:?} vs {b:?}");
         }
     }
@@ -439,7 +442,11 @@ fn faces_never_stand_overlapping_without_a_contact() {
         let model = RowModel::from_toml_str(&text).unwrap();
         let solved = flexrock_core::simulate::simulate_row(&model)
             .unwrap_or_else(|e| panic!("{n} columns: {e}"));
-        assert!(solved.contacts.len() > 10, "{n} columns: {:?}", solved.contacts);
+        assert!(
+            solved.contacts.len() > 10,
+            "{n} columns: {:?}",
+            solved.contacts
+        );
         assert_eq!(common::faces_passing(&solved), None, "{n} columns");
     }
 }
@@ -451,12 +458,25 @@ fn faces_never_stand_overlapping_without_a_contact() {
 #[test]
 fn fifty_columns_whose_contacts_close_at_one_instant_run() {
     let floor = PaperSine::new(4.0, 1.0, 0.412);
-    let alone =
-        solve_row_compliant(&pair_of_row_compliant_toml(), &floor, 0.5, &TIGHT, History::Sampled)
-            .unwrap();
+    let alone = solve_row_compliant(
+        &pair_of_row_compliant_toml(),
+        &floor,
+        0.5,
+        &TIGHT,
+        History::Sampled,
+    )
+    .unwrap();
     let first = alone.contacts[0];
     let specs: Vec<ColumnSpec> = (0..50)
-        .map(|i| at_rest(body(4.0, 0.7, 600.0, if i % 2 == 0 { 5e6 } else { 5e7 }, 0.05)))
+        .map(|i| {
+            at_rest(body(
+                4.0,
+                0.7,
+                600.0,
+                if i % 2 == 0 { 5e6 } else { 5e7 },
+                0.05,
+            ))
+        })
         .collect();
     let row = Row::new(&specs, &[0.02; 49], 0.5)
         .unwrap()
@@ -466,8 +486,15 @@ fn fifty_columns_whose_contacts_close_at_one_instant_run() {
     assert_eq!(solved.final_time, 0.5);
     assert_eq!(common::faces_passing(&solved), None);
     for c in (0..49).step_by(2) {
-        let s = solved.contacts.iter().find(|s| s.contact == c).expect("a contact");
-        assert!((s.t_start - first.t_start).abs() < 1e-7, "{s:?} vs {first:?}");
+        let s = solved
+            .contacts
+            .iter()
+            .find(|s| s.contact == c)
+            .expect("a contact");
+        assert!(
+            (s.t_start - first.t_start).abs() < 1e-7,
+            "{s:?} vs {first:?}"
+        );
     }
 }
 

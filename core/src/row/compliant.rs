@@ -241,10 +241,7 @@ impl Model<'_> {
 
     /// The reduced mass of the contact points of contact `c`, kg.
     fn reduced_mass(&self, c: usize, modes: &[Mode]) -> f64 {
-        let (pl, pr) = self.slopes(c, modes);
-        let ml = self.automaton(c).kinetic_mass(modes[c]) / (pl * pl);
-        let mr = self.automaton(c + 1).kinetic_mass(modes[c + 1]) / (pr * pr);
-        ml * mr / (ml + mr)
+        self.row.reduced_mass(c, (modes[c], modes[c + 1]))
     }
 
     /// c = 2 zeta sqrt(k m_red), N s/m.
@@ -1485,7 +1482,9 @@ impl<'d> Driver<'d> {
         let forces = self.model.forces(&cfg, y, floor_acc);
         for c in 0..self.n() - 1 {
             let state = match (cfg.active[c], cfg.friction[c]) {
-                (false, _) => self.model.idle_state(c, &cfg.modes, y, t, OVERLAP_ERROR_SHARE)?,
+                (false, _) => self
+                    .model
+                    .idle_state(c, &cfg.modes, y, t, OVERLAP_ERROR_SHARE)?,
                 (true, Friction::Off) => ContactState::Pressing,
                 (true, Friction::Slip(_)) => ContactState::Sliding,
                 (true, Friction::Stick) => ContactState::Sticking,

@@ -186,8 +186,7 @@ pub fn faces_passing(solved: &flexrock_core::row::RowSolution) -> Option<String>
         let wrong = match c.state {
             ContactState::Open => c.gap < -OPEN_GAP_TOLERANCE,
             ContactState::Parting => {
-                !(c.gap < 0.0 && c.closing_velocity < 0.0)
-                    || c.force.is_some_and(|p| p != 0.0)
+                !(c.gap < 0.0 && c.closing_velocity < 0.0) || c.force.is_some_and(|p| p != 0.0)
             }
             _ => false,
         };
