@@ -478,7 +478,7 @@ fn run_row(
     let report = flexrock::commands::row::run_row_to_dir(&model, &out, plot, shapes_at.as_deref())?;
     Ok(Output {
         stdout: flexrock::commands::row::row_report_text(&model, &report).into_bytes(),
-        warnings: Vec::new(),
+        warnings: flexrock_core::simulate::row_warnings(&model, &report.solution),
     })
 }
 

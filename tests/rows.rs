@@ -607,3 +607,109 @@ fn hostile_shape_times_are_refused_with_no_output() {
     );
     assert!(!out.exists());
 }
+
+/// The warnings of a run's standard error and of its summary.json, which must be the same.
+fn warnings_of(o: &std::process::Output, out: &std::path::Path) -> Vec<String> {
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let printed: Vec<String> = String::from_utf8_lossy(&o.stderr)
+        .lines()
+        .filter_map(|l| l.strip_prefix("warning: ").map(str::to_string))
+        .collect();
+    let summary: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("summary.json")).unwrap()).unwrap();
+    let written: Vec<String> = summary["warnings"]
+        .as_array()
+        .expect("a warnings list")
+        .iter()
+        .map(|w| w.as_str().unwrap().to_string())
+        .collect();
+    assert_eq!(printed, written);
+    printed
+}
+
+/// A row warns as a single body does, column by column: the paper's body on the left of
+/// models/row-pair.toml is at 0.235 of buckling under its own weight (above 0.1), and its right
+/// column ends the 6 s rocking, which the summary line says instead of a bare "no overturning";
+/// a compliant row at rtol = 1e-2 closes its energy books to no better than a few percent;
+/// and a row whose column overturns says that the others' motion stops there. (A row warned of
+/// none of these.)
+#[test]
+fn a_row_warns_column_by_column() {
+    let dir = scratch_dir("rows-warnings");
+    let out = dir.join("pair");
+    let o = run(&repo("models/row-pair.toml"), &out, &[]);
+    let warnings = warnings_of(&o, &out);
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        warnings
+            .iter()
+            .any(|w| w.starts_with("column 0: M g H^2/EI = 1.8451 is 0.235")
+                && w.contains("column[0].self_weight = \"consistent\"")),
+        "{warnings:?}"
+    );
+    assert!(
+        warnings
+            .iter()
+            .any(|w| w.starts_with("column 1: the run ended while the column was rocking")),
+        "{warnings:?}"
+    );
+    assert!(
+        !warnings.iter().any(|w| w.starts_with("column 1: M g")),
+        "{warnings:?}"
+    );
+    assert!(
+        stdout.contains("column 1 ended while rocking; no overturning within the duration"),
+        "{stdout}"
+    );
+
+    let text = std::fs::read_to_string(repo("models/row-compliant.toml")).unwrap();
+    let loose = text.replace(
+        "method = \"tsit45\"",
+        "method = \"tsit45\"\nrtol = 1e-2\natol = 1e-4",
+    );
+    assert_ne!(loose, text);
+    let model = dir.join("loose.toml");
+    std::fs::write(&model, loose).unwrap();
+    let out = dir.join("loose");
+    let warnings = warnings_of(&run(&model, &out, &[]), &out);
+    for i in 0..2 {
+        assert!(
+            warnings.iter().any(
+                |w| w.starts_with(&format!("column {i}: the energy residual"))
+                    && w.ends_with("tighten solver.rtol and solver.atol")
+            ),
+            "{warnings:?}"
+        );
+    }
+    let out = dir.join("compliant");
+    let warnings = warnings_of(&run(&repo("models/row-compliant.toml"), &out, &[]), &out);
+    assert!(
+        !warnings.iter().any(|w| w.contains("energy residual")),
+        "{warnings:?}"
+    );
+
+    let text = std::fs::read_to_string(repo("models/row-pair.toml")).unwrap();
+    let strong = text.replace("amplitude = 4.0 ", "amplitude = 9.0 ");
+    assert_ne!(strong, text);
+    let model = dir.join("strong.toml");
+    std::fs::write(&model, strong).unwrap();
+    let out = dir.join("strong");
+    let o = run(&model, &out, &[]);
+    let warnings = warnings_of(&o, &out);
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    let fallen = stdout
+        .lines()
+        .find_map(|l| l.split_once("column 0 overturned at t = "))
+        .map(|(_, rest)| rest.split(' ').next().unwrap().to_string())
+        .unwrap_or_else(|| panic!("no overturning: {stdout}"));
+    assert!(
+        warnings.iter().any(|w| w.starts_with(&format!(
+            "column 0 overturned at t = {fallen} s, and the row's run ends there"
+        ))),
+        "{warnings:?}"
+    );
+    assert!(
+        !warnings.iter().any(|w| w.contains("ended while")),
+        "{warnings:?}"
+    );
+}

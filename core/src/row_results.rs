@@ -73,6 +73,8 @@ pub struct RowSummary<'a> {
     pub friction_sticking: Option<Vec<StickStretch>>,
     /// Each column, left to right.
     pub columns: Vec<ColumnSummary<'a>>,
+    /// What the run warns of, as `flexrock run` prints it ([`crate::simulate::row_warnings`]).
+    pub warnings: Vec<String>,
 }
 
 /// One column of a row's summary.
@@ -157,6 +159,7 @@ pub fn row_summary<'a>(model: &'a RowModel, solution: &RowSolution) -> RowSummar
         contact_stretches: model.compliant.map(|_| solution.contacts.clone()),
         friction_sticking: (model.row.friction() > 0.0).then(|| solution.sticking.clone()),
         columns,
+        warnings: crate::simulate::row_warnings(model, solution),
     }
 }
 

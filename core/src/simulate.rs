@@ -218,35 +218,102 @@ pub fn record_truncation(model: &Model) -> Option<String> {
 /// parameter beyond [`SELF_WEIGHT_WARNING_SHARE`] of buckling, and a run that ended while the
 /// body was rocking.
 pub fn warnings(model: &Model, solution: &Solution) -> Vec<String> {
+    [
+        record_truncation(model),
+        energy_warning(solution, "tighten the tolerance (or the Newmark step)"),
+        self_weight_warning(&model.constants, "this body", "body.self_weight"),
+        rocking_warning(solution, "the body"),
+    ]
+    .into_iter()
+    .flatten()
+    .collect()
+}
+
+/// The warnings of a row's run, each naming its column: those of [`warnings`] for every column
+/// (its energy residual, its gravity parameter, a run that ended while it was rocking), and a
+/// run cut short by an overturning column, after which no other column's motion is computed.
+pub fn row_warnings(
+    model: &crate::model::RowModel,
+    solution: &crate::row::RowSolution,
+) -> Vec<String> {
+    let advice = match model.compliant {
+        Some(_) => "tighten solver.rtol and solver.atol",
+        None => "tighten the tolerance",
+    };
     let mut warnings = Vec::new();
-    warnings.extend(record_truncation(model));
+    for (i, (column, body)) in solution.columns.iter().zip(&model.bodies).enumerate() {
+        let own = [
+            energy_warning(column, advice),
+            Constants::new(body).ok().and_then(|constants| {
+                self_weight_warning(
+                    &constants,
+                    "this column",
+                    &format!("column[{i}].self_weight"),
+                )
+            }),
+            solution
+                .overturned
+                .is_none()
+                .then(|| rocking_warning(column, "the column"))
+                .flatten(),
+        ];
+        warnings.extend(
+            own.into_iter()
+                .flatten()
+                .map(|w| format!("column {i}: {w}")),
+        );
+    }
+    if let Some((i, t)) = solution.overturned {
+        if t < model.duration {
+            warnings.push(format!(
+                "column {i} overturned at t = {t:.9} s, and the row's run ends there: no other \
+                 column's motion after it is computed (what a fallen column does to its \
+                 neighbours is beyond the model), so their peaks and counts cover [0, {t:.9}] s \
+                 only"
+            ));
+        }
+    }
+    warnings
+}
+
+/// An energy residual beyond [`ENERGY_RESIDUAL_WARNING_SHARE`] of the energy scale, with the
+/// `advice` that would make it smaller.
+fn energy_warning(solution: &Solution, advice: &str) -> Option<String> {
     let scale = solution.energy_scale;
-    if solution.energy_residual_share() > ENERGY_RESIDUAL_WARNING_SHARE {
-        warnings.push(format!(
+    (solution.energy_residual_share() > ENERGY_RESIDUAL_WARNING_SHARE).then(|| {
+        format!(
             "the energy residual reached {:.3e} J, {:.1} % of the energy scale {:.3e} J (above {} %): \
-             the solution is no more accurate than that; tighten the tolerance (or the Newmark step)",
+             the solution is no more accurate than that; {advice}",
             solution.max_energy_residual,
             100.0 * solution.max_energy_residual / scale,
             scale,
             100.0 * ENERGY_RESIDUAL_WARNING_SHARE
-        ));
-    }
-    let c = &model.constants;
-    if c.self_weight == SelfWeight::Paper && c.gravity_parameter_ratio > SELF_WEIGHT_WARNING_SHARE {
-        warnings.push(format!(
-            "M g H^2/EI = {:.4} is {:.3} of its buckling value {SELF_WEIGHT_BUCKLING_PARAMETER} (above {}): \
-             the self-weight the paper's model leaves out of bending matters for this body; \
-             body.self_weight = \"consistent\" puts it in (book: the model, §7a)",
-            c.gravity_parameter, c.gravity_parameter_ratio, SELF_WEIGHT_WARNING_SHARE
-        ));
-    }
-    if solution.ended_while_rocking() {
-        warnings.push(format!(
-            "the run ended while the body was rocking ({} at t = {} s): no overturning within the \
+        )
+    })
+}
+
+/// A gravity parameter beyond [`SELF_WEIGHT_WARNING_SHARE`] of buckling under the paper's
+/// self-weight, for `subject` ("this body") whose variant is set by `key`.
+fn self_weight_warning(c: &Constants, subject: &str, key: &str) -> Option<String> {
+    (c.self_weight == SelfWeight::Paper && c.gravity_parameter_ratio > SELF_WEIGHT_WARNING_SHARE)
+        .then(|| {
+            format!(
+                "M g H^2/EI = {:.4} is {:.3} of its buckling value {SELF_WEIGHT_BUCKLING_PARAMETER} (above {}): \
+                 the self-weight the paper's model leaves out of bending matters for {subject}; \
+                 {key} = \"consistent\" puts it in (book: the model, §7a)",
+                c.gravity_parameter, c.gravity_parameter_ratio, SELF_WEIGHT_WARNING_SHARE
+            )
+        })
+}
+
+/// A run that ended while `subject` ("the body") was rocking.
+fn rocking_warning(solution: &Solution, subject: &str) -> Option<String> {
+    solution.ended_while_rocking().then(|| {
+        format!(
+            "the run ended while {subject} was rocking ({} at t = {} s): no overturning within the \
              duration, which does not mean it would not overturn later; lengthen simulation.duration",
             solution.final_mode.name(),
             solution.final_time
-        ));
-    }
-    warnings
+        )
+    })
 }

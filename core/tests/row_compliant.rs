@@ -377,3 +377,168 @@ fn an_overturning_column_ends_the_run() {
         assert!(c.samples.iter().all(|s| s.t <= t));
     }
 }
+
+/// The pair of models/row-compliant.toml beside a copy of itself, 1 m away: the two pairs' first
+/// contacts close at the same instant, and each pair moves as the pair alone (to the
+/// integrator's tolerance: the four columns share its steps). Of two contacts closing at one
+/// instant only the first found was started, and the second pair passed through each other,
+/// its gap down to -0.25 m with its contact open, in 2 contacts instead of 6.
+#[test]
+fn a_pair_beside_its_copy_moves_as_the_pair_alone() {
+    let floor = PaperSine::new(4.0, 1.0, 0.412);
+    let pair = pair_of_row_compliant_toml();
+    let alone = solve_row_compliant(&pair, &floor, 6.0, &TIGHT, History::Sampled).unwrap();
+    let specs = [
+        at_rest(body(4.0, 0.7, 600.0, 5e6, 0.05)),
+        at_rest(body(4.0, 0.7, 600.0, 5e7, 0.05)),
+    ];
+    let four = [specs.clone(), specs].concat();
+    let row = Row::new(&four, &[0.02, 1.0, 0.02], 0.5)
+        .unwrap()
+        .compliant(1e7)
+        .unwrap();
+    let solved = solve_row_compliant(&row, &floor, 6.0, &TIGHT, History::Sampled).unwrap();
+    assert_eq!(common::faces_passing(&solved), None);
+    for (c, own) in [(0, 0), (2, 0)] {
+        let mine: Vec<_> = solved.contacts.iter().filter(|s| s.contact == c).collect();
+        assert_eq!(mine.len(), alone.contacts.len(), "contact {c}: {mine:?}");
+        for (a, b) in mine
+            .iter()
+            .zip(alone.contacts.iter().filter(|s| s.contact == own))
+        {
+            assert!((a.t_start - b.t_start).abs() < 1e-7, "{a:?} vs {b:?}");
+        }
+    }
+    assert!(solved.contacts.iter().all(|s| s.contact != 1));
+    for (i, column) in solved.columns.iter().enumerate() {
+        close_to_alone(column, &alone.columns[i % 2], 1e-7, &format!("column {i}"));
+    }
+}
+
+/// Rows of four to six columns, soft and stiff in turn 2 mm apart under El Centro with
+/// k = 1e8 N/m: contacts close at one instant, and reset by a column's landing while parting;
+/// at no sample do two faces stand overlapping without a contact. (Faces passed through each
+/// other there, open contacts at gaps down to -8 cm.)
+#[test]
+fn faces_never_stand_overlapping_without_a_contact() {
+    let records = concat!(env!("CARGO_MANIFEST_DIR"), "/../validation/records");
+    for n in 4..=6 {
+        let mut text = format!(
+            "[row]\ngaps = [{}]\nrestitution = 0.5\ncontact = \"compliant\"\nstiffness = 1e8\n",
+            vec!["0.002"; n - 1].join(", ")
+        );
+        for i in 0..n {
+            text.push_str(&format!(
+                "[[column]]\nheight = 4.0\nwidth = 0.7\ndensity = 600.0\nyoungs_modulus = {}\n\
+                 damping_ratio = 0.05\n",
+                if i % 2 == 0 { "5e6" } else { "5e7" }
+            ));
+        }
+        text.push_str(&format!(
+            "[excitation]\nkind = \"record\"\npath = \"{records}/elCentro.AT2\"\n\
+             format = \"peer-at2\"\nunits = \"g\"\nscale = 1.0\n\
+             [simulation]\nduration = 20.0\n[solver]\nmethod = \"tsit45\"\noutput_dt = 0.005\n"
+        ));
+        let model = RowModel::from_toml_str(&text).unwrap();
+        let solved = flexrock_core::simulate::simulate_row(&model)
+            .unwrap_or_else(|e| panic!("{n} columns: {e}"));
+        assert!(
+            solved.contacts.len() > 10,
+            "{n} columns: {:?}",
+            solved.contacts
+        );
+        assert_eq!(common::faces_passing(&solved), None, "{n} columns");
+    }
+}
+
+/// Fifty columns, soft and stiff in turn 2 cm apart: the 25 soft ones lift off at one instant,
+/// and the 25 contacts with a soft column on the left close at one instant, each as the pair
+/// alone's first contact. (The run stopped there: "endless chain of events at one instant",
+/// the cap on events at one instant not counting the row's columns.)
+#[test]
+fn fifty_columns_whose_contacts_close_at_one_instant_run() {
+    let floor = PaperSine::new(4.0, 1.0, 0.412);
+    let alone = solve_row_compliant(
+        &pair_of_row_compliant_toml(),
+        &floor,
+        0.5,
+        &TIGHT,
+        History::Sampled,
+    )
+    .unwrap();
+    let first = alone.contacts[0];
+    let specs: Vec<ColumnSpec> = (0..50)
+        .map(|i| {
+            at_rest(body(
+                4.0,
+                0.7,
+                600.0,
+                if i % 2 == 0 { 5e6 } else { 5e7 },
+                0.05,
+            ))
+        })
+        .collect();
+    let row = Row::new(&specs, &[0.02; 49], 0.5)
+        .unwrap()
+        .compliant(1e7)
+        .unwrap();
+    let solved = solve_row_compliant(&row, &floor, 0.5, &TIGHT, History::Sampled).unwrap();
+    assert_eq!(solved.final_time, 0.5);
+    assert_eq!(common::faces_passing(&solved), None);
+    for c in (0..49).step_by(2) {
+        let s = solved
+            .contacts
+            .iter()
+            .find(|s| s.contact == c)
+            .expect("a contact");
+        assert!(
+            (s.t_start - first.t_start).abs() < 1e-7,
+            "{s:?} vs {first:?}"
+        );
+    }
+}
+
+/// The limit of a stiff contact on the pair of models/row-compliant.toml beside a copy of itself
+/// (the case of [`a_pair_beside_its_copy_moves_as_the_pair_alone`]): after the first contacts of
+/// both pairs, closing at one instant, every column's velocity tends to the impact law's as
+/// k^-1/2.
+#[test]
+fn two_pairs_struck_at_one_instant_tend_to_newtons_law() {
+    let floor = PaperSine::new(4.0, 1.0, 0.412);
+    let specs = [
+        at_rest(body(4.0, 0.7, 600.0, 5e6, 0.05)),
+        at_rest(body(4.0, 0.7, 600.0, 5e7, 0.05)),
+    ];
+    let four = [specs.clone(), specs].concat();
+    let row = Row::new(&four, &[0.02, 1.0, 0.02], 0.5).unwrap();
+    let settings = CompliantSettings {
+        rtol: 1e-11,
+        atol: 1e-13,
+        output_dt: 0.01,
+    };
+    let duration = 0.4;
+    let newton = solve_row(&row, &floor, duration, &SETTINGS, History::Sampled).unwrap();
+    let at = |s: &Solution, t: f64| s.samples.iter().find(|x| x.t == t).unwrap().qdot;
+    let t_after = 0.3;
+    let scale = newton.impacts[0].closing_velocity;
+    let mut errors = Vec::new();
+    for k in [1e7, 1e8, 1e9, 1e10, 1e11] {
+        let compliant = row.clone().compliant(k).unwrap();
+        let solved =
+            solve_row_compliant(&compliant, &floor, duration, &settings, History::Sampled).unwrap();
+        let error = (0..4)
+            .map(|i| (at(&solved.columns[i], t_after) - at(&newton.columns[i], t_after)).abs())
+            .fold(0.0, f64::max)
+            / scale;
+        errors.push((k, error));
+    }
+    eprintln!("velocity error against Newton's law at t = {t_after} s: {errors:?}");
+    for pair in errors.windows(2) {
+        let ((k0, e0), (k1, e1)) = (pair[0], pair[1]);
+        let rate = (e1 / e0).log10() / (k1 / k0).log10();
+        assert!(
+            (-0.6..=-0.4).contains(&rate),
+            "from k = {k0} to {k1} the error falls from {e0} to {e1}: k^{rate}"
+        );
+    }
+}

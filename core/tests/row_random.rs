@@ -5,7 +5,10 @@
 //! every column's energy books close. Catches chatter and stuck contact logic in corners no
 //! case names (the three- and four-column cases of `row.rs` were found this way). The same for
 //! compliant rows with friction: every run ends, friction never exceeds mu times the contact
-//! force nor gives energy, stuck stretches end after they begin, and the books close.
+//! force nor gives energy, stuck stretches end after they begin, and the books close. And
+//! rows made to strike at one instant (two bodies in turn, gaps down to 1e-12 m, under records
+//! and pulses, both laws, friction or none): at no sample do two faces stand overlapping
+//! without a contact between them.
 
 use proptest::prelude::*;
 
@@ -67,18 +70,19 @@ fn floor_and_solver(record: usize, scale: f64, solver: &str) -> String {
 /// Duration of every random row's run, s.
 const DURATION: f64 = 12.0;
 
-/// Solves the row model `text` (written into the test directory `name`) over [`DURATION`], and
+/// Solves the row model `text` (written into the test directory `name`) over `duration`, and
 /// checks that the run ended at its duration or where a column overturned. None for a body the
 /// model refuses (s_n beyond B under the consistent self-weight).
 fn solve_to_its_end(
     text: &str,
     name: &str,
+    duration: f64,
 ) -> Result<Option<flexrock_core::row::RowSolution>, TestCaseError> {
     let dir = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(name);
     std::fs::create_dir_all(&dir).expect("temporary directory");
     let path = dir.join("row.toml");
     std::fs::write(&path, text).expect("model file written");
-    let model = match flexrock_core::model::RowModel::load(&path, Some(DURATION)) {
+    let model = match flexrock_core::model::RowModel::load(&path, Some(duration)) {
         Ok(model) => model,
         Err(e) if e.to_string().contains("unstable under its own weight") => return Ok(None),
         Err(e) => return Err(TestCaseError::fail(format!("refused: {e}\n{text}"))),
@@ -87,7 +91,7 @@ fn solve_to_its_end(
         .map_err(|e| TestCaseError::fail(format!("{e}\n{text}")))?;
     match solution.overturned {
         Some((_, t)) => prop_assert_eq!(solution.final_time, t, "{}", text),
-        None => prop_assert_eq!(solution.final_time, DURATION, "{}", text),
+        None => prop_assert_eq!(solution.final_time, duration, "{}", text),
     }
     Ok(Some(solution))
 }
@@ -113,7 +117,7 @@ proptest! {
         let mut text = format!("[row]\ngaps = [{}]\nrestitution = {restitution}\n", gaps.join(", "));
         text.push_str(&column_tables(&columns));
         text.push_str(&floor_and_solver(record, scale, ""));
-        let Some(solution) = solve_to_its_end(&text, "random-rows")? else {
+        let Some(solution) = solve_to_its_end(&text, "random-rows", DURATION)? else {
             return Ok(());
         };
         let mut struck: Vec<(usize, f64)> = Vec::new();
@@ -155,7 +159,7 @@ proptest! {
         );
         text.push_str(&column_tables(&columns));
         text.push_str(&floor_and_solver(record, scale, "method = \"tsit45\"\n"));
-        let Some(solution) = solve_to_its_end(&text, "random-rough-rows")? else {
+        let Some(solution) = solve_to_its_end(&text, "random-rough-rows", DURATION)? else {
             return Ok(());
         };
         for s in &solution.contacts {
@@ -178,5 +182,94 @@ proptest! {
             let share = column.energy_residual_share();
             prop_assert!(share < 2e-6, "column {}: energy residual {} of its scale\n{}", i, share, text);
         }
+    }
+}
+
+/// A row of `n` columns, two bodies in turn: each (height, slenderness, log10 of the gravity
+/// parameter), damping 0.05, the paper's self-weight.
+fn alternating_columns(n: usize, bodies: [(f64, f64, f64); 2]) -> String {
+    column_tables(
+        &(0..n)
+            .map(|i| {
+                let (height, slenderness, log_gravity) = bodies[i % 2];
+                (height, slenderness, log_gravity, 0.05, false)
+            })
+            .collect::<Vec<_>>(),
+    )
+}
+
+/// A drawn floor motion: a shipped record at a scale (8 s of it), a one-sine pulse or a Ricker
+/// wavelet (4 s), as its `[excitation]` table and the run's duration.
+fn drawn_floor() -> impl Strategy<Value = (String, f64)> {
+    let records = concat!(env!("CARGO_MANIFEST_DIR"), "/../validation/records");
+    prop_oneof![
+        (0usize..5, 0.5f64..3.0).prop_map(move |(record, scale)| (
+            format!(
+                "[excitation]\nkind = \"record\"\npath = \"{records}/{}\"\nformat = \"peer-at2\"\n\
+                 units = \"g\"\nscale = {scale}\n",
+                RECORDS[record]
+            ),
+            8.0
+        )),
+        (1.0f64..6.0, 0.3f64..1.5).prop_map(|(amplitude, period)| (
+            format!(
+                "[excitation]\nkind = \"sine-pulse\"\namplitude = {amplitude}\nperiod = {period}\n\
+                 cycles = 1\nshape = \"antisymmetric\"\n"
+            ),
+            4.0
+        )),
+        (1.0f64..8.0, 0.3f64..1.5).prop_map(|(amplitude, period)| (
+            format!(
+                "[excitation]\nkind = \"ricker\"\namplitude = {amplitude}\nperiod = {period}\n\
+                 center = 1.0\n"
+            ),
+            4.0
+        )),
+    ]
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig {
+        cases: 40,
+        failure_persistence: None,
+        rng_seed: crate::common::proptest_seed(20_261_207),
+        ..ProptestConfig::default()
+    })]
+
+    #[test]
+    fn faces_never_stand_overlapping_without_a_contact(
+        n in 2usize..=6,
+        soft in (2.5f64..5.5, 0.1f64..0.22, -0.5f64..0.4),
+        stiff in (2.5f64..5.5, 0.1f64..0.22, -2.0f64..-0.5),
+        equal_heights in proptest::bool::ANY,
+        log_gap in -12.0f64..-2.0,
+        restitution in 0.05f64..=1.0,
+        compliant in proptest::bool::ANY,
+        log_stiffness in 6.0f64..9.0,
+        friction in prop_oneof![Just(0.0), 0.1f64..1.0],
+        (floor, duration) in drawn_floor(),
+    ) {
+        let stiff = if equal_heights { (soft.0, stiff.1, stiff.2) } else { stiff };
+        let gap = format!("{:e}", 10f64.powf(log_gap));
+        let mut text = format!(
+            "[row]\ngaps = [{}]\nrestitution = {restitution}\n",
+            vec![gap; n - 1].join(", ")
+        );
+        if compliant {
+            text.push_str(&format!(
+                "contact = \"compliant\"\nstiffness = {:e}\nfriction = {friction}\n",
+                10f64.powf(log_stiffness)
+            ));
+        }
+        text.push_str(&alternating_columns(n, [soft, stiff]));
+        text.push_str(&floor);
+        text.push_str(&format!(
+            "[simulation]\nduration = {duration}\n[solver]\n{}output_dt = 0.005\n",
+            if compliant { "method = \"tsit45\"\n" } else { "" }
+        ));
+        let Some(solution) = solve_to_its_end(&text, "random-alternating-rows", duration)? else {
+            return Ok(());
+        };
+        prop_assert_eq!(crate::common::faces_passing(&solution), None, "{}", text);
     }
 }

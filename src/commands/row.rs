@@ -157,11 +157,7 @@ pub fn row_report_text(model: &RowModel, report: &RowReport) -> String {
             "  {} of contact, taking {} J{friction}; {}",
             writers::count(s.contacts.len(), "stretch", "stretches"),
             writers::significant(taken, 6),
-            match s.overturned {
-                Some((i, at)) =>
-                    format!("column {i} overturned at t = {at:.9} s (the run ends there)"),
-                None => "no overturning".to_string(),
-            }
+            ending(s)
         );
         for f in &report.files {
             let _ = writeln!(t, "  wrote {}", f.display());
@@ -174,10 +170,7 @@ pub fn row_report_text(model: &RowModel, report: &RowReport) -> String {
         writers::count(s.impacts.len(), "impact", "impacts"),
         writers::count(s.impact_energy_loss.len(), "instant", "instants"),
         writers::significant(lost, 6),
-        match s.overturned {
-            Some((i, at)) => format!("column {i} overturned at t = {at:.9} s (the run ends there)"),
-            None => "no overturning".to_string(),
-        }
+        ending(s)
     );
     if !s.held.is_empty() {
         let _ = writeln!(
@@ -191,4 +184,30 @@ pub fn row_report_text(model: &RowModel, report: &RowReport) -> String {
         let _ = writeln!(t, "  wrote {}", f.display());
     }
     t
+}
+
+/// How a row's run ended, as its summary line says it: where a column overturned (after which
+/// no other column moves on), or the columns still rocking at the end of the duration.
+fn ending(s: &RowSolution) -> String {
+    if let Some((i, at)) = s.overturned {
+        return format!(
+            "column {i} overturned at t = {at:.9} s (the run ends there: the other columns' \
+             motion after it is not computed)"
+        );
+    }
+    let rocking: Vec<String> = (s.columns.iter().enumerate())
+        .filter(|(_, c)| c.ended_while_rocking())
+        .map(|(i, _)| i.to_string())
+        .collect();
+    match rocking.len() {
+        0 => "no overturning".to_string(),
+        1 => format!(
+            "column {} ended while rocking; no overturning within the duration",
+            rocking[0]
+        ),
+        _ => format!(
+            "columns {} ended while rocking; no overturning within the duration",
+            rocking.join(", ")
+        ),
+    }
 }

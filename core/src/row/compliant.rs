@@ -27,12 +27,14 @@ use std::time::Instant;
 
 use diffsol::{NalgebraMat, OdeBuilder, OdeEquations, OdeSolverMethod, OdeSolverStopReason};
 
+use super::contact::OVERLAP_ERROR_SHARE;
 use super::{ContactLaw, ContactSample, ContactState, Row, RowSolution};
 use crate::automaton::{Automaton, EventKind, Guard, Mode};
 use crate::excitation::FloorMotion;
 use crate::solution::{Recorder, SolverStats};
 use crate::solver::adaptive::{at_stop, snap_to_stop};
 use crate::solver::budget::RunBudget;
+use crate::solver::exact::scan::ulp;
 use crate::solver::{History, OutputGrid, SolverError};
 
 type Matrix = NalgebraMat<f64>;
@@ -45,7 +47,9 @@ pub const METHOD: &str = "tsit45";
 pub const DEFAULT_TOLERANCE: f64 = 1e-10;
 /// Retakes of one step whose crossing its dense output could not resolve before giving up.
 const MAX_CROSSING_RETRIES: usize = 60;
-/// Events at one instant (a reset that lets a contact go, that starts another) before giving up.
+/// Events at one instant (a reset that lets a contact go, that starts another), per column of
+/// the row, before giving up: identical columns may all lift off, and their contacts all close,
+/// at one instant.
 const MAX_CHAIN: usize = 16;
 
 /// Settings of a compliant row's run.
@@ -173,6 +177,66 @@ impl Model<'_> {
     /// P = k delta + c delta' with dashpot `damping`, N.
     fn force_with(&self, c: usize, modes: &[Mode], damping: f64, x: &[f64]) -> f64 {
         self.stiffness * self.penetration(c, modes, x) + damping * self.closing(c, modes, x)
+    }
+
+    /// The force contact `c` would carry at `x` were it in force now, N: P with the dashpot it
+    /// would start with.
+    fn force_if_started(&self, c: usize, modes: &[Mode], x: &[f64]) -> f64 {
+        self.force_with(c, modes, self.dashpot(c, modes), x)
+    }
+
+    /// Whether contact `c`, not in force, must be: its faces touch or overlap and would press
+    /// on each other.
+    fn presses(&self, c: usize, modes: &[Mode], x: &[f64]) -> bool {
+        self.penetration(c, modes, x) >= 0.0 && self.force_if_started(c, modes, x) > 0.0
+    }
+
+    /// How far the faces of contact `c` may read as overlapping, m, at `x` and time `t`, with
+    /// no contact in force and nothing pushing them apart: the gap's rounding
+    /// ([`super::solve::GAP_ROUNDING_ULPS`] of its size), the distance the points close over
+    /// the width of a located crossing (a few ulps of `t`), and `share` of the gap's size.
+    fn overlap_tolerance(&self, c: usize, modes: &[Mode], x: &[f64], t: f64, share: f64) -> f64 {
+        let automata = (self.automaton(c), self.automaton(c + 1));
+        let size = self.row.contacts()[c].gap_size(
+            automata,
+            (modes[c], x[2 * c]),
+            (modes[c + 1], x[2 * c + 2]),
+        );
+        super::solve::GAP_ROUNDING_ULPS * ulp(size)
+            + share * size
+            + self.closing(c, modes, x).abs() * 8.0 * ulp(t)
+    }
+
+    /// What contact `c`, not in force, is doing at `x` (time `t`): open, or parting (its faces,
+    /// let go at zero force, still overlap and nothing presses them together); an error where
+    /// its faces overlap by more than [`Model::overlap_tolerance`] with `share` and would
+    /// press, which the run never leaves standing.
+    fn idle_state(
+        &self,
+        c: usize,
+        modes: &[Mode],
+        x: &[f64],
+        t: f64,
+        share: f64,
+    ) -> Result<ContactState> {
+        let overlap = self.penetration(c, modes, x);
+        if overlap > 0.0 && self.force_if_started(c, modes, x) <= 0.0 {
+            return Ok(ContactState::Parting);
+        }
+        let tolerance = self.overlap_tolerance(c, modes, x, t, share);
+        if overlap > tolerance {
+            return Err(failed(
+                t,
+                format!(
+                    "the faces of columns {c} and {} overlap by {overlap:e} m and press on each \
+                     other with no contact in force (more than the {tolerance:e} m of rounding \
+                     allowed): a closing was missed, and the run stops rather than let them pass \
+                     through each other",
+                    c + 1
+                ),
+            ));
+        }
+        Ok(ContactState::Open)
     }
 
     /// The reduced mass of the contact points of contact `c`, kg.
@@ -705,7 +769,7 @@ impl<'d> Driver<'d> {
                     format!("stepped past the stop time {stop} s"),
                 ));
             }
-            match self.find_crossing(&solver, &start, step_end)? {
+            match self.find_crossing(&solver, &start, step_end, &grid)? {
                 Crossing::Unresolved => {
                     retries += 1;
                     retries_in_a_row += 1;
@@ -934,8 +998,15 @@ impl<'d> Driver<'d> {
         Ok(Ok(None))
     }
 
-    /// The first event of the step [start, t1].
-    fn find_crossing<'a, Eqn, S>(&self, solver: &S, start: &StepStart, t1: f64) -> Result<Crossing>
+    /// The first event of the step [start, t1]; `Unresolved` where the dense output cannot
+    /// place one, or leaves a contact out of force overlapping and pressing before it.
+    fn find_crossing<'a, Eqn, S>(
+        &self,
+        solver: &S,
+        start: &StepStart,
+        t1: f64,
+        grid: &OutputGrid,
+    ) -> Result<Crossing>
     where
         Eqn: OdeEquations<T = f64, V = Vector> + 'a,
         S: OdeSolverMethod<'a, Eqn>,
@@ -1032,24 +1103,69 @@ impl<'d> Driver<'d> {
                     }
                 }
             } else {
-                if let Ok(Some(t)) =
-                    self.first_crossing_of(solver, t0, t1, Watch::Gap(c), 0.0, -1.0)?
-                {
-                    consider(t, What::Start(c));
+                let x0 = self.state_at(solver, t0)?;
+                // Faces that touch and press at the step's start (a closing a hair too late,
+                // found at the end of the step before): in contact there.
+                if self.model.presses(c, &cfg.modes, &x0) {
+                    consider(t0, What::Start(c));
+                    continue;
                 }
-                // Faces that still overlap after a release: contact again where the force
-                // would push.
-                let damping = self.model.dashpot(c, &cfg.modes);
                 let overlapping = |t: f64| -> Result<bool> {
                     Ok(self.function(solver, t, Watch::Gap(c))?.0 < 0.0)
                 };
-                if overlapping(t0)? {
-                    let watch = Watch::Force(c, damping);
-                    if let Ok(Some(t)) = self.first_crossing_of(solver, t0, t1, watch, 0.0, 1.0)? {
-                        if overlapping(t)? {
-                            consider(t, What::Start(c));
+                let parting = overlapping(t0)?;
+                match self.first_crossing_of(solver, t0, t1, Watch::Gap(c), 0.0, -1.0)? {
+                    Ok(Some(t)) => consider(t, What::Start(c)),
+                    Ok(None) => {}
+                    // Faces that still overlap after a release open their gap from below
+                    // zero: the force's search below finds where they press again.
+                    Err(()) if parting => {}
+                    Err(()) => return Ok(Crossing::Unresolved),
+                }
+                // Faces that still overlap after a release: contact again where the force
+                // would push.
+                if parting {
+                    let watch = Watch::Force(c, self.model.dashpot(c, &cfg.modes));
+                    match self.first_crossing_of(solver, t0, t1, watch, 0.0, 1.0)? {
+                        Ok(Some(t)) => {
+                            if overlapping(t)? {
+                                consider(t, What::Start(c));
+                            }
                         }
+                        Ok(None) => {}
+                        // Overlapping with a force just at zero at the step's start.
+                        Err(()) if self.model.force_if_started(c, &cfg.modes, &x0) >= 0.0 => {
+                            consider(t0, What::Start(c));
+                        }
+                        Err(()) => return Ok(Crossing::Unresolved),
                     }
+                }
+            }
+        }
+        // No contact out of force may be left overlapping and pressing before the first event
+        // (at the step's end, or at a sample of the history within it): a closing the search
+        // did not see, where the closing velocity turned more than once within the step. The
+        // step is taken again, shorter.
+        let until = first.map_or(t1, |(t, _)| t);
+        let mut times: Vec<f64> = Vec::new();
+        let mut samples = grid.clone();
+        while let Some(ts) = samples.peek() {
+            if ts >= until {
+                break;
+            }
+            if ts > t0 {
+                times.push(ts);
+            }
+            samples.advance();
+        }
+        if first.is_none() {
+            times.push(t1);
+        }
+        for ts in times {
+            let x = self.state_at(solver, ts)?;
+            for c in (0..n - 1).filter(|&c| !cfg.active[c]) {
+                if self.model.idle_state(c, &cfg.modes, &x, ts, 0.0).is_err() {
+                    return Ok(Crossing::Unresolved);
                 }
             }
         }
@@ -1141,7 +1257,7 @@ impl<'d> Driver<'d> {
             let floor_acc = self.floor.acceleration(t);
             let modes = self.cfg.borrow().modes.clone();
             if self.history == History::Sampled {
-                self.sample_contacts(t, &y, floor_acc);
+                self.sample_contacts(t, &y, floor_acc)?;
             }
             for (i, r) in self.recorders.iter_mut().enumerate() {
                 r.set_contact_work(g[3 * i + 2]);
@@ -1162,7 +1278,8 @@ impl<'d> Driver<'d> {
 
     /// Applies `what` at `t` (the solver already there), then whatever else the new state
     /// asks for at the same instant: a guard crossed by the start, a contact whose force is not
-    /// compressive after a reset. Returns true when a column overturned (the run ends).
+    /// compressive after a reset, a contact whose faces touch and would press. Returns true
+    /// when a column overturned (the run ends).
     fn settle<'a, Eqn, S>(&mut self, solver: &mut S, t: f64, what: Option<What>) -> Result<bool>
     where
         Eqn: OdeEquations<T = f64, V = Vector> + 'a,
@@ -1174,7 +1291,7 @@ impl<'d> Driver<'d> {
         let mut next = what;
         let mut started_now = vec![false; n - 1];
         let mut pending: Vec<usize> = Vec::new();
-        for _ in 0..MAX_CHAIN {
+        for _ in 0..MAX_CHAIN * n {
             match next {
                 Some(What::Guard(i, guard)) => {
                     let automaton = self.model.automaton(i);
@@ -1307,6 +1424,14 @@ impl<'d> Driver<'d> {
                     })
                     .map(What::End);
             }
+            // Every contact whose faces touch or overlap and would press starts, whatever else
+            // happened at this instant (two contacts closing together, a reset that turns
+            // parting faces back onto each other).
+            if next.is_none() {
+                next = (0..n - 1)
+                    .find(|&c| !cfg.active[c] && self.model.presses(c, &cfg.modes, &y))
+                    .map(What::Start);
+            }
             if next.is_none() {
                 next = pending.pop().map(|c| What::Friction(c, None));
             }
@@ -1350,13 +1475,16 @@ impl<'d> Driver<'d> {
         Ok(())
     }
 
-    /// Books every contact at the sampled instant `t`, state `y`.
-    fn sample_contacts(&mut self, t: f64, y: &[f64], floor_acc: f64) {
+    /// Books every contact at the sampled instant `t`, state `y`; an error where a contact out
+    /// of force is left overlapping and pressing ([`Model::idle_state`]).
+    fn sample_contacts(&mut self, t: f64, y: &[f64], floor_acc: f64) -> Result<()> {
         let cfg = self.cfg.borrow();
         let forces = self.model.forces(&cfg, y, floor_acc);
         for c in 0..self.n() - 1 {
             let state = match (cfg.active[c], cfg.friction[c]) {
-                (false, _) => ContactState::Open,
+                (false, _) => self
+                    .model
+                    .idle_state(c, &cfg.modes, y, t, OVERLAP_ERROR_SHARE)?,
                 (true, Friction::Off) => ContactState::Pressing,
                 (true, Friction::Slip(_)) => ContactState::Sliding,
                 (true, Friction::Stick) => ContactState::Sticking,
@@ -1372,6 +1500,7 @@ impl<'d> Driver<'d> {
                 friction_force: Some(forces.friction[c]),
             });
         }
+        Ok(())
     }
 
     /// Lets contact `c` go at `t`.

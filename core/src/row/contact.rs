@@ -15,6 +15,12 @@
 
 use crate::automaton::{Automaton, Mode};
 
+/// The share of a gap's size (the gap at rest plus both columns' displacements at the contact)
+/// by which a contact out of force may read below zero, beyond its rounding allowance, before
+/// the run stops with an error: far above the rounding of the states (about 1e-16 of the size),
+/// far below anything physical (a nanometre for a gap summed from terms of a metre).
+pub const OVERLAP_ERROR_SHARE: f64 = 1e-9;
+
 /// A column's face at a contact: what moves it vertically.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Face {
@@ -163,6 +169,9 @@ pub enum ContactState {
     Open,
     /// Held closed after impacts accumulated (the impact law's persistent contact).
     Held,
+    /// Under the compliant law, faces let go where their force fell to zero that still overlap
+    /// and move apart, with no force between them (book/src/row.md §4a).
+    Parting,
     /// Pressing on each other under the compliant law, without friction.
     Pressing,
     /// Pressing and sliding past each other against friction.
@@ -198,12 +207,15 @@ pub struct ContactSample {
 /// closing and sliding velocities from each column's q, q' and mode at every instant both
 /// columns of the contact sampled (the output grid, and the instants of their shared impacts,
 /// before and after), held where a stretch of persistent contact covers the instant. Rows are
-/// in time order, contacts left to right within an instant.
+/// in time order, contacts left to right within an instant. An open contact's gap may stand
+/// below zero by its rounding only: the widest `rounding` allowance it had over the run (m, per
+/// contact) and [`OVERLAP_ERROR_SHARE`] of its size; beyond that, an error.
 pub(crate) fn contact_history_from_samples(
     row: &super::Row,
     columns: &[crate::solution::Solution],
     held: &[super::HeldContact],
-) -> Vec<ContactSample> {
+    rounding: &[f64],
+) -> Result<Vec<ContactSample>, crate::solver::SolverError> {
     let mut rows = Vec::new();
     for contact in row.contacts() {
         let c = contact.index;
@@ -226,6 +238,21 @@ pub(crate) fn contact_history_from_samples(
             let is_held = held
                 .iter()
                 .any(|h| h.contact == c && h.t_start <= t && h.t_end.is_none_or(|end| t < end));
+            let gap = contact.gap(automata, (l.mode, l.q), (r.mode, r.q));
+            let tolerance = rounding[c]
+                + OVERLAP_ERROR_SHARE * contact.gap_size(automata, (l.mode, l.q), (r.mode, r.q));
+            if !is_held && gap < -tolerance {
+                return Err(crate::solver::SolverError::Failed {
+                    method: crate::solver::exact::NAME.to_string(),
+                    t,
+                    message: format!(
+                        "the gap between columns {c} and {} is {gap:e} m with no impact, below \
+                         zero by more than its rounding ({tolerance:e} m): the columns would pass \
+                         through each other",
+                        c + 1
+                    ),
+                });
+            }
             rows.push(ContactSample {
                 t,
                 contact: c,
@@ -234,7 +261,7 @@ pub(crate) fn contact_history_from_samples(
                 } else {
                     ContactState::Open
                 },
-                gap: contact.gap(automata, (l.mode, l.q), (r.mode, r.q)),
+                gap,
                 closing_velocity: pl * l.qdot - pr * r.qdot,
                 sliding_velocity: vl * l.qdot - vr * r.qdot,
                 force: None,
@@ -247,5 +274,5 @@ pub(crate) fn contact_history_from_samples(
     // Stable: within an instant, contacts stay left to right, and the samples of one contact in
     // the order taken.
     rows.sort_by(|a, b| a.t.total_cmp(&b.t));
-    rows
+    Ok(rows)
 }

@@ -29,13 +29,13 @@
 
 use std::time::Instant;
 
-use super::contact::contact_history_from_samples;
+use super::contact::{contact_history_from_samples, OVERLAP_ERROR_SHARE};
 use super::{
     impulses, CompliantSettings, Contact, ContactLaw, ContactSample, ContactStretch, Row,
     StickStretch,
 };
 use crate::automaton::{Automaton, EventKind, Guard, LinearForm, Mode};
-use crate::solver::exact::flow::{Flow, Point};
+use crate::solver::exact::flow::{Flow, Point, STEADY_BOUND_GAIN};
 use crate::solver::exact::scan::{self, first_crossing, ScanError, Smooth, Watch};
 use crate::solver::exact::{ExactSettings, Planned, Run, NAME};
 
@@ -145,16 +145,26 @@ impl Smooth for Gap<'_> {
         }
     }
 
+    /// The sum of the two flows' bounds; where the columns follow one equation and move alike,
+    /// the bounds of their difference ([`Flow::combined_bounds`]) when these are at least
+    /// [`STEADY_BOUND_GAIN`] times smaller (identical columns under one floor: the gap stays
+    /// where it is, and a gap of 1e-12 m is no harder to search than one of 1 m).
     fn derivative_bounds(&self, p: &Point, h: f64) -> (f64, f64, f64) {
         let (l, r) = (self.flows.0.point(p.t), self.flows.1.point(p.t));
         let bl = self.flows.0.derivative_bounds(&l, h);
         let br = self.flows.1.derivative_bounds(&r, h);
-        let (sl, sr) = (self.slopes.0.abs(), self.slopes.1.abs());
-        (
-            sl * bl.0 + sr * br.0,
-            sl * bl.1 + sr * br.1,
-            sl * bl.2 + sr * br.2,
-        )
+        let (sl, sr) = self.slopes;
+        let sum = (
+            sl.abs() * bl.0 + sr.abs() * br.0,
+            sl.abs() * bl.1 + sr.abs() * br.1,
+            sl.abs() * bl.2 + sr.abs() * br.2,
+        );
+        match Flow::combined_bounds((self.flows.0, &l, sl), (self.flows.1, &r, sr), h) {
+            Some(d) if d.0 * STEADY_BOUND_GAIN <= sum.0 => {
+                (d.0.min(sum.0), d.1.min(sum.1), d.2.min(sum.2))
+            }
+            _ => sum,
+        }
     }
 }
 
@@ -260,6 +270,9 @@ pub fn solve_row(
         losses: Vec::new(),
         stretches: Vec::new(),
         rounding: vec![None; n - 1],
+        widest_rounding: vec![0.0; n - 1],
+        fall: vec![0.0; n - 1],
+        fresh_rounding: vec![false; n - 1],
         rounding_speed: vec![0.0; n - 1],
         now: 0.0,
     };
@@ -275,7 +288,8 @@ pub fn solve_row(
             run.finish(t, started).0
         })
         .collect();
-    let contact_history = contact_history_from_samples(row, &solutions, &state.stretches);
+    let contact_history =
+        contact_history_from_samples(row, &solutions, &state.stretches, &state.widest_rounding)?;
     Ok(RowSolution {
         columns: solutions,
         impacts: state.impacts,
@@ -306,6 +320,15 @@ struct RowRun<'a> {
     /// Per contact struck or let go: the rounding its gap may fall below zero before it counts
     /// as closed ([`GAP_ROUNDING_ULPS`]), from the states when it was last struck or let go.
     rounding: Vec<Option<f64>>,
+    /// Per contact: the widest of its roundings over the run, m.
+    widest_rounding: Vec<f64>,
+    /// Per contact: how far its gap falls, from where it stands, before it counts as closing:
+    /// its rounding less how far below zero the gap already is, m. Only this fall, not the
+    /// whole allowance, gives a pair resting on each other its closing speed at each bounce.
+    fall: Vec<f64>,
+    /// Per contact: its rounding was set from the states at the current instant, and waits for
+    /// the flows planned from them ([`Self::settle_gaps`]).
+    fresh_rounding: Vec<bool>,
     /// Per contact: the closing velocity that falling through its rounding allowance alone
     /// gives at the closing being struck, m/s.
     rounding_speed: Vec<f64>,
@@ -517,6 +540,7 @@ impl<'a> RowRun<'a> {
                 self.end_stretches(t);
                 return Ok(Some((i, t)));
             }
+            self.settle_gaps()?;
             let Some(window_end) = self
                 .plans
                 .iter()
@@ -555,6 +579,73 @@ impl<'a> RowRun<'a> {
             let closing: Vec<usize> = now.iter().map(|f| f.0).collect();
             self.strike(&closing, t)?;
         }
+    }
+
+    /// Keeps every open contact's gap at or above its rounding allowance at the start of a
+    /// window. An allowance set at this instant from the columns' states is taken as
+    /// [`GAP_ROUNDING_ULPS`] of the terms the flows planned from them sum, where those are
+    /// larger than the gap's own ([`Flow::term_size`]): near resonance a column's steady state
+    /// and free motion nearly cancel, and the gap read along the two flows dips a hundred of
+    /// its own ulps below where it is (a pair opening at 1e-9 m/s from a gap of 2e-18 m was
+    /// found closing there, struck with no impulse, and found closing again, until the step cap
+    /// stopped the run). A column re-anchored at its own event, or at an
+    /// impact at another of its
+    /// contacts, starts a flow whose q differs from the old one's by the rounding of its terms
+    /// (a few ulps of its q_eq, which may be far larger than the gap's own terms), so a gap
+    /// resting at its allowance may start a window a hair below it, where the search of a fall
+    /// through zero cannot begin; its allowance is then widened to where the gap is, as when it
+    /// was set. A gap below its allowance by more than [`OVERLAP_ERROR_SHARE`] of its size is no
+    /// rounding but a closing missed: an error naming the pair, never a row whose columns pass
+    /// through each other.
+    fn settle_gaps(&mut self) -> Result<(), SolverError> {
+        for c in (0..self.held.len()).filter(|&c| !self.held[c]) {
+            let Some(terms) = self.gap(c).map(|gap| {
+                gap.slopes.0.abs() * gap.flows.0.term_size(self.now)
+                    + gap.slopes.1.abs() * gap.flows.1.term_size(self.now)
+            }) else {
+                continue;
+            };
+            if std::mem::take(&mut self.fresh_rounding[c]) {
+                // As many ulps of the terms the two flows sum, where those are larger.
+                let (ulps, below) = self.gap_rounding(c);
+                let flows = GAP_ROUNDING_ULPS * scan::ulp(terms);
+                if flows > ulps {
+                    self.rounding[c] = Some(flows + below);
+                    self.fall[c] = flows;
+                    self.widest_rounding[c] = self.widest_rounding[c].max(flows + below);
+                }
+            }
+            let Some(gap) = self.gap(c) else {
+                continue;
+            };
+            let below = -gap.point(self.now).q;
+            if below <= 0.0 {
+                continue;
+            }
+            let (l, r) = (gap.flows.0.point(self.now), gap.flows.1.point(self.now));
+            let size = gap
+                .contact
+                .gap_size(gap.automata, (gap.modes.0, l.q), (gap.modes.1, r.q));
+            let tolerance = OVERLAP_ERROR_SHARE * size;
+            if below > tolerance {
+                return Err(failed(
+                    self.now,
+                    format!(
+                        "the gap between columns {c} and {} is {:e} m, below zero by more than \
+                         its rounding ({:e} m) with no impact: a closing was missed, and the run \
+                         stops rather than let them pass through each other",
+                        c + 1,
+                        -below - gap.allowance,
+                        gap.allowance + tolerance
+                    ),
+                ));
+            }
+            let rounding = gap.allowance + below + GAP_ROUNDING_ULPS * scan::ulp(size);
+            self.rounding[c] = Some(rounding);
+            self.fall[c] = GAP_ROUNDING_ULPS * scan::ulp(size);
+            self.widest_rounding[c] = self.widest_rounding[c].max(rounding);
+        }
+        Ok(())
     }
 
     /// Ends the stretches of persistent contact still open at `t` (a column overturned).
@@ -637,7 +728,7 @@ impl<'a> RowRun<'a> {
             if let Some(t) =
                 first_fall(&gap, self.now, window_end).map_err(|e| scan_failed(e, c))?
             {
-                let rounding_speed = (2.0 * gap.point(t).acc.abs() * gap.allowance).sqrt();
+                let rounding_speed = (2.0 * gap.point(t).acc.abs() * self.fall[c]).sqrt();
                 out.push((c, t, Interrupt::Closing { rounding_speed }));
             }
         }
@@ -727,7 +818,7 @@ impl<'a> RowRun<'a> {
         self.now = t;
         for &c in contacts {
             self.held[c] = false;
-            self.rounding[c] = Some(self.gap_rounding(c));
+            self.set_rounding(c);
             self.end_stretch(c, t);
             for i in [c, c + 1] {
                 self.budgets[i]
@@ -738,16 +829,26 @@ impl<'a> RowRun<'a> {
         self.replan(&members)
     }
 
+    /// Sets contact `c`'s rounding from the columns' current states ([`Self::gap_rounding`]).
+    fn set_rounding(&mut self, c: usize) {
+        let (ulps, below) = self.gap_rounding(c);
+        self.rounding[c] = Some(ulps + below);
+        self.fall[c] = ulps;
+        self.widest_rounding[c] = self.widest_rounding[c].max(ulps + below);
+        self.fresh_rounding[c] = true;
+    }
+
     /// How far below zero contact `c`'s gap may fall before it counts as closing, m, from the
-    /// columns' current states: its rounding, below where the gap is now if that is already
-    /// below zero (a pair struck at a gap a hair below zero and held there keeps that gap).
-    fn gap_rounding(&self, c: usize) -> f64 {
+    /// columns' current states: its rounding ([`GAP_ROUNDING_ULPS`] of its size), and how far
+    /// the gap is below zero already, if it is (a pair struck at a gap a hair below zero and
+    /// held there keeps that gap).
+    fn gap_rounding(&self, c: usize) -> (f64, f64) {
         let automata = (self.runs[c].automaton(), self.runs[c + 1].automaton());
         let (left, right) = (self.runs[c].state(), self.runs[c + 1].state());
         let (left, right) = ((left.1, left.2), (right.1, right.2));
         let contact = &self.row.contacts()[c];
         let rounding = GAP_ROUNDING_ULPS * scan::ulp(contact.gap_size(automata, left, right));
-        rounding + (-contact.gap(automata, left, right)).max(0.0)
+        (rounding, (-contact.gap(automata, left, right)).max(0.0))
     }
 
     /// Ends the open stretch of `contact` at `t`; one that ends the instant it began (a plastic
@@ -928,7 +1029,7 @@ impl<'a> RowRun<'a> {
             let opens = separating > 1e-9 * scale;
             let was_held = self.held[c];
             self.held[c] = hold[a] && !opens;
-            self.rounding[c] = Some(self.gap_rounding(c));
+            self.set_rounding(c);
             if self.held[c] && !was_held {
                 self.stretches.push(HeldContact {
                     contact: c,

@@ -169,6 +169,31 @@ pub fn row_books_close(what: &str, solved: &flexrock_core::row::RowSolution, sha
     }
 }
 
+/// How far below zero an open contact's gap may read in these tests, m: a hundred times the
+/// rounding at which contacts are found (the exact method's states to about 1e-16 of the
+/// displacements, the compliant law's crossings located on its dense output to a few ulps of
+/// t), nine orders below the overlaps of faces passing through each other (millimetres to a
+/// metre).
+pub const OPEN_GAP_TOLERANCE: f64 = 1e-12;
+
+/// The first sample of `solved`'s contact history at which two faces stand overlapping with
+/// no contact between them, as a message: an open contact's gap below -[`OPEN_GAP_TOLERANCE`],
+/// or parting faces (the compliant law's faces let go at zero force) that do not overlap, that
+/// close, or that carry a force.
+pub fn faces_passing(solved: &flexrock_core::row::RowSolution) -> Option<String> {
+    use flexrock_core::row::ContactState;
+    solved.contact_history.iter().find_map(|c| {
+        let wrong = match c.state {
+            ContactState::Open => c.gap < -OPEN_GAP_TOLERANCE,
+            ContactState::Parting => {
+                !(c.gap < 0.0 && c.closing_velocity < 0.0) || c.force.is_some_and(|p| p != 0.0)
+            }
+            _ => false,
+        };
+        wrong.then(|| format!("faces overlapping out of contact: {c:?}"))
+    })
+}
+
 /// The longest of `stretches` (of contact, of sticking faces), each closed: `span` gives its
 /// start and end, s.
 pub fn longest<T>(stretches: &[T], span: impl Fn(&T) -> (f64, Option<f64>)) -> Option<&T> {

@@ -329,6 +329,8 @@ pub(crate) struct Flow {
     pub until: f64,
     k: f64,
     c: f64,
+    /// beta, the forcing's factor: f = -beta a.
+    beta: f64,
     q_eq: f64,
     /// Bounds on |f| and |f'| over the flow, m/s^2 and m/s^3.
     pub force_bound: f64,
@@ -368,6 +370,7 @@ impl Flow {
             Shape::Rest => Self::oscillator(
                 k,
                 c,
+                beta,
                 q_eq,
                 (anchor, anchor_lo),
                 x,
@@ -389,6 +392,7 @@ impl Flow {
                     Self::oscillator(
                         k,
                         c,
+                        beta,
                         q_eq,
                         (anchor, anchor_lo),
                         x,
@@ -462,6 +466,7 @@ impl Flow {
     fn oscillator(
         k: f64,
         c: f64,
+        beta: f64,
         q_eq: f64,
         (anchor, anchor_lo): (f64, f64),
         x: Dd,
@@ -514,6 +519,7 @@ impl Flow {
             until,
             k,
             c,
+            beta,
             q_eq,
             force_bound: amplitude + force_error,
             force_rate_bound: amplitude * big_omega,
@@ -586,6 +592,7 @@ impl Flow {
             until,
             k,
             c,
+            beta,
             q_eq,
             force_bound: force_bound + force_error,
             force_rate_bound,
@@ -1018,6 +1025,53 @@ impl Flow {
         (m2 * safe, m3 * safe, m4 * safe)
     }
 
+    /// Bounds on the second, third and fourth derivatives of z = b x_r - a x_l over
+    /// `[t0, t0 + h]`, for the flows and points `left` = (flow, point at t0, a) and `right` = (…,
+    /// b) of one equation (the same k and c; None otherwise): z is then itself a flow of it,
+    /// z'' + c z' + k z = b f_r - a f_l, its forcing -(b beta_r - a beta_l) times the floor's
+    /// acceleration, and [`Flow::derivative_bounds`] holds for it from z's own state. Two
+    /// columns that move alike have a small z however large their own motions; their forcings
+    /// are taken as cancelling only in value (each within its closed form's error), not in
+    /// their rates.
+    pub fn combined_bounds(
+        left: (&Flow, &Point, f64),
+        right: (&Flow, &Point, f64),
+        h: f64,
+    ) -> Option<(f64, f64, f64)> {
+        let ((fl, pl, a), (fr, pr, b)) = (left, right);
+        if fl.k != fr.k || fl.c != fr.c {
+            return None;
+        }
+        let (k, c) = (fl.k, fl.c);
+        let w = k.abs().sqrt();
+        let (xl, xr) = (pl.q - fl.q_eq, pr.q - fr.q_eq);
+        let (z, v) = (b * xr - a * xl, b * pr.v - a * pl.v);
+        // The rounding of z's state, formed from the two: a few ulps of each term.
+        let rounding = 4.0
+            * f64::EPSILON
+            * (w * (b.abs() * xr.abs() + a.abs() * xl.abs())
+                + b.abs() * pr.v.abs()
+                + a.abs() * pl.v.abs());
+        let z0 = (w * w * z * z + v * v).sqrt() + rounding;
+        // |a(t)| at most the larger of the two flows' own bounds over beta.
+        let floor = |f: &Flow| f.force_bound / f.beta.abs().max(f64::MIN_POSITIVE);
+        let force = (b * fr.beta - a * fl.beta).abs() * floor(fl).max(floor(fr))
+            + b.abs() * fr.force_error
+            + a.abs() * fl.force_error;
+        let growth = ((w + c.abs()) * h).exp() * (z0 + h * force);
+        let m2 = (w + c.abs()) * growth + force;
+        let m3 = w * w * growth
+            + c.abs() * m2
+            + b.abs() * fr.force_rate_bound
+            + a.abs() * fl.force_rate_bound;
+        let m4 = w * w * m2
+            + c.abs() * m3
+            + b.abs() * fr.force_curvature_bound
+            + a.abs() * fl.force_curvature_bound;
+        let safe = 1.0 + 1e-9;
+        Some((m2 * safe, m3 * safe, m4 * safe))
+    }
+
     /// A bound on |x - x_p| (the free motion) over the rest of an oscillator flow from `t0`
     /// on, and |x_p|; None for other flows. Before uplift with c >= 0 the free motion's
     /// amplitude never grows: |x_h| <= e^(sigma u) (h0^2 + ((g0 - sigma h0)/omega)^2)^(1/2).
@@ -1032,6 +1086,18 @@ impl Flow {
             }
             _ => None,
         }
+    }
+
+    /// The size of the terms q at `t` is summed from, m: q_eq, and the free motion's and the
+    /// steady state's terms (oscillator form) or x itself (series form). One evaluation of q
+    /// rounds to a few ulps of it, which near resonance (the steady state and the free motion
+    /// nearly cancelling) is far more than a few ulps of q.
+    pub fn term_size(&self, t: f64) -> f64 {
+        let x = match &self.form {
+            Form::Oscillator(o) => o.free(self.k, self.local(t))[2] + o.xs.hypot(o.xc),
+            Form::Series(_) => (self.point(t).q - self.q_eq).abs(),
+        };
+        self.q_eq.abs() + x
     }
 
     /// An estimate of the rounding error of the state carried to `t` (in |x| + |x'| / |k|^(1/2)):
