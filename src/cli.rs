@@ -82,23 +82,28 @@ pub(crate) enum Command {
         timings: TimingsArg,
     },
     /// Draw the figures of a run directory (history.csv, events.csv, summary.json of
-    /// `flexrock run`) into it: plot_motion (floor acceleration, q, s and r, dq/dt against t,
-    /// with the events marked on every panel), plot_force (F(q), q against r, s against r) and
-    /// plot_energy (energy balance and residual), as SVG, PNG or both.
+    /// `flexrock run`) into it: plot_motion (floor acceleration, q, s and r, q' against t,
+    /// with the events marked), plot_force (F(q), q against r, s against r) and plot_energy
+    /// (energy balance and residual); or those of a sweep directory (map, spectrum, ida or
+    /// verdicts, from sweep.csv); as SVG, PDF or PNG, at a size on paper.
     Plot(PlotArgs),
-    /// Print the event log of a run directory (its events.csv) as a table, or with --csv or
-    /// --json its rocking episodes (episodes.csv): one row per episode with its side, start,
-    /// end, duration, peak |q| and rotation, floor acceleration at uplift and q' before and
-    /// after each impact.
+    /// Print the event log of a run directory (its events.csv) as a table, as CSV (--csv) or
+    /// as JSON (--json); with --episodes its rocking episodes (episodes.csv) instead, as CSV or
+    /// JSON: one row per episode with its side, start, end, duration, peak |q| and rotation,
+    /// floor acceleration at uplift and q' before and after each impact.
     Events {
         /// Output directory of `flexrock run`.
         dir: PathBuf,
-        /// Print the rocking episodes as CSV (the run's episodes.csv).
+        /// Print the table as CSV (the run's events.csv, or its episodes.csv).
         #[arg(long, conflicts_with = "json")]
         csv: bool,
-        /// Print the rocking episodes as JSON: an array of objects by column name.
+        /// Print the table as JSON: an array of objects by column name.
         #[arg(long)]
         json: bool,
+        /// Print the rocking episodes (episodes.csv) instead of the events: as CSV, or as JSON
+        /// with --json.
+        #[arg(long)]
+        episodes: bool,
     },
     /// Parametric study: run the model at every point of a grid of model-file keys (or search
     /// the smallest overturning value at each), one row per point in sweep.csv, with sweep.json
@@ -118,6 +123,8 @@ pub(crate) enum Command {
         /// Output directory.
         #[arg(long)]
         out: PathBuf,
+        #[command(flatten)]
+        figure: FigureArgs,
         /// Another slenderness B/H of the body (its width over its height, the height and every
         /// other property kept), studied beside the model's own; may be repeated.
         #[arg(long, value_name = "B/H")]
@@ -281,22 +288,13 @@ impl TimingsArg {
 /// The arguments of `flexrock plot`.
 #[derive(clap::Args, Debug)]
 pub(crate) struct PlotArgs {
-    /// Output directory of `flexrock run`.
+    /// Output directory of `flexrock run` (summary.json, history.csv, events.csv) or of
+    /// `flexrock sweep` (sweep.json, sweep.csv).
     pub(crate) dir: PathBuf,
-    /// Image format: svg (plot_motion.svg, ...), png (plot_motion.png, ..., drawn with the
-    /// embedded DejaVu Sans font, no system fonts needed) or both.
-    #[arg(long, value_enum, default_value_t = PlotFormat::Svg)]
-    pub(crate) format: PlotFormat,
-    /// Width of every figure, pixels (200 to 6000) [default: 1150 for plot_motion and
-    /// plot_energy, 1920 for plot_force].
-    #[arg(long, value_name = "PX")]
-    pub(crate) width: Option<u32>,
-    /// Height of every figure, pixels (200 to 6000) [default: 1320 for plot_motion, 560 for
-    /// plot_force, 760 for plot_energy].
-    #[arg(long, value_name = "PX")]
-    pub(crate) height: Option<u32>,
+    #[command(flatten)]
+    pub(crate) figure: FigureArgs,
     /// Draw only from this time on, s (0 or more, finite, less than --to) [default: the start
-    /// of the run]. The energy curves keep their values accumulated since t = 0.
+    /// of the run]. The energy curves keep their values accumulated since t = 0. A run's only.
     #[arg(long, value_name = "T0", allow_negative_numbers = true)]
     pub(crate) from: Option<f64>,
     /// Draw only up to this time, s (finite, more than --from) [default: the end of the run].
@@ -304,12 +302,74 @@ pub(crate) struct PlotArgs {
     pub(crate) to: Option<f64>,
 }
 
-/// The image formats of `flexrock plot`.
+/// The formats and size of a command's figures.
+#[derive(clap::Args, Debug, Clone)]
+pub(crate) struct FigureArgs {
+    /// Figure formats, comma-separated: svg, pdf (vector, its font embedded), png (at --dpi);
+    /// `both` is svg,png [default: the command's own, svg for most].
+    #[arg(long, value_enum, value_delimiter = ',', value_name = "FORMATS")]
+    pub(crate) format: Vec<PlotFormat>,
+    /// Width of every figure on paper: 85mm (one journal column), 180mm (two), 3.5in, 8.5cm,
+    /// 250pt, or a bare number in pixels of 1/96 in as SVG counts them (40 mm to 500 mm)
+    /// [default: 180mm]. Text keeps its size in points (7-9 pt); the layout adapts.
+    #[arg(long, value_name = "LENGTH", value_parser = parse_length)]
+    pub(crate) width: Option<flexrock::figures::page::Length>,
+    /// Height of every figure on paper, as --width (20 mm to 500 mm) [default: as the
+    /// figure's panels need at its width].
+    #[arg(long, value_name = "LENGTH", value_parser = parse_length)]
+    pub(crate) height: Option<flexrock::figures::page::Length>,
+    /// Resolution of PNG figures, dots per inch (50 to 1200) [default: 300].
+    #[arg(long, value_name = "DPI")]
+    pub(crate) dpi: Option<f64>,
+}
+
+impl FigureArgs {
+    /// The options these flags give, `default` the formats when none is asked.
+    pub(crate) fn options(
+        &self,
+        default: &[flexrock::figures::page::Format],
+    ) -> flexrock::figures::page::FigureOptions {
+        use flexrock::figures::page::Format;
+        let mut formats = Vec::new();
+        for f in &self.format {
+            let these: &[Format] = match f {
+                PlotFormat::Svg => &[Format::Svg],
+                PlotFormat::Pdf => &[Format::Pdf],
+                PlotFormat::Png => &[Format::Png],
+                PlotFormat::Both => &[Format::Svg, Format::Png],
+            };
+            for &format in these {
+                if !formats.contains(&format) {
+                    formats.push(format);
+                }
+            }
+        }
+        if formats.is_empty() {
+            formats = default.to_vec();
+        }
+        flexrock::figures::page::FigureOptions {
+            formats,
+            sizes: flexrock::figures::page::Sizes {
+                width: self.width,
+                height: self.height,
+                dpi: self.dpi,
+            },
+        }
+    }
+}
+
+fn parse_length(text: &str) -> Result<flexrock::figures::page::Length, String> {
+    flexrock::figures::page::Length::parse(text)
+}
+
+/// The image formats of a figure.
 #[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum PlotFormat {
-    /// SVG.
+    /// SVG, sized in millimetres.
     Svg,
-    /// PNG (8-bit RGB).
+    /// A vector PDF with its font embedded.
+    Pdf,
+    /// PNG (8-bit RGBA) at --dpi.
     Png,
     /// SVG and PNG.
     Both,
@@ -370,7 +430,7 @@ pub(crate) struct SweepArgs {
     /// Points per chunk (what a kill can lose) [default: about 1024 simulations' worth].
     #[arg(long)]
     pub(crate) chunk_size: Option<usize>,
-    /// Threads [default: every core].
+    /// Threads, 1 to 1024 [default: one per core].
     #[arg(long)]
     pub(crate) threads: Option<usize>,
     /// Replace the results of another sweep (or a damaged result of this one) in the output

@@ -71,6 +71,15 @@ pub enum Error {
         rule: String,
     },
 
+    /// The system could not start the threads a command computes on.
+    #[error("cannot start the threads to compute on ({threads}, --threads): {message}")]
+    Threads {
+        /// How many were asked for.
+        threads: String,
+        /// Why they could not be started.
+        message: String,
+    },
+
     /// A set of output files could not be put in place, and the previous files could not all be
     /// put back either: the message says where they are.
     #[error(

@@ -4,8 +4,10 @@
 //!
 //! - [`commands`]: what each command computes (with the core) and writes;
 //! - [`writers`]: CSV and JSON files written atomically, and a run's directory read back;
-//! - [`figures`]: SVG and PNG figures of runs and sweeps;
-//! - [`flags`]: the command line's names for model-file keys in messages.
+//! - [`figures`]: SVG, PDF and PNG figures of runs and sweeps;
+//! - [`flags`]: the command line's names for model-file keys in messages;
+//! - [`sweep_table`]: sweep.csv read back, and the counts of its rows;
+//! - [`geometry`]: the body's height, width and gravity as the criteria take them.
 //!
 //! The core is used by its own name (`flexrock_core::model`, `flexrock_core::sweep`, ...); see
 //! [`flexrock_core`] for a worked example from a model file to a sweep.
@@ -18,6 +20,8 @@ pub mod commands;
 pub mod error;
 pub mod figures;
 pub mod flags;
+pub mod geometry;
+pub mod sweep_table;
 pub mod writers;
 
 pub use error::{Error, Result};

@@ -3,10 +3,7 @@
 
 mod cli;
 
-use cli::{
-    Cli, Command, PlotArgs, PlotFormat, RecordCommand, RecordOptions, SetArgs, SweepArgs,
-    SweepCommand,
-};
+use cli::{Cli, Command, PlotArgs, RecordCommand, RecordOptions, SetArgs, SweepArgs, SweepCommand};
 
 use std::io::Write as _;
 use std::path::PathBuf;
@@ -33,6 +30,8 @@ impl flexrock::commands::sweep::store::Progress for ProgressBar {
 fn sweep(args: SweepArgs) -> flexrock::Result<Output> {
     use flexrock::commands::sweep::store;
     use flexrock_core::sweep::{axis, Request, Sweep};
+    // Before anything is read or computed: the threads asked for, or refused.
+    flexrock::commands::sweep::start_threads(args.threads)?;
     if let Some(SweepCommand::Merge { dirs, out }) = args.command {
         let report = store::merge(&dirs, &out)?;
         return Ok(Output {
@@ -89,19 +88,6 @@ fn sweep(args: SweepArgs) -> flexrock::Result<Output> {
         Some(text) => Some(store::Shard::parse(text)?),
         None => store::Shard::from_slurm(|name| std::env::var(name).ok())?,
     };
-    if let Some(threads) = args.threads {
-        if threads == 0 {
-            return Err(flexrock::Error::invalid(
-                "--threads",
-                0,
-                "must be at least 1",
-            ));
-        }
-        // Fails only if a pool exists already, which it cannot here.
-        let _ = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build_global();
-    }
     let out = args.out.unwrap_or_else(|| default_out_dir(&path, "-sweep"));
     let bar = if args.quiet {
         indicatif::ProgressBar::hidden()
@@ -204,10 +190,13 @@ fn execute(command: Command) -> flexrock::Result<Output> {
         Command::Criteria {
             model,
             out,
+            figure,
             slenderness,
             record,
             check_record,
         } => {
+            let figure_options = figure.options(&flexrock::commands::criteria::FIGURE_FORMATS);
+            figure_options.sizes.check()?;
             flexrock::writers::check_creatable(&out)?;
             let report = flexrock::commands::criteria::run(
                 &model,
@@ -215,6 +204,7 @@ fn execute(command: Command) -> flexrock::Result<Output> {
                 &record,
                 &check_record,
                 &out,
+                &figure_options,
             )?;
             Ok(Output {
                 stdout: flexrock::commands::criteria::report_text(&report).into_bytes(),
@@ -257,7 +247,12 @@ fn execute(command: Command) -> flexrock::Result<Output> {
             )
         }
         Command::Plot(args) => plot(args),
-        Command::Events { dir, csv, json } => events(&dir, csv, json),
+        Command::Events {
+            dir,
+            csv,
+            json,
+            episodes,
+        } => events(&dir, csv, json, episodes),
         Command::Completions { shell } => {
             let mut script = Vec::new();
             clap_complete::generate(
@@ -470,7 +465,7 @@ fn run_row(
         }
     }
     if let Some(setting) = overrides.settings.first() {
-        return refuse("--set", format!("{setting:?}"));
+        return refuse(&format!("--set {}", setting.key), setting.value_text());
     }
     let model = flexrock_core::model::RowModel::load(path, overrides.duration)
         .map_err(|e| e.renamed("simulation.duration", "--duration"))?;
@@ -487,22 +482,35 @@ fn run_row(
     })
 }
 
-/// `flexrock plot`: the figures of a run directory.
+/// `flexrock plot`: the figures of a run or sweep directory.
 fn plot(args: PlotArgs) -> flexrock::Result<Output> {
-    use flexrock::figures::plot::Format;
-    let formats = match args.format {
-        PlotFormat::Svg => vec![Format::Svg],
-        PlotFormat::Png => vec![Format::Png],
-        PlotFormat::Both => vec![Format::Svg, Format::Png],
-    };
-    let options = flexrock::figures::run::PlotOptions {
-        formats,
-        width: args.width,
-        height: args.height,
-        from: args.from,
-        to: args.to,
-    };
-    let written = flexrock::figures::run::plot_dir_with(&args.dir, &options)?;
+    use flexrock::figures::page::Format;
+    let figure = args.figure.options(&[Format::Svg]);
+    let written =
+        if args.dir.join("sweep.json").is_file() && !args.dir.join("summary.json").exists() {
+            for (flag, given) in [("--from", args.from), ("--to", args.to)] {
+                if let Some(t) = given {
+                    return Err(flexrock_core::Error::InvalidParameter {
+                        key: flag.to_string(),
+                        value: t.to_string(),
+                        rule: format!(
+                            "applies to a run's figures only; {} is a sweep's directory",
+                            args.dir.display()
+                        ),
+                    }
+                    .into());
+                }
+            }
+            flexrock::commands::sweep::store::plot_dir(&args.dir, &figure)?
+        } else {
+            let options = flexrock::figures::run::PlotOptions {
+                formats: figure.formats,
+                sizes: figure.sizes,
+                from: args.from,
+                to: args.to,
+            };
+            flexrock::figures::run::plot_dir_with(&args.dir, &options)?
+        };
     Ok(Output::text(
         written
             .iter()
@@ -511,18 +519,29 @@ fn plot(args: PlotArgs) -> flexrock::Result<Output> {
     ))
 }
 
-/// `flexrock events`: the event table of a run directory, or its episodes as CSV or JSON.
-fn events(dir: &std::path::Path, csv: bool, json: bool) -> flexrock::Result<Output> {
-    use flexrock::writers::run_dir::{episodes_json, read_episodes_csv, EPISODES_FILE};
-    if csv || json {
-        let bytes = read_episodes_csv(dir)?;
-        if csv {
+/// `flexrock events`: the events of a run directory as a table, CSV or JSON, or its episodes as
+/// CSV or JSON.
+fn events(
+    dir: &std::path::Path,
+    csv: bool,
+    json: bool,
+    episodes: bool,
+) -> flexrock::Result<Output> {
+    use flexrock::writers::run_dir::{read_table_csv, table_json, RunTable};
+    let table = if episodes {
+        RunTable::Episodes
+    } else {
+        RunTable::Events
+    };
+    if csv || json || episodes {
+        let bytes = read_table_csv(dir, table)?;
+        if !json {
             return Ok(Output {
                 stdout: bytes,
                 warnings: Vec::new(),
             });
         }
-        let value = episodes_json(&bytes, &dir.join(EPISODES_FILE))?;
+        let value = table_json(&bytes, &dir.join(table.file()), table)?;
         return Ok(Output {
             stdout: flexrock::writers::json_bytes(&value),
             warnings: Vec::new(),

@@ -359,6 +359,10 @@ fn known_values() -> BTreeMap<&'static str, f64> {
         ("MAX_HISTORY_ROWS", run_dir::MAX_HISTORY_ROWS as f64),
         ("MAX_EVENTS_BYTES", run_dir::MAX_EVENTS_BYTES as f64),
         ("MAX_SUMMARY_BYTES", run_dir::MAX_SUMMARY_BYTES as f64),
+        (
+            "MAX_HISTORY_ROW_BYTES",
+            flexrock_core::run_tables::MAX_HISTORY_ROW_BYTES as f64,
+        ),
         ("MAX_POINTS", axis::MAX_POINTS as f64),
         ("MAX_AXIS_VALUES", axis::MAX_AXIS_VALUES as f64),
         ("MAX_MAGNITUDE", axis::MAX_MAGNITUDE),

@@ -789,12 +789,17 @@ fn episodes_agree_with_the_event_log_and_the_history() {
             "{row:?}: {sampled}"
         );
     }
-    let csv_out = flexrock(&["events", out.to_str().unwrap(), "--csv"]);
+    let csv_out = flexrock(&["events", out.to_str().unwrap(), "--episodes"]);
     assert_eq!(
         csv_out.stdout,
         std::fs::read(out.join("episodes.csv")).unwrap()
     );
-    let json_out = flexrock(&["events", out.to_str().unwrap(), "--json"]);
+    let csv_out = flexrock(&["events", out.to_str().unwrap(), "--episodes", "--csv"]);
+    assert_eq!(
+        csv_out.stdout,
+        std::fs::read(out.join("episodes.csv")).unwrap()
+    );
+    let json_out = flexrock(&["events", out.to_str().unwrap(), "--episodes", "--json"]);
     let json: serde_json::Value = serde_json::from_slice(&json_out.stdout).unwrap();
     let json = json.as_array().unwrap();
     assert_eq!(json.len(), rows.len());
@@ -807,11 +812,34 @@ fn episodes_agree_with_the_event_log_and_the_history() {
             }
         }
     }
+    // The events themselves, as CSV and as JSON: events.csv's rows, by column name.
+    let events_csv = std::fs::read(out.join("events.csv")).unwrap();
+    assert_eq!(
+        flexrock(&["events", out.to_str().unwrap(), "--csv"]).stdout,
+        events_csv
+    );
+    let json_out = flexrock(&["events", out.to_str().unwrap(), "--json"]);
+    let json: serde_json::Value = serde_json::from_slice(&json_out.stdout).unwrap();
+    let json = json.as_array().unwrap();
+    let mut reader = csv::Reader::from_reader(&events_csv[..]);
+    let header = reader.headers().unwrap().clone();
+    let events: Vec<csv::StringRecord> = reader.records().map(Result::unwrap).collect();
+    assert!(!events.is_empty());
+    assert_eq!(json.len(), events.len());
+    for (object, row) in json.iter().zip(&events) {
+        assert_eq!(object.as_object().unwrap().len(), header.len());
+        for (column, text) in header.iter().zip(row) {
+            match &object[column] {
+                serde_json::Value::String(s) => assert_eq!(s, text, "{column}"),
+                value => assert_eq!(value.as_f64().unwrap(), text.parse::<f64>().unwrap()),
+            }
+        }
+    }
     // Both at once, or a directory without episodes.csv, is refused.
     let both = flexrock(&["events", out.to_str().unwrap(), "--csv", "--json"]);
     assert_eq!(both.status.code(), Some(2));
     std::fs::remove_file(out.join("episodes.csv")).unwrap();
-    let missing = flexrock(&["events", out.to_str().unwrap(), "--csv"]);
+    let missing = flexrock(&["events", out.to_str().unwrap(), "--episodes"]);
     assert_eq!(missing.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&missing.stderr).contains("episodes.csv"));
 }
@@ -1056,4 +1084,160 @@ fn the_header_prints_a_natural_duration_to_12_digits() {
             .contains("solution over 20.5872135801 s,"),
         "{stdout}"
     );
+}
+
+/// A row model given `--set` is refused naming the key and its value, not with the program's
+/// own data structures.
+#[test]
+fn a_row_refuses_set_naming_the_key_and_the_value() {
+    let row = common::repo("models/row-pair.toml");
+    let out = common::scratch_dir("cli-row-set").join("out");
+    let o = common::run_model(&row, &out, &["--set", "row.gaps=[0.01]"]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains("--set row.gaps = [0.01]: not an option of a row model"),
+        "{stderr}"
+    );
+    assert!(!stderr.contains("Setting {"), "{stderr}");
+    assert!(!out.exists());
+}
+
+/// A command that takes one body says, of a row model, that it is a row, naming the file.
+#[test]
+fn single_body_commands_refuse_a_row_naming_the_file() {
+    let row = common::repo("models/row-pair.toml");
+    let path = row.to_str().unwrap();
+    let out = common::scratch_dir("cli-row-single").join("out");
+    let out = out.to_str().unwrap();
+    for args in [
+        vec!["props", path],
+        vec!["props", path, "--set", "body.height=3"],
+        vec!["compare", path, "--out", out],
+        vec!["converge", path, "--out", out],
+        vec!["fem", path, "--out", out],
+        vec!["criteria", path, "--out", out],
+    ] {
+        let o = flexrock(&args);
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {stderr}");
+        assert!(
+            stderr.contains(&format!("{path}: a model of a row of columns")),
+            "{args:?}: {stderr}"
+        );
+        assert!(!stderr.contains("unknown field"), "{args:?}: {stderr}");
+    }
+    assert!(!std::path::Path::new(out).exists());
+}
+
+/// `--slenderness` is checked before anything is computed: 1 (B = H) and a slenderness whose
+/// body the model refuses (B = 0.02 m of the paper's body buckles under its own weight) are
+/// refused naming the flag.
+#[test]
+fn criteria_checks_every_slenderness_up_front() {
+    for (value, rule) in [
+        ("1", "above 0 and below 1"),
+        (
+            "0.005",
+            "gives a body of width B = 0.02 m (H = 4 m) that the model refuses",
+        ),
+    ] {
+        let message = common::refused_with(
+            "criteria",
+            &format!("slenderness-{value}"),
+            &std::fs::read_to_string(reference_model()).unwrap(),
+            &["--slenderness", value],
+        );
+        assert!(
+            message.contains(&format!("--slenderness = {value}: ")) && message.contains(rule),
+            "{message}"
+        );
+    }
+}
+
+/// `--set` solver keys stay when `--method` switches the family of methods: they were given for
+/// that method, and meet its rules (before, `--set solver.dt=-1 --method newmark` ran at the
+/// paper's 0.02 s).
+#[test]
+fn a_set_solver_key_survives_a_method_of_another_family() {
+    let text = std::fs::read_to_string(common::repo("models/sine-pulse.toml")).unwrap();
+    let message = common::refused_with(
+        "run",
+        "set-dt-newmark",
+        &text,
+        &["--set", "solver.dt=-1", "--method", "newmark"],
+    );
+    assert!(message.contains("--set solver.dt = -1"), "{message}");
+    // Set beside the method, in either order.
+    let message = common::refused_with(
+        "run",
+        "set-dt-set-newmark",
+        &text,
+        &["--set", "solver.dt=-1", "--set", "solver.method=newmark"],
+    );
+    assert!(message.contains("--set solver.dt = -1"), "{message}");
+    let message = common::refused_with(
+        "run",
+        "set-rtol-newmark",
+        &text,
+        &["--set", "solver.rtol=1e-8", "--method", "newmark"],
+    );
+    assert!(
+        message.contains("--set solver.rtol") && message.contains("newmark"),
+        "{message}"
+    );
+}
+
+/// A relative record path is read from the directory of the model file as its path is given:
+/// through a linked file, from the link's directory; after a linked directory, `..` leads where
+/// the path says (before, the message named the file the path says while the one in the link's
+/// target was read).
+#[test]
+fn a_record_path_is_read_from_the_model_path_as_given() {
+    let dir = common::scratch_dir("cli-record-links");
+    let record = "t,acc\n0,0\n0.01,0.5\n0.02,0\n0.03,-0.5\n0.04,0\n";
+    let model = |path: &str| {
+        format!(
+            "[body]\nheight = 4.0\nwidth = 0.7\ndensity = 600.0\nyoungs_modulus = 5e6\n\
+             [excitation]\nkind = \"record\"\npath = \"{path}\"\nunits = \"m/s2\"\ntail = 0.1\n"
+        )
+    };
+    // A linked file: a/link.toml -> ../b/model.toml, the record beside the link only.
+    for sub in ["a", "b", "real/deep", "records"] {
+        std::fs::create_dir_all(dir.join(sub)).unwrap();
+    }
+    std::fs::write(dir.join("a/r.csv"), record).unwrap();
+    std::fs::write(dir.join("b/model.toml"), model("r.csv")).unwrap();
+    std::os::unix::fs::symlink("../b/model.toml", dir.join("a/link.toml")).unwrap();
+    // A linked directory: linked -> real/deep, the record in records/ beside the link, none in
+    // real/records.
+    std::fs::write(dir.join("records/r.csv"), record).unwrap();
+    std::fs::write(dir.join("real/deep/model.toml"), model("../records/r.csv")).unwrap();
+    std::os::unix::fs::symlink("real/deep", dir.join("linked")).unwrap();
+    // Each record exists only where the path as given leads.
+    for model in ["a/link.toml", "linked/model.toml"] {
+        let out = dir.join(format!("out-{}", model.replace('/', "-")));
+        let o = common::run_model(&dir.join(model), &out, &[]);
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        assert!(o.status.success(), "{model}: {stderr}");
+    }
+}
+
+/// A comparison in which no event happened prints no number derived from the empty set of
+/// matched events.
+#[test]
+fn a_comparison_without_events_prints_no_nan() {
+    let out = common::scratch_dir("cli-compare-no-events").join("out");
+    let o = flexrock(&[
+        "compare",
+        reference_model().to_str().unwrap(),
+        "--duration",
+        "0.1",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(stdout.contains("event times: no event matched"), "{stdout}");
+    assert!(!stdout.contains("NaN"), "{stdout}");
 }

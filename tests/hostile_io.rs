@@ -807,3 +807,60 @@ fn an_output_inside_a_regular_file_is_refused_before_computing() {
         assert!(!err.contains("wrote"), "{args:?}: {err}");
     }
 }
+
+/// `--threads` beyond its documented most is refused at once, naming the flag, the value and
+/// the rule, with nothing written (it once spent minutes starting threads, then aborted).
+#[test]
+fn too_many_threads_are_refused_before_anything_starts() {
+    let dir = scratch_dir("hostile-threads");
+    let out = dir.join("sweep");
+    let model = reference_model();
+    let started = std::time::Instant::now();
+    let o = flexrock(&[
+        "sweep",
+        model.to_str().unwrap(),
+        "--vary",
+        "excitation.amplitude=1,2",
+        "--threads",
+        "100000",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr_of(&o));
+    assert_mentions(&stderr_of(&o), &["--threads", "100000", "1024"]);
+    assert!(started.elapsed().as_secs() < 10);
+    assert!(!out.exists(), "an output directory was made");
+}
+
+/// A system that cannot start the threads asked for (here an address space too small for
+/// their stacks) gives an error with a message and exit code 1, not a panic, and writes
+/// nothing; it once left chunks/ behind.
+#[test]
+fn threads_the_system_cannot_start_are_an_error_and_nothing_is_written() {
+    let dir = scratch_dir("hostile-threads-start");
+    let out = dir.join("sweep");
+    let model = reference_model();
+    let o = Command::new("sh")
+        .arg("-c")
+        .arg("ulimit -v 400000 && exec \"$@\"")
+        .arg("sh")
+        .arg(env!("CARGO_BIN_EXE_flexrock"))
+        .args([
+            "sweep",
+            model.to_str().unwrap(),
+            "--vary",
+            "excitation.amplitude=1,2",
+            "--threads",
+            "1000",
+            "--quiet",
+            "--out",
+            out.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(1), "{}", stderr_of(&o));
+    let message = stderr_of(&o);
+    assert_mentions(&message, &["cannot start the threads", "1000", "--threads"]);
+    assert!(!message.contains("panicked"), "{message}");
+    assert!(!out.exists(), "an output directory was made");
+}

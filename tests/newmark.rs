@@ -277,7 +277,7 @@ fn compare_writes_its_files_with_stable_columns() {
         "compensate"
     );
     let svg = std::fs::read_to_string(out.join("compare.svg")).unwrap();
-    assert!(svg.starts_with("<svg") && svg.contains("Flexural part"));
+    assert!(svg.starts_with("<svg") && svg.contains("s (m)") && svg.contains("(d)"));
 }
 
 #[test]

@@ -59,31 +59,36 @@ fn tags_balance(svg: &str) -> bool {
 fn assert_figures(dir: &Path) {
     let titles: [&[&str]; 3] = [
         &[
-            "Floor acceleration",
-            "Top displacement",
-            "Flexural part s and rocking part r",
-            "Top velocity",
-            "dq/dt (m/s)",
+            "(a)",
+            "(d)",
+            "a (m/s²)",
+            "q (m)",
+            "s, flexural part",
+            "r, rocking part",
+            "q\u{307} (m/s)",
             "uplift (",
             "landing (",
-            "s_n",
+            "±sₙ",
         ],
         &[
-            "Restoring force",
-            "Top displacement against rocking part",
-            "Flexural part against rocking part",
+            "(a)",
+            "(c)",
+            "F (N)",
+            "r (m)",
+            "s (m)",
             "this run",
             "model F(q)",
         ],
         &[
-            "Energy balance",
+            "(a)",
+            "(b)",
+            "energy E (J)",
             "kinetic",
             "potential V(q)",
             "input work",
             "damping work",
             "net loss at events",
-            "Energy residual",
-            "ΔE / E_s",
+            "ΔE/Eₛ",
         ],
     ];
     for (name, titles) in FIGURES.iter().zip(titles) {
@@ -489,7 +494,7 @@ fn events_of_a_run_without_events_says_so() {
     // Its velocity panel has no markers, and its figures are still drawn.
     let svg = std::fs::read_to_string(out.join(FIGURES[0])).unwrap();
     assert!(!svg.contains("uplift ("));
-    assert!(svg.contains("Top velocity"));
+    assert!(svg.contains("q\u{307} (m/s)"));
 }
 
 /// `flexrock plot` on a row's output says that it is a row's, and how a row's figures are drawn,

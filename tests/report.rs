@@ -234,3 +234,39 @@ fn an_empty_time_in_compare_csv_reads_as_a_dash() {
         "{text}"
     );
 }
+
+/// The rigid-limit run may be made with any method: the report names the method and the
+/// setting its accuracy follows (rtol, dt, or none for the exact method), where it once
+/// demanded `rtol` of every run.
+#[test]
+fn the_rigid_run_may_be_made_with_the_exact_method_or_newmark() {
+    let model = repo("validation/models/rigid-free-rocking.toml");
+    for (method, extra, named) in [
+        ("exact", vec![], "exact. Housner"),
+        (
+            "newmark",
+            vec!["--dt", "0.00001", "--set", "solver.newmark_beta=0.25"],
+            "newmark-compensate at dt = 1e-5 s",
+        ),
+    ] {
+        let dir = edited_copy(
+            &format!("report-rigid-{method}"),
+            "rigid/summary.json",
+            |t| t.replace("\"bdf\"", "\"edited\""),
+        );
+        let mut args = vec![
+            "run",
+            model.to_str().unwrap(),
+            "--method",
+            method,
+            "--timings-apart",
+        ];
+        args.extend(extra);
+        let out = dir.join("rigid");
+        args.extend(["--out", out.to_str().unwrap()]);
+        let o = common::flexrock(&args);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let text = report_text(&inputs(&dir)).unwrap_or_else(|e| panic!("{method}: {e}"));
+        assert!(text.contains(named), "{method}: {text}");
+    }
+}

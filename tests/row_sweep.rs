@@ -111,8 +111,8 @@ fn every_verdict_of_a_map_is_what_the_row_and_each_column_alone_give() {
     // The verdict maps, one per column, as SVG and PNG.
     let svg = std::fs::read_to_string(out.join("verdicts.svg")).unwrap();
     for text in [
-        "Column 0",
-        "Column 1",
+        "(a) column 0",
+        "(b) column 1",
         "saved",
         "toppled",
         "gap g, every gap (m)",

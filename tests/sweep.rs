@@ -267,6 +267,13 @@ fn bad_requests_are_refused_before_anything_is_written() {
             "--chunk-size",
         ),
         (
+            "search beyond 20 g",
+            vec!["--find-min", "excitation.amplitude=1:250"],
+            "--find-min excitation.amplitude = 1:250: the search interval must lie within the \
+             model's rules, and at its upper end, excitation.amplitude = 250, the model is \
+             refused",
+        ),
+        (
             "rigid form without a search",
             vec!["--vary", "excitation.period=1,2", "--rigid-form", "full"],
             "--rigid-form",
@@ -1125,6 +1132,78 @@ fn the_rows_in_memory_are_the_rows_of_sweep_csv() {
 }
 
 #[test]
+fn rows_until_stops_starting_points_once_told() {
+    use flexrock_core::sweep::{Axis, Request, Sweep};
+    use std::sync::atomic::{AtomicUsize, Ordering};
+    let request = Request {
+        axes: vec![Axis::parse("excitation.period=lin:0.3:1.5:24", Path::new(".")).unwrap()],
+        ..Request::default()
+    };
+    let sweep = Sweep::new(&pulse_model(), request, Path::new(".")).unwrap();
+    let layout = sweep.plan.layout();
+    let fields = |rows: Vec<flexrock_core::sweep::Row>| -> Vec<Vec<String>> {
+        rows.iter().map(|r| r.fields(layout)).collect()
+    };
+    let all = fields(sweep.rows(0..sweep.points(), &|| {}));
+    let until = sweep.rows_until(0..sweep.points(), &|| false);
+    assert_eq!(until.map(fields), Some(all));
+    // Told to stop once five points have asked: the other points are not computed.
+    let asked = AtomicUsize::new(0);
+    let stopped = sweep.rows_until(0..sweep.points(), &|| {
+        asked.fetch_add(1, Ordering::SeqCst) >= 5
+    });
+    assert!(stopped.is_none());
+    assert_eq!(asked.load(Ordering::SeqCst), sweep.points());
+}
+
+#[test]
+fn a_record_held_in_memory_sweeps_as_its_file() {
+    use flexrock_core::record::read_record;
+    use flexrock_core::sweep::{Axis, Request, Sweep};
+    let model = repo("models/elcentro1940.toml");
+    let axes = || vec![Axis::parse("excitation.scale=0.5,1", Path::new(".")).unwrap()];
+    let from_file = Sweep::new(
+        &model,
+        Request {
+            axes: axes(),
+            ..Request::default()
+        },
+        Path::new("."),
+    )
+    .unwrap();
+    // The same model naming a record that is no file, given in memory under that name (as
+    // read without a format named).
+    let text = std::fs::read_to_string(&model)
+        .unwrap()
+        .replace("../validation/records/elCentro.AT2", "in-memory.AT2")
+        .replace("format = \"peer-at2\"", "");
+    let record = read_record(&repo("validation/records/elCentro.AT2"), None, None).unwrap();
+    let here = repo("models");
+    let in_memory = Sweep::from_text(
+        &text,
+        &here,
+        Request {
+            axes: axes(),
+            records: vec![("in-memory.AT2".to_string(), record)],
+            ..Request::default()
+        },
+        &here,
+    )
+    .unwrap();
+    assert!(!here.join("in-memory.AT2").exists());
+    let layout = from_file.plan.layout();
+    let rows = in_memory.rows(0..2, &|| {});
+    assert!(rows.iter().all(|r| r.reason.is_empty()), "{rows:?}");
+    let fields = |rows: &[flexrock_core::sweep::Row]| -> Vec<Vec<String>> {
+        rows.iter().map(|r| r.fields(layout)).collect()
+    };
+    assert_eq!(fields(&rows), fields(&from_file.rows(0..2, &|| {})));
+    // Its digest is of its samples, not of a file that cannot be read.
+    let digest = &in_memory.plan.records[0].sha256;
+    assert_eq!(digest.len(), 64, "{digest}");
+}
+
+#[test]
 fn a_loose_tolerance_is_flagged_point_by_point_and_on_standard_error() {
     let dir = scratch_dir("sweep-loose");
     let sweep = |out: &Path, rtol: &str| {
@@ -1242,4 +1321,24 @@ fn no_derived_column_holds_a_value_where_its_source_is_empty() {
         }
     }
     assert!(empty >= 1, "every point overturned: {rows:?}");
+}
+
+/// A sweep keeps no history, so the limit on history rows does not make a point of 1e4 s (2e6
+/// rows of 0.005 s) invalid.
+#[test]
+fn a_point_of_the_longest_duration_runs() {
+    let dir = scratch_dir("sweep-longest");
+    run(&[
+        "sweep",
+        pulse_model().to_str().unwrap(),
+        "--out",
+        dir.to_str().unwrap(),
+        "--vary",
+        "simulation.duration=1e4",
+        "--set",
+        "solver.method=exact",
+        "--quiet",
+    ]);
+    let rows = crate::common::sweep_rows(&dir);
+    assert_eq!(rows[0]["status"], "ok", "{}", rows[0]["reason"]);
 }

@@ -724,11 +724,24 @@ fn a_map_over_unsorted_lists_draws_each_cell_once_in_order() {
     let overturned = csv.lines().filter(|l| l.contains(",ok,,true,")).count();
     assert!(overturned > 0 && overturned < 9, "{csv}");
     let svg = std::fs::read_to_string(out.join("map.svg")).unwrap();
-    // The rectangles of the first (physical) panel: every rectangle left of the second panel but
-    // the white background. A run of cells of one colour up a column is one rectangle.
+    // The rectangles of the first (physical) panel: every filled rectangle below the legend
+    // (which ends above the panel label "(a)") and left of the second panel's label "(b)". A
+    // run of cells of one colour up a column is one rectangle.
+    let label = |text: &str| -> (f64, f64) {
+        let at = svg
+            .find(&format!(">\n{text}\n</text>"))
+            .expect("a panel label");
+        let tag = &svg[svg[..at].rfind("<text").unwrap()..at];
+        let n = |name: &str| -> f64 {
+            let start = tag.find(&format!(" {name}=\"")).unwrap() + name.len() + 3;
+            tag[start..].split('"').next().unwrap().parse().unwrap()
+        };
+        (n("x"), n("y"))
+    };
+    let (a, b) = (label("(a)"), label("(b)"));
     let cells: Vec<_> = rectangles(&svg)
         .into_iter()
-        .filter(|r| r.0 > 0.0 && r.0 < 720.0 && r.2 > 5.0 && r.3 > 5.0)
+        .filter(|r| r.4 != "none" && r.1 > a.1 && r.0 > 0.0 && r.0 < b.0)
         .collect();
     assert!((3..=9).contains(&cells.len()), "{cells:?}");
     for (i, a) in cells.iter().enumerate() {

@@ -265,3 +265,47 @@ fn events_and_episodes_hold_nothing_derived_from_what_did_not_happen() {
         }
     }
 }
+
+/// Numbers far from 1 take an exponent, so that no field is longer than 37 characters and no
+/// row of history.csv longer than 391 bytes: a motion of 1e-200 m, which the plain form writes
+/// with 200 zeros, keeps the file within the bound the limits page gives, and `flexrock plot`
+/// reads it back.
+#[test]
+fn history_rows_stay_within_their_bound_for_tiny_and_huge_numbers() {
+    let out = scratch_dir("tables-tiny-numbers");
+    let model = repo("models/ichinose1986.toml");
+    run(&[
+        "run",
+        model.to_str().unwrap(),
+        "--set",
+        "simulation.qdot0=1e-200",
+        "--set",
+        "excitation.amplitude=0",
+        "--duration",
+        "2",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let text = std::fs::read_to_string(out.join("history.csv")).unwrap();
+    let mut lines = text.lines();
+    lines.next();
+    let mut rows = 0;
+    let mut tiny = 0;
+    for line in lines {
+        rows += 1;
+        assert!(line.len() < 391, "{} bytes: {line}", line.len());
+        for field in line.split(',') {
+            assert!(field.len() <= 37, "{field}");
+            if let Ok(x) = field.parse::<f64>() {
+                if x != 0.0 && x.abs() < 1e-150 {
+                    tiny += 1;
+                    assert!(field.contains("e-"), "{field}");
+                }
+            }
+        }
+    }
+    assert!(rows > 400 && tiny > 400, "{rows} rows, {tiny} tiny numbers");
+    let header = text.lines().next().unwrap().len() + 1;
+    assert!(text.len() <= header + rows * 391);
+    run(&["plot", out.to_str().unwrap(), "--format", "svg"]);
+}

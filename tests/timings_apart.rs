@@ -22,8 +22,9 @@ fn twice(name: &str, args: &[&str]) -> (PathBuf, PathBuf, String) {
     (dirs[0].clone(), dirs[1].clone(), stdout)
 }
 
-/// Every file but timings.json has the same bytes in both directories; returns timings.json of
-/// the first, parsed.
+/// Every file but timings.json has the same bytes in both directories, and none holds the
+/// commit flexrock was built from, which timings.json holds for the command's summary; returns
+/// the wall times of timings.json of the first.
 fn same_but_timings(a: &Path, b: &Path) -> serde_json::Map<String, serde_json::Value> {
     assert_eq!(file_names(a), file_names(b));
     for name in file_names(a) {
@@ -33,15 +34,32 @@ fn same_but_timings(a: &Path, b: &Path) -> serde_json::Map<String, serde_json::V
                 std::fs::read(b.join(&name)).unwrap(),
             );
             assert!(x == y, "{name} differs between two runs");
+            let text = String::from_utf8_lossy(&x);
+            assert!(!text.contains("flexrock_commit"), "{name} holds the commit");
+            assert!(
+                !text.contains("flexrock_dirty"),
+                "{name} holds the dirty flag"
+            );
         }
     }
     let text = std::fs::read_to_string(a.join("timings.json")).expect("timings.json written");
     let timings: serde_json::Map<String, serde_json::Value> = serde_json::from_str(&text).unwrap();
-    for (key, value) in &timings {
-        assert!(key.ends_with("wall_time_s"), "{key}");
-        assert!(value.as_f64().unwrap() > 0.0, "{key} = {value}");
+    let mut times = serde_json::Map::new();
+    let mut commits = 0;
+    for (key, value) in timings {
+        if key.ends_with("wall_time_s") {
+            assert!(value.as_f64().unwrap() > 0.0, "{key} = {value}");
+            times.insert(key, value);
+        } else if key.ends_with("/flexrock_commit") {
+            assert_eq!(value, common::built_commit(), "{key}");
+            commits += 1;
+        } else {
+            assert!(key.ends_with("/flexrock_dirty"), "{key}");
+            assert!(value.is_boolean() || value.is_null(), "{key} = {value}");
+        }
     }
-    timings
+    assert_eq!(commits, 1, "{text}");
+    times
 }
 
 fn json(path: &Path) -> serde_json::Value {
@@ -112,11 +130,51 @@ fn without_the_flag_the_times_stay_where_they_were() {
     let o = common::run_reference(&out, &[]);
     assert!(o.status.success());
     assert!(!out.join("timings.json").exists());
-    assert!(
-        json(&out.join("summary.json"))["statistics"]["wall_time_s"]
-            .as_f64()
-            .unwrap()
-            > 0.0
-    );
+    let summary = json(&out.join("summary.json"));
+    assert!(summary["statistics"]["wall_time_s"].as_f64().unwrap() > 0.0);
+    assert_eq!(summary["flexrock_commit"], common::built_commit());
+    assert!(summary["flexrock_dirty"].is_boolean() || summary["flexrock_dirty"].is_null());
     assert!(String::from_utf8_lossy(&o.stdout).contains(" ms;"));
+}
+
+/// Every summary says which build made it: the version, the commit and whether the work tree
+/// differed from it (a row's summary.json, sweep.json and `props --json` here; the others above).
+#[test]
+fn every_summary_names_the_commit_it_was_built_from() {
+    let dir = common::scratch_dir("timings-commit");
+    let row = dir.join("row");
+    let o = flexrock(&[
+        "run",
+        common::repo("models/row-pair.toml").to_str().unwrap(),
+        "--duration",
+        "0.5",
+        "--out",
+        row.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let sweep = dir.join("sweep");
+    let model = reference_model();
+    let o = flexrock(&[
+        "sweep",
+        model.to_str().unwrap(),
+        "--vary",
+        "excitation.amplitude=1,2",
+        "--set",
+        "simulation.duration=0.5",
+        "--quiet",
+        "--out",
+        sweep.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let props = flexrock(&["props", model.to_str().unwrap(), "--json"]);
+    let summaries = [
+        json(&row.join("summary.json")),
+        json(&sweep.join("sweep.json")),
+        serde_json::from_slice(&props.stdout).unwrap(),
+    ];
+    for summary in summaries {
+        assert_eq!(summary["flexrock_version"], env!("CARGO_PKG_VERSION"));
+        assert_eq!(summary["flexrock_commit"], common::built_commit());
+        assert!(summary["flexrock_dirty"].is_boolean() || summary["flexrock_dirty"].is_null());
+    }
 }

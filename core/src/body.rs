@@ -127,7 +127,8 @@ impl Body {
                 "body.width",
                 width,
                 &format!(
-                    "the width must be less than the height ({height} m): the model is for slender bodies"
+                    "the width must be less than the height ({} m): the model is for slender bodies",
+                    crate::format::shortest(height)
                 ),
             ));
         }
@@ -154,10 +155,22 @@ impl Body {
     }
 }
 
-/// Rejects zero, negative, NaN and infinite values.
+/// Rejects zero, negative, NaN and infinite values, and subnormal ones (below 2.2e-308, where
+/// a number keeps fewer digits and its products vanish: a column 5e-324 m deep made a row's
+/// contact matrix singular).
 pub(crate) fn positive(key: &str, value: f64) -> Result<()> {
-    if value.is_finite() && value > 0.0 {
+    if value.is_normal() && value > 0.0 {
         Ok(())
+    } else if value.is_finite() && value > 0.0 {
+        Err(InvalidParameter::new(
+            key,
+            value,
+            &format!(
+                "must be a finite number greater than 0 and at least {:e}: smaller numbers are \
+                 subnormal, with fewer digits",
+                f64::MIN_POSITIVE
+            ),
+        ))
     } else {
         Err(InvalidParameter::new(
             key,

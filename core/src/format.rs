@@ -3,13 +3,30 @@
 
 use std::fmt::Write;
 
-/// Formats a number so that it reads back exactly (shortest round-trip form), as Rust's `{}`
-/// writes it: plain decimal, no exponent, no trailing ".0" (1, 0.005, -0, 1e-7 as 0.0000001).
+/// Formats a number so that it reads back exactly (shortest round-trip form): as Rust's `{}`
+/// writes it, plain decimal without a trailing ".0" (1, 0.005, -0, 1e-7 as 0.0000001), for
+/// magnitudes from [`PLAIN_FROM`] to below [`PLAIN_BELOW`] (and zero); as `{:e}` writes it
+/// beyond (1e-300, 2.5e16), where the plain form would take up to 326 characters. At most
+/// [`MAX_NUMBER_CHARS`] characters.
 pub fn number(x: f64) -> String {
     let mut text = String::new();
     push_number(&mut text, x);
     text
 }
+
+/// The smallest magnitude [`number`] writes in plain decimal: 0.000000000000000001; smaller
+/// ones take an exponent. Every number of the results committed under validation/ is above it
+/// (the smallest has 17 zeros after the point), so that none of them changed form.
+pub const PLAIN_FROM: f64 = 1e-18;
+
+/// The magnitude from which [`number`] writes an exponent (as ryu and JSON do): 1e16, the
+/// first whole number of 17 digits.
+pub const PLAIN_BELOW: f64 = 1e16;
+
+/// The most characters [`number`] writes: 37, for a negative number of 17 significant digits
+/// just above [`PLAIN_FROM`] (-0.0000000000000000012345678901234567). The exponent form takes
+/// at most 24 (-1.2345678901234567e-308), the plain one above 1e-5 at most 24.
+pub const MAX_NUMBER_CHARS: usize = 37;
 
 /// Appends [`number`]`(x)` to `text`. The shortest digits come from `ryu`, several times faster
 /// than the standard library's formatting (which was most of the time `flexrock run` took to
@@ -29,6 +46,10 @@ pub fn push_number(text: &mut String, x: f64) {
     }
     let mut buffer = ryu::Buffer::new();
     let formatted = buffer.format_finite(x);
+    if x != 0.0 && !(PLAIN_FROM..PLAIN_BELOW).contains(&x.abs()) {
+        push_exponent(text, &Digits::of_ryu(x, formatted));
+        return;
+    }
     // From 1e-5 to 1e16 ryu writes the plain form as `{}` does, but for the ".0" of a whole
     // number. Only a number with at most 18 digits in all can be halfway between two shortest
     // candidates (below), and only one with a few binary digits after the point has so few.
@@ -418,9 +439,30 @@ mod tests {
         assert_eq!(shortest(1.5e5), "150000");
     }
 
-    /// `number` writes what the standard library's `{}` writes, character for character: on
-    /// the doubles at the ends of every range, on random bit patterns (every exponent, the
-    /// subnormals) and on numbers of everyday size with few and many digits, two million in all.
+    /// Extreme magnitudes take an exponent, and no number is longer than [`MAX_NUMBER_CHARS`]:
+    /// the longest plain ones lie just above [`PLAIN_FROM`].
+    #[test]
+    fn number_is_bounded_in_length() {
+        assert_eq!(number(1e-300), "1e-300");
+        assert_eq!(number(-2.5e-19), "-2.5e-19");
+        assert_eq!(number(1e-18), "0.000000000000000001");
+        assert_eq!(number(1e16), "1e16");
+        assert_eq!(number(9999999999999998.0), "9999999999999998");
+        assert_eq!(number(f64::MIN), "-1.7976931348623157e308");
+        assert_eq!(number(5e-324), "5e-324");
+        let longest = number(-1.2345678901234566e-18);
+        assert_eq!(longest, "-0.0000000000000000012345678901234566");
+        assert_eq!(longest.len(), MAX_NUMBER_CHARS);
+        for x in [1e-300, f64::MIN_POSITIVE, -1.2345678901234567e-300, 1e308] {
+            assert!(number(x).len() <= 24, "{x:e}");
+            assert_eq!(number(x).parse::<f64>().unwrap(), x);
+        }
+    }
+
+    /// `number` writes what the standard library's `{}` writes (`{:e}` beyond its plain range),
+    /// character for character: on the doubles at the ends of every range, on random bit
+    /// patterns (every exponent, the subnormals) and on numbers of everyday size with few and
+    /// many digits, two million in all.
     #[test]
     fn number_is_the_standard_librarys_plain_form() {
         let mut values = vec![
@@ -464,8 +506,14 @@ mod tests {
         }
         let mut text = String::new();
         for x in values {
-            let expected = format!("{x}");
+            let plain = x == 0.0 || !x.is_finite() || (PLAIN_FROM..PLAIN_BELOW).contains(&x.abs());
+            let expected = if plain {
+                format!("{x}")
+            } else {
+                format!("{x:e}")
+            };
             assert_eq!(number(x), expected, "{x:e}");
+            assert!(number(x).len() <= MAX_NUMBER_CHARS, "{x:e}");
             // Appending to a buffer that already holds text gives the same characters.
             text.clear();
             text.push_str("a,");
@@ -474,7 +522,7 @@ mod tests {
             if x.is_finite() {
                 // The lengths `shortest` chooses by are those of the two forms.
                 let digits = Digits::of(x);
-                assert_eq!(digits.plain_len(), expected.len(), "{x:e}");
+                assert_eq!(digits.plain_len(), format!("{x}").len(), "{x:e}");
                 assert_eq!(digits.exponent_len(), format!("{x:e}").len(), "{x:e}");
             }
         }
@@ -493,7 +541,7 @@ mod tests {
                 let m = (next() >> bits) | 1;
                 let x = m as f64 / 2f64.powi(j);
                 for x in [x, -x, x * 2f64.powi(j.min(40))] {
-                    if format!("{x}") != number(x) {
+                    if x.abs() >= PLAIN_FROM && format!("{x}") != number(x) {
                         bad += 1;
                         if bad < 5 {
                             eprintln!("m 2^-{j}: {x:e} written {}", number(x));

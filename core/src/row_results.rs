@@ -14,7 +14,7 @@ use crate::row::{
     CompliantSettings, ContactLaw, ContactSample, ContactStretch, HeldContact, RowSolution,
     StickStretch,
 };
-use crate::simulate::VERSION;
+use crate::simulate::{Commit, VERSION};
 use crate::solver::exact::ExactSettings;
 use crate::solver::InitialState;
 
@@ -23,6 +23,9 @@ use crate::solver::InitialState;
 pub struct RowSummary<'a> {
     /// The version of flexrock that wrote the file.
     pub flexrock_version: &'static str,
+    /// The commit it was built from.
+    #[serde(flatten)]
+    pub build: Commit,
     /// The model file read, if any.
     pub model_file: Option<String>,
     /// The method: the exact solution under the impact law, Tsit45 under the compliant law.
@@ -131,6 +134,7 @@ pub fn row_summary<'a>(model: &'a RowModel, solution: &RowSolution) -> RowSummar
         .collect();
     RowSummary {
         flexrock_version: VERSION,
+        build: Commit::BUILT,
         model_file: model.path.as_ref().map(|p| p.display().to_string()),
         method: if model.compliant.is_some() {
             crate::row::METHOD

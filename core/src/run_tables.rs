@@ -2,7 +2,7 @@
 //! episode: the names are a contract (the book's output reference), kept here so that every
 //! writer and reader (the command line's files, the Python bindings) shares them.
 
-use crate::format::number;
+use crate::format::{number, MAX_NUMBER_CHARS};
 use crate::solution::Episode;
 
 /// Column names of history.csv (a contract).
@@ -20,6 +20,13 @@ pub const HISTORY_COLUMNS: [&str; 11] = [
     "work_input",
     "work_damping",
 ];
+
+/// The most bytes of one row of history.csv: ten numbers of at most [`MAX_NUMBER_CHARS`], the
+/// longest name of a mode, ten commas and the newline (391).
+pub const MAX_HISTORY_ROW_BYTES: usize = 10 * MAX_NUMBER_CHARS + MODE_NAME_CHARS + 10 + 1;
+
+/// The longest name of a mode ("pre-uplift", "rock-right", "overturned").
+const MODE_NAME_CHARS: usize = 10;
 
 /// Column names of events.csv (a contract).
 pub const EVENT_COLUMNS: [&str; 8] = [
@@ -109,4 +116,26 @@ pub fn episode_fields(e: &Episode, height: f64) -> [EpisodeField; 19] {
         Number(e.kinetic_energy_landing.map(|(before, _)| before)),
         Number(e.kinetic_energy_landing.map(|(_, after)| after)),
     ]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::automaton::Mode;
+
+    #[test]
+    fn a_history_row_is_bounded() {
+        let modes = [
+            Mode::PreUplift,
+            Mode::RockRight,
+            Mode::RockLeft,
+            Mode::Overturned,
+        ];
+        assert_eq!(
+            modes.iter().map(|m| m.name().len()).max(),
+            Some(MODE_NAME_CHARS)
+        );
+        assert_eq!(HISTORY_COLUMNS.len(), 11);
+        assert_eq!(MAX_HISTORY_ROW_BYTES, 391);
+    }
 }

@@ -16,6 +16,18 @@ use crate::solver::{History, SolverSettings};
 /// Version of flexrock that made a result.
 pub const VERSION: &str = env!("CARGO_PKG_VERSION");
 
+/// The git commit flexrock was built from (its hash), or "unknown" when it was built without
+/// git or outside a git work tree (build.rs).
+pub const COMMIT: &str = env!("FLEXROCK_COMMIT");
+
+/// Whether the program's sources (core/, src/, the manifests) differed from [`COMMIT`] when
+/// flexrock was built; None when unknown.
+pub const DIRTY: Option<bool> = match env!("FLEXROCK_DIRTY").as_bytes() {
+    b"true" => Some(true),
+    b"false" => Some(false),
+    _ => None,
+};
+
 /// Solves a model with the solver its settings name.
 pub fn simulate(model: &Model) -> Result<Solution> {
     simulate_with(model, &model.solver)
@@ -124,6 +136,10 @@ fn solve(model: &Model, settings: &SolverSettings, history: History) -> Result<S
 pub struct Provenance {
     /// The version of flexrock that wrote the file.
     pub flexrock_version: &'static str,
+    /// The commit it was built from; None where it is kept apart (the command line's
+    /// `--timings-apart` puts it in timings.json, so that the file is the same for every commit).
+    #[serde(flatten)]
+    pub build: Option<Commit>,
     /// The model file read, if any.
     pub model_file: Option<String>,
 }
@@ -133,9 +149,27 @@ impl Provenance {
     pub fn of(model: &Model) -> Self {
         Provenance {
             flexrock_version: VERSION,
+            build: Some(Commit::BUILT),
             model_file: model.path.as_ref().map(|p| p.display().to_string()),
         }
     }
+}
+
+/// The commit a flexrock was built from, as the summaries write it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub struct Commit {
+    /// Its hash, or "unknown" ([`COMMIT`]).
+    pub flexrock_commit: &'static str,
+    /// Whether the program's sources differed from it; null when unknown ([`DIRTY`]).
+    pub flexrock_dirty: Option<bool>,
+}
+
+impl Commit {
+    /// This build's.
+    pub const BUILT: Commit = Commit {
+        flexrock_commit: COMMIT,
+        flexrock_dirty: DIRTY,
+    };
 }
 
 /// What `flexrock props` prints: the body as understood and its derived constants.

@@ -10,6 +10,7 @@ mod constants;
 mod criteria;
 mod dynamics;
 mod exact;
+mod finite_inputs;
 mod hardening;
 mod independent;
 mod layers;

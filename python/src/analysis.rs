@@ -2,6 +2,8 @@
 //! adaptive reference), `converge` (a convergence study) and `fem_check` (the finite element
 //! check against the one-mode model). Each returns plain dicts and lists of numbers.
 
+use std::sync::Arc;
+
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -9,6 +11,7 @@ use flexrock_core::model::FemOverrides;
 use flexrock_core::solver::SolverSettings;
 use flexrock_core::{compare as comparison, converge as convergence, fem_check as fem};
 
+use crate::interrupt;
 use crate::model::Model;
 use crate::simulate::{err_naming, json};
 
@@ -23,7 +26,7 @@ pub(crate) fn compare<'py>(
     variant: Option<String>,
     reference_rtol: Option<f64>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let m = &model.model;
+    let m = model.state().model;
     let names = [
         ("solver.dt", "dt"),
         ("solver.newmark_variant", "variant"),
@@ -36,19 +39,20 @@ pub(crate) fn compare<'py>(
         m.newmark_settings(dt, variant.as_deref())
             .map_err(|e| err_naming(e, &names))?,
     );
-    let solved = py.detach(|| -> flexrock_core::Result<_> {
+    let solved = interrupt::run(py, move || -> flexrock_core::Result<_> {
+        let m = &*m;
         let r = flexrock_core::simulate_with(m, &reference)?;
         let n = flexrock_core::simulate_with(m, &newmark)?;
         let c = comparison::compare(&r, &n, m.solver.output_dt(), comparison::max_event_shift(m));
         let grid = comparison::grid_rows(&r, &n, m.solver.output_dt());
         Ok((c, grid))
-    });
+    })?;
     let (c, grid) = solved.map_err(|e| err_naming(e, &names))?;
     let out = PyDict::new(py);
     out.set_item("reference", reference.label())?;
     out.set_item("newmark", newmark.label())?;
     out.set_item("comparison", json(py, &c)?)?;
-    out.set_item("grid", json(py, &grid)?)?;
+    out.set_item("grid", crate::table::records(py, &grid)?)?;
     Ok(out)
 }
 
@@ -64,7 +68,7 @@ pub(crate) fn converge<'py>(
     rtols: Option<Vec<f64>>,
     reference_rtol: Option<f64>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let m = &model.model;
+    let m = model.state().model;
     let dts = dts.unwrap_or_else(|| convergence::DEFAULT_DTS.to_vec());
     let rtols = rtols.unwrap_or_else(|| convergence::DEFAULT_RTOLS.to_vec());
     let names = [
@@ -83,10 +87,11 @@ pub(crate) fn converge<'py>(
         ("rtol", "rtols"),
     ];
     let configurations =
-        convergence::configurations(m, &dts, &rtols).map_err(|e| err_naming(e, &case_names))?;
-    let study = py
-        .detach(|| convergence::converge(m, reference, &configurations))
-        .map_err(|e| err_naming(e, &names))?;
+        convergence::configurations(&m, &dts, &rtols).map_err(|e| err_naming(e, &case_names))?;
+    let study = interrupt::run(py, move || {
+        convergence::converge(&m, reference, &configurations)
+    })?
+    .map_err(|e| err_naming(e, &names))?;
     let out = PyDict::new(py);
     out.set_item("reference", study.reference_settings.label())?;
     out.set_item("output_dt", study.output_dt)?;
@@ -107,7 +112,7 @@ pub(crate) fn fem_check<'py>(
     dt: Option<f64>,
     scheme: Option<String>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let m = &model.model;
+    let m = model.state().model;
     let names = [
         ("fem.nx", "nx"),
         ("fem.ny", "ny"),
@@ -117,20 +122,23 @@ pub(crate) fn fem_check<'py>(
     let setup = m
         .fem_with(&FemOverrides { nx, ny, scheme, dt })
         .map_err(|e| err_naming(e, &names))?;
-    let done = py.detach(|| -> flexrock_core::Result<_> {
+    let solving = Arc::clone(&m);
+    let done = interrupt::run(py, move || -> flexrock_core::Result<_> {
+        let m = &*solving;
         let analysis = fem::analyse(m, &setup)?;
         let sdof = flexrock_core::simulate(m)?;
         let comparison = fem::compare(m, &sdof, &analysis);
         Ok((analysis, comparison))
-    });
+    })?;
     let (analysis, comparison) = done.map_err(|e| err_naming(e, &names))?;
+    let m = &*m;
     let out = PyDict::new(py);
     out.set_item("comparison", json(py, &comparison)?)?;
     out.set_item("peaks", json(py, &fem::peaks(&analysis.result.steps))?)?;
     out.set_item("uplifts", json(py, &analysis.uplifts)?)?;
     out.set_item(
         "history",
-        json(py, &fem::history_rows(m, &analysis.result.steps))?,
+        crate::table::records(py, &fem::history_rows(m, &analysis.result.steps))?,
     )?;
     out.set_item(
         "warnings",

@@ -5,10 +5,12 @@
 //! computes it; nothing is written to disk.
 
 mod analysis;
+mod interrupt;
 mod model;
 mod motion;
 mod simulate;
 mod sweep;
+mod table;
 
 use pyo3::create_exception;
 use pyo3::exceptions::PyValueError;
@@ -34,6 +36,9 @@ fn flexrock_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<simulate::SimResult>()?;
     m.add_class::<motion::GroundMotion>()?;
     m.add_function(wrap_pyfunction!(motion::read_record, m)?)?;
+    m.add_function(wrap_pyfunction!(motion::_ground_motion_from_state, m)?)?;
+    m.add_function(wrap_pyfunction!(model::_model_from_state, m)?)?;
+    m.add("MAX_SWEEP_TABLE_BYTES", sweep::MAX_SWEEP_TABLE_BYTES)?;
     m.add_function(wrap_pyfunction!(simulate::props, m)?)?;
     m.add_function(wrap_pyfunction!(simulate::simulate, m)?)?;
     m.add_class::<simulate::RowResult>()?;

@@ -3,15 +3,17 @@
 //! under it (`Model.with_ground_motion`) takes it through the core's recorded motion, exactly as
 //! it takes a record file with the same samples.
 
-use std::path::PathBuf;
+use std::io::Write as _;
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use numpy::PyArray1;
+use numpy::{PyArray1, PyReadonlyArray1};
 use pyo3::prelude::*;
+use pyo3::types::{PyBytes, PyTuple};
 
 use flexrock_core::record::{
     acceleration_unit, dt_from_times, read_record as read_record_file, record_from_samples, Record,
-    RecordFormat,
+    RecordFormat, MAX_RECORD_BYTES, MAX_RECORD_SAMPLES,
 };
 
 use crate::FlexrockError;
@@ -37,21 +39,75 @@ impl Motion {
         t.insert("units".into(), toml::Value::String(self.units.into()));
         toml::Value::Table(t)
     }
+
+    /// The `[excitation]` table of a model file that reads this motion from the CSV record file
+    /// `path`, as `to_csv` writes it: one column, so that dt is the motion's to the bit.
+    pub(crate) fn record_file_table(&self, path: &str) -> toml::Table {
+        let mut t = toml::Table::new();
+        t.insert("kind".into(), toml::Value::String("record".into()));
+        t.insert("path".into(), toml::Value::String(path.into()));
+        t.insert("format".into(), toml::Value::String("csv".into()));
+        t.insert("units".into(), toml::Value::String(self.units.into()));
+        t.insert("dt".into(), toml::Value::Float(self.record.dt));
+        t
+    }
+
+    /// Refuses `path` unless it is a CSV record file of exactly these samples at this dt.
+    pub(crate) fn check_record_file(&self, path: &Path) -> PyResult<()> {
+        let record = read_record_file(path, Some(RecordFormat::Csv), Some(self.record.dt))
+            .map_err(invalid)?;
+        let same = record.dt.to_bits() == self.record.dt.to_bits()
+            && record.values.len() == self.record.values.len()
+            && record
+                .values
+                .iter()
+                .zip(&self.record.values)
+                .all(|(a, b)| a.to_bits() == b.to_bits());
+        if !same {
+            return Err(FlexrockError::new_err(format!(
+                "record_path = {}: does not hold the model's ground motion ({}, {} samples at dt \
+                 = {} s): write it with model.ground_motion.to_csv(record_path) first",
+                path.display(),
+                self.record.source,
+                self.record.values.len(),
+                flexrock_core::format::shortest(self.record.dt)
+            )));
+        }
+        Ok(())
+    }
 }
 
 fn invalid(e: impl std::fmt::Display) -> PyErr {
     FlexrockError::new_err(e.to_string())
 }
 
-/// A 1-D float64 copy of `value` (any sequence of numbers), named `name` in errors.
+/// The samples of `value` (any 1-D sequence of numbers) as float64, named `name` in errors.
+/// Their number is checked against [`MAX_RECORD_SAMPLES`] before any is copied (a numpy
+/// array by its shape, a sequence by its length), so that a huge or broadcast array is refused
+/// without being made.
 fn floats(value: &Bound<'_, PyAny>, name: &str) -> PyResult<Vec<f64>> {
-    let numpy = value.py().import("numpy")?;
+    let py = value.py();
+    let shape = value.getattr("shape").ok();
+    let count = match shape.as_ref().map(|s| (s, s.extract::<Vec<usize>>())) {
+        Some((shape, Ok(lengths))) if lengths.len() != 1 => {
+            return Err(FlexrockError::new_err(format!(
+                "{name}: must be 1-D (one sample per time), has shape {}",
+                shape.repr()?
+            )))
+        }
+        Some((_, Ok(lengths))) => Some(lengths[0]),
+        _ => value.len().ok(),
+    };
+    if let Some(n) = count {
+        check_count(name, n)?;
+    }
+    let numpy = py.import("numpy")?;
     let array = numpy
         .call_method1("asarray", (value, "float64"))
         .map_err(|e| {
             FlexrockError::new_err(format!(
                 "{name}: must be a 1-D sequence of numbers ({})",
-                e.value(value.py())
+                e.value(py)
             ))
         })?;
     let ndim: usize = array.getattr("ndim")?.extract()?;
@@ -61,11 +117,34 @@ fn floats(value: &Bound<'_, PyAny>, name: &str) -> PyResult<Vec<f64>> {
             array.getattr("shape")?.repr()?
         )));
     }
-    array.call_method0("tolist")?.extract()
+    let array: PyReadonlyArray1<'_, f64> = array.extract()?;
+    check_count(name, array.len()?)?;
+    Ok(array.as_array().iter().copied().collect())
+}
+
+/// Refuses more samples than a record may have, before they are copied.
+fn check_count(name: &str, n: usize) -> PyResult<()> {
+    if n > MAX_RECORD_SAMPLES {
+        return Err(FlexrockError::new_err(format!(
+            "{name} = {n} samples: more than the limit for a record, {MAX_RECORD_SAMPLES} samples \
+             (as many as the largest record file holds)"
+        )));
+    }
+    Ok(())
 }
 
 fn unit(units: &str) -> PyResult<(&'static str, f64)> {
     acceleration_unit("units", units).map_err(invalid)
+}
+
+/// The header of a CSV record's acceleration column in `units`, as `flexrock record csv`
+/// names it.
+fn column_name(units: &str) -> &'static str {
+    match units {
+        "g" => "acc_g",
+        "cm/s2" => "acc_cm_s2",
+        _ => "acc_m_s2",
+    }
 }
 
 /// A floor acceleration record sampled at a uniform interval.
@@ -159,6 +238,36 @@ impl GroundMotion {
         self.motion.record.duration()
     }
 
+    /// Writes the samples, as given (in `units`), to the CSV record file `path`: one value a
+    /// line, each in its shortest form that reads back exactly, under a column named by the
+    /// units. ``read_record(path, dt=gm.dt, units=gm.units)`` reads the same motion back, and
+    /// ``Model.to_toml(record_path=path)`` names it in a model file.
+    fn to_csv(&self, path: PathBuf) -> PyResult<()> {
+        let record = &self.motion.record;
+        let mut text = String::with_capacity(record.values.len() * 12 + 128);
+        text.push_str(&format!(
+            "# {}: {} samples at dt = {} s, in {}\n{}\n",
+            record.source,
+            record.values.len(),
+            flexrock_core::format::shortest(record.dt),
+            self.motion.units,
+            column_name(self.motion.units)
+        ));
+        for &v in &record.values {
+            flexrock_core::format::push_shortest(&mut text, v);
+            text.push('\n');
+            if text.len() as u64 > MAX_RECORD_BYTES {
+                return Err(FlexrockError::new_err(format!(
+                    "GroundMotion.to_csv: {} samples make a CSV record file of more than the \
+                     {MAX_RECORD_BYTES} bytes a record file may have; pickle the model or the \
+                     ground motion instead",
+                    record.values.len()
+                )));
+            }
+        }
+        write_whole(&path, text.as_bytes())
+    }
+
     fn __len__(&self) -> usize {
         self.motion.record.values.len()
     }
@@ -172,6 +281,84 @@ impl GroundMotion {
             self.motion.units
         )
     }
+
+    /// Pickled as its source, title lines, dt, units and samples (their bits).
+    fn __reduce__<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let record = &self.motion.record;
+        let mut bytes = Vec::with_capacity(record.values.len() * 8);
+        for v in &record.values {
+            bytes.extend_from_slice(&v.to_le_bytes());
+        }
+        let state = (
+            record.source.clone(),
+            record.title.clone(),
+            record.dt,
+            self.motion.units,
+            PyBytes::new(py, &bytes),
+        )
+            .into_pyobject(py)?;
+        let restore = py
+            .import("flexrock._native")?
+            .getattr("_ground_motion_from_state")?;
+        Ok(PyTuple::new(py, [restore, PyTuple::new(py, [state])?.into_any()])?.into_any())
+    }
+}
+
+/// The ground motion pickled by `GroundMotion.__reduce__`.
+#[pyfunction]
+pub(crate) fn _ground_motion_from_state(
+    state: (String, Vec<String>, f64, String, Vec<u8>),
+) -> PyResult<GroundMotion> {
+    let (source, title, dt, units, bytes) = state;
+    if bytes.len() % 8 != 0 {
+        return Err(FlexrockError::new_err(
+            "a pickled GroundMotion whose samples are not whole float64 values",
+        ));
+    }
+    let values = bytes
+        .chunks_exact(8)
+        .map(|b| f64::from_le_bytes(b.try_into().unwrap_or_default()))
+        .collect();
+    let mut record =
+        record_from_samples(&source, "dt", dt, "acceleration", values).map_err(invalid)?;
+    record.title = title;
+    let (units, factor) = unit(&units)?;
+    Ok(GroundMotion {
+        motion: Arc::new(Motion {
+            record,
+            units,
+            factor,
+        }),
+    })
+}
+
+/// Writes `bytes` to `path` whole or not at all (a file beside it, then renamed over it); only
+/// a regular file (or nothing) is replaced.
+fn write_whole(path: &Path, bytes: &[u8]) -> PyResult<()> {
+    let refuse = |rule: &str| FlexrockError::new_err(format!("{}: {rule}", path.display()));
+    if let Ok(meta) = std::fs::metadata(path) {
+        if !meta.is_file() {
+            return Err(refuse(
+                "is not a regular file; flexrock replaces only those",
+            ));
+        }
+    }
+    let name = path
+        .file_name()
+        .ok_or_else(|| refuse("names no file"))?
+        .to_string_lossy();
+    let partial = path.with_file_name(format!(".{name}.partial"));
+    let written = std::fs::File::create(&partial)
+        .and_then(|mut f| f.write_all(bytes).and_then(|_| f.sync_all()))
+        .and_then(|_| std::fs::rename(&partial, path));
+    if let Err(e) = written {
+        let _ = std::fs::remove_file(&partial);
+        return Err(pyo3::exceptions::PyOSError::new_err(format!(
+            "{}: {e}",
+            path.display()
+        )));
+    }
+    Ok(())
 }
 
 /// Reads a record file (PEER AT2 or CSV) into a GroundMotion.

@@ -1,6 +1,8 @@
 //! `simulate` and its `Result` (numpy arrays of the history, the events, the episodes and the
 //! summary), and `props`.
 
+use std::sync::Arc;
+
 use numpy::PyArray1;
 use pyo3::exceptions::PyImportError;
 use pyo3::prelude::*;
@@ -10,7 +12,7 @@ use flexrock_core::model::{Overrides, Setting};
 use flexrock_core::run_tables::HISTORY_COLUMNS;
 
 use crate::model::Model;
-use crate::{err, FlexrockError};
+use crate::{err, interrupt, FlexrockError};
 
 /// The solution of `simulate`: history columns as numpy arrays, events, summary.
 #[pyclass(module = "flexrock", name = "Result")]
@@ -100,7 +102,7 @@ pub(crate) fn json<'py, T: serde::Serialize>(
 /// The body as understood and its derived constants: the JSON of `flexrock props --json`.
 #[pyfunction]
 pub(crate) fn props<'py>(py: Python<'py>, model: &Model) -> PyResult<Bound<'py, PyAny>> {
-    json(py, &flexrock_core::properties(&model.model))
+    json(py, &flexrock_core::properties(&model.state().model))
 }
 
 /// An error about a value given as a Python argument, named by the argument: `rtol (sets
@@ -132,18 +134,20 @@ pub(crate) fn simulate(
     duration: Option<f64>,
     output_dt: Option<f64>,
 ) -> PyResult<SimResult> {
+    // The model as it stands now: a key set meanwhile (from another thread) changes the next run.
+    let state = model.state();
     let given = method.is_some()
         || rtol.is_some()
         || atol.is_some()
         || duration.is_some()
         || output_dt.is_some();
-    let rebuilt = if given {
+    let m = if given {
         let mut overrides = Overrides {
             method,
             rtol,
             atol,
             duration,
-            ..model.overrides()
+            ..state.overrides()
         };
         if let Some(dt) = output_dt {
             overrides.settings.retain(|s| s.key != "solver.output_dt");
@@ -158,17 +162,17 @@ pub(crate) fn simulate(
             ("simulation.duration", "duration"),
             ("solver.output_dt", "output_dt"),
         ];
-        Some(
-            model
+        Arc::new(
+            state
                 .build(&overrides)
                 .map_err(|e| err_naming(e, &arguments))?,
         )
     } else {
-        None
+        state.model
     };
-    let m = rebuilt.as_ref().unwrap_or(&model.model);
-    let solution = py.detach(|| flexrock_core::simulate(m)).map_err(err)?;
-    let summary = json(py, &flexrock_core::summary::summary(m, &solution))?.unbind();
+    let solving = Arc::clone(&m);
+    let solution = interrupt::run(py, move || flexrock_core::simulate(&solving))?.map_err(err)?;
+    let summary = json(py, &flexrock_core::summary::summary(&m, &solution))?.unbind();
     result_of(py, &solution, m.body.height, summary)
 }
 
@@ -275,8 +279,9 @@ pub(crate) fn simulate_row(
     use flexrock_core::row_results::{impact_rows, row_summary};
     let model = flexrock_core::model::RowModel::load(&path, duration)
         .map_err(|e| err_naming(e, &[("simulation.duration", "duration")]))?;
-    let solution = py
-        .detach(|| flexrock_core::simulate::simulate_row(&model))
+    let model = Arc::new(model);
+    let solving = Arc::clone(&model);
+    let solution = interrupt::run(py, move || flexrock_core::simulate::simulate_row(&solving))?
         .map_err(err)?;
     let summary = json(py, &row_summary(&model, &solution))?;
     let columns = PyList::empty(py);
@@ -286,7 +291,7 @@ pub(crate) fn simulate_row(
     }
     // impacts.csv's rows, keyed by its column names (the row type serializes under them).
     let impacts = json(py, &impact_rows(&model, &solution))?;
-    let contacts = json(py, &solution.contact_history)?;
+    let contacts = crate::table::records(py, &solution.contact_history)?;
     Ok(RowResult {
         columns: columns.into_any().unbind(),
         impacts: impacts.unbind(),

@@ -1,8 +1,12 @@
 """The Python API beyond the command line's: models as dicts, values in effect, ground motions
 from arrays, typed sweep tables, the package's layout and documentation."""
 
+import copy
 import inspect
+import pickle
 import re
+import threading
+import time
 from pathlib import Path
 
 import numpy as np
@@ -78,7 +82,7 @@ def test_a_model_from_a_dict_equals_the_file():
         d = tables(MODEL)
         d["excitation"]["amplitud"] = 1.0
         flexrock.Model.from_dict(d)
-    with pytest.raises(flexrock.FlexrockError, match=r"\[.body.\]\[.height.\]"):
+    with pytest.raises(TypeError, match=r'^d\["body"\]\["height"\] = \[1, 2\]: .* not list'):
         d = tables(MODEL)
         d["body"]["height"] = [1, 2]
         flexrock.Model.from_dict(d)
@@ -210,10 +214,8 @@ def test_a_ground_motion_beyond_the_floor_limit_is_refused_by_the_model():
         flexrock.Model.from_file(MODEL).with_ground_motion(gm)
     model = flexrock.Model.from_file(MODEL).with_ground_motion(
         flexrock.GroundMotion([0.0, 1.0, 0.0], dt=0.01, units="g"))
-    with pytest.raises(flexrock.FlexrockError, match="arrays"):
+    with pytest.raises(flexrock.FlexrockError, match=r"arrays.*to_csv\(PATH\).*record_path=PATH"):
         model.to_toml()
-    with pytest.raises(flexrock.FlexrockError, match="arrays"):
-        flexrock.sweep(model, {"excitation.scale": [1.0, 2.0]})
 
 
 # Typed sweep tables.
@@ -337,3 +339,231 @@ def test_sweep_axes_are_checked_like_the_command_lines(axes, message):
     model = flexrock.Model.from_file(ROOT / "models" / "sine-pulse.toml")
     with pytest.raises(flexrock.FlexrockError, match=message):
         flexrock.sweep(model, axes)
+
+
+# Errors of a model given as a dict name its place in the dict.
+
+@pytest.mark.parametrize("change, error, message", [
+    (lambda d: d.__setitem__("body", 5), TypeError,
+     r'^d\["body"\] = 5: must be a dict of the keys of the model file\'s \[body\] table'),
+    (lambda d: d["body"].__setitem__("height", "four"), flexrock.FlexrockError,
+     r'^d\["body"\]\["height"\] = four: invalid type: string "four", expected f64$'),
+    (lambda d: d["body"].__setitem__("height", -1.0), flexrock.FlexrockError,
+     r'^d\["body"\]\["height"\] = -1: must be a finite number greater than 0$'),
+    (lambda d: d["excitation"].__setitem__("amplitud", 1.0), flexrock.FlexrockError,
+     r'^d\["excitation"\]: unknown field `amplitud`.*did you mean `amplitude`\?$'),
+    (lambda d: d["body"].pop("height"), flexrock.FlexrockError,
+     r'^d\["body"\]: missing field `height`$'),
+    (lambda d: d["body"].__setitem__("density", 10**400), flexrock.FlexrockError,
+     r'^d\["body"\]\["density"\] = an int of 401 digits: beyond the largest number'),
+    (lambda d: d["body"].__setitem__(4, 1.0), TypeError,
+     r'^d\["body"\]: every key must be a str, not 4$'),
+])
+def test_errors_of_a_dict_name_the_place_in_the_dict(change, error, message):
+    d = tables(MODEL)
+    change(d)
+    with pytest.raises(error, match=message) as raised:
+        flexrock.Model.from_dict(d)
+    assert "(model text)" not in str(raised.value) and "BodySection" not in str(raised.value)
+
+
+# Values: any Python number that a float holds; a str is not a list of its letters.
+
+def test_an_int_beyond_64_bits_is_the_float_that_holds_it_and_beyond_floats_refused():
+    model = flexrock.Model.from_file(MODEL)
+    # The depth, to which q(t) is blind: 10**19 is beyond 64-bit ints, and a float exactly.
+    model.set("body.depth", 10**19)
+    same = flexrock.Model.from_file(MODEL)
+    same.set("body.depth", 1e19)
+    assert model.get("body.depth") == 1e19 and isinstance(model.get("body.depth"), float)
+    same_results(flexrock.simulate(model), flexrock.simulate(same))
+    with pytest.raises(flexrock.FlexrockError,
+                       match=r"^body.depth = an int of 401 digits: beyond the largest number"):
+        model.set("body.depth", 10**400)
+    assert model.get("body.depth") == 1e19
+    model.set("excitation.amplitude", np.float64(3.0))
+    model.set("simulation.qdot0", np.int64(0))
+    assert model.get("excitation.amplitude") == 3.0 and model.get("simulation.qdot0") == 0
+    with pytest.raises(TypeError, match=r"^excitation.amplitude = \[3.0\]: .* not list"):
+        model.set("excitation.amplitude", [3.0])
+    with pytest.raises(TypeError, match=r"^excitation.amplitude = None: .* not NoneType"):
+        model.set("excitation.amplitude", None)
+
+
+@pytest.mark.parametrize("axes, message", [
+    ({"excitation.amplitude": "12"},
+     r'^axes\["excitation.amplitude"\] = \'12\': must be a sequence of values .* not a str; '
+     r"for one value, give a list of one: \['12'\]"),
+    ({"excitation.amplitude": 2.0},
+     r'^axes\["excitation.amplitude"\] = 2.0: must be a sequence of values'),
+    ({"excitation.amplitude": [1.0, [2.0]]},
+     r'^axes\["excitation.amplitude"\]\[1\] = \[2.0\]: a model-file value must be'),
+])
+def test_an_axis_must_be_a_sequence_of_values(axes, message):
+    model = flexrock.Model.from_file(ROOT / "models" / "sine-pulse.toml")
+    with pytest.raises(TypeError, match=message):
+        flexrock.sweep(model, axes)
+
+
+# Several keys at once.
+
+def test_update_sets_keys_that_only_make_sense_together(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    dt, values = read_at2(AT2)
+    (tmp_path / "elcentro.csv").write_text("".join(f"{float(v)!r}\n" for v in values))
+    file_model = flexrock.Model.from_file(RECORD_MODEL)
+    switch = {"excitation.path": "elcentro.csv", "excitation.format": "csv",
+              "excitation.units": "g", "excitation.dt": dt}
+    # One key at a time, in either order, makes a model that cannot be read.
+    for key in ["excitation.path", "excitation.format"]:
+        model = flexrock.Model.from_file(RECORD_MODEL)
+        with pytest.raises(flexrock.FlexrockError):
+            model.set(key, switch[key])
+    model = flexrock.Model.from_file(RECORD_MODEL)
+    model.update(switch)
+    assert model.get("excitation.path") == "elcentro.csv"
+    assert model.settings[1:] == ["excitation.format=csv", "excitation.units=g", "excitation.dt=0.02"]
+    same_results(flexrock.simulate(model), flexrock.simulate(file_model))
+    # A bad key among them leaves the model as it was.
+    with pytest.raises(flexrock.FlexrockError, match="excitation.scal"):
+        model.update({"excitation.scale": 2.0, "excitation.scal": 2.0})
+    assert model.get("excitation.scale") == 1.0 and len(model.settings) == 4
+    with pytest.raises(TypeError, match="a dict of keys and values"):
+        model.update([("excitation.scale", 2.0)])
+
+
+# A model across threads, pickled, copied.
+
+def test_set_while_another_thread_solves_the_model():
+    model = flexrock.Model.from_file(MODEL)
+    results = []
+    runner = threading.Thread(target=lambda: results.append(flexrock.simulate(model, duration=200.0)))
+    runner.start()
+    amplitudes = [1.0 + 0.01 * k for k in range(50)]
+    for a in amplitudes:
+        model.set("excitation.amplitude", a)
+        time.sleep(0.01)
+    runner.join()
+    assert model.get("excitation.amplitude") == amplitudes[-1]
+    # The run solved the model as it stood when it started.
+    same_results(results[0], flexrock.simulate(flexrock.Model.from_file(MODEL), duration=200.0))
+
+
+def models_of_every_kind():
+    from_file = flexrock.Model.from_file(RECORD_MODEL)
+    from_file.update({"excitation.scale": 2, "solver.method": "bdf", "excitation.tail": 1.5})
+    text = flexrock.Model.from_toml(MODEL.read_text())
+    text.set("excitation.amplitude", 4)
+    from_dict = flexrock.Model.from_dict(tables(MODEL))
+    from_dict.set("solver.method", "exact")
+    dt, values = read_at2(AT2)
+    arrays = flexrock.Model.from_file(MODEL).with_ground_motion(
+        flexrock.GroundMotion(values * 0.5, dt=dt, units="g", source="half El Centro"))
+    arrays.update({"excitation.scale": 1.5, "excitation.tail": 2.0})
+    return [from_file, text, from_dict, arrays]
+
+
+def same_model(a, b):
+    assert repr(a) == repr(b) and a.settings == b.settings and a.path == b.path
+    for key in ["excitation.amplitude", "excitation.scale", "solver.method", "body.height"]:
+        assert a.get(key) == b.get(key) and type(a.get(key)) is type(b.get(key)), key
+    if a.ground_motion is None:
+        assert b.ground_motion is None and a.to_toml() == b.to_toml()
+    else:
+        ga, gb = a.ground_motion, b.ground_motion
+        assert (ga.dt, ga.units, ga.source, len(ga)) == (gb.dt, gb.units, gb.source, len(gb))
+        assert np.array_equal(ga.acceleration, gb.acceleration)
+    same_results(flexrock.simulate(a), flexrock.simulate(b))
+
+
+def test_a_model_pickles_and_copies_to_the_same_model(tmp_path):
+    for model in models_of_every_kind():
+        same_model(pickle.loads(pickle.dumps(model)), model)
+        for made in [copy.copy(model), copy.deepcopy(model)]:
+            same_model(made, model)
+            made.set("excitation.scale" if model.ground_motion else "body.damping_ratio", 0.02)
+            assert made.settings != model.settings
+    gm = flexrock.read_record(AT2)
+    again = pickle.loads(pickle.dumps(gm))
+    assert np.array_equal(again.acceleration, gm.acceleration) and again.dt == gm.dt
+    assert (again.source, again.units) == (gm.source, gm.units)
+
+
+def solve_q(model):
+    return flexrock.simulate(model).q
+
+
+def test_a_model_goes_to_another_process():
+    import concurrent.futures
+    import multiprocessing
+    models = models_of_every_kind()
+    context = multiprocessing.get_context("spawn")
+    with concurrent.futures.ProcessPoolExecutor(2, mp_context=context) as pool:
+        for model, q in zip(models, pool.map(solve_q, models)):
+            assert np.array_equal(q, flexrock.simulate(model).q)
+
+
+def test_a_model_whose_file_has_changed_is_refused_not_read_again(tmp_path):
+    path = tmp_path / "m.toml"
+    path.write_text(MODEL.read_text())
+    model = flexrock.Model.from_file(path)
+    pickled = pickle.dumps(model)
+    path.write_text(MODEL.read_text().replace("amplitude = 5.0", "amplitude = 2.0"))
+    for act in [lambda: model.set("excitation.amplitude", 3.0), lambda: pickle.loads(pickled),
+                lambda: flexrock.sweep(model, {"excitation.period": [1.0]})]:
+        with pytest.raises(flexrock.FlexrockError, match="has changed since the model was read"):
+            act()
+
+
+# A model whose ground motion was given as arrays: swept and saved.
+
+def arrays_and_file_models():
+    dt, values = read_at2(AT2)
+    file_model = flexrock.Model.from_file(RECORD_MODEL)
+    arrays = file_model.with_ground_motion(flexrock.GroundMotion(values, dt=dt, units="g"))
+    arrays.set("excitation.tail", tables(RECORD_MODEL)["excitation"]["tail"])
+    return arrays, file_model
+
+
+def test_a_model_of_arrays_sweeps_as_its_record_file():
+    arrays, file_model = arrays_and_file_models()
+    axes = {"excitation.scale": [0.5, 1.0], "body.damping_ratio": [0.02, 0.05]}
+    got, expected = flexrock.sweep(arrays, axes), flexrock.sweep(file_model, axes)
+    assert got.columns == expected.columns and list(got["status"]) == ["ok"] * 4
+    for name in got.columns:
+        a, b = got[name], expected[name]
+        if a.dtype == np.float64:
+            assert np.array_equal(a, b, equal_nan=True), name
+        else:
+            assert list(a) == list(b), name
+    with pytest.raises(flexrock.FlexrockError, match=r'^axes\["excitation.path"\]: .* given as arrays'):
+        flexrock.sweep(arrays, {"excitation.path": [str(AT2)]})
+    with pytest.raises(flexrock.FlexrockError, match=r"^excitation.units = m/s2: .* given as arrays"):
+        arrays.set("excitation.units", "m/s2")
+
+
+def test_a_model_of_arrays_is_saved_with_its_samples_in_a_record_file(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    arrays, file_model = arrays_and_file_models()
+    arrays.set("excitation.scale", 0.75)
+    arrays.ground_motion.to_csv("motion.csv")
+    again = flexrock.read_record("motion.csv", dt=arrays.ground_motion.dt, units="g")
+    assert np.array_equal(again.acceleration, arrays.ground_motion.acceleration)
+    text = arrays.to_toml(record_path="motion.csv")
+    same_results(flexrock.simulate(flexrock.Model.from_toml(text)), flexrock.simulate(arrays))
+    d = arrays.to_dict(record_path="motion.csv")
+    assert d["excitation"]["path"] == "motion.csv" and d["excitation"]["scale"] == 0.75
+    same_results(flexrock.simulate(flexrock.Model.from_dict(d)), flexrock.simulate(arrays))
+    # A file of other samples is not taken for this motion's.
+    flexrock.GroundMotion([0.0, 0.1, 0.0], dt=0.02, units="g").to_csv("other.csv")
+    with pytest.raises(flexrock.FlexrockError, match="^record_path = other.csv: does not hold"):
+        arrays.to_toml(record_path="other.csv")
+    with pytest.raises(flexrock.FlexrockError, match="^record_path = motion.csv: names the record"):
+        file_model.to_toml(record_path="motion.csv")
+
+
+def test_a_model_text_beyond_the_size_of_a_model_file_is_refused_before_it_is_read():
+    text = MODEL.read_text() + "#" * (1024 * 1024)
+    with pytest.raises(flexrock.FlexrockError, match=r"^Model.from_toml: the text has \d+ bytes, "
+                                                     r"beyond the 1048576 bytes a model file"):
+        flexrock.Model.from_toml(text)

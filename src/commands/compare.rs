@@ -10,7 +10,7 @@ use serde::Serialize;
 
 use crate::commands::run::{simulate_with, VERSION};
 use crate::error::Result;
-use crate::figures::plot::{self, Legend, Panel, Series};
+use crate::figures::plot::{self, Dash, Figure, Panel, Series};
 use crate::writers::{self, count, readable, Table};
 use flexrock_core::automaton::EventKind;
 use flexrock_core::columns;
@@ -182,7 +182,7 @@ pub fn run_compare(
     let comparison = compare(&reference, &newmark, output_dt, max_shift);
 
     let summary = CompareSummary {
-        provenance: crate::commands::run::Provenance::of(model),
+        provenance: timings.provenance("compare.json", model),
         period: model.constants.period,
         s_n: model.constants.uplift_displacement,
         duration: model.duration,
@@ -250,10 +250,11 @@ fn compare_figure(
                 label,
                 other.samples.iter().map(|x| (x.t, value(x))).collect(),
                 1,
-            ),
+            )
+            .with_dash(Dash::Dashed),
         ];
         let reference_lines = if s_n_lines {
-            vec![(s_n, "±s_n (uplift)".to_string()), (-s_n, String::new())]
+            vec![(s_n, "±sₙ (uplift)".to_string()), (-s_n, String::new())]
         } else {
             Vec::new()
         };
@@ -263,18 +264,19 @@ fn compare_figure(
             y_label: y_label.to_string(),
             series,
             reference_lines,
-            // Beside the plot: inside, it covered the curves of the last seconds.
-            legend: Legend::Outside,
             ..Panel::default()
         }
     };
     let panels = [
-        panel("Top displacement", "q (m)", |x| x.q, true),
-        panel("Flexural part", "s (m)", |x| x.s, true),
-        panel("Rocking part", "r (m)", |x| x.r, false),
-        panel("Top velocity", "dq/dt (m/s)", |x| x.qdot, false),
+        panel("", "q (m)", |x| x.q, true),
+        panel("", "s (m)", |x| x.s, true),
+        panel("", "r (m)", |x| x.r, false),
+        panel("", "q\u{307} (m/s)", |x| x.qdot, false),
     ];
-    plot::figure("compare.svg", &panels, 1, (1150, 300))
+    plot::double_column_svg(
+        "compare.svg",
+        &Figure::new(panels.to_vec(), 1).shared_x().aspect(4.5, 24.0),
+    )
 }
 
 /// The paper's Figs. 12-13: q against r and s against r, both solutions.
@@ -289,27 +291,18 @@ fn relations_figure(reference: &Solution, other: &Solution, label: &str) -> Resu
                 reference.samples.iter().map(xy).collect(),
                 0,
             ),
-            Series::line(label, other.samples.iter().map(xy).collect(), 1),
+            Series::line(label, other.samples.iter().map(xy).collect(), 1).with_dash(Dash::Dashed),
         ],
-        // A preference: the figure moves it to a corner the curves leave free, or beside the plot.
-        legend: Legend::LowerRight,
         ..Panel::default()
     };
     let panels = [
-        panel(
-            "Top displacement against rocking part",
-            "r (m)",
-            "q (m)",
-            |x| (x.r, x.q),
-        ),
-        panel(
-            "Flexural part against rocking part",
-            "r (m)",
-            "s (m)",
-            |x| (x.r, x.s),
-        ),
+        panel("", "r (m)", "q (m)", |x| (x.r, x.q)),
+        panel("", "r (m)", "s (m)", |x| (x.r, x.s)),
     ];
-    plot::figure("compare_relations.svg", &panels, 2, (680, 560))
+    plot::double_column_svg(
+        "compare_relations.svg",
+        &Figure::new(panels.to_vec(), 2).aspect(1.1, 40.0),
+    )
 }
 
 /// The printed table of `flexrock compare`.
@@ -369,11 +362,15 @@ pub fn compare_text(model: &Model, report: &CompareReport) -> String {
             cell(p.time_difference(), 6),
         );
     }
-    let _ = writeln!(
-        t,
-        "  event times: max |difference| {:.6} s, mean {:.6} s",
-        e.max_abs_time_difference, e.mean_abs_time_difference
-    );
+    if e.n_matched == 0 {
+        let _ = writeln!(t, "  event times: no event matched, none to time");
+    } else {
+        let _ = writeln!(
+            t,
+            "  event times: max |difference| {:.6} s, mean {:.6} s",
+            e.max_abs_time_difference, e.mean_abs_time_difference
+        );
+    }
     let p = &c.peaks;
     let _ = writeln!(
         t,

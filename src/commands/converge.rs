@@ -10,7 +10,7 @@ use serde::Serialize;
 
 use crate::commands::run::VERSION;
 use crate::error::Result;
-use crate::figures::plot::{self, Legend, Panel, Series};
+use crate::figures::plot::{self, Dash, Figure, Panel, Series};
 use crate::writers::{self, count, readable, scientific, Table};
 use flexrock_core::columns;
 use flexrock_core::model::Model;
@@ -158,7 +158,7 @@ pub fn run_converge(
         }
     }
     let summary = ConvergeSummary {
-        provenance: crate::commands::run::Provenance::of(model),
+        provenance: timings.provenance("convergence.json", model),
         reference_method: reference_settings.label(),
         reference_rtol: options.reference_rtol,
         reference_statistics: reference.stats.clone(),
@@ -230,7 +230,7 @@ fn figures(summary: &ConvergeSummary) -> Result<(String, String)> {
                 .collect();
             work_series.push(
                 Series::line(method, work, i + 1)
-                    .with_width(2)
+                    .with_width(1.2)
                     .with_markers(),
             );
             if cases.first().is_some_and(|c| c.dt.is_some()) {
@@ -240,7 +240,7 @@ fn figures(summary: &ConvergeSummary) -> Result<(String, String)> {
                     .collect();
                 dt_series.push(
                     Series::line(method, points, i + 1)
-                        .with_width(2)
+                        .with_width(1.2)
                         .with_markers(),
                 );
             }
@@ -261,19 +261,18 @@ fn figures(summary: &ConvergeSummary) -> Result<(String, String)> {
                         vec![(x0, y0), (x1, y0 * (x1 / x0).powf(order))],
                         color,
                     )
-                    .with_width(1)
-                    .dashed(),
+                    .with_width(0.5)
+                    .with_dash(Dash::Dotted),
                 );
             }
         }
         dt_panels.push(Panel {
-            title: format!("Newmark: {title}"),
+            title: format!("Newmark, {title}"),
             x_label: "Δt (s)".to_string(),
             y_label: y_label.to_string(),
             series: dt_series,
             log_x: true,
             log_y: true,
-            legend: Legend::Outside,
             ..Panel::default()
         });
         work_panels.push(Panel {
@@ -283,14 +282,18 @@ fn figures(summary: &ConvergeSummary) -> Result<(String, String)> {
             series: work_series,
             log_x: true,
             log_y: true,
-            // Beside the plot: inside, it covered the slowest method's curve.
-            legend: Legend::Outside,
             ..Panel::default()
         });
     }
     Ok((
-        plot::figure("convergence_dt.svg", &dt_panels, 1, (1050, 380))?,
-        plot::figure("convergence_work.svg", &work_panels, 1, (1050, 380))?,
+        plot::double_column_svg(
+            "convergence_dt.svg",
+            &Figure::new(dt_panels, 1).aspect(2.6, 35.0),
+        )?,
+        plot::double_column_svg(
+            "convergence_work.svg",
+            &Figure::new(work_panels, 1).aspect(2.6, 35.0),
+        )?,
     ))
 }
 

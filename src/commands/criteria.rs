@@ -1,7 +1,7 @@
 //! `flexrock criteria`: the overturning criteria study of [`flexrock_core::criteria`] on the
 //! body of a model file, written as criteria.csv, continuity.csv, fit.json, criteria.json and
-//! two figures (SVG and PNG); the wall time goes to timings.json, so that every other file is
-//! byte-stable.
+//! two figures (SVG and PNG); the wall time and the commit flexrock was built from go to
+//! timings.json, so that every other file is byte-stable.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -17,6 +17,7 @@ use flexrock_core::format::shortest;
 use flexrock_core::rigid_criteria::{
     ishiyama_acceleration, ishiyama_velocity, ISHIYAMA_VELOCITY_COEFFICIENT,
 };
+use flexrock_core::simulate::{COMMIT, DIRTY};
 
 /// Column names of criteria.csv (a contract), units in the names.
 pub const CRITERIA_COLUMNS: [&str; 25] = [
@@ -59,24 +60,11 @@ pub const CONTINUITY_COLUMNS: [&str; 8] = [
     "points",
 ];
 
-/// The model file's body: its height, width and gravity (the study's other slendernesses
-/// keep its height and gravity).
-#[derive(Debug, Clone, Copy, Serialize)]
-pub struct Geometry {
-    /// H, m.
-    pub height: f64,
-    /// B, m.
-    pub width: f64,
-    /// g, m/s^2.
-    pub gravity: f64,
-}
+use crate::figures::page::{FigureOptions, Format, PAGE_MM};
+pub use crate::geometry::Geometry;
 
-impl Geometry {
-    /// B/H of the model file's body.
-    pub fn slenderness(&self) -> f64 {
-        self.width / self.height
-    }
-}
+/// The formats the study's figures are written in unless asked otherwise.
+pub const FIGURE_FORMATS: [Format; 2] = [Format::Svg, Format::Png];
 
 fn opt(x: Option<f64>) -> String {
     x.map(shortest).unwrap_or_default()
@@ -93,9 +81,9 @@ fn criteria_csv(points: &[Point], g: Geometry) -> Vec<u8> {
             p.excitation.clone(),
             opt(p.period),
             shortest(p.youngs_modulus),
-            shortest(p.flexibility),
-            shortest(p.pre_uplift_period),
-            shortest(p.p),
+            opt(p.flexibility),
+            opt(p.pre_uplift_period),
+            opt(p.p),
             opt(p.critical_pga),
             opt(p.critical_pgv()),
             opt(p.critical_pga.map(|a| a / a_i)),
@@ -130,7 +118,7 @@ fn continuity_csv(decades: &[continuity::Decade]) -> Vec<u8> {
             shortest(d.slenderness),
             d.excitations.to_string(),
             shortest(d.youngs_modulus),
-            shortest(d.flexibility),
+            opt(d.flexibility),
             opt(d.max_abs_difference_rigid_limit),
             opt(d.max_abs_difference_rigid_full),
             d.points.to_string(),
@@ -181,7 +169,7 @@ struct Unconservative {
     excitation: String,
     period_s: Option<f64>,
     youngs_modulus_pa: f64,
-    phi: f64,
+    phi: Option<f64>,
     critical_pga_m_per_s2: Option<f64>,
     rigid_full_pga_m_per_s2: Option<f64>,
     relative_difference: Option<f64>,
@@ -202,13 +190,14 @@ pub struct CriteriaReport {
 /// Runs the study on the body of `model`, at its own slenderness and at `slendernesses` (B/H,
 /// the model's height kept), with the sines and pulses and the records `fitted` (used for the
 /// fit) and `held_out` (only checked against it); writes everything into `out` (all files or
-/// none).
+/// none), the figures in the formats and size of `figure_options`.
 pub fn run(
     model: &Path,
     slendernesses: &[f64],
     fitted: &[PathBuf],
     held_out: &[PathBuf],
     out: &Path,
+    figure_options: &FigureOptions,
 ) -> Result<CriteriaReport> {
     let start = std::time::Instant::now();
     if let Some(bad) = slendernesses
@@ -237,7 +226,8 @@ pub fn run(
         list
     };
     let study = Study::standard(records, list);
-    let points = criteria::run(model, &study)?;
+    let points =
+        criteria::run(model, &study).map_err(|e| e.renamed("slenderness", "--slenderness"))?;
     let own = geometry.slenderness();
     let mut all_slendernesses: Vec<f64> = points.iter().map(|p| p.slenderness).collect();
     all_slendernesses.sort_by(f64::total_cmp);
@@ -322,28 +312,20 @@ pub fn run(
         ("fit.json", writers::json_bytes(&fits)),
         ("criteria.json", writers::json_bytes(&summary)),
     ];
-    for (name, panels, columns, size) in [
-        ("criteria-plane", plane, 1, (1100u32, 1300u32)),
-        ("criteria-flexibility", against, 1, (1000, 1500)),
+    for (name, panels, aspect) in [
+        ("criteria-plane", plane, 1.5),
+        ("criteria-flexibility", against, 2.2),
     ] {
-        let svg = crate::figures::plot::figure_sized(
-            crate::figures::plot::Format::Svg,
-            name,
-            &panels,
-            columns,
-            size,
-        )?;
-        let png = crate::figures::plot::figure_sized(
-            crate::figures::plot::Format::Png,
-            name,
-            &panels,
-            columns,
-            size,
-        )?;
-        files.push((leak(format!("{name}.svg")), svg));
-        files.push((leak(format!("{name}.png")), png));
+        let figure = crate::figures::plot::Figure::new(panels, 1).aspect(aspect, 40.0);
+        for (file, bytes) in crate::figures::plot::files(name, &figure, figure_options, PAGE_MM)? {
+            files.push((leak(file), bytes));
+        }
     }
-    let timings = serde_json::json!({ "wall_time_s": start.elapsed().as_secs_f64() });
+    // The wall time and the commit flexrock was built from change from run to run while the
+    // results do not: they go to timings.json.
+    let mut timings = serde_json::json!({ "wall_time_s": start.elapsed().as_secs_f64() });
+    timings["flexrock_commit"] = COMMIT.into();
+    timings["flexrock_dirty"] = DIRTY.into();
     files.push(("timings.json", writers::json_bytes(&timings)));
     let files = writers::write_atomically(out, &files)?;
     Ok(CriteriaReport {
@@ -380,12 +362,12 @@ pub fn report_text(report: &CriteriaReport) -> String {
     for d in &report.decades {
         let _ = writeln!(
             t,
-            "  {:<11} {:>6} {:<7} {:>9.2e} {:>8.4} {:>22} {:>22}",
+            "  {:<11} {:>6} {:<7} {:>9.2e} {:>8} {:>22} {:>22}",
             d.self_weight,
             shortest(d.slenderness),
             d.excitations,
             d.youngs_modulus,
-            d.flexibility,
+            d.flexibility.map_or("-".into(), |x| format!("{x:.4}")),
             d.max_abs_difference_rigid_limit
                 .map_or("-".into(), |x| format!("{x:.5}")),
             d.max_abs_difference_rigid_full

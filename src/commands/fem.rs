@@ -11,7 +11,7 @@ use serde::Serialize;
 
 use crate::commands::run::VERSION;
 use crate::error::{Error, Result};
-use crate::figures::plot::{self, Panel, Series};
+use crate::figures::plot::{self, Figure, Panel, Series};
 use crate::writers::{self, count, readable, Table};
 use flexrock_core::fem::{FemResult, FemStep};
 use flexrock_core::model::{FemSetup, Model, ModelFile};
@@ -147,7 +147,7 @@ fn time_series(steps: &[FemStep], f: fn(&FemStep) -> f64) -> Vec<(f64, f64)> {
 
 fn sn_lines(s_n: f64) -> Vec<(f64, String)> {
     vec![
-        (s_n, "±s_n (SDOF uplift)".to_string()),
+        (s_n, "±sₙ (SDOF uplift)".to_string()),
         (-s_n, String::new()),
     ]
 }
@@ -250,7 +250,7 @@ pub fn figures(model: &Model, a: &FemAnalysis) -> Vec<(&'static str, Panel)> {
     let velocity = Panel::new(
         "Top velocity relative to the floor (FEM)",
         "t (s)",
-        "dq/dt (m/s)",
+        "q\u{307} (m/s)",
     )
     .with(Series::line("", time_series(steps, |s| s.top_velocity), 2));
     let momentum = Panel::new(
@@ -282,23 +282,24 @@ fn render(charts: Vec<(&'static str, Panel)>) -> Result<Vec<(&'static str, Vec<u
     charts
         .into_iter()
         .map(|(name, chart)| {
-            // Drawings of shapes get more room than curves.
-            let size = if chart.equal_aspect {
-                (1000, 600)
-            } else {
-                (900, 500)
-            };
-            plot::figure(name, &[chart], 1, size).map(|svg| (name, svg.into_bytes()))
+            let figure = Figure::new(vec![chart], 1).aspect(1.8, 40.0);
+            plot::double_column_svg(name, &figure).map(|svg| (name, svg.into_bytes()))
         })
         .collect()
 }
 
 /// The files of a run: CSVs, summary and figures.
-fn run_files(model: &Model, a: &FemAnalysis) -> Result<Vec<(&'static str, Vec<u8>)>> {
+fn run_files(
+    model: &Model,
+    a: &FemAnalysis,
+    timings: &mut writers::Timings,
+) -> Result<Vec<(&'static str, Vec<u8>)>> {
+    let mut fem_summary = summary(model, a);
+    timings.take_commit("fem_summary.json", &mut fem_summary.provenance);
     let mut files = vec![
         ("fem_history.csv", history_csv(model, &a.result.steps)),
         ("fem_events.csv", events_csv(&a.result)),
-        ("fem_summary.json", writers::json_bytes(&summary(model, a))),
+        ("fem_summary.json", writers::json_bytes(&fem_summary)),
     ];
     files.extend(render(figures(model, a))?);
     Ok(files)
@@ -336,8 +337,8 @@ pub fn fem(
     out_dir: &Path,
     wall_times: writers::WallTimes,
 ) -> Result<FemReport> {
-    let (analysis, timings) = analyse_timed(model, setup, wall_times)?;
-    let mut files = run_files(model, &analysis)?;
+    let (analysis, mut timings) = analyse_timed(model, setup, wall_times)?;
+    let mut files = run_files(model, &analysis, &mut timings)?;
     files.extend(timings.file());
     let files = writers::write_atomically(out_dir, &files)?;
     Ok(FemReport {
@@ -395,7 +396,7 @@ fn comparison_figures(
         .with(sdof_series(|s| (s.t, s.s)))
         .with(Series::line("FEM", time_series(steps, |s| s.flexural), 2));
     s.reference_lines = sn_lines(model.constants.uplift_displacement);
-    let velocity = Panel::new("Top velocity: SDOF and FEM", "t (s)", "dq/dt (m/s)")
+    let velocity = Panel::new("Top velocity: SDOF and FEM", "t (s)", "q\u{307} (m/s)")
         .with(sdof_series(|s| (s.t, s.qdot)))
         .with(Series::line(
             "FEM",
@@ -442,10 +443,10 @@ pub fn compare(
     out_dir: &Path,
     wall_times: writers::WallTimes,
 ) -> Result<FemReport> {
-    let (analysis, timings) = analyse_timed(model, setup, wall_times)?;
+    let (analysis, mut timings) = analyse_timed(model, setup, wall_times)?;
     let sdof = crate::commands::run::simulate(model)?;
     let comparison = compare_solutions(model, &sdof, &analysis);
-    let mut files = run_files(model, &analysis)?;
+    let mut files = run_files(model, &analysis, &mut timings)?;
     files.push(("compare.csv", comparison_csv(&comparison)));
     files.push(("compare.json", writers::json_bytes(&comparison)));
     files.push(("sdof_history.csv", writers::history_csv(&sdof.samples)));

@@ -12,7 +12,7 @@ use serde::Serialize;
 use crate::commands::fem::ELEMENT;
 use crate::commands::run::VERSION;
 use crate::error::Result;
-use crate::figures::plot::{self, Legend, Panel, Series};
+use crate::figures::plot::{self, Figure, Panel, Series};
 use crate::writers::{self, Table};
 use flexrock_core::automaton::Automaton;
 use flexrock_core::fem::FemBody;
@@ -92,8 +92,6 @@ pub(crate) fn figure(model: &Model, a: &PushoverAnalysis) -> Panel {
         "q (m)",
         "base shear V_b (N)",
     );
-    // the curves start low: small q with a large shear is empty in every case
-    panel.legend = Legend::UpperLeft;
     // the kink at s_n is a point of the curve
     let mut sdof: Vec<(f64, f64)> = (0..=SWEEP_POINTS)
         .map(|k| a.width * k as f64 / SWEEP_POINTS as f64)
@@ -134,13 +132,15 @@ pub fn run(
     let mut analysis = analyse(model, setup)?;
     let mut timings = writers::Timings::new(wall_times);
     timings.take("pushover.json/wall_time_s", &mut analysis.wall_time_s);
-    let svg = plot::figure("pushover.svg", &[figure(model, &analysis)], 1, (900, 550))?;
+    let svg = plot::double_column_svg(
+        "pushover.svg",
+        &Figure::new(vec![figure(model, &analysis)], 1).aspect(1.8, 40.0),
+    )?;
+    let mut pushover_summary = summary(model, &analysis);
+    timings.take_commit("pushover.json", &mut pushover_summary.provenance);
     let mut files = vec![
         ("pushover.csv", curves_csv(model, &analysis)),
-        (
-            "pushover.json",
-            writers::json_bytes(&summary(model, &analysis)),
-        ),
+        ("pushover.json", writers::json_bytes(&pushover_summary)),
         ("pushover.svg", svg.into_bytes()),
     ];
     files.extend(timings.file());

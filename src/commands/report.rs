@@ -193,12 +193,6 @@ pub(crate) struct InitialStateRead {
     pub q: f64,
 }
 
-/// The adaptive solver's settings in summary.json.
-#[derive(Debug, Clone, Deserialize)]
-pub(crate) struct AdaptiveSolverRead {
-    pub rtol: f64,
-}
-
 /// constants of summary.json, the restitution pair.
 #[derive(Debug, Clone, Deserialize)]
 pub(crate) struct ZetasRead {
@@ -212,7 +206,7 @@ pub(crate) struct RigidRunFile {
     pub s_n: f64,
     #[serde(rename = "T")]
     pub period: f64,
-    pub solver: AdaptiveSolverRead,
+    pub solver: SolverRead,
     pub statistics: StatisticsRead,
     pub constants: ZetasRead,
     pub initial_state: InitialStateRead,
@@ -286,6 +280,16 @@ fn setting(value: Option<f64>, path: &Path, within: &str, key: &str) -> Result<f
         path: path.to_path_buf(),
         message: format!("missing field `{key}` in {within}"),
     })
+}
+
+/// The method of a run and the setting its accuracy follows: "bdf at rtol = 1e-10",
+/// "newmark-compensate at dt = 0.001 s", "exact" (which has no such setting).
+fn solved_by(method: &str, solver: &SolverRead) -> String {
+    match (solver.rtol, solver.dt) {
+        (Some(rtol), _) => format!("{method} at rtol = {rtol:e}"),
+        (None, Some(dt)) => format!("{method} at dt = {} s", writers::shortest(dt)),
+        (None, None) => method.to_string(),
+    }
 }
 
 /// Stability limit of the compensate run's Newmark method (its beta, gamma) as a share of the
@@ -604,12 +608,11 @@ fn write_rigid_limit(t: &mut String, r: &Read) {
     let _ = writeln!(
         t,
         "Free rocking of the reference body with E x 1e5 (s_n = {:.3e} m), no damping, from \
-         q0 = {q0} m (theta0/alpha = {:.3}), {} at rtol = {:e}. Housner: first landing at \
+         q0 = {q0} m (theta0/alpha = {:.3}), {}. Housner: first landing at \
          (1/p) acosh(1/(1 - theta0/alpha)), p = sqrt(3 g/(2 H)).\n",
         rigid.s_n,
         q0 / b,
-        rigid.statistics.method,
-        rigid.solver.rtol
+        solved_by(&rigid.statistics.method, &rigid.solver)
     );
     let _ = writeln!(
         t,

@@ -191,16 +191,15 @@ pub fn run_to_dir_checked(
     );
     // The small files are written and synced while history.csv is formatted (on every core),
     // then history.csv and the figures; the set is put in place as one.
+    let mut run_summary = summary(model, &solution);
+    timings.take_commit("summary.json", &mut run_summary.provenance);
     let mut small = vec![
         ("events.csv", writers::events_csv(&solution.events)),
         (
             "episodes.csv",
             writers::episodes_csv(&solution.episodes, model.body.height),
         ),
-        (
-            "summary.json",
-            writers::json_bytes(&summary(model, &solution)),
-        ),
+        ("summary.json", writers::json_bytes(&run_summary)),
     ];
     if let Some(check) = &check {
         small.push(("check.json", writers::json_bytes(check)));
@@ -217,12 +216,16 @@ pub fn run_to_dir_checked(
     order.push("timings.json");
     let set = writers::FileSet::begin(out_dir, &order)?;
     let history = std::thread::scope(|scope| {
-        let staged = scope.spawn(|| set.stage_each(&small));
+        let staged = std::thread::Builder::new().spawn_scoped(scope, || set.stage_each(&small));
         let history = writers::history_csv(&solution.samples);
-        staged
-            .join()
-            .unwrap_or_else(|e| std::panic::resume_unwind(e))
-            .map(|()| history)
+        match staged {
+            Ok(thread) => thread
+                .join()
+                .unwrap_or_else(|e| std::panic::resume_unwind(e)),
+            // No thread to be had: staged here instead.
+            Err(_) => set.stage_each(&small),
+        }
+        .map(|()| history)
     })?;
     set.stage("history.csv", &[&history])?;
     if plots {
@@ -235,7 +238,15 @@ pub fn run_to_dir_checked(
         set.stage_each(&crate::figures::run::figures(&data)?)?;
     }
     let files = set.commit()?;
-    let warnings = warnings(model, &solution);
+    let mut warnings = warnings(model, &solution);
+    let rows = solution.samples.len();
+    if rows > writers::run_dir::MAX_HISTORY_ROWS {
+        warnings.push(format!(
+            "history.csv has {rows} rows (the grid's and two per event), more than `flexrock \
+             plot` reads ({}); a shorter duration gives fewer",
+            writers::run_dir::MAX_HISTORY_ROWS
+        ));
+    }
     Ok(RunReport {
         solution,
         files,

@@ -2,8 +2,8 @@
 //! flexibility's critical points and Ishiyama's two lines, and the critical values against the
 //! flexibility phi = p T with the fitted criterion and the continuity with the rigid block.
 
-use crate::commands::criteria::Geometry;
-use crate::figures::plot::{Legend, Marker, Panel, Series, VerticalLine};
+use crate::figures::plot::{Marker, Panel, Series, VerticalLine};
+use crate::geometry::Geometry;
 use flexrock_core::criteria::fit::{Fit, Surface};
 use flexrock_core::criteria::{continuity, Point};
 use flexrock_core::format::shortest;
@@ -34,16 +34,12 @@ pub fn plane(points: &[Point], g: Geometry) -> Vec<Panel> {
             continue;
         }
         let mut panel = Panel::new(
-            &format!(
-                "{sw} self-weight, B/H = {}: one-sine (line), others (×)",
-                shortest(own)
-            ),
+            &format!("{sw} self-weight, B/H = {}", shortest(own)),
             "floor peak velocity (m/s)",
             "floor peak acceleration (m/s²)",
         );
         panel.log_x = true;
         panel.log_y = true;
-        panel.legend = Legend::Outside;
         let rigid: Vec<&Point> = mine
             .iter()
             .copied()
@@ -72,11 +68,14 @@ pub fn plane(points: &[Point], g: Geometry) -> Vec<Panel> {
                 .copied()
                 .filter(|p| p.youngs_modulus == *e)
                 .collect();
-            let phi = same[0].flexibility;
+            // A body that could not be run (it buckles) has no flexibility and no points.
+            let Some(phi) = same.iter().find_map(|p| p.flexibility) else {
+                continue;
+            };
             let color = k + 1;
             panel = panel.with(
                 Series::line(
-                    &format!("φ = {phi:.3} (E = {e:.1e} Pa)"),
+                    &format!("φ = {phi:.3} (E = {e:.1e} Pa), one-sine pulses"),
                     one_sine(&same, &|p| Some((p.critical_pgv()?, p.critical_pga?))),
                     color,
                 )
@@ -87,7 +86,12 @@ pub fn plane(points: &[Point], g: Geometry) -> Vec<Panel> {
                 .filter(|p| p.excitation != "one-sine")
                 .filter_map(|p| Some((p.critical_pgv()?, p.critical_pga?)))
                 .collect();
-            panel = panel.with(Series::markers("", others, color, Marker::Cross));
+            let name = if k == 0 {
+                "other pulses and sines (×, in the colour of φ)"
+            } else {
+                ""
+            };
+            panel = panel.with(Series::markers(name, others, color, Marker::Cross));
         }
         panel
             .reference_lines
@@ -114,19 +118,14 @@ pub fn plane(points: &[Point], g: Geometry) -> Vec<Panel> {
 /// the held-out records, a colour per slenderness, the paper's self-weight solid and the
 /// consistent one dashed; and the largest relative difference from the rigid blocks against phi.
 pub fn against_flexibility(points: &[Point], fits: &[Fit], g: Geometry) -> Vec<Panel> {
-    let mut acc = Panel::new(
-        "Acceleration condition (lines: the fit)",
-        "flexibility φ = p T",
-        "smallest critical PGA / (g B/H)",
-    );
+    let mut acc = Panel::new("", "flexibility φ = p T", "smallest critical PGA / (g B/H)");
     let mut vel = Panel::new(
-        "Velocity condition (lines: the fit)",
+        "",
         "flexibility φ = p T",
         "smallest critical PGV / (c B/√H)",
     );
     for panel in [&mut acc, &mut vel] {
         panel.log_x = true;
-        panel.legend = Legend::Outside;
         panel.reference_lines.push((1.0, "Ishiyama (rigid)".into()));
     }
     for (k, f) in fits.iter().enumerate() {
@@ -182,14 +181,14 @@ pub fn against_flexibility(points: &[Point], fits: &[Fit], g: Geometry) -> Vec<P
                 .iter()
                 .filter_map(|p| {
                     let a_i = ishiyama_acceleration(p.width, p.height, g.gravity);
-                    Some((p.flexibility, p.critical_pga? / a_i))
+                    Some((p.flexibility?, p.critical_pga? / a_i))
                 })
                 .collect();
             let v_pts = held
                 .iter()
                 .filter_map(|p| {
                     let v_i = ishiyama_velocity(p.width, p.height);
-                    Some((p.flexibility, p.critical_pgv()? / v_i))
+                    Some((p.flexibility?, p.critical_pgv()? / v_i))
                 })
                 .collect();
             // Held-out records: one legend entry per slenderness.
@@ -205,13 +204,12 @@ pub fn against_flexibility(points: &[Point], fits: &[Fit], g: Geometry) -> Vec<P
     let own = g.slenderness();
     let decades = continuity::decades(points);
     let mut cont = Panel::new(
-        &format!("Continuity with the rigid block, B/H = {}", shortest(own)),
+        &format!("B/H = {}", shortest(own)),
         "flexibility φ = p T",
         "largest |critical / rigid − 1|",
     );
     cont.log_x = true;
     cont.log_y = true;
-    cont.legend = Legend::Outside;
     for (k, sw) in SELF_WEIGHTS.iter().enumerate() {
         let mine: Vec<&continuity::Decade> = decades
             .iter()
@@ -219,11 +217,11 @@ pub fn against_flexibility(points: &[Point], fits: &[Fit], g: Geometry) -> Vec<P
             .collect();
         let limit = mine
             .iter()
-            .filter_map(|d| Some((d.flexibility, d.max_abs_difference_rigid_limit?)))
+            .filter_map(|d| Some((d.flexibility?, d.max_abs_difference_rigid_limit?)))
             .collect();
         let full = mine
             .iter()
-            .filter_map(|d| Some((d.flexibility, d.max_abs_difference_rigid_full?)))
+            .filter_map(|d| Some((d.flexibility?, d.max_abs_difference_rigid_full?)))
             .collect();
         cont = cont
             .with(Series::line(&format!("vs rigid limit, {sw}"), limit, 2 * k + 1).with_markers())

@@ -1,7 +1,10 @@
-//! Figures, as SVG (and PNG): [`plot`] draws panels from plain series; [`run`] the figures of a
-//! run from its files; [`criteria`] the overturning criteria's figures; [`sweep`] the map, the spectrum and the IDA curves from sweep.csv alone.
+//! Figures for print, as SVG, PDF and PNG: [`page`] holds a figure's size on paper and its
+//! formats; [`plot`] lays out and draws panels from plain series; [`run`] the figures of a run
+//! from its files; [`criteria`] the overturning criteria's figures; [`sweep`] the map, the
+//! spectrum and the IDA curves from sweep.csv alone; [`row`] and [`sweep_row`] those of rows.
 
 pub mod criteria;
+pub mod page;
 pub mod plot;
 pub mod row;
 pub mod run;

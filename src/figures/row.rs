@@ -11,55 +11,51 @@
 //! ([`flexrock_core::simulate::row_state_at`]).
 
 use crate::error::Result;
-use crate::figures::plot::{self, Format, Legend, Panel, Series, Span, VerticalLine};
+use crate::figures::page::{FigureOptions, Format, PAGE_MM};
+use crate::figures::plot::{self, Figure, Marker, Panel, RugMark, Series, Span};
 use flexrock_core::model::RowModel;
 use flexrock_core::row::RowSolution;
 
 /// The figure's file stem.
 pub const ROW_FIGURE: &str = "row_motion";
-/// Its size in pixels.
-const SIZE: (u32, u32) = (1100, 900);
+/// The formats a row's figures are written in.
+const FORMATS: [Format; 2] = [Format::Svg, Format::Png];
 
 /// The figure files: row_motion.svg and row_motion.png.
 pub fn figures(model: &RowModel, solution: &RowSolution) -> Result<Vec<(String, Vec<u8>)>> {
-    let panels = panels(model, solution);
-    let mut files = Vec::new();
-    for format in [Format::Svg, Format::Png] {
-        let name = format!("{ROW_FIGURE}.{}", format.extension());
-        let bytes = plot::figure_sized(format, &name, &panels, 1, SIZE)?;
-        files.push((name, bytes));
-    }
-    Ok(files)
+    let figure = Figure::new(panels(model, solution), 1)
+        .shared_x()
+        .aspect(4.0, 28.0);
+    plot::files(
+        ROW_FIGURE,
+        &figure,
+        &FigureOptions::default().with_formats(&FORMATS),
+        PAGE_MM,
+    )
 }
 
 /// The three panels.
 pub fn panels(model: &RowModel, solution: &RowSolution) -> Vec<Panel> {
     let n_impacts = solution.impacts.len();
     let label = format!("impact ({n_impacts})");
-    let impacts: Vec<VerticalLine> = solution
+    let impacts: Vec<RugMark> = solution
         .impacts
         .iter()
-        .map(|i| VerticalLine {
+        .map(|i| RugMark {
             x: i.t,
-            color: 4,
+            color: 0,
+            top: false,
             label: label.clone(),
+            marker: Marker::Cross,
         })
         .collect();
     let first = &solution.columns[0].samples;
-    let mut floor = Panel::new("Floor acceleration", "t (s)", "a (m/s²)").with(
-        Series::line(
-            "a(t)",
-            first.iter().map(|s| (s.t, s.floor_acc)).collect(),
-            0,
-        )
-        .with_width(2),
-    );
-    floor.legend = Legend::Outside;
-    let mut q = Panel::new(
-        "Top displacement of each column i (H × B, pre-uplift period T)",
-        "t (s)",
-        "q (m)",
-    );
+    let floor = Panel::new("", "t (s)", "a (m/s²)").with(Series::line(
+        "",
+        first.iter().map(|s| (s.t, s.floor_acc)).collect(),
+        0,
+    ));
+    let mut q = Panel::new("", "t (s)", "q (m)");
     for (i, column) in solution.columns.iter().enumerate() {
         let body = &model.bodies[i];
         // The pre-uplift period from the automaton's own rate: k = omega^2.
@@ -68,7 +64,7 @@ pub fn panels(model: &RowModel, solution: &RowSolution) -> Vec<Panel> {
             .linear_form(flexrock_core::automaton::Mode::PreUplift)
             .map_or(f64::NAN, |f| std::f64::consts::TAU / f.stiffness.sqrt());
         let name = format!(
-            "{i}: {} × {} m, T = {} s",
+            "column {i}: H × B = {} × {} m, T = {} s",
             crate::writers::significant(body.height, 4),
             crate::writers::significant(body.width, 4),
             crate::writers::significant(period, 3)
@@ -79,15 +75,10 @@ pub fn panels(model: &RowModel, solution: &RowSolution) -> Vec<Panel> {
                 column.samples.iter().map(|s| (s.t, s.q)).collect(),
                 i + 1,
             )
-            .with_width(2),
+            .with_dash(DASHES[i % DASHES.len()]),
         );
     }
-    q.legend = Legend::Outside;
-    let mut gaps = Panel::new(
-        "Clear gap between neighbours i|j (at rest, and the contact height y)",
-        "t (s)",
-        "gap (mm)",
-    );
+    let mut gaps = Panel::new("", "t (s)", "clear gap (mm)");
     for contact in model.row.contacts() {
         let c = contact.index;
         let (left, right) = (&solution.columns[c], &solution.columns[c + 1]);
@@ -110,12 +101,14 @@ pub fn panels(model: &RowModel, solution: &RowSolution) -> Vec<Panel> {
         }
         points.dedup_by(|a, b| a.0 == b.0);
         let name = format!(
-            "{c}|{}: {} mm, y = {} m",
+            "gap {c}|{}: {} mm at rest, at y = {} m",
             c + 1,
             crate::writers::significant(1e3 * contact.clearance, 4),
             crate::writers::significant(contact.height, 4)
         );
-        gaps = gaps.with(Series::line(&name, points, c + 1).with_width(2));
+        // The gaps in colours after the columns' (a colour means one thing in the figure).
+        let color = model.bodies.len() + 1 + c;
+        gaps = gaps.with(Series::line(&name, points, color).with_dash(DASHES[c % DASHES.len()]));
     }
     gaps.reference_lines = vec![(0.0, "contact".to_string())];
     // Held contact (persistent contact), and under the compliant law every stretch of contact,
@@ -128,7 +121,7 @@ pub fn panels(model: &RowModel, solution: &RowSolution) -> Vec<Panel> {
                 Span {
                     from,
                     to: to.unwrap_or(solution.final_time),
-                    color: contact + 1,
+                    color: model.bodies.len() + 1 + contact,
                     label: format!("{contact}|{} {what} ({count})", contact + 1),
                     strong,
                 }
@@ -150,18 +143,15 @@ pub fn panels(model: &RowModel, solution: &RowSolution) -> Vec<Panel> {
     gaps.spans.extend(shade(&stuck, "faces stuck", true));
     // The legend lists the pairs in order, a pair's stuck stretches drawn over its contacts.
     gaps.spans.sort_by_key(|span| (span.color, span.strong));
-    gaps.legend = Legend::Outside;
     let mut panels = vec![floor, q, gaps];
-    for (k, panel) in panels.iter_mut().enumerate() {
-        panel.vertical_lines = impacts.clone();
-        if k > 0 {
-            for line in &mut panel.vertical_lines {
-                line.label.clear();
-            }
-        }
+    for panel in &mut panels {
+        panel.rug = impacts.clone();
     }
     panels
 }
+
+/// The dashes of the columns' (and gaps') curves in turn, so that they differ in greyscale.
+const DASHES: [plot::Dash; 3] = [plot::Dash::Solid, plot::Dash::Dashed, plot::Dash::DashDot];
 
 /// The strip's file stem.
 pub const SHAPES_FIGURE: &str = "row_shapes";
@@ -169,8 +159,8 @@ pub const SHAPES_FIGURE: &str = "row_shapes";
 pub const MAX_SHAPE_TIMES: usize = 8;
 /// How many times the strip chooses on its own.
 const AUTOMATIC_TIMES: usize = 4;
-/// Each panel's smallest width and its height in pixels.
-const SHAPE_PANEL: (u32, u32) = (420, 820);
+/// The height of each panel's plotting area, mm, about (for the resolution of the drawn faces).
+const SHAPE_PLOT_MM: f64 = 60.0;
 /// Segments along each face of a drawn column, at most.
 const FACE_POINTS: usize = 40;
 /// A contact whose clear gap is within this of zero (m) is drawn as touching.
@@ -362,15 +352,17 @@ pub fn shape_figures(
             let (a, b) = (frame.points[0], frame.points[1]);
             (b.0 - a.0, b.1 - a.1)
         });
-    let width = plot::equal_aspect_width(SHAPE_PANEL.1, span).max(SHAPE_PANEL.0);
-    let size = (width * panels.len() as u32, SHAPE_PANEL.1);
-    let mut files = Vec::new();
-    for format in [Format::Svg, Format::Png] {
-        let name = format!("{SHAPES_FIGURE}.{}", format.extension());
-        let bytes = plot::figure_sized(format, &name, &panels, panels.len(), size)?;
-        files.push((name, bytes));
-    }
-    Ok(files)
+    // Plotting areas of the drawing's own proportions (with the paddings of an equal-aspect
+    // panel: 3 % each side across, 5 % up and down), no narrower than half their height.
+    let aspect = ((1.06 * span.0) / (1.1 * span.1)).max(0.5);
+    let columns = panels.len();
+    let figure = Figure::new(panels, columns).aspect(aspect, SHAPE_PLOT_MM);
+    plot::files(
+        SHAPES_FIGURE,
+        &figure,
+        &FigureOptions::default().with_formats(&FORMATS),
+        PAGE_MM,
+    )
 }
 
 /// The left toe of each column at rest: the bases spaced by the widths and the gaps.
@@ -409,20 +401,20 @@ pub fn shape_panels(
         .collect();
     let mut panels = Vec::new();
     let mut bounds = (f64::INFINITY, f64::NEG_INFINITY, 0.0f64);
-    // The drawing's scale, about: the tallest column over the plot's height in pixels.
+    // The drawing's scale, about: the tallest column over the plot's height in dots.
     let tallest = model.bodies.iter().map(|b| b.height).fold(0.0, f64::max);
-    let metres_per_pixel = 1.3 * tallest / (f64::from(SHAPE_PANEL.1) - 140.0);
+    let metres_per_pixel = 1.3 * tallest / crate::figures::page::dots(SHAPE_PLOT_MM);
     for (time, state) in times.iter().zip(states) {
         let title = if time.why.is_empty() {
-            format!("t = {} s", crate::writers::significant(time.t, 6))
+            format!("t = {} s", crate::writers::significant(time.t, 4))
         } else {
             format!(
                 "t = {} s, {}",
-                crate::writers::significant(time.t, 5),
+                crate::writers::significant(time.t, 3),
                 time.why
             )
         };
-        let mut panel = Panel::new(&title, "x (m), true scale", "y (m)");
+        let mut panel = Panel::new(&title, "x (m)", "y (m)");
         panel.equal_aspect = true;
         let mut outlines = Vec::new();
         for (i, sample) in state.iter().enumerate() {
@@ -446,7 +438,7 @@ pub fn shape_panels(
                 crate::writers::significant(body.height, 4),
                 crate::writers::significant(body.width, 4)
             );
-            panel = panel.with(Series::line(&name, outline.clone(), i + 1).with_width(2));
+            panel = panel.with(Series::line(&name, outline.clone(), i + 1));
             outlines.push(outline);
         }
         for contact in model.row.contacts() {
@@ -490,27 +482,20 @@ pub fn shape_panels(
         }
         panels.push(panel);
     }
-    // One scale for every panel: the same ranges, from the floor to above the tallest column
-    // (room for the legend), across the row and a margin.
+    // One scale for every panel (drawn to true scale: x and y in metres alike): the same
+    // ranges, from the floor to the tallest column, across the row and a margin.
     let tallest = model.bodies.iter().map(|b| b.height).fold(0.0, f64::max);
     let margin = 0.15 * (bounds.1 - bounds.0).max(1.0);
     let (left, right) = (bounds.0 - margin, bounds.1 + margin);
-    // The legend (a line of 28 pixels for each column and each contact, and its frame) must
-    // fit above the columns in a plotting area about 680 pixels high showing 1.1 times the
-    // height drawn: headroom h with h / (1.1 (H + h)) = L / 680.
-    let legend = 30.0 + 28.0 * (2 * model.bodies.len() - 1) as f64;
-    let plot_height = f64::from(SHAPE_PANEL.1) - 140.0;
-    let standing = bounds.2.max(tallest);
-    let top = standing + 1.1 * standing * legend / (plot_height - 1.1 * legend);
+    let top = 1.02 * bounds.2.max(tallest);
     for panel in &mut panels {
         panel.series.insert(
             0,
-            Series::line("", vec![(left, 0.0), (right, 0.0)], 0).with_width(3),
+            Series::line("", vec![(left, 0.0), (right, 0.0)], 0).with_width(1.5),
         );
         let mut frame = Series::line("", vec![(left, -0.02 * tallest), (right, top)], 0);
         frame.line = false;
         panel.series.push(frame);
-        panel.legend = Legend::UpperLeft;
     }
     panels
 }

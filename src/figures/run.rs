@@ -16,7 +16,8 @@ use std::path::{Path, PathBuf};
 
 use crate::error::Error;
 use crate::error::Result;
-use crate::figures::plot::{self, Format, Legend, Marker, Panel, Series, VerticalLine};
+use crate::figures::page::{Sizes, PAGE_MM};
+use crate::figures::plot::{self, Dash, Figure, Format, Marker, Panel, RugMark, Series};
 use crate::writers;
 use crate::writers::run_dir::{HistoryRow, RunData};
 use flexrock_core::automaton::{Automaton, EventKind};
@@ -24,21 +25,13 @@ use flexrock_core::automaton::{Automaton, EventKind};
 /// The figure files, in the order they are written.
 pub const FIGURES: [&str; 3] = ["plot_motion.svg", "plot_force.svg", "plot_energy.svg"];
 
-/// The figures' default sizes in pixels (width, height of the whole figure), in the order of
-/// [`FIGURES`]: four time panels stacked, three square panels side by side, two time panels.
-pub const DEFAULT_SIZES: [(u32, u32); 3] = [(1150, 1320), (1920, 560), (1150, 760)];
-/// The smallest and largest width or height `flexrock plot` draws, pixels.
-pub const SIZE_LIMITS: (u32, u32) = (200, 6_000);
-
 /// What `flexrock plot` draws: formats, size and time window.
 #[derive(Debug, Clone, PartialEq)]
 pub struct PlotOptions {
-    /// The formats, each a file per figure (plot_motion.svg, plot_motion.png, ...).
+    /// The formats, each a file per figure (plot_motion.svg, plot_motion.pdf, ...).
     pub formats: Vec<Format>,
-    /// The width of every figure, pixels [default: each figure's own, [`DEFAULT_SIZES`]].
-    pub width: Option<u32>,
-    /// The height of every figure, pixels [default: each figure's own].
-    pub height: Option<u32>,
+    /// The size on paper and a PNG's resolution.
+    pub sizes: Sizes,
     /// Draw only t in [from, to], s [default: the whole run].
     pub from: Option<f64>,
     /// See `from`.
@@ -49,8 +42,7 @@ impl Default for PlotOptions {
     fn default() -> Self {
         PlotOptions {
             formats: vec![Format::Svg],
-            width: None,
-            height: None,
+            sizes: Sizes::default(),
             from: None,
             to: None,
         }
@@ -58,7 +50,7 @@ impl Default for PlotOptions {
 }
 
 impl PlotOptions {
-    /// Checks the options: sizes within [`SIZE_LIMITS`], times finite, not negative, and from
+    /// Checks the options: sizes as [`Sizes::check`] says, times finite, not negative, and from
     /// before to. The error names the flag, its value and the rule.
     pub fn check(&self) -> Result<()> {
         let bad = |flag: &str, value: String, rule: String| {
@@ -68,23 +60,13 @@ impl PlotOptions {
                 rule,
             })
         };
-        for (flag, size) in [("--width", self.width), ("--height", self.height)] {
-            if let Some(px) = size {
-                if !(SIZE_LIMITS.0..=SIZE_LIMITS.1).contains(&px) {
-                    return Err(bad(
-                        flag,
-                        px.to_string(),
-                        format!("must be from {} to {} pixels", SIZE_LIMITS.0, SIZE_LIMITS.1),
-                    ));
-                }
-            }
-        }
+        self.sizes.check()?;
         for (flag, t) in [("--from", self.from), ("--to", self.to)] {
             if let Some(t) = t {
                 if !t.is_finite() || t < 0.0 {
                     return Err(bad(
                         flag,
-                        t.to_string(),
+                        flexrock_core::format::shortest(t),
                         "must be a finite time in seconds, 0 or more".to_string(),
                     ));
                 }
@@ -94,8 +76,11 @@ impl PlotOptions {
             if from >= to {
                 return Err(bad(
                     "--from",
-                    from.to_string(),
-                    format!("must be less than --to ({to} s)"),
+                    flexrock_core::format::shortest(from),
+                    format!(
+                        "must be less than --to ({} s)",
+                        flexrock_core::format::shortest(to)
+                    ),
                 ));
             }
         }
@@ -184,10 +169,7 @@ pub fn figures_with(data: &RunData, options: &PlotOptions) -> Result<Vec<(String
             (&windowed, Some((t0, t1)))
         }
     };
-    let size = |i: usize| {
-        let (w, h) = DEFAULT_SIZES[i];
-        (options.width.unwrap_or(w), options.height.unwrap_or(h))
-    };
+    let page = options.sizes.page(PAGE_MM);
     let mut energy = energy_panels(data, &automaton);
     if let Some((t0, t1)) = window {
         for panel in &mut energy {
@@ -197,15 +179,20 @@ pub fn figures_with(data: &RunData, options: &PlotOptions) -> Result<Vec<(String
         }
     }
     let mut files = Vec::new();
-    for (i, panels, columns) in [
-        (0, motion_panels(shown), 1),
-        (1, force_panels(shown, &automaton), 3),
-        (2, energy, 1),
-    ] {
+    for (i, figure) in [
+        Figure::new(motion_panels(shown), 1)
+            .shared_x()
+            .aspect(4.5, 24.0),
+        Figure::new(force_panels(shown, &automaton), 3).aspect(1.0, 25.0),
+        Figure::new(energy, 1).shared_x().aspect(3.2, 30.0),
+    ]
+    .into_iter()
+    .enumerate()
+    {
         for &format in &options.formats {
             let stem = FIGURES[i].trim_end_matches(".svg");
             let name = format!("{stem}.{}", format.extension());
-            let bytes = plot::figure_sized(format, &name, &panels, columns, size(i))?;
+            let bytes = plot::render(format, &name, &figure, &page)?;
             files.push((name, bytes));
         }
     }
@@ -247,79 +234,81 @@ fn series(rows: &[HistoryRow], xy: impl Fn(&HistoryRow) -> (f64, f64)) -> Vec<(f
     rows.iter().map(xy).collect()
 }
 
-/// A time series, drawn two pixels wide: readable when the figure is printed a column wide.
-fn curve(name: &str, points: Vec<(f64, f64)>, color: usize) -> Series {
-    Series::line(name, points, color).with_width(2)
-}
-
 /// +-level with one legend entry.
 fn pair(level: f64, label: String) -> Vec<(f64, String)> {
     vec![(level, label), (-level, String::new())]
 }
 
-/// The run's events as thin vertical lines, one colour per kind, for every time panel.
-fn event_lines(data: &RunData) -> Vec<VerticalLine> {
+/// Palette colour, marker and side of the rug of each kind of event: colours that no curve of
+/// the figures uses (vermillion and blue are r and s), told apart in greyscale by the marker.
+const EVENT_STYLES: [(EventKind, usize, Marker, bool); 3] = [
+    (EventKind::Uplift, 4, Marker::TriangleUp, false),
+    (EventKind::Landing, 3, Marker::TriangleDown, true),
+    (EventKind::Overturn, 0, Marker::Cross, false),
+];
+
+/// The run's events as a rug: a short tick per event, uplifts along the bottom edge and
+/// landings along the top, in the colours of the markers of the velocity panel.
+fn event_rug(data: &RunData) -> Vec<RugMark> {
     EVENT_STYLES
         .iter()
-        .flat_map(|&(kind, color, _)| {
+        .flat_map(|&(kind, color, marker, top)| {
             let n = data.events.iter().filter(|e| e.kind == kind).count();
-            let label = format!("{} ({n})", kind.name());
+            let label = event_label(kind, n);
             data.events
                 .iter()
                 .filter(move |e| e.kind == kind)
-                .map(move |e| VerticalLine {
+                .map(move |e| RugMark {
                     x: e.t,
                     color,
+                    top,
                     label: label.clone(),
+                    marker,
                 })
         })
         .collect()
 }
 
-/// Colour and marker of each kind of event.
-const EVENT_STYLES: [(EventKind, usize, Marker); 3] = [
-    (EventKind::Uplift, 1, Marker::TriangleUp),
-    (EventKind::Landing, 2, Marker::TriangleDown),
-    (EventKind::Overturn, 4, Marker::Cross),
-];
+/// The legend text of `n` events of a kind.
+fn event_label(kind: EventKind, n: usize) -> String {
+    format!("{} ({n})", kind.name())
+}
 
-/// Panels of plot_motion.svg.
+/// Panels of plot_motion: floor acceleration, q with +-s_n and +-B, s and r, and the top
+/// velocity with the events marked; the events as a rug on the first three.
 pub fn motion_panels(data: &RunData) -> Vec<Panel> {
     let h = &data.history;
     let c = &data.summary.constants;
     let (s_n, b) = (c.uplift_displacement, c.width);
-    let s_n_label = format!("±s_n = {} m", writers::significant(s_n, 4));
-    let b_label = format!("±B = {} m", writers::significant(b, 4));
-    let events = event_lines(data);
+    let s_n_label = format!("±sₙ = {} m (uplift)", writers::significant(s_n, 4));
+    let b_label = format!("±B = {} m (overturning)", writers::significant(b, 4));
+    let rug = event_rug(data);
 
-    let mut floor = Panel::new("Floor acceleration", "t (s)", "a (m/s²)").with(curve(
-        "a(t)",
+    let floor = Panel::new("", "t (s)", "a (m/s²)").with(Series::line(
+        "",
         series(h, |r| (r.t, r.floor_acc)),
         0,
     ));
-    floor.legend = Legend::Outside;
-
-    let mut q = Panel::new("Top displacement", "t (s)", "q (m)").with(curve(
-        "q(t)",
-        series(h, |r| (r.t, r.q)),
-        0,
-    ));
-    q.reference_lines = pair(s_n, format!("{s_n_label} (uplift)"));
-    q.dashed_lines = pair(b, format!("{b_label} (overturning)"));
-    q.legend = Legend::Outside;
-
-    let mut parts = Panel::new("Flexural part s and rocking part r", "t (s)", "s, r (m)")
-        .with(curve("s(t), flexural", series(h, |r| (r.t, r.s)), 2))
-        .with(curve("r(t), rocking", series(h, |r| (r.t, r.r)), 1));
+    let mut q =
+        Panel::new("", "t (s)", "q (m)").with(Series::line("", series(h, |r| (r.t, r.q)), 0));
+    q.reference_lines = pair(s_n, s_n_label.clone());
+    q.dashed_lines = pair(b, b_label);
+    let mut parts = Panel::new("", "t (s)", "s, r (m)")
+        .with(Series::line(
+            "s, flexural part",
+            series(h, |r| (r.t, r.s)),
+            2,
+        ))
+        .with(
+            Series::line("r, rocking part", series(h, |r| (r.t, r.r)), 1).with_dash(Dash::Dashed),
+        );
     parts.reference_lines = pair(s_n, s_n_label);
-    parts.legend = Legend::Outside;
-
-    let mut velocity = Panel::new("Top velocity", "t (s)", "dq/dt (m/s)").with(curve(
-        "dq/dt",
+    let mut velocity = Panel::new("", "t (s)", "q\u{307} (m/s)").with(Series::line(
+        "",
         series(h, |r| (r.t, r.qdot)),
         0,
     ));
-    for (kind, color, marker) in EVENT_STYLES {
+    for (kind, color, marker, _) in EVENT_STYLES {
         let points: Vec<(f64, f64)> = data
             .events
             .iter()
@@ -327,20 +316,13 @@ pub fn motion_panels(data: &RunData) -> Vec<Panel> {
             .map(|e| (e.t, e.qdot_before))
             .collect();
         if !points.is_empty() {
-            let name = format!("{} ({})", kind.name(), points.len());
+            let name = event_label(kind, points.len());
             velocity = velocity.with(Series::markers(&name, points, color, marker));
         }
     }
-    velocity.legend = Legend::Outside;
     let mut panels = vec![floor, q, parts, velocity];
-    for (i, panel) in panels.iter_mut().enumerate() {
-        panel.vertical_lines = events.clone();
-        // The q' panel lists the events with its markers; the others list the lines.
-        if i == 3 {
-            for line in &mut panel.vertical_lines {
-                line.label.clear();
-            }
-        }
+    for panel in &mut panels[..3] {
+        panel.rug = rug.clone();
     }
     panels
 }
@@ -358,20 +340,19 @@ pub fn restoring_force_curve(automaton: &Automaton) -> Vec<(f64, f64)> {
         .collect()
 }
 
-/// Panels of plot_force.svg.
+/// Panels of plot_force: F(q) with the run's path on the model's curve, q against r, s
+/// against r.
 pub fn force_panels(data: &RunData, automaton: &Automaton) -> Vec<Panel> {
     let h = &data.history;
     // The run's path first and wide, the model's curve over it and thin: where the run went,
-    // the black line runs inside a red band.
-    let mut force = Panel::new("Restoring force", "q (m)", "F (N)")
-        .with(Series::line("this run", series(h, |r| (r.q, r.restoring_force)), 1).with_width(6))
-        .with(Series::line("model F(q)", restoring_force_curve(automaton), 0).with_width(1));
-    // F has the sign of q: the upper left quarter is empty.
-    force.legend = Legend::UpperLeft;
-    let mut q_r = Panel::new("Top displacement against rocking part", "r (m)", "q (m)")
-        .with(Series::line("", series(h, |r| (r.r, r.q)), 0));
-    let mut s_r = Panel::new("Flexural part against rocking part", "r (m)", "s (m)")
-        .with(Series::line("", series(h, |r| (r.r, r.s)), 0));
+    // the black line runs inside a pale band.
+    let force = Panel::new("", "q (m)", "F (N)")
+        .with(Series::line("this run", series(h, |r| (r.q, r.restoring_force)), 6).with_width(3.0))
+        .with(Series::line("model F(q)", restoring_force_curve(automaton), 0).with_width(0.6));
+    let mut q_r =
+        Panel::new("", "r (m)", "q (m)").with(Series::line("", series(h, |r| (r.r, r.q)), 0));
+    let mut s_r =
+        Panel::new("", "r (m)", "s (m)").with(Series::line("", series(h, |r| (r.r, r.s)), 0));
     q_r.pad_x = true;
     s_r.pad_x = true;
     vec![force, q_r, s_r]
@@ -395,39 +376,47 @@ pub fn energy_lost_at_events(data: &RunData, automaton: &Automaton) -> Vec<(f64,
     points
 }
 
-/// Panels of plot_energy.svg.
+/// Panels of plot_energy: the energy books against t, and the energy residual over the run's
+/// energy scale. Six curves: told apart by dashes as well as colours.
 pub fn energy_panels(data: &RunData, automaton: &Automaton) -> Vec<Panel> {
     let h = &data.history;
     let kinetic = |r: &HistoryRow| automaton.kinetic_energy(r.qdot);
     let potential = |r: &HistoryRow| automaton.potential_energy(r.mode, r.q);
-    let mut books = Panel::new("Energy balance", "t (s)", "E (J)")
-        .with(curve(
-            "kinetic M_e (dq/dt)²/2",
+    let books = Panel::new("", "t (s)", "energy E (J)")
+        .with(Series::line(
+            "kinetic Mₑq\u{307}²/2",
             series(h, |r| (r.t, kinetic(r))),
             2,
         ))
-        .with(curve(
-            "potential V(q)",
-            series(h, |r| (r.t, potential(r))),
-            3,
-        ))
-        .with(curve(
-            "E = kinetic + V",
-            series(h, |r| (r.t, kinetic(r) + potential(r))),
-            0,
-        ))
-        .with(curve("input work", series(h, |r| (r.t, r.work_input)), 1))
-        .with(curve(
-            "damping work",
-            series(h, |r| (r.t, r.work_damping)),
-            4,
-        ))
-        .with(curve(
-            "net loss at events",
-            energy_lost_at_events(data, automaton),
-            5,
-        ));
-    books.legend = Legend::Outside;
+        .with(
+            Series::line("potential V(q)", series(h, |r| (r.t, potential(r))), 3)
+                .with_dash(Dash::Dashed),
+        )
+        .with(
+            Series::line(
+                "E = kinetic + V",
+                series(h, |r| (r.t, kinetic(r) + potential(r))),
+                0,
+            )
+            .with_width(1.2),
+        )
+        .with(
+            Series::line("input work", series(h, |r| (r.t, r.work_input)), 1)
+                .with_dash(Dash::DashDot),
+        )
+        .with(
+            Series::line("damping work", series(h, |r| (r.t, r.work_damping)), 4)
+                .with_dash(Dash::Dotted)
+                .with_width(1.2),
+        )
+        .with(
+            Series::line(
+                "net loss at events",
+                energy_lost_at_events(data, automaton),
+                5,
+            )
+            .with_dash(Dash::Dashed),
+        );
 
     let summary = &data.summary;
     // A run without motion has no energy: measure against 1 J then.
@@ -436,15 +425,19 @@ pub fn energy_panels(data: &RunData, automaton: &Automaton) -> Vec<Panel> {
     } else {
         1.0
     };
-    let mut residual = Panel::new("Energy residual", "t (s)", "ΔE / E_s").with(curve(
-        &format!("ΔE / E_s, E_s = {} J", writers::significant(scale, 4)),
+    let mut residual = Panel::new(
+        "",
+        "t (s)",
+        &format!("ΔE/Eₛ, Eₛ = {} J", writers::significant(scale, 3)),
+    )
+    .with(Series::line(
+        "",
         series(h, |r| (r.t, r.energy_residual / scale)),
         0,
     ));
     residual.reference_lines = pair(
         summary.max_energy_residual / scale,
-        "±max |ΔE| / E_s".to_string(),
+        "±max |ΔE|/Eₛ".to_string(),
     );
-    residual.legend = Legend::Outside;
     vec![books, residual]
 }

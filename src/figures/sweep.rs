@@ -12,156 +12,96 @@
 
 use std::path::Path;
 
-use plotters::prelude::*;
-use plotters::style::text_anchor::{HPos, Pos, VPos};
+use crate::error::Result;
+use crate::figures::page::{FigureOptions, PAGE_MM};
+use crate::figures::plot::{self, Dash, Figure, Marker, Panel, Series, Swatch};
+use flexrock_core::sweep::Plan;
 
-use crate::commands::sweep::store::Counts;
-use crate::error::{Error, Result};
-use crate::figures::plot::{Legend, Marker, Panel, Series};
-use flexrock_core::sweep::{Layout, Plan};
+pub use crate::sweep_table::SweepTable;
 
-/// sweep.csv read back: its columns and rows of text.
-pub struct SweepTable {
-    /// Column names, from the header.
-    pub columns: Vec<String>,
-    /// The fields of each row, as text (one allocation per row: a map has many).
-    pub rows: Vec<csv::StringRecord>,
-    path: std::path::PathBuf,
-}
-
-impl SweepTable {
-    /// The table of the rows `pieces` under `columns`: what a CSV reader finds in sweep.csv,
-    /// the header and the pieces' text joined. A piece's fields are taken as they are where it
-    /// has them (the text was written from them), else read from its text, the pieces in
-    /// parallel; `path` names the table in messages.
-    pub(crate) fn of_pieces(
-        columns: &[String],
-        pieces: &mut [crate::commands::sweep::store::Piece],
-        path: &Path,
-    ) -> Result<SweepTable> {
-        use rayon::prelude::*;
-        let read =
-            |piece: &mut crate::commands::sweep::store::Piece| -> Result<Vec<csv::StringRecord>> {
-                if let Some(records) = piece.records.take() {
-                    return Ok(records);
-                }
-                csv::ReaderBuilder::new()
-                    .has_headers(false)
-                    .from_reader(piece.rows.as_slice())
-                    .records()
-                    .map(|record| {
-                        let malformed = |message: String| Error::ReadResult {
-                            path: path.to_path_buf(),
-                            message: format!("a malformed row: {message}"),
-                        };
-                        let record = record.map_err(|e| malformed(e.to_string()))?;
-                        if record.len() != columns.len() {
-                            return Err(malformed(format!(
-                                "{} fields under {} columns",
-                                record.len(),
-                                columns.len()
-                            )));
-                        }
-                        Ok(record)
-                    })
-                    .collect()
-            };
-        let parts: Vec<Vec<csv::StringRecord>> =
-            pieces.par_iter_mut().map(read).collect::<Result<_>>()?;
-        Ok(SweepTable {
-            columns: columns.to_vec(),
-            rows: parts.into_iter().flatten().collect(),
-            path: path.to_path_buf(),
-        })
-    }
-
-    /// The index of a column.
-    pub fn column(&self, name: &str) -> Result<usize> {
-        self.columns
-            .iter()
-            .position(|c| c == name)
-            .ok_or_else(|| Error::ReadResult {
-                path: self.path.clone(),
-                message: format!("has no column {name}"),
-            })
-    }
-
-    /// A numeric field; None when empty or not a number.
-    pub fn number(&self, row: usize, column: usize) -> Option<f64> {
-        self.rows[row][column].parse().ok()
-    }
-
-    /// Counts of the rows by status, and of the points that overturned: for a minimum search,
-    /// that overturned somewhere in the interval; for a row, where a column overturned.
-    pub fn counts(&self, layout: Layout) -> Result<Counts> {
-        let status = self.column("status")?;
-        // Counted where the column is not empty (and, for runs, "true").
-        let (overturned, any_value) = match layout {
-            Layout::Runs => (self.column("overturned")?, false),
-            Layout::Minimum(_) => (self.column("min_overturning")?, true),
-            Layout::Row(_) => (self.column("overturned_column")?, true),
-        };
-        let find_min = any_value;
-        let share = match layout {
-            Layout::Runs => Some(self.column("energy_residual_share")?),
-            _ => None,
-        };
-        let mut counts = Counts::default();
-        for (r, row) in self.rows.iter().enumerate() {
-            if share
-                .and_then(|c| self.number(r, c))
-                .is_some_and(|s| s > crate::commands::run::ENERGY_RESIDUAL_WARNING_SHARE)
-            {
-                counts.inaccurate += 1;
-            }
-            match &row[status] {
-                "ok" => counts.ok += 1,
-                "invalid" => counts.invalid += 1,
-                _ => counts.failed += 1,
-            }
-            let over = &row[overturned];
-            if (find_min && !over.is_empty()) || (!find_min && over == "true") {
-                counts.overturned += 1;
-            }
-        }
-        Ok(counts)
-    }
-}
-
-/// The figures of a sweep, as (file name, SVG bytes).
-pub fn figures(plan: &Plan, table: &SweepTable) -> Result<Vec<(String, Vec<u8>)>> {
+/// The figures of a sweep, as (file stem, figure): the map, the spectrum, the IDA curves or a
+/// row's verdict maps, whichever its axes make.
+pub fn figures(plan: &Plan, table: &SweepTable) -> Result<Vec<(&'static str, Figure)>> {
     let numeric: Vec<usize> = (0..plan.axes.len())
         .filter(|&i| plan.axes[i].is_numeric())
         .collect();
     if let Some(n) = plan.row_columns {
         return match (plan.axes.len(), numeric.as_slice()) {
-            (2, [x, y]) => crate::figures::sweep_row::verdict_maps(plan, table, n, *x, *y),
+            (2, [x, y]) => Ok(
+                crate::figures::sweep_row::verdict_maps(plan, table, n, *x, *y)?
+                    .map(|f| (VERDICTS, f))
+                    .into_iter()
+                    .collect(),
+            ),
             _ => Ok(Vec::new()),
         };
     }
     match (&plan.find_min, plan.axes.len(), numeric.as_slice()) {
         (None, 2, [x, y]) => Ok(map(plan, table, *x, *y)?
-            .map(|svg| ("map.svg".to_string(), svg))
+            .map(|f| ("map", f))
             .into_iter()
             .collect()),
-        (Some(_), 1, [x]) => Ok(vec![(
-            "spectrum.svg".to_string(),
-            spectrum(plan, table, *x)?,
-        )]),
+        (Some(_), 1, [x]) => Ok(spectrum(plan, table, *x)?
+            .map(|f| ("spectrum", f))
+            .into_iter()
+            .collect()),
         // Incremental dynamic analysis: records against an intensity, or one record's scale.
-        (None, 1 | 2, [x]) if is_ida(plan, *x) => {
-            Ok(vec![(IDA_FILE.to_string(), ida(plan, table, *x)?)])
-        }
+        (None, 1 | 2, [x]) if is_ida(plan, *x) => Ok(vec![(
+            IDA,
+            ida_figure(&IdaData::of_sweep(plan, table, *x)?),
+        )]),
         _ => Ok(Vec::new()),
     }
 }
 
-/// The figure of a sweep over records and an intensity (incremental dynamic analysis).
-pub const IDA_FILE: &str = "ida.svg";
-/// The maps of a row sweep over two numeric axes: each column's verdict.
-pub const VERDICTS_SVG: &str = "verdicts.svg";
-/// The same maps as PNG.
-pub const VERDICTS_PNG: &str = "verdicts.png";
+/// The figure files of a sweep in the formats and size of `options`: map.svg, map.pdf, ...
+pub fn files(
+    plan: &Plan,
+    table: &SweepTable,
+    options: &FigureOptions,
+) -> Result<Vec<(String, Vec<u8>)>> {
+    let mut files = Vec::new();
+    for (stem, figure) in figures(plan, table)? {
+        files.extend(plot::files(stem, &figure, options, PAGE_MM)?);
+    }
+    Ok(files)
+}
+
+/// The figure files a sweep writes with its table: SVG, and the verdict maps of a row as PNG
+/// too (as they always were).
+pub fn sweep_files(plan: &Plan, table: &SweepTable) -> Result<Vec<(String, Vec<u8>)>> {
+    use crate::figures::page::Format;
+    let mut files = Vec::new();
+    for (stem, figure) in figures(plan, table)? {
+        let formats: &[Format] = if stem == VERDICTS {
+            &[Format::Svg, Format::Png]
+        } else {
+            &[Format::Svg]
+        };
+        let options = FigureOptions::default().with_formats(formats);
+        files.extend(plot::files(stem, &figure, &options, PAGE_MM)?);
+    }
+    Ok(files)
+}
+
+/// The stem of the figure of a sweep over records and an intensity.
+pub const IDA: &str = "ida";
+/// The stem of the maps of a row sweep over two numeric axes: each column's verdict.
+pub const VERDICTS: &str = "verdicts";
+/// Every figure file a sweep may write, in every format.
+pub fn figure_files() -> Vec<String> {
+    let mut names = Vec::new();
+    for stem in ["map", "spectrum", IDA, VERDICTS] {
+        for format in [
+            crate::figures::page::Format::Svg,
+            crate::figures::page::Format::Pdf,
+            crate::figures::page::Format::Png,
+        ] {
+            names.push(format!("{stem}.{}", format.extension()));
+        }
+    }
+    names
+}
 
 /// True for a sweep whose numeric axis `x` scales the excitation (excitation.scale or
 /// excitation.amplitude) beside an axis of records (excitation.path), or is excitation.scale
@@ -175,52 +115,58 @@ fn is_ida(plan: &Plan, x: usize) -> bool {
     }
 }
 
-/// The short name of a record file: its file name.
+/// The short name of a record file: its file name without the extension.
 fn record_name(path: &str) -> String {
     Path::new(path)
-        .file_name()
+        .file_stem()
         .map_or_else(|| path.to_string(), |n| n.to_string_lossy().into_owned())
 }
 
-/// Incremental dynamic analysis: max |q|/B against the intensity axis `x`, one line per value of
-/// the other axis (a record, or any other setting), overturned points marked with a cross in the
-/// record's colour at |q|/B = 1, where the line of that record ends.
-fn ida(plan: &Plan, table: &SweepTable, x: usize) -> Result<Vec<u8>> {
-    let q_column = table.column("max_abs_q_over_B")?;
-    let over_column = table.column("overturned")?;
-    let other = (0..plan.axes.len()).find(|&i| i != x);
-    let groups = other.map_or(1, |o| plan.axes[o].len());
-    // (intensity, max |q|/B, overturned) per group.
-    let mut points: Vec<Vec<(f64, f64, bool)>> = vec![Vec::new(); groups];
-    for (r, row) in table.rows.iter().enumerate() {
-        let point = point_of(table, r, row)?;
-        let c = plan.coordinates(point);
-        let Some(xv) = plan.axes[x].number(c[x]) else {
-            continue;
-        };
-        let overturned = &row[over_column] == "true";
-        let value = table.number(r, q_column);
-        let g = other.map_or(0, |o| c[o]);
-        match (overturned, value) {
-            (true, _) => points[g].push((xv, 1.0, true)),
-            (false, Some(v)) => points[g].push((xv, v, false)),
-            (false, None) => {}
+/// The curves of an incremental dynamic analysis as plain data: what the x axis is, and per
+/// record (or other setting) a label and its points, so that another intensity measure or
+/// other labels can be given than a sweep's own.
+#[derive(Debug, Clone, PartialEq)]
+pub struct IdaData {
+    /// The x axis's label (the intensity measure and its unit).
+    pub x_label: String,
+    /// One curve per record.
+    pub curves: Vec<IdaCurve>,
+}
+
+/// One record's curve of an incremental dynamic analysis.
+#[derive(Debug, Clone, PartialEq)]
+pub struct IdaCurve {
+    /// The legend text (a record's name).
+    pub label: String,
+    /// (intensity, max |q|/B, overturned), in any order; an overturned point's value is
+    /// not used.
+    pub points: Vec<(f64, f64, bool)>,
+}
+
+impl IdaData {
+    /// The curves of a sweep with intensity axis `x`: the axis's values as the intensity, one
+    /// curve per value of the other axis, labelled by the record's file stem.
+    pub fn of_sweep(plan: &Plan, table: &SweepTable, x: usize) -> Result<IdaData> {
+        let q_column = table.column("max_abs_q_over_B")?;
+        let over_column = table.column("overturned")?;
+        let other = (0..plan.axes.len()).find(|&i| i != x);
+        let groups = other.map_or(1, |o| plan.axes[o].len());
+        let mut points: Vec<Vec<(f64, f64, bool)>> = vec![Vec::new(); groups];
+        for (r, row) in table.rows.iter().enumerate() {
+            let point = table.point(r, row)?;
+            let c = plan.coordinates(point);
+            let Some(xv) = plan.axes[x].number(c[x]) else {
+                continue;
+            };
+            let overturned = &row[over_column] == "true";
+            let g = other.map_or(0, |o| c[o]);
+            match (overturned, table.number(r, q_column)) {
+                (true, _) => points[g].push((xv, 1.0, true)),
+                (false, Some(v)) => points[g].push((xv, v, false)),
+                (false, None) => {}
+            }
         }
-    }
-    let mut panel = Panel::new(
-        "Incremental dynamic analysis",
-        &axis_label(&plan.axes[x].key),
-        "max |q| / B",
-    );
-    let mut crosses = Vec::new();
-    for (g, mut group) in points.into_iter().enumerate() {
-        group.sort_by(|a, b| a.0.total_cmp(&b.0));
-        // The line up to the first overturning point; the points beyond it overturn too, or
-        // (rarely, resurrection) stand again: those are drawn as markers only.
-        let first_over = group.iter().position(|p| p.2);
-        let upto = first_over.map_or(group.len(), |i| i + 1);
-        let line: Vec<(f64, f64)> = group[..upto].iter().map(|p| (p.0, p.1)).collect();
-        let name = match other {
+        let label = |g: usize| match other {
             Some(o) if plan.axes[o].key == "excitation.path" => {
                 record_name(&plan.axes[o].values[g])
             }
@@ -229,47 +175,160 @@ fn ida(plan: &Plan, table: &SweepTable, x: usize) -> Result<Vec<u8>> {
                 axis_label(&plan.axes[o].key),
                 plan.axes[o].values[g]
             ),
-            None => "max |q| / B".to_string(),
+            None => "max |q|/B".to_string(),
         };
-        // Palette colours 1..7 (0, black, is for references), with a marker shape per line.
+        Ok(IdaData {
+            x_label: axis_label(&plan.axes[x].key),
+            curves: points
+                .into_iter()
+                .enumerate()
+                .map(|(g, points)| IdaCurve {
+                    label: label(g),
+                    points,
+                })
+                .collect(),
+        })
+    }
+}
+
+/// The p-quantile (0 to 1) of `values` sorted ascending (+inf for an overturned record), by
+/// linear interpolation between order statistics.
+fn quantile(sorted: &[f64], p: f64) -> f64 {
+    let h = p * (sorted.len() - 1) as f64;
+    let (lo, hi) = (h.floor() as usize, h.ceil() as usize);
+    if sorted[hi].is_infinite() {
+        return f64::INFINITY;
+    }
+    sorted[lo] + (h - lo as f64) * (sorted[hi] - sorted[lo])
+}
+
+/// Incremental dynamic analysis: max |q|/B against the intensity, a line per record up to its
+/// first overturning; the overturnings as crosses above |q| = B, stacked where records first
+/// overturn at one intensity so that none hides another; with three records or more, the
+/// median and the 16 % and 84 % fractiles of max |q|/B over the records at each intensity (an
+/// overturned record counts as above every value), drawn while they stand.
+pub fn ida_figure(data: &IdaData) -> Figure {
+    let mut panel = Panel::new("", &data.x_label, "max |q|/B");
+    let mut firsts: Vec<(f64, usize)> = Vec::new();
+    let many = data.curves.len() > 1;
+    for (g, curve) in data.curves.iter().enumerate() {
+        let mut group = curve.points.clone();
+        group.sort_by(|a, b| a.0.total_cmp(&b.0));
+        // The line up to the first overturning point; the points beyond it overturn too, or
+        // (rarely, resurrection) stand again: those are drawn as markers only.
+        let first_over = group.iter().position(|p| p.2);
+        let upto = first_over.unwrap_or(group.len());
+        let mut line: Vec<(f64, f64)> = group[..upto].iter().map(|p| (p.0, p.1)).collect();
+        if let Some(i) = first_over {
+            line.push((group[i].0, 1.0));
+        }
+        // Palette colours 1..7 (0, black, is for the median), dashes cycling with them.
         let color = 1 + g % 7;
-        panel = panel.with(
-            Series::line(&name, line, color)
-                .with_width(2)
-                .with_markers(),
-        );
+        let dash = [Dash::Solid, Dash::Dashed, Dash::DashDot][(g / 7) % 3];
+        let width = if many { 0.7 } else { LINE };
+        let mut series = Series::line(&curve.label, line, color)
+            .with_width(width)
+            .with_dash(dash);
+        if data.curves.len() <= 7 {
+            series = series.with_marker(Marker::Circle);
+        }
+        panel = panel.with(series);
         let beyond: Vec<(f64, f64)> = group[upto..]
             .iter()
             .filter(|p| !p.2)
             .map(|p| (p.0, p.1))
             .collect();
         if !beyond.is_empty() {
-            panel = panel.with(Series::markers("", beyond, color, Marker::Circle));
+            panel = panel.with(Series::markers("", beyond, color, Marker::OpenCircle));
         }
-        let over: Vec<(f64, f64)> = group.iter().filter(|p| p.2).map(|p| (p.0, p.1)).collect();
-        crosses.extend(over.iter().copied());
-        if !over.is_empty() {
-            panel = panel.with(Series::markers("", over, color, Marker::Cross));
+        if let Some(i) = first_over {
+            firsts.push((group[i].0, color));
         }
     }
-    if !crosses.is_empty() {
-        // The legend's entry for the crosses, in black; drawn first, each under the cross in
-        // its record's colour.
-        panel
+    // The crosses: at 1.06, 1.12, ... above |q| = B, one row per record that first overturns
+    // at that intensity.
+    firsts.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let mut stacked = 0usize;
+    let mut k = 0;
+    while k < firsts.len() {
+        let same = firsts[k..]
+            .iter()
+            .take_while(|f| f.0 == firsts[k].0)
+            .count();
+        for (j, &(x, color)) in firsts[k..k + same].iter().enumerate() {
+            panel = panel.with(Series::markers(
+                "",
+                vec![(x, 1.0 + 0.06 * (j + 1) as f64)],
+                color,
+                Marker::Cross,
+            ));
+            stacked = stacked.max(j + 1);
+        }
+        k += same;
+    }
+    // The median and fractiles over the records at each intensity they all share.
+    if data.curves.len() >= 3 {
+        let mut xs: Vec<f64> = data
+            .curves
+            .iter()
+            .flat_map(|c| c.points.iter().map(|p| p.0))
+            .collect();
+        xs.sort_by(f64::total_cmp);
+        xs.dedup();
+        let mut stats: [Vec<(f64, f64)>; 3] = Default::default();
+        for &x in &xs {
+            let mut at: Vec<f64> = data
+                .curves
+                .iter()
+                .filter_map(|c| c.points.iter().find(|p| p.0 == x))
+                .map(|p| if p.2 { f64::INFINITY } else { p.1 })
+                .collect();
+            if at.len() < data.curves.len() {
+                continue;
+            }
+            at.sort_by(f64::total_cmp);
+            for (s, p) in stats.iter_mut().zip([0.5, 0.16, 0.84]) {
+                let v = quantile(&at, p);
+                if v.is_finite() {
+                    s.push((x, v));
+                }
+            }
+        }
+        let [median, low, high] = stats;
+        panel = panel
+            .with(Series::line("median", median, 0).with_width(1.8))
+            .with(Series::line("16 % and 84 % fractiles", low, 0).with_dash(Dash::Dashed))
+            .with(Series::line("", high, 0).with_dash(Dash::Dashed));
+    }
+    panel.dashed_lines = vec![(1.0, "|q| = B (overturning)".to_string())];
+    if stacked > 0 {
+        let lo = panel
             .series
-            .insert(0, Series::markers("overturned", crosses, 0, Marker::Cross));
+            .iter()
+            .flat_map(|s| s.points.iter().map(|p| p.1))
+            .filter(|v| v.is_finite())
+            .fold(0.0f64, f64::min);
+        panel.y_range = Some((lo, 1.0 + 0.06 * (stacked + 1) as f64));
     }
-    panel.dashed_lines = vec![(1.0, "|q| = B".to_string())];
-    panel.legend = Legend::Outside;
-    crate::figures::plot::figure(IDA_FILE, &[panel], 1, (1100, 600)).map(String::into_bytes)
+    let mut figure = Figure::new(vec![panel], 1).aspect(1.5, 40.0);
+    if stacked > 0 {
+        figure.extra_legend.push((
+            "first overturning of a record (stacked above |q| = B)".to_string(),
+            Swatch::Marker(0, Marker::Cross, None),
+        ));
+    }
+    figure
 }
+
+/// Width of a single curve, pt.
+const LINE: f64 = plot::LINE_PT;
 
 /// The dimensionless column that stands for an axis, and its label.
 fn dimensionless(key: &str) -> Option<(&'static str, &'static str)> {
     match key {
-        "excitation.amplitude" => Some(("amplitude_over_g_tan_alpha", "a_p / (g tan α)")),
-        "excitation.scale" => Some(("amplitude_over_g_tan_alpha", "PFA / (g tan α)")),
-        "excitation.period" => Some(("omega_p_over_p", "ω_p / p")),
+        "excitation.amplitude" => Some(("amplitude_over_g_tan_alpha", "aₚ/(g tan α)")),
+        "excitation.scale" => Some(("amplitude_over_g_tan_alpha", "PFA/(g tan α)")),
+        "excitation.period" => Some(("omega_p_over_p", "ωₚ/p")),
         _ => None,
     }
 }
@@ -278,12 +337,12 @@ fn dimensionless(key: &str) -> Option<(&'static str, &'static str)> {
 /// without one here).
 pub fn axis_label(key: &str) -> String {
     let label = match key {
-        "excitation.amplitude" => "a_p (m/s²)",
-        "excitation.period" => "T_p (s)",
+        "excitation.amplitude" => "aₚ (m/s²)",
+        "excitation.period" => "Tₚ (s)",
         "excitation.scale" => "scale factor",
         "excitation.cycles" => "cycles",
-        "excitation.start" => "t_start (s)",
-        "excitation.ramp" => "t_ramp (s)",
+        "excitation.start" => "start time (s)",
+        "excitation.ramp" => "ramp time (s)",
         "body.height" => "H (m)",
         "body.width" => "B (m)",
         "body.depth" => "depth (m)",
@@ -322,8 +381,8 @@ fn row_key_label(key: &str) -> Option<String> {
         ["row", "gaps", i] => Some(format!("gap g{} (m)", subscript(i))),
         ["column", i, name] => Some(match (body(name), *name) {
             (Some(label), _) => with_unit(&label, &subscript(i)),
-            (None, "q0") => format!("q0 of column {i} (m)"),
-            (None, "qdot0") => format!("q'0 of column {i} (m/s)"),
+            (None, "q0") => format!("q₀ of column {i} (m)"),
+            (None, "qdot0") => format!("q\u{307}₀ of column {i} (m/s)"),
             (None, _) => key.to_string(),
         }),
         ["column", name] => body(name).map(|label| with_unit(&label, ", every column")),
@@ -342,29 +401,9 @@ fn subscript(index: &str) -> String {
         .collect()
 }
 
-/// The colour of max |q|/B in [0, 1]: a perceptually ordered ramp (dark blue, teal, yellow).
-fn colour(value: f64) -> RGBColor {
-    const STOPS: [(f64, [f64; 3]); 5] = [
-        (0.0, [68.0, 1.0, 84.0]),
-        (0.25, [59.0, 82.0, 139.0]),
-        (0.5, [33.0, 145.0, 140.0]),
-        (0.75, [94.0, 201.0, 98.0]),
-        (1.0, [253.0, 231.0, 37.0]),
-    ];
-    let v = value.clamp(0.0, 1.0);
-    let i = STOPS
-        .windows(2)
-        .position(|w| v <= w[1].0)
-        .unwrap_or(STOPS.len() - 2);
-    let ((a, ca), (b, cb)) = (STOPS[i], STOPS[i + 1]);
-    let f = if b > a { (v - a) / (b - a) } else { 0.0 };
-    let mix = |k: usize| (ca[k] + f * (cb[k] - ca[k])).round() as u8;
-    RGBColor(mix(0), mix(1), mix(2))
-}
-
 /// One map cell.
 #[derive(Clone, Copy)]
-struct Cell {
+struct MapCell {
     /// Value of max |q|/B; None for an invalid or failed point.
     value: Option<f64>,
     overturned: bool,
@@ -406,31 +445,16 @@ pub(crate) fn drawable(values: &[f64]) -> bool {
     !e.is_empty() && e.iter().all(|x| x.is_finite()) && e.windows(2).all(|w| w[0] < w[1])
 }
 
-/// The point number of row `r` (its first field).
-fn point_of(table: &SweepTable, r: usize, row: &csv::StringRecord) -> Result<usize> {
-    row[0].parse().map_err(|_| Error::ReadResult {
-        path: table.path.clone(),
-        message: format!("row {} has no point number", r + 1),
-    })
-}
-
-fn plot_error(e: impl std::fmt::Display) -> Error {
-    Error::Plot {
-        name: "map.svg".to_string(),
-        message: e.to_string(),
-    }
-}
-
 /// The map over axes `x` and `y` (indices into the plan's axes).
 /// None when the axes cannot be drawn as cells (values too close to tell apart in the figure's
 /// arithmetic).
-fn map(plan: &Plan, table: &SweepTable, x: usize, y: usize) -> Result<Option<Vec<u8>>> {
+fn map(plan: &Plan, table: &SweepTable, x: usize, y: usize) -> Result<Option<Figure>> {
     let (nx, ny) = (plan.axes[x].len(), plan.axes[y].len());
     let q_column = table.column("max_abs_q_over_B")?;
     let over_column = table.column("overturned")?;
     let mut cells = vec![
         vec![
-            Cell {
+            MapCell {
                 value: None,
                 overturned: false
             };
@@ -439,9 +463,9 @@ fn map(plan: &Plan, table: &SweepTable, x: usize, y: usize) -> Result<Option<Vec
         nx
     ];
     for (r, row) in table.rows.iter().enumerate() {
-        let point = point_of(table, r, row)?;
+        let point = table.point(r, row)?;
         let c = plan.coordinates(point);
-        cells[c[x]][c[y]] = Cell {
+        cells[c[x]][c[y]] = MapCell {
             value: table.number(r, q_column),
             overturned: &row[over_column] == "true",
         };
@@ -500,226 +524,174 @@ fn map(plan: &Plan, table: &SweepTable, x: usize, y: usize) -> Result<Option<Vec
         return Ok(None);
     }
 
-    let panel = (720u32, 600u32);
-    let legend_width = 170u32;
-    let width = panel.0 * views.len() as u32 + legend_width;
-    let titles = ["Peak response", "Peak response, dimensionless"];
-    let mut svg = String::new();
-    {
-        crate::figures::plot::register_fonts();
-        let root = SVGBackend::with_string(&mut svg, (width, panel.1)).into_drawing_area();
-        root.fill(&WHITE).map_err(plot_error)?;
-        let (maps, bar) = root.split_horizontally(panel.0 * views.len() as u32);
-        let areas = maps.split_evenly((1, views.len()));
-        for (((xs, x_label, ys, y_label), area), title) in
-            views.iter().zip(areas.iter()).zip(titles)
-        {
-            draw_map(area, &cells, xs, ys, x_label, y_label, title).map_err(plot_error)?;
-        }
-        draw_colour_bar(&bar).map_err(plot_error)?;
-        root.present().map_err(plot_error)?;
+    let panels: Vec<Panel> = views
+        .iter()
+        .map(|(xs, x_label, ys, y_label)| map_panel(&cells, xs, ys, x_label, y_label))
+        .collect();
+    let mut figure = Figure::new(panels, views.len()).aspect(1.2, 40.0);
+    for (k, &(lo, hi)) in CLASSES.iter().enumerate() {
+        let what = if k == 0 { "max |q|/B: " } else { "" };
+        figure.extra_legend.push((
+            format!("{what}{}–{}", tick(lo), tick(hi)),
+            Swatch::Fill(CLASS_COLOURS[k]),
+        ));
     }
-    Ok(Some(svg.into_bytes()))
+    figure
+        .extra_legend
+        .push(("overturned".to_string(), Swatch::Fill((0, 0, 0))));
+    figure.extra_legend.push((
+        "not solved (invalid or failed)".to_string(),
+        Swatch::Fill(MISSING),
+    ));
+    Ok(Some(figure))
 }
 
-type Area<'a> = DrawingArea<SVGBackend<'a>, plotters::coord::Shift>;
-
-/// Font sizes, as in the figures of crate::figures::plot.
-const TITLE_FONT: u32 = 26;
-const AXIS_FONT: u32 = 22;
-const TICK_FONT: u32 = 20;
-/// The boundary between overturned and standing cells.
-const BOUNDARY: RGBColor = RGBColor(220, 30, 30);
-
-/// Fills the rectangle between two corners given in pixels of `area` (any order), one pixel
-/// wider and taller on the right and bottom, so that neighbouring cells overlap and no hairline
-/// of the background shows between them in any viewer or zoom; clipped to `limit` (width,
-/// height).
-pub(crate) fn fill_cell<DB: DrawingBackend>(
-    area: &DrawingArea<DB, plotters::coord::Shift>,
-    (xa, ya): (i32, i32),
-    (xb, yb): (i32, i32),
-    limit: (i32, i32),
-    color: RGBColor,
-) -> std::result::Result<[(i32, i32); 2], Box<dyn std::error::Error>>
-where
-    DB::ErrorType: 'static,
-{
-    let (left, right) = (xa.min(xb), (xa.max(xb) + 1).min(limit.0));
-    let (top, bottom) = (ya.min(yb), (ya.max(yb) + 1).min(limit.1));
-    area.draw(&Rectangle::new(
-        [(left, top), (right, bottom)],
-        color.filled(),
-    ))?;
-    Ok([(left, top), (right, bottom)])
+/// A class bound as a legend writes it: 0, 0.2, ..., 1.
+fn tick(v: f64) -> String {
+    flexrock_core::format::significant(v, 2)
 }
 
-fn draw_map(
-    area: &Area<'_>,
-    cells: &[Vec<Cell>],
+/// The classes of max |q|/B a map's cells are coloured by: five of 0.2 each, the last to 1.
+const CLASSES: [(f64, f64); 5] = [(0.0, 0.2), (0.2, 0.4), (0.4, 0.6), (0.6, 0.8), (0.8, 1.0)];
+/// Their colours: a sequential ramp of light to dark (viridis at five stops, reversed so that
+/// the larger response is darker, and overturned black beyond it): ordered in greyscale too.
+const CLASS_COLOURS: [(u8, u8, u8); 5] = [
+    (253, 231, 37),
+    (94, 201, 98),
+    (33, 145, 140),
+    (59, 82, 139),
+    (68, 1, 84),
+];
+/// An unsolved cell.
+const MISSING: (u8, u8, u8) = (255, 255, 255);
+/// The boundary between overturned and standing cells: vermillion, over black and over the
+/// ramp's colours.
+const BOUNDARY: usize = 1;
+
+/// The colour of max |q|/B: its class's.
+fn class_colour(value: f64) -> (u8, u8, u8) {
+    let k = CLASSES
+        .iter()
+        .position(|&(_, hi)| value < hi)
+        .unwrap_or(CLASSES.len() - 1);
+    CLASS_COLOURS[k]
+}
+
+/// An axis of positive values is drawn on a log scale where its cells are more even so: the
+/// steps between its sorted values vary less in log10 than as they are (a log-spaced grid, or
+/// omega_p/p of evenly spaced periods), relative to their mean.
+fn log_scale(values: &[f64]) -> bool {
+    if values.len() < 3 || !values.iter().all(|&v| v > 0.0) {
+        return false;
+    }
+    let spread = |v: Vec<f64>| {
+        let mut v = v;
+        v.sort_by(f64::total_cmp);
+        let steps: Vec<f64> = v.windows(2).map(|w| w[1] - w[0]).collect();
+        let mean = steps.iter().sum::<f64>() / steps.len() as f64;
+        let var = steps.iter().map(|d| (d - mean).powi(2)).sum::<f64>() / steps.len() as f64;
+        var.sqrt() / mean
+    };
+    spread(values.iter().map(|v| v.log10()).collect()) < spread(values.to_vec())
+}
+
+/// Edges of cells centred on ascending `centres`, taken in log10 on a log axis.
+fn cell_edges(centres: &[f64], log: bool) -> Vec<f64> {
+    if log {
+        let logged: Vec<f64> = centres.iter().map(|v| v.log10()).collect();
+        edges(&logged).into_iter().map(|e| 10f64.powf(e)).collect()
+    } else {
+        edges(centres)
+    }
+}
+
+/// One map: the cells coloured by class, overturned black, unsolved white with a grey cross,
+/// and the boundary between overturned and standing cells.
+fn map_panel(
+    cells: &[Vec<MapCell>],
     xs: &[f64],
     ys: &[f64],
     x_label: &str,
     y_label: &str,
-    title: &str,
-) -> std::result::Result<(), Box<dyn std::error::Error>> {
+) -> Panel {
     // Cells in ascending order of both coordinates, whatever the order the axes were given in.
     let (ox, oy) = (ascending(xs), ascending(ys));
     let sorted = |v: &[f64], order: &[usize]| order.iter().map(|&i| v[i]).collect::<Vec<f64>>();
-    let (ex, ey) = (edges(&sorted(xs, &ox)), edges(&sorted(ys, &oy)));
-    let cells: Vec<Vec<Cell>> = ox
+    let (log_x, log_y) = (log_scale(xs), log_scale(ys));
+    let (ex, ey) = (
+        cell_edges(&sorted(xs, &ox), log_x),
+        cell_edges(&sorted(ys, &oy), log_y),
+    );
+    let cells: Vec<Vec<MapCell>> = ox
         .iter()
         .map(|&i| oy.iter().map(|&j| cells[i][j]).collect())
         .collect();
-    let range = |e: &[f64]| e[0]..e[e.len() - 1];
-    let mut chart = ChartBuilder::on(area)
-        .caption(title, ("sans-serif", TITLE_FONT))
-        .margin(14)
-        .x_label_area_size(60)
-        .y_label_area_size(96)
-        .build_cartesian_2d(range(&ex), range(&ey))?;
-    chart
-        .configure_mesh()
-        .disable_mesh()
-        .x_desc(x_label)
-        .y_desc(y_label)
-        .label_style(("sans-serif", TICK_FONT))
-        .axis_desc_style(("sans-serif", AXIS_FONT))
-        .draw()?;
-    // The cells in pixels of the plotting area, overlapping by a pixel (no seams).
-    let plotting = chart.plotting_area();
-    let (xr, yr) = plotting.get_pixel_range();
-    let limit = (xr.end - xr.start, yr.end - yr.start);
-    let pixels = plotting.strip_coord_spec();
-    let at = |x: f64, y: f64| {
-        let (a, b) = plotting.map_coordinate(&(x, y));
-        (a - xr.start, b - yr.start)
-    };
-    let color_of = |cell: &Cell| match (cell.value, cell.overturned) {
-        (_, true) => BLACK,
-        (Some(v), false) => colour(v),
-        (None, false) => WHITE,
+    let mut panel = Panel::new("", x_label, y_label);
+    panel.log_x = log_x;
+    panel.log_y = log_y;
+    let color_of = |cell: &MapCell| match (cell.value, cell.overturned) {
+        (_, true) => (0, 0, 0),
+        (Some(v), false) => class_colour(v),
+        (None, false) => MISSING,
     };
     for (i, column) in cells.iter().enumerate() {
-        // A run of cells of one colour up a column is one rectangle (the same pixels: the
-        // overturned cells of a map are often most of it, and a file of 20,000 rectangles is
-        // slow to draw, write and open).
+        // A run of cells of one colour up a column is one rectangle (a file of 20,000
+        // rectangles is slow to draw, write and open).
         let mut first = 0;
         for run in column.chunk_by(|a, b| color_of(a) == color_of(b)) {
             let end = first + run.len();
-            fill_cell(
-                &pixels,
-                at(ex[i], ey[first]),
-                at(ex[i + 1], ey[end]),
-                limit,
-                color_of(&run[0]),
-            )?;
+            panel.cells.push(plot::Cell {
+                from: (ex[i], ey[first]),
+                to: (ex[i + 1], ey[end]),
+                rgb: color_of(&run[0]),
+            });
             first = end;
         }
     }
-    // Invalid or failed points: a grey cross.
-    let grey = RGBColor(140, 140, 140);
+    // Unsolved points: a grey cross.
+    let mut crosses = Vec::new();
     for (i, column) in cells.iter().enumerate() {
         for (j, cell) in column.iter().enumerate() {
             if cell.value.is_none() && !cell.overturned {
-                chart.draw_series(std::iter::once(PathElement::new(
-                    vec![(ex[i], ey[j]), (ex[i + 1], ey[j + 1])],
-                    grey.stroke_width(1),
-                )))?;
+                crosses.extend([(ex[i], ey[j]), (ex[i + 1], ey[j + 1]), (f64::NAN, f64::NAN)]);
             }
         }
     }
+    if !crosses.is_empty() {
+        panel = panel.with(Series::line("", crosses, 7).with_width(0.4));
+    }
     // The boundary: every cell edge between an overturned and a standing cell.
-    let red = BOUNDARY.stroke_width(3);
     let mut boundary = Vec::new();
     for i in 0..cells.len() {
         for j in 0..cells[i].len() {
             let here = cells[i][j].overturned;
             if i + 1 < cells.len() && cells[i + 1][j].overturned != here {
-                boundary.push(vec![(ex[i + 1], ey[j]), (ex[i + 1], ey[j + 1])]);
+                boundary.extend([
+                    (ex[i + 1], ey[j]),
+                    (ex[i + 1], ey[j + 1]),
+                    (f64::NAN, f64::NAN),
+                ]);
             }
             if j + 1 < cells[i].len() && cells[i][j + 1].overturned != here {
-                boundary.push(vec![(ex[i], ey[j + 1]), (ex[i + 1], ey[j + 1])]);
+                boundary.extend([
+                    (ex[i], ey[j + 1]),
+                    (ex[i + 1], ey[j + 1]),
+                    (f64::NAN, f64::NAN),
+                ]);
             }
         }
     }
-    chart.draw_series(boundary.into_iter().map(|p| PathElement::new(p, red)))?;
-    Ok(())
-}
-
-/// The colour bar of max |q|/B, labelled, with the key to the overturned cells and their
-/// boundary below it.
-fn draw_colour_bar(area: &Area<'_>) -> std::result::Result<(), Box<dyn std::error::Error>> {
-    // Drawn in pixels: the bar, its ticks and values on the right, the label beside them
-    // (reading upwards), and below it the key to the overturned cells and their boundary.
-    let (_, height) = area.dim_in_pixel();
-    let (left, right) = (12, 36);
-    let (top, bottom) = (74, height as i32 - 130);
-    let span = f64::from(bottom - top);
-    let y_of = |v: f64| bottom - (v * span).round() as i32;
-    let steps = 100;
-    for k in 0..steps {
-        let (a, b) = (k as f64 / steps as f64, (k + 1) as f64 / steps as f64);
-        // One pixel taller than the step: neighbours overlap, no seams.
-        area.draw(&Rectangle::new(
-            [(left, y_of(b)), (right, y_of(a) + 1)],
-            colour(0.5 * (a + b)).filled(),
-        ))?;
+    if !boundary.is_empty() {
+        panel =
+            panel.with(Series::line("boundary of overturning", boundary, BOUNDARY).with_width(1.3));
     }
-    area.draw(&Rectangle::new(
-        [(left, top), (right, bottom + 1)],
-        BLACK.stroke_width(1),
-    ))?;
-    let tick_font = ("sans-serif", TICK_FONT).into_font().color(&BLACK);
-    for i in 0..=5 {
-        let v = f64::from(i) / 5.0;
-        let y = y_of(v);
-        area.draw(&PathElement::new(
-            vec![(right, y), (right + 5, y)],
-            BLACK.stroke_width(1),
-        ))?;
-        area.draw(&Text::new(
-            format!("{v:.1}"),
-            (right + 9, y),
-            tick_font.pos(Pos::new(HPos::Left, VPos::Center)),
-        ))?;
-    }
-    let label_font = ("sans-serif", AXIS_FONT)
-        .into_font()
-        .transform(FontTransform::Rotate270)
-        .color(&BLACK);
-    area.draw(&Text::new(
-        "max |q| / B",
-        (right + 64, (top + bottom) / 2),
-        label_font.pos(Pos::new(HPos::Center, VPos::Center)),
-    ))?;
-    let font = ("sans-serif", TICK_FONT).into_font().color(&BLACK);
-    let y = bottom + 40;
-    area.draw(&Rectangle::new(
-        [(left, y), (left + 22, y + 22)],
-        BLACK.filled(),
-    ))?;
-    area.draw(&Text::new(
-        "overturned",
-        (left + 30, y + 11),
-        font.pos(Pos::new(HPos::Left, VPos::Center)),
-    ))?;
-    area.draw(&PathElement::new(
-        vec![(left, y + 48), (left + 22, y + 48)],
-        BOUNDARY.stroke_width(3),
-    ))?;
-    area.draw(&Text::new(
-        "boundary",
-        (left + 30, y + 48),
-        font.pos(Pos::new(HPos::Left, VPos::Center)),
-    ))?;
-    Ok(())
+    panel
 }
 
 /// The spectrum of a minimum search over axis `x`.
-fn spectrum(plan: &Plan, table: &SweepTable, x: usize) -> Result<Vec<u8>> {
+fn spectrum(plan: &Plan, table: &SweepTable, x: usize) -> Result<Option<Figure>> {
     let Some(find) = &plan.find_min else {
-        return Ok(Vec::new());
+        return Ok(None);
     };
     let min_column = table.column("min_overturning")?;
     let axis = &plan.axes[x];
@@ -744,6 +716,27 @@ fn spectrum(plan: &Plan, table: &SweepTable, x: usize) -> Result<Vec<u8>> {
     let status_column = table.column("status")?;
     let mut stands_physical = Vec::new();
     let mut stands_scaled = Vec::new();
+    // Where the sweep's axis is not a property of the body, g tan alpha is one number: that of
+    // any row that has a value and its scaled value, for the rows where nothing overturned.
+    let body_fixed = !(axis.key.starts_with("body.") || axis.key.starts_with("column."));
+    let shared_g_tan_alpha = body_fixed
+        .then(|| {
+            (0..table.rows.len()).find_map(|r| {
+                [
+                    (min_column, y_scaled_column),
+                    (rigid_column, rigid_scaled_column),
+                    (limit_column, limit_scaled_column),
+                ]
+                .into_iter()
+                .find_map(|(value, scaled)| {
+                    Some(table.number(r, value)? / table.number(r, scaled)?)
+                })
+                .filter(|v| v.is_finite() && *v > 0.0)
+            })
+        })
+        .flatten();
+    // The elastic body's curve is broken where it stands: its line joins only values.
+    let mut physical_breaks = Vec::new();
     for (r, row) in table.rows.iter().enumerate() {
         let point: usize = row[0].parse().unwrap_or(0);
         let Some(xv) = axis.number(plan.coordinates(point)[x]) else {
@@ -764,10 +757,13 @@ fn spectrum(plan: &Plan, table: &SweepTable, x: usize) -> Result<Vec<u8>> {
                 (limit_column, limit_scaled_column),
             ]
             .into_iter()
-            .find_map(|(value, scaled)| Some(table.number(r, value)? / table.number(r, scaled)?));
-            if let Some(g_tan_alpha) = g_tan_alpha.filter(|v| v.is_finite() && *v > 0.0) {
+            .find_map(|(value, scaled)| Some(table.number(r, value)? / table.number(r, scaled)?))
+            .filter(|v| v.is_finite() && *v > 0.0)
+            .or(shared_g_tan_alpha);
+            if let Some(g_tan_alpha) = g_tan_alpha {
                 stands_scaled.push((xs, find.hi / g_tan_alpha));
             }
+            physical_breaks.push((xv, xs));
         }
         for (column, points, x) in [
             (rigid_column, &mut rigid_physical, xv),
@@ -793,90 +789,104 @@ fn spectrum(plan: &Plan, table: &SweepTable, x: usize) -> Result<Vec<u8>> {
     ] {
         sort(v);
     }
+    // A break (a point that is not drawn) in the elastic curve at each period where it stands.
+    let broken = |mut curve: Vec<(f64, f64)>, at: &[f64]| {
+        curve.extend(at.iter().map(|&x| (x, f64::NAN)));
+        curve.sort_by(|a, b| a.0.total_cmp(&b.0));
+        curve
+    };
+    let breaks_physical: Vec<f64> = physical_breaks.iter().map(|b| b.0).collect();
+    let breaks_scaled: Vec<f64> = physical_breaks.iter().map(|b| b.1).collect();
+    let physical = broken(physical, &breaks_physical);
+    let scaled = broken(scaled, &breaks_scaled);
     let stands = format!(
-        "elastic body stands up to {}",
+        "stands up to {} (no overturning found)",
         crate::writers::significant(find.hi, 4)
     );
     let housner = housner_label(&find.housner());
     let limit = format!(
-        "rigid limit ({:.3} g B/H)",
+        "model's rigid limit: uplift at {:.3} g B/H",
         flexrock_core::constants::ModeShapeIntegrals::exact().rigid_limit_uplift_factor()
     );
-    // The two rigid curves nearly coincide: Housner's wide and solid underneath, the rigid
-    // limit dashed on top of it, so that both show.
+    // The two rigid curves nearly coincide: Housner's wide, orange and solid underneath, the
+    // rigid limit thin, dashed and black on top of it, so that both show where they meet.
     let curves = |elastic: Vec<(f64, f64)>,
                   rigid: Vec<(f64, f64)>,
                   limit_curve: Vec<(f64, f64)>,
                   standing: Vec<(f64, f64)>| {
         let mut series = vec![
-            Series::line(&housner, rigid, 1).with_width(4),
-            Series::line(&limit, limit_curve, 5).with_width(2).dashed(),
-            Series::line("elastic body", elastic, 2)
-                .with_width(2)
+            Series::line(&housner, rigid, 4).with_width(2.4),
+            Series::line(&limit, limit_curve, 0)
+                .with_width(0.8)
+                .with_dash(Dash::Dashed),
+            Series::line("elastic body (this model)", elastic, 2)
+                .with_width(1.1)
                 .with_markers(),
         ];
         if !standing.is_empty() {
-            series.push(Series::markers(&stands, standing, 2, Marker::TriangleUp));
+            series.push(Series::markers(
+                &stands,
+                standing,
+                2,
+                Marker::OpenTriangleUp,
+            ));
         }
         series
     };
-    let quantity = match find.key.as_str() {
-        "excitation.amplitude" => "amplitude",
-        "excitation.scale" => "scale factor",
-        _ => "value",
+    // The periods on a log axis, as the literature draws spectra, when they span a factor of
+    // three or more.
+    let spans_decades = |v: &[(f64, f64)]| {
+        let (lo, hi) = v.iter().fold((f64::INFINITY, 0.0f64), |(lo, hi), p| {
+            (lo.min(p.0), hi.max(p.0))
+        });
+        lo > 0.0 && hi / lo >= 3.0
     };
-    let title = format!("Smallest overturning {quantity}");
-    let mut left = Panel::new(&title, &axis_label(&axis.key), &axis_label(&find.key));
+    let log_left = spans_decades(&rigid_physical) || spans_decades(&physical);
+    let log_right = spans_decades(&rigid_scaled) || spans_decades(&scaled);
+    let mut left = Panel::new("", &axis_label(&axis.key), &axis_label(&find.key));
     left.series = curves(physical, rigid_physical, limit_physical, stands_physical);
-    left.legend = Legend::Outside;
+    left.log_x = log_left;
     // A margin at both ends of the periods, so that the end markers (and a "stands" triangle at
     // the first period) sit inside the frame.
     left.pad_x = true;
     let mut panels = vec![left];
     if let Some((_, x_label)) = dx {
-        let y_label = dimensionless(&find.key).map_or("a_p / (g tan α)", |d| d.1);
-        let mut right = Panel::new(&format!("{title}, dimensionless"), x_label, y_label);
+        let y_label = dimensionless(&find.key).map_or("aₚ/(g tan α)", |d| d.1);
+        let mut right = Panel::new("", x_label, y_label);
         right.series = curves(scaled, rigid_scaled, limit_scaled, stands_scaled);
-        right.legend = Legend::Outside;
+        right.log_x = log_right;
         right.pad_x = true;
         panels.push(right);
     }
-    crate::figures::plot::figure("spectrum.svg", &panels, 1, (1000, 480)).map(String::into_bytes)
+    let columns = panels.len();
+    Ok(Some(Figure::new(panels, columns).aspect(1.1, 40.0)))
 }
 
-/// The legend label of Housner's block: "rigid block (Housner)" for the default block, else
-/// how it is made, in at most 33 characters, so that the legend strip widens little for it:
-/// "Housner, full equation", "Housner, full, no return, e=0.825".
+/// The legend label of Housner's block, naming its equation and each choice made:
+/// "Housner block, small-angle eq.", "Housner block, full eq., no return, e=0.825".
 fn housner_label(options: &flexrock_core::sweep::HousnerOptions) -> String {
-    let full = !options.form.is_small_angle();
-    let no_return = !options.overturning.is_reaches_limit();
-    let mut tags = Vec::new();
-    match (full, no_return || options.restitution.is_some()) {
-        (true, false) => tags.push("full equation".to_string()),
-        (true, true) => tags.push("full".to_string()),
-        (false, _) => {}
-    }
-    if no_return {
-        tags.push("no return".to_string());
+    let mut label = if options.form.is_small_angle() {
+        "Housner block, small-angle eq.".to_string()
+    } else {
+        "Housner block, full eq.".to_string()
+    };
+    if !options.overturning.is_reaches_limit() {
+        label.push_str(", no return");
     }
     if let Some(e) = options.restitution {
-        tags.push(format!("e={}", crate::writers::significant(e, 3)));
+        label.push_str(&format!(", e={}", crate::writers::significant(e, 3)));
     }
-    if tags.is_empty() {
-        "rigid block (Housner)".to_string()
-    } else {
-        format!("Housner, {}", tags.join(", "))
-    }
+    label
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    /// Housner's block's legend label says how the block is made, in at most 33 characters
-    /// with every choice made and a restitution of many digits.
+    /// Housner's block's legend label names its equation and how the block is made, with
+    /// every choice made and a restitution of many digits.
     #[test]
-    fn housners_label_names_each_choice_and_fits_the_strip() {
+    fn housners_label_names_its_equation_and_each_choice() {
         use flexrock_core::rigid::{RigidForm, RigidOverturning};
         use flexrock_core::sweep::HousnerOptions;
         let mut labels = Vec::new();
@@ -889,8 +899,17 @@ mod tests {
                         restitution,
                     };
                     let label = housner_label(&options);
-                    assert!(label.chars().count() <= 33, "{label}");
-                    assert_eq!(label.contains("full"), form == RigidForm::Full, "{label}");
+                    assert!(label.chars().count() <= 52, "{label}");
+                    assert_eq!(
+                        label.contains("full eq."),
+                        form == RigidForm::Full,
+                        "{label}"
+                    );
+                    assert_eq!(
+                        label.contains("small-angle eq."),
+                        form != RigidForm::Full,
+                        "{label}"
+                    );
                     assert_eq!(
                         label.contains("no return"),
                         overturning == RigidOverturning::CannotReturn,
@@ -901,9 +920,8 @@ mod tests {
                 }
             }
         }
-        assert_eq!(labels[0], "rigid block (Housner)");
-        assert!(labels.contains(&"Housner, full equation".to_string()));
-        assert!(labels.contains(&"Housner, full, no return, e=0.825".to_string()));
+        assert_eq!(labels[0], "Housner block, small-angle eq.");
+        assert!(labels.contains(&"Housner block, full eq., no return, e=0.825".to_string()));
     }
 
     #[test]

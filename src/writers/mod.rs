@@ -7,6 +7,7 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use crate::error::{Error, Result};
+use flexrock_core::simulate::{Commit, Provenance};
 use flexrock_core::solution::{Episode, Event, Sample};
 
 pub use flexrock_core::run_tables::{
@@ -179,6 +180,37 @@ impl Timings {
         }
     }
 
+    /// With [`WallTimes::Apart`], records the commit flexrock was built from under `file`
+    /// (`summary.json/flexrock_commit`, `.../flexrock_dirty`) and takes it out of `provenance`;
+    /// otherwise leaves it alone. Like a wall time, it changes while the result does not.
+    pub fn take_commit(&mut self, file: &str, provenance: &mut Provenance) {
+        if self.mode == WallTimes::Apart {
+            if let Some(commit) = provenance.build.take() {
+                self.insert_commit(file, commit);
+            }
+        }
+    }
+
+    /// The provenance of `file`, a summary of results computed from `model`: with
+    /// [`WallTimes::Apart`] without the commit, which goes to timings.json ([`Self::take_commit`]).
+    pub fn provenance(&mut self, file: &str, model: &flexrock_core::model::Model) -> Provenance {
+        let mut provenance = Provenance::of(model);
+        self.take_commit(file, &mut provenance);
+        provenance
+    }
+
+    /// Records `commit` under `file` (for a file whose summary never holds it).
+    pub fn insert_commit(&mut self, file: &str, commit: Commit) {
+        self.times.insert(
+            format!("{file}/flexrock_commit"),
+            commit.flexrock_commit.into(),
+        );
+        self.times.insert(
+            format!("{file}/flexrock_dirty"),
+            commit.flexrock_dirty.into(),
+        );
+    }
+
     /// `timings.json` for the set of files a command writes, with [`WallTimes::Apart`].
     pub fn file(&self) -> Option<(&'static str, Vec<u8>)> {
         (self.mode == WallTimes::Apart).then(|| ("timings.json", json_bytes(&self.times)))
@@ -322,7 +354,8 @@ impl FileSet {
     }
 
     /// Stages each of `files` (name, bytes), each on a thread of its own: the disk syncs them
-    /// at once, not one after another.
+    /// at once, not one after another. A file whose thread the system cannot start is staged
+    /// on this one.
     pub fn stage_each<N, B>(&self, files: &[(N, B)]) -> Result<()>
     where
         N: AsRef<str> + Sync,
@@ -330,13 +363,24 @@ impl FileSet {
     {
         let stage = |(name, bytes): &(N, B)| self.stage(name.as_ref(), &[bytes.as_ref()]);
         std::thread::scope(|scope| {
+            let mut here = Vec::new();
             let threads: Vec<_> = files
                 .get(1..)
                 .unwrap_or_default()
                 .iter()
-                .map(|file| scope.spawn(move || stage(file)))
+                .filter_map(|file| {
+                    let started =
+                        std::thread::Builder::new().spawn_scoped(scope, move || stage(file));
+                    if started.is_err() {
+                        here.push(file);
+                    }
+                    started.ok()
+                })
                 .collect();
-            let first = files.first().map_or(Ok(()), stage);
+            let first = here
+                .into_iter()
+                .map(stage)
+                .fold(files.first().map_or(Ok(()), stage), Result::and);
             threads
                 .into_iter()
                 .map(|thread| {
@@ -828,7 +872,7 @@ mod tests {
         for s in &samples {
             let mut fields: Vec<String> = [s.t, s.q, s.qdot, s.s, s.r]
                 .into_iter()
-                .map(|x| format!("{x}"))
+                .map(number)
                 .collect();
             fields.push(s.mode.name().to_string());
             fields.extend(
@@ -840,7 +884,7 @@ mod tests {
                     s.work_damping,
                 ]
                 .into_iter()
-                .map(|x| format!("{x}")),
+                .map(number),
             );
             expected.write_record(&fields).unwrap();
         }

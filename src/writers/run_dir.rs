@@ -15,6 +15,7 @@ use serde::de::DeserializeOwned;
 use crate::error::{Error, Result};
 use crate::writers::{EPISODE_COLUMNS, EVENT_COLUMNS, HISTORY_COLUMNS};
 use flexrock_core::constants::Constants;
+use flexrock_core::run_tables::MAX_HISTORY_ROW_BYTES;
 use flexrock_core::solution::{Event, Sample};
 
 /// The sampled history of a run.
@@ -26,12 +27,18 @@ pub const EPISODES_FILE: &str = "episodes.csv";
 /// The summary of a run.
 pub const SUMMARY_FILE: &str = "summary.json";
 
-/// Largest history.csv read, bytes (1 GiB). `run` writes at most 1e6 grid rows (about 170 MB)
-/// plus two rows per event.
-pub const MAX_HISTORY_BYTES: u64 = 1 << 30;
+/// Largest history.csv read, bytes (1.5 GiB): [`MAX_HISTORY_ROWS`] rows of the widest
+/// ([`MAX_HISTORY_ROW_BYTES`]) fit.
+pub const MAX_HISTORY_BYTES: u64 = 3 << 29;
 /// Most rows of history.csv read: the 1e6 grid rows `run` allows and room for 1.5e6 events
 /// (about 350 MB in memory).
 pub const MAX_HISTORY_ROWS: usize = 4_000_000;
+
+const _: () = assert!(
+    (MAX_HISTORY_ROWS as u64 + 1) * MAX_HISTORY_ROW_BYTES as u64 <= MAX_HISTORY_BYTES,
+    "a history of MAX_HISTORY_ROWS rows must be readable"
+);
+
 /// Largest events.csv read, bytes (256 MiB).
 pub const MAX_EVENTS_BYTES: u64 = 256 << 20;
 /// Largest summary.json read, bytes (16 MiB; `run` writes a few kB).
@@ -113,23 +120,51 @@ pub fn read_events(dir: &Path) -> Result<Vec<Event>> {
     )
 }
 
-/// episodes.csv of a run directory: its bytes, after checking that its header is
-/// [`EPISODE_COLUMNS`] and every row has as many fields.
-pub fn read_episodes_csv(dir: &Path) -> Result<Vec<u8>> {
-    let path = dir.join(EPISODES_FILE);
+/// A table of a run directory as `flexrock events` prints it: events.csv, or episodes.csv.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum RunTable {
+    /// events.csv, columns [`EVENT_COLUMNS`].
+    Events,
+    /// episodes.csv, columns [`EPISODE_COLUMNS`].
+    Episodes,
+}
+
+impl RunTable {
+    /// The file's name.
+    pub fn file(self) -> &'static str {
+        match self {
+            RunTable::Events => EVENTS_FILE,
+            RunTable::Episodes => EPISODES_FILE,
+        }
+    }
+
+    /// Its columns.
+    pub fn columns(self) -> &'static [&'static str] {
+        match self {
+            RunTable::Events => &EVENT_COLUMNS,
+            RunTable::Episodes => &EPISODE_COLUMNS,
+        }
+    }
+}
+
+/// A table of a run directory: its bytes, after checking that its header is the table's
+/// columns and every row has as many fields.
+pub fn read_table_csv(dir: &Path, table: RunTable) -> Result<Vec<u8>> {
+    let path = dir.join(table.file());
     let bytes = read_whole(&path, MAX_EVENTS_BYTES)?;
-    episode_rows(&bytes, &path)?;
+    table_rows(&bytes, &path, table.columns())?;
     Ok(bytes)
 }
 
-/// The rows of episodes.csv as JSON objects by column name: numbers as numbers, empty fields
-/// as null, words as strings.
-pub fn episodes_json(bytes: &[u8], path: &Path) -> Result<serde_json::Value> {
-    let rows = episode_rows(bytes, path)?;
+/// The rows of a table as JSON objects by column name: numbers as numbers, empty fields as
+/// null, words as strings.
+pub fn table_json(bytes: &[u8], path: &Path, table: RunTable) -> Result<serde_json::Value> {
+    let columns = table.columns();
+    let rows = table_rows(bytes, path, columns)?;
     Ok(serde_json::Value::Array(
         rows.into_iter()
             .map(|row| {
-                let object = EPISODE_COLUMNS
+                let object = columns
                     .iter()
                     .zip(row)
                     .map(|(column, field)| {
@@ -155,7 +190,7 @@ pub fn episodes_json(bytes: &[u8], path: &Path) -> Result<serde_json::Value> {
     ))
 }
 
-fn episode_rows(bytes: &[u8], path: &Path) -> Result<Vec<Vec<String>>> {
+fn table_rows(bytes: &[u8], path: &Path, columns: &[&str]) -> Result<Vec<Vec<String>>> {
     let mut reader = csv::ReaderBuilder::new().from_reader(bytes);
     let header: Vec<String> = reader
         .headers()
@@ -163,13 +198,13 @@ fn episode_rows(bytes: &[u8], path: &Path) -> Result<Vec<Vec<String>>> {
         .iter()
         .map(str::to_string)
         .collect();
-    if header != EPISODE_COLUMNS {
+    if header != columns {
         return Err(fail(
             path,
             format!(
                 "has the columns {}; expected {}",
                 header.join(","),
-                EPISODE_COLUMNS.join(",")
+                columns.join(",")
             ),
         ));
     }

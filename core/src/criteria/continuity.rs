@@ -18,8 +18,8 @@ pub struct Decade {
     pub excitations: &'static str,
     /// E, Pa.
     pub youngs_modulus: f64,
-    /// phi = p T.
-    pub flexibility: f64,
+    /// phi = p T; None for a body that could not be run.
+    pub flexibility: Option<f64>,
     /// Against the elastic model's own rigid limit (small-angle, uplift at 1.1226 g B/H).
     pub max_abs_difference_rigid_limit: Option<f64>,
     /// Against Housner's block, full equation.
@@ -62,7 +62,7 @@ fn decades_of(points: &[Point], excitations: &'static str) -> Vec<Decade> {
             slenderness: p.slenderness,
             excitations,
             youngs_modulus: p.youngs_modulus,
-            flexibility: p.flexibility,
+            flexibility: same.iter().find_map(|q| q.flexibility),
             max_abs_difference_rigid_limit: max_abs(
                 same.iter()
                     .map(|q| q.relative_difference(q.rigid_limit_pga)),
@@ -73,10 +73,11 @@ fn decades_of(points: &[Point], excitations: &'static str) -> Vec<Decade> {
             points: same.len(),
         });
     }
+    // The stiffest first (the smallest flexibility), bodies that could not be run last.
     out.sort_by(|a, b| {
         (a.self_weight.cmp(&b.self_weight))
             .then(a.slenderness.total_cmp(&b.slenderness))
-            .then(a.flexibility.total_cmp(&b.flexibility))
+            .then(b.youngs_modulus.total_cmp(&a.youngs_modulus))
     });
     out
 }
@@ -102,7 +103,7 @@ pub fn rigid_holds_below(
             d.max_abs_difference_rigid_limit
         };
         match diff {
-            Some(x) if x <= share => last = Some(d.flexibility),
+            Some(x) if x <= share => last = d.flexibility,
             _ => break,
         }
     }

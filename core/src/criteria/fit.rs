@@ -223,10 +223,14 @@ fn lines(p: &Point, gravity: f64) -> (f64, f64) {
 /// that are; the coefficients are centred on the slenderness `s0`, and `gravity` is the
 /// bodies'.
 pub fn fit(points: &[Point], self_weight: &str, held_out: &[String], s0: f64, gravity: f64) -> Fit {
+    // Points with a critical value ran, so they have their flexibility.
     let mine: Vec<&Point> = points
         .iter()
-        .filter(|p| p.self_weight == self_weight && p.critical_pga.is_some())
+        .filter(|p| {
+            p.self_weight == self_weight && p.critical_pga.is_some() && p.flexibility.is_some()
+        })
         .collect();
+    let flexibility = |p: &Point| p.flexibility.unwrap_or(f64::NAN);
     let (fitted, checked): (Vec<&Point>, Vec<&Point>) =
         mine.iter().partition(|p| !held_out.contains(&p.excitation));
     // Bodies with a fitted motion that overturned them at the bottom of the searched interval.
@@ -239,7 +243,7 @@ pub fn fit(points: &[Point], self_weight: &str, held_out: &[String], s0: f64, gr
             left_out.push(LeftOut {
                 slenderness: p.slenderness,
                 youngs_modulus: p.youngs_modulus,
-                flexibility: p.flexibility,
+                flexibility: flexibility(p),
                 reason: format!(
                     "{} overturned it at the bottom of the searched interval: its smallest \
                      critical value is not known",
@@ -271,7 +275,7 @@ pub fn fit(points: &[Point], self_weight: &str, held_out: &[String], s0: f64, gr
             .filter(|p| p.slenderness == *s && p.youngs_modulus == *e)
             .collect();
         let (a_scale, v_scale) = lines(same[0], gravity);
-        let phi = same[0].flexibility;
+        let phi = flexibility(same[0]);
         let a = same
             .iter()
             .filter_map(|p| p.critical_pga)
@@ -287,7 +291,7 @@ pub fn fit(points: &[Point], self_weight: &str, held_out: &[String], s0: f64, gr
         .iter()
         .filter_map(|p| {
             Some((
-                p.flexibility,
+                flexibility(p),
                 p.slenderness,
                 p.critical_pga? / p.rigid_full_pga?,
             ))
@@ -311,7 +315,7 @@ pub fn fit(points: &[Point], self_weight: &str, held_out: &[String], s0: f64, gr
                 &mut fitted
                     .iter()
                     .filter(|p| p.slenderness == *s)
-                    .map(|p| p.flexibility),
+                    .map(|p| flexibility(p)),
             ),
         })
         .collect();
@@ -319,7 +323,7 @@ pub fn fit(points: &[Point], self_weight: &str, held_out: &[String], s0: f64, gr
         .iter()
         .map(|p| {
             let (a_scale, v_scale) = lines(p, gravity);
-            let (phi, s) = (p.flexibility, p.slenderness);
+            let (phi, s) = (flexibility(p), p.slenderness);
             let extrapolated = !validity.iter().any(|v: &Validity| {
                 v.slenderness == s && phi >= v.flexibility_range.0 && phi <= v.flexibility_range.1
             });
@@ -348,7 +352,7 @@ pub fn fit(points: &[Point], self_weight: &str, held_out: &[String], s0: f64, gr
     }
     Fit {
         self_weight: self_weight.to_string(),
-        flexibility_range: range(&mut fitted.iter().map(|p| p.flexibility)),
+        flexibility_range: range(&mut fitted.iter().map(|p| flexibility(p))),
         slenderness_range: range(&mut slendernesses.iter().copied()),
         validity,
         fitted: names,
@@ -429,9 +433,9 @@ mod tests {
             excitation: excitation.into(),
             period: Some(1.0),
             youngs_modulus: e,
-            flexibility: phi,
-            pre_uplift_period: 1.0,
-            p: 1.0,
+            flexibility: Some(phi),
+            pre_uplift_period: Some(1.0),
+            p: Some(1.0),
             pga_per_unit: 1.0,
             pgv_per_unit: 0.5,
             critical_pga: Some(critical),

@@ -194,12 +194,12 @@ pub struct Point {
     pub period: Option<f64>,
     /// E, Pa.
     pub youngs_modulus: f64,
-    /// phi = p T.
-    pub flexibility: f64,
-    /// T, s.
-    pub pre_uplift_period: f64,
-    /// p, rad/s.
-    pub p: f64,
+    /// phi = p T; None for a body that could not be run (`reason` says why).
+    pub flexibility: Option<f64>,
+    /// T, s; None likewise.
+    pub pre_uplift_period: Option<f64>,
+    /// p, rad/s; None likewise.
+    pub p: Option<f64>,
     /// The floor's peak acceleration per unit of the searched key (1 for the pulses).
     pub pga_per_unit: f64,
     /// The floor's peak velocity per unit of the searched key, m/s.
@@ -278,11 +278,12 @@ fn list_axis(key: &str, values: &[f64]) -> Result<Axis> {
 }
 
 /// The rule a slenderness B/H of the study must follow.
-pub const SLENDERNESS_RULE: &str = "a slenderness B/H must be finite, above 0 and at most 1";
+pub const SLENDERNESS_RULE: &str =
+    "a slenderness B/H must be above 0 and below 1 (the model is for bodies narrower than tall)";
 
 /// Whether `s` is a slenderness the study accepts ([`SLENDERNESS_RULE`]).
 pub fn valid_slenderness(s: f64) -> bool {
-    s.is_finite() && s > 0.0 && s <= 1.0
+    s > 0.0 && s < 1.0
 }
 
 /// The slendernesses a study runs: its list, sorted and without repeats, or the model's own.
@@ -317,6 +318,29 @@ pub fn run(model: &Path, study: &Study) -> Result<Vec<Point>> {
     }
     let base = Model::load(model, &Overrides::default())?;
     let height = base.body.height;
+    // Every body of the study must be one the model accepts, in both variants, before anything
+    // is computed (its stiffness and mass are the file's, its width the slenderness's).
+    for &slenderness in &study.slendernesses {
+        let mut body = body.clone();
+        body.insert("width".into(), (slenderness * height).into());
+        for self_weight in &study.self_weights {
+            let period = study.periods.first().copied();
+            unit_model(&model_table(&body, self_weight, &Excitation::Sine), period).map_err(
+                |e| {
+                    Error::invalid(
+                        "slenderness",
+                        slenderness,
+                        &format!(
+                            "gives a body of width B = {} m (H = {} m) that the model refuses \
+                             (body.self_weight = \"{self_weight}\"): {e}",
+                            crate::format::shortest(slenderness * height),
+                            crate::format::shortest(height)
+                        ),
+                    )
+                },
+            )?;
+        }
+    }
     let mut points = Vec::new();
     for slenderness in slendernesses(study, base.body.width / height) {
         let mut body = body.clone();
@@ -369,15 +393,7 @@ fn run_body(
             // Per period: the floor's peaks per unit of the key, and Housner's small-angle block.
             let mut per_period = Vec::new();
             for period in &periods {
-                let mut t = base.clone();
-                if let (Some(tp), Some(toml::Value::Table(e))) = (period, t.get_mut("excitation")) {
-                    e.insert("period".into(), (*tp).into());
-                }
-                let unit = Model::from_toml_str(
-                    &toml::to_string(&t)
-                        .map_err(|e| Error::invalid("body", e.to_string(), "not TOML"))?,
-                    &Overrides::default(),
-                )?;
+                let (t, unit) = unit_model(&base, *period)?;
                 let end = unit.floor.quiet_after().unwrap_or(unit.duration);
                 let pgv = velocity::peak_velocity(unit.floor.as_ref(), end).ok_or_else(|| {
                     Error::invalid(
@@ -396,10 +412,7 @@ fn run_body(
                 let (ie, ip) = (c[0], if is_record { 0 } else { c[1] });
                 let (pga_unit, pgv_unit, small_angle) = per_period[ip];
                 let scales = row.scales.unwrap_or_default();
-                let (t, p) = (
-                    scales.period.unwrap_or(f64::NAN),
-                    scales.p.unwrap_or(f64::NAN),
-                );
+                let (t, p) = (scales.period, scales.p);
                 let to_pga = |x: Option<f64>| x.map(|v| v * pga_unit);
                 let mut point = Point {
                     self_weight: self_weight.clone(),
@@ -409,7 +422,7 @@ fn run_body(
                     excitation: excitation.name(),
                     period: periods[ip],
                     youngs_modulus: study.youngs_moduli[ie],
-                    flexibility: p * t,
+                    flexibility: p.zip(t).map(|(p, t)| p * t),
                     pre_uplift_period: t,
                     p,
                     pga_per_unit: pga_unit,
@@ -440,6 +453,19 @@ fn run_body(
         }
     }
     Ok(points)
+}
+
+/// The model of a point's table at the excitation period `period` (none for a record), with
+/// its key searched at 1, and that table.
+fn unit_model(base: &toml::Table, period: Option<f64>) -> Result<(toml::Table, Model)> {
+    let mut t = base.clone();
+    if let (Some(tp), Some(toml::Value::Table(e))) = (period, t.get_mut("excitation")) {
+        e.insert("period".into(), tp.into());
+    }
+    let text =
+        toml::to_string(&t).map_err(|e| Error::invalid("body", e.to_string(), "not TOML"))?;
+    let model = Model::from_toml_str(&text, &Overrides::default())?;
+    Ok((t, model))
 }
 
 /// Housner's block of the body's geometry, by `form`, searched as the elastic body is.

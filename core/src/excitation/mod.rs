@@ -19,10 +19,37 @@ pub fn within_floor_limit(peak: f64) -> bool {
 
 /// The rule a peak floor acceleration beyond the limit breaks, for error messages.
 pub fn floor_limit_rule(peak: f64) -> String {
+    let peak = if peak.is_finite() {
+        format!("{peak:.6e} m/s^2")
+    } else {
+        "beyond the range of numbers".to_string()
+    };
     format!(
-        "the peak floor acceleration {peak:.6e} m/s^2 is beyond the limit of \
-         {} m/s^2 (20 g)",
+        "the peak floor acceleration {peak} is beyond the limit of {} m/s^2 (20 g)",
         crate::format::readable(MAX_FLOOR_ACCELERATION)
+    )
+}
+
+/// Smallest peak floor acceleration other than 0, m/s^2. The body's response is of the order
+/// of A T^2 / (4 pi^2), and with T at least [`crate::constants::MIN_PERIOD`] (1e-4 s) a peak of
+/// 1e-140 m/s^2 keeps it above 1e-150 m, where its square is still a normal floating-point
+/// number (from 2.2e-308 on); below, the closed forms lose their digits to underflow. No floor
+/// motion is anywhere near it: 1e-140 m/s^2 is a displacement of 1e-140 m in a second.
+pub const MIN_FLOOR_ACCELERATION: f64 = 1e-140;
+
+/// True when a peak floor acceleration `peak` (m/s^2) is 0 or at least
+/// [`MIN_FLOOR_ACCELERATION`].
+pub fn above_floor_minimum(peak: f64) -> bool {
+    peak == 0.0 || peak.abs() >= MIN_FLOOR_ACCELERATION
+}
+
+/// The rule a nonzero peak floor acceleration below the minimum breaks, for error messages.
+pub fn floor_minimum_rule(peak: f64) -> String {
+    format!(
+        "the peak floor acceleration {} m/s^2 is neither 0 nor at least {} m/s^2: the body's \
+         response would be below 1e-150 m, where floating point loses its digits",
+        crate::format::shortest(peak.abs()),
+        crate::format::shortest(MIN_FLOOR_ACCELERATION)
     )
 }
 
@@ -245,8 +272,13 @@ fn ramp_cubic(amplitude: f64, period: f64, ramp: f64) -> [f64; 3] {
         t.powi(5) / 20.0,
     );
     let rhs = nalgebra::Vector3::new(amplitude * s, -amplitude / w * c, -amplitude / (w * w) * s);
-    // The matrix is regular for any t > 0 (its determinant is t^9 / 8640), which validation ensures.
-    let x = m.lu().solve(&rhs).unwrap_or_else(nalgebra::Vector3::zeros);
+    // The matrix is regular for any t > 0 (its determinant is t^9 / 8640), but its entries
+    // underflow for a ramp far below a second: then there are no coefficients, and NaN says so
+    // through the peak (zeros would be a floor that jumps to the sine's velocity).
+    let x = m
+        .lu()
+        .solve(&rhs)
+        .unwrap_or_else(|| nalgebra::Vector3::repeat(f64::NAN));
     [x[0], x[1], x[2]]
 }
 

@@ -142,7 +142,10 @@ impl FloorMotion for Ricker {
     }
     fn acceleration(&self, t: f64) -> f64 {
         let x = PI * (t - self.center) / self.period;
-        let x2 = x * x;
+        // exp(-x^2) is 0 in floating point from x^2 = 746 on: beyond, x^2 is held there, so that
+        // a wavelet far from t (|tc| of 1e154 s, where x^2 overflows) gives the 0 it gives
+        // nearer, not inf * 0.
+        let x2 = (x * x).min(RICKER_FLAT);
         self.amplitude * (1.0 - 2.0 * x2) * (-x2).exp()
     }
     fn peak_acceleration(&self) -> f64 {
@@ -165,6 +168,9 @@ impl FloorMotion for Ricker {
     }
 }
 
+/// A value of x^2 at which exp(-x^2) is 0 in floating point (from 745.2 on), and (1 - 2 x^2) is
+/// finite.
+const RICKER_FLAT: f64 = 1e4;
 /// Beyond |x| = RICKER_TAIL (x = pi (t - tc) / Tp) the wavelet is taken as rest: there
 /// |a| <= |A| (2 x^2 - 1) exp(-x^2) <= 5.1e-20 |A|, which is the stated error bound.
 const RICKER_TAIL: f64 = 7.0;

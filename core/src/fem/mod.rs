@@ -579,21 +579,31 @@ impl SizeLimit {
                 readable(MAX_BAND_ENTRIES * 8e-6)
             ),
             SizeLimit::Steps { steps } => format!(
-                "gives {:.0} time steps; at most {:e} are accepted; choose a larger step or a \
+                "gives {} time steps; at most {:e} are accepted; choose a larger step or a \
                  shorter duration",
-                steps.floor(),
+                step_count(steps),
                 MAX_STEPS
             ),
             SizeLimit::Work { steps, entries } => format!(
-                "gives {:.0} time steps on a mesh with {:.0} band entries, {:.2e} in all; at most \
+                "gives {} time steps on a mesh with {:.0} band entries, {:.2e} in all; at most \
                  {:e} (about 100 s of computing) are accepted; choose a larger step, a shorter \
                  duration or a coarser mesh",
-                steps.floor(),
+                step_count(steps),
                 entries,
                 steps * entries,
                 MAX_STEP_WORK
             ),
         }
+    }
+}
+
+/// A number of time steps as a message gives it: whole below 1e15, else in scientific notation
+/// (not the 300 digits of a step of 1e-300 s).
+fn step_count(steps: f64) -> String {
+    if steps < 1e15 {
+        format!("{:.0}", steps.floor())
+    } else {
+        format!("{:.3e}", steps)
     }
 }
 

@@ -9,8 +9,9 @@ use crate::body::{positive, Body, ConstantSet, SelfWeight};
 use crate::constants::Constants;
 use crate::error::{Error, Result};
 use crate::excitation::{
-    floor_limit_rule, within_floor_limit, FloorMotion, Free, Harmonic, PaperSine, PulseShape,
-    RecordedMotion, Ricker, SinePulse, MIN_EXCITATION_PERIOD,
+    above_floor_minimum, floor_limit_rule, floor_minimum_rule, within_floor_limit, FloorMotion,
+    Free, Harmonic, PaperSine, PulseShape, RecordedMotion, Ricker, SinePulse,
+    MIN_EXCITATION_PERIOD,
 };
 use crate::record::{read_record_named, Record, RecordFormat};
 
@@ -93,8 +94,11 @@ impl RecordCache {
     /// given: a model whose `excitation.path` names `path` (joined to its base directory) and
     /// no `excitation.format` or `excitation.dt` takes the record from here, and reads no file.
     pub fn insert(&self, path: &Path, record: Record) {
-        self.lock()
-            .insert((path.to_path_buf(), None, None), Arc::new(record));
+        // Kept under the path a model reads it from ([`record_path`]).
+        self.lock().insert(
+            (super::setting::normalised(path), None, None),
+            Arc::new(record),
+        );
     }
 
     fn read(
@@ -357,6 +361,16 @@ pub(super) fn floor_from_section(
         Kind::PaperSine => {
             let ramp = s.ramp.unwrap_or(0.0);
             positive("excitation.ramp", ramp)?;
+            if !crate::limits::at_least(ramp, MIN_EXCITATION_PERIOD) {
+                return Err(Error::invalid(
+                    "excitation.ramp",
+                    ramp,
+                    &format!(
+                        "must be at least {MIN_EXCITATION_PERIOD} s, the shortest time over which \
+                         a floor motion may change (as its period)"
+                    ),
+                ));
+            }
             Box::new(PaperSine::new(amplitude, period, ramp))
         }
         Kind::Harmonic => Box::new(Harmonic { amplitude, period }),
@@ -375,6 +389,18 @@ pub(super) fn floor_from_section(
                 }
             };
             let pulse = SinePulse::new(amplitude, period, cycles, shape);
+            if !crate::limits::at_least(pulse.end(), MIN_EXCITATION_PERIOD) {
+                return Err(Error::invalid(
+                    "excitation.cycles",
+                    cycles,
+                    &format!(
+                        "the pulse, cycles x period = {} s, must last at least \
+                         {MIN_EXCITATION_PERIOD} s, the shortest time over which a floor motion \
+                         may change (as its period)",
+                        crate::format::shortest(pulse.end())
+                    ),
+                ));
+            }
             // With a tail, the run lasts the pulse and the tail (unless simulation.duration says
             // otherwise): a sweep over the pulse period keeps the free rocking after it the same.
             let natural = match s.tail {
@@ -399,10 +425,26 @@ pub(super) fn floor_from_section(
             })
         }
         Kind::Record => {
-            let (record, tail) = recorded_motion(s, base_dir, records)?;
+            let (record, tail, unscaled) = recorded_motion(s, base_dir, records)?;
             let (peak, t_peak) = record.peak();
+            let scale = s.scale.unwrap_or(1.0);
+            // The minimum is checked on the product, which may underflow to 0 where the scaled
+            // samples did.
+            if !above_floor_minimum(unscaled) {
+                return Err(Error::invalid(
+                    "excitation.path",
+                    s.path.clone().unwrap_or_default(),
+                    &floor_minimum_rule(unscaled),
+                ));
+            }
+            if !above_floor_minimum(unscaled * scale) {
+                return Err(Error::invalid(
+                    "excitation.scale",
+                    scale,
+                    &floor_minimum_rule(unscaled * scale),
+                ));
+            }
             if !within_floor_limit(peak) {
-                let scale = s.scale.unwrap_or(1.0);
                 // Blame the scale only when the record itself is within the limit.
                 return Err(if within_floor_limit(peak / scale.abs().max(1e-300)) {
                     Error::invalid("excitation.scale", scale, &floor_limit_rule(peak))
@@ -434,13 +476,26 @@ fn finish_analytic(
 ) -> Result<(Box<dyn FloorMotion>, Option<f64>)> {
     let peak = floor.peak_acceleration();
     if !within_floor_limit(peak) {
-        // Within the limit the amplitude itself, beyond it the paper-sine's ramp, is to blame.
+        // Within the limit the amplitude itself, beyond it the paper-sine's ramp (with the
+        // period, which sets how far the ramp's cubic overshoots), is to blame.
         let (key, value) = if within_floor_limit(amplitude.abs()) {
-            ("excitation.ramp", s.ramp.unwrap_or(0.0))
+            let ramp = crate::format::shortest(s.ramp.unwrap_or(0.0));
+            let period = crate::format::shortest(s.period.unwrap_or(0.0));
+            (
+                "excitation.ramp",
+                format!("{ramp} (with excitation.period = {period})"),
+            )
         } else {
-            ("excitation.amplitude", amplitude)
+            ("excitation.amplitude", crate::format::shortest(amplitude))
         };
         return Err(Error::invalid(key, value, &floor_limit_rule(peak)));
+    }
+    if !above_floor_minimum(peak) {
+        return Err(Error::invalid(
+            "excitation.amplitude",
+            amplitude,
+            &floor_minimum_rule(peak),
+        ));
     }
     Ok((floor, natural_duration))
 }
@@ -455,14 +510,24 @@ fn check_tail(tail: f64) -> Result<f64> {
 
 pub use crate::units::STANDARD_GRAVITY;
 
-/// Reads and trims the record of a `kind = "record"` section; returns it with the tail length.
+/// The file an `excitation.path` names, read from the directory `base_dir` (the directory of the
+/// model file as its path was given): joined and normalised by path arithmetic alone, `..`
+/// undoing the directory before it, as [`super::Setting::rebased`] writes paths. A model reached
+/// through a symbolic link reads its records from the link's directory, and `..` after a
+/// linked directory leads where the path says, not into the link's target.
+pub fn record_path(base_dir: &Path, relative: &str) -> PathBuf {
+    super::setting::normalised(&base_dir.join(relative))
+}
+
+/// Reads and trims the record of a `kind = "record"` section; returns it with the tail length
+/// and its peak before the scale, m/s^2.
 fn recorded_motion(
     s: &ExcitationSection,
     base_dir: &Path,
     records: &RecordCache,
-) -> Result<(RecordedMotion, f64)> {
+) -> Result<(RecordedMotion, f64, f64)> {
     let relative = s.path.clone().unwrap_or_default();
-    let path = base_dir.join(&relative);
+    let path = record_path(base_dir, &relative);
     let format = s
         .format
         .as_deref()
@@ -537,6 +602,9 @@ fn recorded_motion(
         .iter()
         .map(|v| v * unit_factor * scale)
         .collect();
+    let unscaled = record.values[first..=last]
+        .iter()
+        .fold(0.0_f64, |peak, v| peak.max((v * unit_factor).abs()));
     Ok((
         RecordedMotion::new(
             format!(
@@ -550,6 +618,7 @@ fn recorded_motion(
             values,
         ),
         tail,
+        unscaled,
     ))
 }
 

@@ -179,7 +179,10 @@ fn fem_setup(
         return Err(Error::invalid(
             "fem.mu_k",
             mu_k,
-            &format!("kinetic friction cannot exceed static friction (fem.mu_s = {mu_s})"),
+            &format!(
+                "kinetic friction cannot exceed static friction (fem.mu_s = {})",
+                crate::format::shortest(mu_s)
+            ),
         ));
     }
     let base_name = s.base.as_deref().unwrap_or(BaseSupport::Flexible.name());
@@ -192,6 +195,19 @@ fn fem_setup(
     })?;
     let damping_period = s.damping_period.unwrap_or(constants.period);
     positive("fem.damping_period", damping_period)?;
+    if damping_period > crate::limits::MAX_DURATION {
+        // The damping is C = (h T_d / pi) K: at 1e12 s it swamps the mass in the stepped matrix,
+        // which rounds to singular.
+        return Err(Error::invalid(
+            "fem.damping_period",
+            damping_period,
+            &format!(
+                "must be at most {:e} s, the longest run: a vibration of a longer period is never \
+                 seen, and far beyond it the damping matrix swamps the mass matrix",
+                crate::limits::MAX_DURATION
+            ),
+        ));
+    }
     let fem_body = FemBody {
         height: body.height,
         width: body.width,

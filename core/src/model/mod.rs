@@ -16,8 +16,8 @@ pub use setting::{check_key, model_dir, value_text, Setting};
 pub use table::{default_value, effective_table, schema_keys, value_in_effect};
 
 use excitation_section::floor_from_section;
-pub use excitation_section::RecordCache;
 pub use excitation_section::STANDARD_GRAVITY;
+pub use excitation_section::{record_path, RecordCache};
 pub use fem_section::{
     FemSetup, DEFAULT_FEM_DT, DEFAULT_FEM_MU_K, DEFAULT_FEM_MU_S, DEFAULT_FEM_NX, DEFAULT_FEM_NY,
     DEFAULT_FEM_THETA, DEFAULT_POISSON_RATIO, FEM_SNAPSHOT_TIMES,
@@ -39,7 +39,7 @@ use crate::error::{Error, Result};
 use crate::excitation::FloorMotion;
 use crate::solver::adaptive::{AdaptiveMethod, AdaptiveSettings};
 use crate::solver::newmark::NewmarkSettings;
-use crate::solver::{InitialState, SolverSettings};
+use crate::solver::{History, InitialState, SolverSettings};
 
 /// The model file as written.
 #[derive(Debug, Clone, Deserialize, Serialize)]
@@ -320,12 +320,32 @@ pub(crate) fn parse_table(text: &str, source: &Path) -> Result<toml::Table> {
 /// the text is read directly, so that a message points at the line of the file.
 fn parse_model_text(text: &str, settings: &[Setting], source: &Path) -> Result<ModelFile> {
     if settings.is_empty() {
-        return toml::from_str(text).map_err(|e| Error::ParseModel {
-            path: source.to_path_buf(),
-            message: crate::suggest::schema_hint(e.to_string().trim_end()),
+        return toml::from_str(text).map_err(|e| {
+            if toml::from_str::<toml::Table>(text).is_ok_and(|table| is_row_table(&table)) {
+                return row_model_refused(source);
+            }
+            Error::ParseModel {
+                path: source.to_path_buf(),
+                message: crate::suggest::schema_hint(e.to_string().trim_end()),
+            }
         });
     }
-    read_schema(&parse_table(text, source)?, settings, source)
+    let table = parse_table(text, source)?;
+    if is_row_table(&table) {
+        return Err(row_model_refused(source));
+    }
+    read_schema(&table, settings, source)
+}
+
+/// The error for a row model given where one body is read.
+fn row_model_refused(source: &Path) -> Error {
+    Error::ParseModel {
+        path: source.to_path_buf(),
+        message: "a model of a row of columns (it has a [row] table), where one body is read: \
+                  this command takes a model file with a [body] table; `flexrock run` and \
+                  `flexrock sweep` take a row"
+            .to_string(),
+    }
 }
 
 /// Values from outside the model file (command-line flags, Python arguments) that take
@@ -405,7 +425,7 @@ impl PreparedSchema {
     pub fn new(table: toml::Table, common: &[Setting], source: &Path) -> Self {
         let prepared = read_schema(&table, common, source).ok().and_then(|file| {
             let mut with_common = table.clone();
-            for setting in common {
+            for setting in methods_first(common) {
                 setting.apply(&mut with_common).ok()?;
             }
             Some((with_common, file))
@@ -431,6 +451,12 @@ impl PreparedSchema {
         let Some((table, base)) = &self.prepared else {
             return whole();
         };
+        // A method set here goes before the common settings' solver keys (see methods_first).
+        if further.iter().any(|s| s.key == "solver.method")
+            && self.common.iter().any(|s| s.key.starts_with("solver."))
+        {
+            return whole();
+        }
         let mut file = base.clone();
         let mut done: Vec<&str> = Vec::new();
         for setting in further {
@@ -446,7 +472,7 @@ impl PreparedSchema {
             if let Some(value) = table.get(section) {
                 one.insert(section.to_string(), value.clone());
             }
-            for s in further {
+            for s in methods_first(further) {
                 if s.key.split_once('.').is_some_and(|(of, _)| of == section)
                     && s.apply(&mut one).is_err()
                 {
@@ -484,6 +510,21 @@ impl ModelFile {
     }
 }
 
+/// `settings` in the order they are applied: `solver.method` first, then the others, each in
+/// the order given. A method of another family sets aside the table's keys of the old family
+/// ([`Setting::apply`]); applied first, it sets aside only the file's, and a solver key set
+/// beside it (`--set solver.dt=0.01 --set solver.method=newmark`) stays, to meet the method's
+/// rules.
+fn methods_first(settings: &[Setting]) -> impl Iterator<Item = &Setting> {
+    fn is_method(s: &&Setting) -> bool {
+        s.key == "solver.method"
+    }
+    settings
+        .iter()
+        .filter(is_method)
+        .chain(settings.iter().filter(|s| !is_method(s)))
+}
+
 /// Reads a model file's table into the schema, with `settings` applied first. A table that does
 /// not follow the schema is the file's fault (`source` names it); a setting that breaks it is
 /// the setting's, and the error names its key.
@@ -500,7 +541,7 @@ pub fn read_schema(table: &toml::Table, settings: &[Setting], source: &Path) -> 
         });
     }
     let mut with_settings = table.clone();
-    for setting in settings {
+    for setting in methods_first(settings) {
         setting.apply(&mut with_settings)?;
     }
     match read(with_settings) {
@@ -624,10 +665,31 @@ impl Model {
 
     /// [`Model::from_file`], taking records from `records` (and reading them into it).
     pub fn from_file_cached(
+        file: ModelFile,
+        overrides: &Overrides,
+        base_dir: &Path,
+        records: &RecordCache,
+    ) -> Result<Model> {
+        Model::from_file_keeping(file, overrides, base_dir, records, History::Sampled)
+    }
+
+    /// [`Model::from_file_cached`] for a run that keeps no history ([`crate::simulate_peaks`]: a
+    /// sweep's point), to which the limit on history rows does not apply.
+    pub(crate) fn for_peaks(
+        file: ModelFile,
+        base_dir: &Path,
+        records: &RecordCache,
+    ) -> Result<Model> {
+        let none = Overrides::default();
+        Model::from_file_keeping(file, &none, base_dir, records, History::PeaksOnly)
+    }
+
+    fn from_file_keeping(
         mut file: ModelFile,
         overrides: &Overrides,
         base_dir: &Path,
         records: &RecordCache,
+        history: History,
     ) -> Result<Model> {
         if let Some(m) = &overrides.method {
             // Switching between the families of methods (Newmark, the adaptive methods, the exact
@@ -640,10 +702,25 @@ impl Model {
                 .as_deref()
                 .unwrap_or(solver_section::default_method(gives_tolerance));
             if solver_section::method_family(m) != solver_section::method_family(file_method) {
-                let keep_output_dt = file.solver.output_dt;
+                // Keys set from outside the file (`--set solver.dt=...`) were given for this
+                // method, and stay to meet its rules.
+                fn given<T>(overrides: &Overrides, key: &str, value: Option<T>) -> Option<T> {
+                    value.filter(|_| overrides.settings.iter().any(|s| s.key == key))
+                }
+                let old = std::mem::take(&mut file.solver);
                 file.solver = SolverSection {
-                    output_dt: keep_output_dt,
-                    ..SolverSection::default()
+                    method: None,
+                    output_dt: old.output_dt,
+                    rtol: given(overrides, "solver.rtol", old.rtol),
+                    atol: given(overrides, "solver.atol", old.atol),
+                    dt: given(overrides, "solver.dt", old.dt),
+                    newmark_beta: given(overrides, "solver.newmark_beta", old.newmark_beta),
+                    newmark_gamma: given(overrides, "solver.newmark_gamma", old.newmark_gamma),
+                    newmark_variant: given(
+                        overrides,
+                        "solver.newmark_variant",
+                        old.newmark_variant,
+                    ),
                 };
             }
             file.solver.method = Some(m.clone());
@@ -668,29 +745,10 @@ impl Model {
         let constants = records.constants(&body)?;
         check_stands_up(&file.body, &body, &constants)?;
         let (floor, natural_duration) = floor_from_section(&file.excitation, base_dir, records)?;
-        let duration = match (file.simulation.duration, natural_duration) {
-            (Some(d), _) | (None, Some(d)) => d,
-            (None, None) => {
-                return Err(Error::invalid(
-                    "simulation.duration",
-                    "(missing)",
-                    &format!(
-                        "required for kind = \"{}\" (records, and sine pulses with excitation.tail, have a natural length)",
-                        file.excitation.kind
-                    ),
-                ))
-            }
-        };
-        positive("simulation.duration", duration)?;
-        if duration > MAX_DURATION {
-            return Err(Error::invalid(
-                "simulation.duration",
-                duration,
-                &format!("must be at most {MAX_DURATION:e} s: no earthquake or shaking-table test lasts nearly that long"),
-            ));
-        }
+        let duration = run_duration(file.simulation.duration, natural_duration, &file.excitation)?;
         let initial = initial_from_section(&file.simulation, &body)?;
-        let solver = solver_from_section(&file.solver, duration, constants.omega, body.width)?;
+        let solver =
+            solver_from_section(&file.solver, duration, constants.omega, body.width, history)?;
         Ok(Model {
             path: None,
             file,
@@ -787,6 +845,81 @@ impl Model {
             self.constants.omega,
             self.solver.output_dt(),
         )
+    }
+}
+
+/// The simulated time, s: `given` (`simulation.duration`), else the excitation's natural length
+/// `natural` (a record's or a pulse's, with its tail); positive and at most [`MAX_DURATION`].
+/// A natural length beyond it is blamed on the tail that made it.
+fn run_duration(
+    given: Option<f64>,
+    natural: Option<f64>,
+    excitation: &ExcitationSection,
+) -> Result<f64> {
+    let rule = format!(
+        "must be at most {MAX_DURATION:e} s: no earthquake or shaking-table test lasts nearly \
+         that long"
+    );
+    match (given, natural) {
+        (Some(d), _) => {
+            positive("simulation.duration", d)?;
+            if d > MAX_DURATION {
+                return Err(Error::invalid("simulation.duration", d, &rule));
+            }
+            Ok(d)
+        }
+        (None, Some(d)) => {
+            if !(d > 0.0 && d <= MAX_DURATION) {
+                // Blamed on the tail, unless the motion alone is too long.
+                let tail = excitation.tail.unwrap_or(0.0);
+                let (key, value) = match excitation.kind.as_str() {
+                    _ if d - tail <= MAX_DURATION => {
+                        ("excitation.tail", crate::format::shortest(tail))
+                    }
+                    "sine-pulse" => (
+                        "excitation.cycles",
+                        format!(
+                            "{} (with excitation.period = {})",
+                            crate::format::shortest(excitation.cycles.unwrap_or(1.0)),
+                            crate::format::shortest(excitation.period.unwrap_or(0.0))
+                        ),
+                    ),
+                    _ => {
+                        return Err(Error::invalid(
+                            "excitation.path",
+                            excitation.path.clone().unwrap_or_default(),
+                            &format!(
+                                "the record lasts {} s: with no simulation.duration the run lasts \
+                             the record and the tail, which {rule} (give simulation.duration \
+                             or excitation.end)",
+                                crate::format::shortest(d - tail)
+                            ),
+                        ))
+                    }
+                };
+                return Err(Error::invalid(
+                    key,
+                    value,
+                    &format!(
+                        "with no simulation.duration the run lasts the {} ({} s) and the tail, \
+                         {} s in all, which {rule}",
+                        excitation.kind,
+                        crate::format::shortest(d - tail),
+                        crate::format::shortest(d)
+                    ),
+                ));
+            }
+            Ok(d)
+        }
+        (None, None) => Err(Error::invalid(
+            "simulation.duration",
+            "(missing)",
+            &format!(
+                "required for kind = \"{}\" (records, and sine pulses with excitation.tail, have \
+                 a natural length)",
+                excitation.kind
+            ),
+        )),
     }
 }
 
@@ -922,7 +1055,22 @@ fn body_from_section(s: &BodySection) -> Result<Body> {
         (_, period) => {
             positive("body.period", period)?;
             positive("body.gravity", body.gravity)?;
-            Constants::flexural_rigidity_for_period(period, &body)?
+            // EI grows as M H^3 / T^2: it leaves the range of numbers for a period far from
+            // any body's (2.2e-308 s made it inf).
+            let (mass_key, mass_value) = match s.density {
+                Some(density) => ("body.density", density),
+                None => ("body.mass", body.mass),
+            };
+            derived_product(
+                "flexural rigidity EI found from the period",
+                "N m^2",
+                Constants::flexural_rigidity_for_period(period, &body)?,
+                &[
+                    ("body.period", period),
+                    (mass_key, mass_value),
+                    ("body.height", s.height),
+                ],
+            )?
         }
     };
     Ok(body.validated()?)
@@ -932,7 +1080,7 @@ fn body_from_section(s: &BodySection) -> Result<Body> {
 /// positive; otherwise the product overflowed or underflowed, and the factor farthest from 1 (the
 /// key the user most likely mistyped) is blamed with its own value.
 fn derived_product(what: &str, unit: &str, value: f64, factors: &[(&str, f64)]) -> Result<f64> {
-    if value.is_finite() && value > 0.0 {
+    if value.is_normal() && value > 0.0 {
         return Ok(value);
     }
     let (key, factor) = factors
@@ -944,8 +1092,9 @@ fn derived_product(what: &str, unit: &str, value: f64, factors: &[(&str, f64)]) 
         key,
         factor,
         &format!(
-            "with it the {what} is {value} {unit}, beyond the range of numbers (give sizes in m, \
-             densities in kg/m^3, moduli in Pa)"
+            "with it the {what} is {} {unit}, beyond the range of numbers, whose smallest normal \
+             positive value is 2.2e-308 (give sizes in m, densities in kg/m^3, moduli in Pa)",
+            crate::format::shortest(value)
         ),
     ))
 }
@@ -1066,6 +1215,11 @@ mod prepared_schema_tests {
             vec![number("fem.elements", 12.0)],
             vec![number("simulation.duration", 3.0)],
             vec![text("solver.method", "newmark"), number("solver.dt", 0.01)],
+            vec![number("solver.dt", 0.01), text("solver.method", "newmark")],
+            vec![
+                number("solver.rtol", 1e-8),
+                text("solver.method", "newmark"),
+            ],
             vec![text("solver.method", "bdf")],
             vec![number("body.height", -1.0)],
             vec![

@@ -12,15 +12,15 @@ use super::solver_section::solver_from_section;
 use super::solver_section::{check_atol, check_rtol};
 use super::{
     body_from_section, check_stands_up, initial_from_section, parse_table, read_model_text,
-    BodySection, ExcitationSection, SimulationSection, SolverSection, MAX_DURATION, MODEL_TEXT,
+    BodySection, ExcitationSection, SimulationSection, SolverSection, MODEL_TEXT,
 };
-use crate::body::{positive, Body};
+use crate::body::Body;
 use crate::constants::Constants;
 use crate::error::{Error, Result};
 use crate::excitation::FloorMotion;
 use crate::row::{ColumnSpec, CompliantSettings, Row, DEFAULT_TOLERANCE, METHOD};
 use crate::solver::exact::ExactSettings;
-use crate::solver::SolverSettings;
+use crate::solver::{History, SolverSettings};
 
 /// The `[row]` table.
 #[derive(Debug, Clone, Deserialize, Serialize)]
@@ -113,17 +113,25 @@ impl RowModel {
         duration: Option<f64>,
     ) -> Result<RowModel> {
         let table = parse_table(text, source)?;
-        RowModel::from_table(table, source, base_dir, duration, &RecordCache::default())
+        RowModel::from_table(
+            table,
+            source,
+            base_dir,
+            duration,
+            &RecordCache::default(),
+            History::Sampled,
+        )
     }
 
-    /// Validates the table of a row model file (`source` names it in messages); record files
-    /// are read through `records`, so that a sweep reads each once.
+    /// Validates the table of a row model file (`source` names it in messages) for a run that
+    /// keeps `history`; record files are read through `records`, so that a sweep reads each once.
     pub(crate) fn from_table(
         table: toml::Table,
         source: &Path,
         base_dir: &Path,
         duration: Option<f64>,
         records: &RecordCache,
+        history: History,
     ) -> Result<RowModel> {
         let parse_error = |message: String| Error::ParseModel {
             path: source.to_path_buf(),
@@ -258,28 +266,11 @@ impl RowModel {
             None => row,
         };
         let (floor, natural_duration) = floor_from_section(&excitation, base_dir, records)?;
-        let duration = match (duration.or(simulation.duration), natural_duration) {
-            (Some(d), _) | (None, Some(d)) => d,
-            (None, None) => {
-                return Err(Error::invalid(
-                    "simulation.duration",
-                    "(missing)",
-                    &format!(
-                        "required for kind = \"{}\" (records, and sine pulses with \
-                         excitation.tail, have a natural length)",
-                        excitation.kind
-                    ),
-                ))
-            }
-        };
-        positive("simulation.duration", duration)?;
-        if duration > MAX_DURATION {
-            return Err(Error::invalid(
-                "simulation.duration",
-                duration,
-                &format!("must be at most {MAX_DURATION:e} s"),
-            ));
-        }
+        let duration = super::run_duration(
+            duration.or(simulation.duration),
+            natural_duration,
+            &excitation,
+        )?;
         if compliant {
             if let Some(method) = solver.method.as_deref().filter(|&m| m != METHOD) {
                 return Err(Error::invalid(
@@ -315,7 +306,8 @@ impl RowModel {
                 output_dt: solver.output_dt,
                 ..SolverSection::default()
             };
-            let SolverSettings::Exact(settings) = solver_from_section(&exact, duration, 1.0, 1.0)?
+            let SolverSettings::Exact(settings) =
+                solver_from_section(&exact, duration, 1.0, 1.0, history)?
             else {
                 unreachable!("method = \"exact\" gives the exact settings");
             };
@@ -347,7 +339,8 @@ impl RowModel {
             ..solver.clone()
         };
         // The exact method has no step, so the body's frequency and width play no part here.
-        let SolverSettings::Exact(settings) = solver_from_section(&exact, duration, 1.0, 1.0)?
+        let SolverSettings::Exact(settings) =
+            solver_from_section(&exact, duration, 1.0, 1.0, history)?
         else {
             unreachable!("method = \"exact\" gives the exact settings");
         };

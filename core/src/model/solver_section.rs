@@ -6,7 +6,7 @@ use crate::error::{Error, Result};
 use crate::solver::adaptive::{AdaptiveMethod, AdaptiveSettings};
 use crate::solver::exact::ExactSettings;
 use crate::solver::newmark::{critical_omega_dt, NewmarkSettings, NewmarkVariant};
-use crate::solver::SolverSettings;
+use crate::solver::{History, SolverSettings};
 
 /// The paper's time step (section 2.5).
 pub const DEFAULT_NEWMARK_DT: f64 = 0.02;
@@ -40,18 +40,26 @@ pub(crate) fn check_rtol(key: &str, rtol: f64) -> Result<()> {
     }
 }
 
+/// Tightest absolute tolerance, as a share of the width B: q ranges over B, whose rounding is
+/// 1.1e-16 B; far below it (1e-30 B, say) the adaptive methods find no step small enough.
+pub const MIN_ATOL_OVER_WIDTH: f64 = 1e-18;
+
 /// The rule for an absolute tolerance (m for q, m/s for q') of a body of width `width`.
 pub(crate) fn check_atol(key: &str, atol: f64, width: f64) -> Result<()> {
-    let max = MAX_ATOL_OVER_WIDTH * width;
-    if atol > 0.0 && crate::limits::at_most(atol, max) {
+    let (min, max) = (MIN_ATOL_OVER_WIDTH * width, MAX_ATOL_OVER_WIDTH * width);
+    if crate::limits::at_least(atol, min) && crate::limits::at_most(atol, max) {
         Ok(())
     } else {
         Err(Error::invalid(
             key,
             atol,
             &format!(
-                "the absolute tolerance must lie in (0, {}] (0.01 of the width B = {width} m: a looser one resolves neither uplift nor overturning)",
-                crate::format::readable(max)
+                "the absolute tolerance must lie in [{}, {}] (1e-18 to 0.01 of the width B = \
+                 {} m: a looser one resolves neither uplift nor overturning, a tighter one is \
+                 far below the rounding of q)",
+                crate::format::readable(min),
+                crate::format::readable(max),
+                crate::format::shortest(width)
             ),
         ))
     }
@@ -99,11 +107,14 @@ pub(crate) fn default_method(gives_tolerance: bool) -> &'static str {
 /// The exact method's model-file name.
 const EXACT: &str = crate::solver::exact::NAME;
 
+/// The solver settings of a `[solver]` section, for a run of `duration` s that keeps `history`
+/// (the limit on history rows applies only to a run that keeps one).
 pub(super) fn solver_from_section(
     s: &SolverSection,
     duration: f64,
     omega: f64,
     width: f64,
+    history: History,
 ) -> Result<SolverSettings> {
     let name = s
         .method
@@ -155,11 +166,14 @@ pub(super) fn solver_from_section(
     }
     let output_dt = s.output_dt.unwrap_or(DEFAULT_OUTPUT_DT);
     positive("solver.output_dt", output_dt)?;
-    if !crate::limits::at_most(duration / output_dt, MAX_SAMPLES) {
+    if history == History::Sampled && !crate::limits::at_most(duration / output_dt, MAX_SAMPLES) {
         return Err(Error::invalid(
             "solver.output_dt",
             output_dt,
-            &format!("gives more than {MAX_SAMPLES:e} history rows over {duration} s; choose a larger spacing"),
+            &format!(
+                "gives more than {MAX_SAMPLES:e} history rows over {} s; choose a larger spacing",
+                crate::format::shortest(duration)
+            ),
         ));
     }
     if is_exact {
@@ -194,7 +208,10 @@ pub(super) fn newmark_from_section(
         return Err(Error::invalid(
             "solver.dt",
             dt,
-            &format!("gives more than {MAX_NEWMARK_STEPS:e} steps over {duration} s; choose a larger step"),
+            &format!(
+                "gives more than {MAX_NEWMARK_STEPS:e} steps over {} s; choose a larger step",
+                crate::format::shortest(duration)
+            ),
         ));
     }
     let gamma = s.newmark_gamma.unwrap_or(DEFAULT_NEWMARK_GAMMA);

@@ -183,20 +183,41 @@ fn strip_prefix_ignore_case<'a>(text: &'a str, prefix: &str) -> Option<&'a str> 
     }
 }
 
-/// Checks that a dt is finite, > 0 and at least [`MIN_DT`].
-fn check_dt(dt: f64, at: Location) -> Result<f64, RecordError> {
+/// Which rule of a sampling interval a dt breaks.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum DtRule {
+    NotFinite,
+    NotPositive,
+    BelowMinimum,
+}
+
+/// The rule the sampling interval `dt` breaks, if any: it must be finite, > 0 and at least
+/// [`MIN_DT`], an inclusive limit (a mean step of a time column in steps of 1e-5 s, which rounds
+/// to 9.999999999999999e-6, passes). The one rule of a dt read from a file, given with it or
+/// given with samples in memory.
+fn dt_rule(dt: f64) -> Option<DtRule> {
     if !dt.is_finite() {
-        Err(RecordError::NonFiniteDt { at, found: dt })
+        Some(DtRule::NotFinite)
     } else if dt <= 0.0 {
-        Err(RecordError::InvalidDt { at, found: dt })
-    } else if dt < MIN_DT {
-        Err(RecordError::DtTooSmall {
+        Some(DtRule::NotPositive)
+    } else if !crate::limits::at_least(dt, MIN_DT) {
+        Some(DtRule::BelowMinimum)
+    } else {
+        None
+    }
+}
+
+/// Checks that a dt is finite, > 0 and at least [`MIN_DT`] ([`dt_rule`]).
+fn check_dt(dt: f64, at: Location) -> Result<f64, RecordError> {
+    match dt_rule(dt) {
+        Some(DtRule::NotFinite) => Err(RecordError::NonFiniteDt { at, found: dt }),
+        Some(DtRule::NotPositive) => Err(RecordError::InvalidDt { at, found: dt }),
+        Some(DtRule::BelowMinimum) => Err(RecordError::DtTooSmall {
             at,
             found: dt,
             limit: MIN_DT,
-        })
-    } else {
-        Ok(dt)
+        }),
+        None => Ok(dt),
     }
 }
 

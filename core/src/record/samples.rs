@@ -3,7 +3,9 @@
 //! argument that holds the bad value (`acceleration[17]`, `dt`, `time[3]`) rather than a file
 //! and line.
 
-use super::{Record, MAX_RECORD_BYTES, MIN_DT, MIN_SAMPLES, RELATIVE_DT_TOLERANCE};
+use super::{
+    dt_rule, DtRule, Record, MAX_RECORD_BYTES, MIN_DT, MIN_SAMPLES, RELATIVE_DT_TOLERANCE,
+};
 use crate::invalid::InvalidParameter;
 
 /// Most samples a record in memory may have: as many as the largest record file can hold
@@ -13,18 +15,15 @@ pub const MAX_RECORD_SAMPLES: usize = (MAX_RECORD_BYTES / 2) as usize;
 /// Checks a sampling interval named `name` (s) by a record file's rules: finite, > 0 and at
 /// least [`MIN_DT`].
 pub fn check_sample_dt(name: &str, dt: f64) -> Result<f64, InvalidParameter> {
-    let rule = if !dt.is_finite() {
-        "must be a finite number of seconds".to_string()
-    } else if dt <= 0.0 {
-        "must be > 0 s".to_string()
-    } else if dt < MIN_DT {
-        format!(
+    let rule = match dt_rule(dt) {
+        Some(DtRule::NotFinite) => "must be a finite number of seconds".to_string(),
+        Some(DtRule::NotPositive) => "must be > 0 s".to_string(),
+        Some(DtRule::BelowMinimum) => format!(
             "is below the smallest sampling interval accepted, {} s (100 kHz; accelerographs \
              sample at 100 Hz to a few kHz)",
             crate::format::shortest(MIN_DT)
-        )
-    } else {
-        return Ok(dt);
+        ),
+        None => return Ok(dt),
     };
     Err(InvalidParameter::new(name, dt, &rule))
 }

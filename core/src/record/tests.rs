@@ -612,3 +612,28 @@ proptest! {
         }
     }
 }
+
+/// A time column in steps of exactly 1e-5 s is a record at the smallest sampling interval,
+/// whatever its length: its mean step (last - first) / (n - 1) rounds to 9.999999999999999e-6
+/// at 150 000 rows and to 1e-5 at 1e6, and both pass the one rule of a dt, which is inclusive.
+/// The same dt given with samples in memory passes too, and a dt meaningfully below is refused
+/// with the dt as given.
+#[test]
+fn a_dt_of_exactly_the_smallest_interval_passes_whatever_the_rounding() {
+    for rows in [1000usize, 150_000, 1_000_000] {
+        let mut text = String::from("t,acc\n");
+        for k in 0..rows {
+            text.push_str(&format!("{:.5},0.01\n", k as f64 / 1e5));
+        }
+        let record =
+            parse_csv(&text, "steps.csv", None).unwrap_or_else(|e| panic!("{rows} rows: {e}"));
+        assert!((record.dt - MIN_DT).abs() <= 1e-15 * MIN_DT, "{rows} rows");
+    }
+    let mean = 1.49999 / 149_999.0;
+    assert!(mean < MIN_DT, "the rounding this test is about");
+    assert_eq!(check_sample_dt("dt", mean), Ok(mean));
+    let values = "0.01\n".repeat(10);
+    assert!(parse_csv(&values, "one.csv", Some(mean)).is_ok());
+    let message = error_message(parse_csv(&values, "one.csv", Some(9.99e-6)));
+    assert!(message.contains("dt = 9.99e-6 s is below"), "{message}");
+}

@@ -177,10 +177,7 @@ impl Model<'_> {
 
     /// The reduced mass of the contact points of contact `c`, kg.
     fn reduced_mass(&self, c: usize, modes: &[Mode]) -> f64 {
-        let (pl, pr) = self.slopes(c, modes);
-        let ml = self.automaton(c).kinetic_mass(modes[c]) / (pl * pl);
-        let mr = self.automaton(c + 1).kinetic_mass(modes[c + 1]) / (pr * pr);
-        ml * mr / (ml + mr)
+        self.row.reduced_mass(c, (modes[c], modes[c + 1]))
     }
 
     /// c = 2 zeta sqrt(k m_red), N s/m.

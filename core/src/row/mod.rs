@@ -60,13 +60,22 @@ pub use compliant::{
 };
 pub use contact::{Contact, ContactSample, ContactState, Face};
 pub use impact::{impulses, ImpactError, MAX_SIMULTANEOUS};
+
 pub use solve::{solve_row, HeldContact, ImpactRecord, RowSolution, ACCUMULATION_SHARE};
 
-use crate::automaton::Automaton;
+use crate::automaton::{Automaton, Mode};
 use crate::body::Body;
 use crate::constants::{flexural_shape_at, flexural_shape_slope_at, Constants};
 use crate::invalid::InvalidParameter as Error;
+use crate::solver::budget::STEPS_PER_SECOND;
 use crate::solver::InitialState;
+
+/// Largest coefficient of friction between the faces of a row. Building materials against
+/// each other take 0.2 to about 1.2 (concrete, masonry, steel, timber; rubber on concrete
+/// about 1); at 1e160 the slip friction mu P overflows the integration (histories of NaN), and
+/// from 1e6 on in the example of models/row-friction.toml faces that meet sliding stop within a
+/// time no integrator resolves.
+pub const MAX_FRICTION: f64 = 10.0;
 
 /// One column of a row: its body and where it starts.
 #[derive(Debug, Clone)]
@@ -262,11 +271,91 @@ impl Row {
                  falls to zero restitutes e = 0 only with an infinite dashpot",
             ));
         }
+        let damping_ratio = law::damping_ratio_for(self.restitution);
+        self.check_contact_rate(stiffness, damping_ratio)?;
         self.law = ContactLaw::Compliant {
             stiffness,
-            damping_ratio: law::damping_ratio_for(self.restitution),
+            damping_ratio,
         };
         Ok(self)
+    }
+
+    /// The reduced mass of the two contact points of contact `c` with its columns in `modes`,
+    /// kg: m / Phi^2 of each, m the column's kinetic mass and Phi its velocity shape at the
+    /// contact.
+    pub(crate) fn reduced_mass(&self, c: usize, modes: (Mode, Mode)) -> f64 {
+        let automata = (&self.columns[c].automaton, &self.columns[c + 1].automaton);
+        let (pl, pr) = self.contacts[c].slopes(automata, modes);
+        let ml = automata.0.kinetic_mass(modes.0) / (pl * pl);
+        let mr = automata.1.kinetic_mass(modes.1) / (pr * pr);
+        ml * mr / (ml + mr)
+    }
+
+    /// Refuses a compliant law whose contacts move faster than the integrator can follow: two
+    /// contact points alone, of reduced mass m, vibrate at w = sqrt(k / m), and an overdamped
+    /// dashpot adds the faster rate w (zeta + sqrt(zeta^2 - 1)). An explicit method steps no
+    /// further than a few times 1 / rate, and a run is allowed [`STEPS_PER_SECOND`] steps per
+    /// simulated second: the fastest rate, in every pair of modes, must not exceed it. (Far
+    /// beyond it a contact lasts less than the spacing of floating-point times, and the run made
+    /// NaN: a stiffness of 1e154 N/m, a restitution of 1e-300, a column 1e-300 m deep.)
+    fn check_contact_rate(&self, stiffness: f64, zeta: f64) -> Result<(), Error> {
+        let overdamped = if zeta > 1.0 {
+            zeta + (zeta * zeta - 1.0).sqrt()
+        } else {
+            1.0
+        };
+        let modes = [Mode::PreUplift, Mode::RockRight, Mode::RockLeft];
+        for c in 0..self.contacts.len() {
+            for (left, right) in modes
+                .iter()
+                .flat_map(|l| modes.iter().map(move |r| (*l, *r)))
+            {
+                let mass = self.reduced_mass(c, (left, right));
+                let spring = (stiffness / mass).sqrt();
+                let rate = spring * overdamped;
+                // A contact point that does not move in these modes (Phi = 0) sets no rate.
+                if rate.is_nan() || crate::limits::at_most(rate, STEPS_PER_SECOND) {
+                    continue;
+                }
+                let between = format!(
+                    "the contact of column {c} and column {} (its points' reduced mass {} kg, \
+                     from the columns' density, height, width and depth, column {c} {} and \
+                     column {} {})",
+                    c + 1,
+                    crate::format::significant(mass, 6),
+                    left.name(),
+                    c + 1,
+                    right.name()
+                );
+                let rule = format!(
+                    "must be at most {STEPS_PER_SECOND:e} per second, the integrator's steps per \
+                     simulated second"
+                );
+                return Err(if !crate::limits::at_most(spring, STEPS_PER_SECOND) {
+                    Error::new(
+                        "row.stiffness",
+                        stiffness,
+                        &format!(
+                            "gives {between} the rate sqrt(k / m) = {} per second, which {rule}",
+                            crate::format::significant(spring, 6)
+                        ),
+                    )
+                } else {
+                    Error::new(
+                        "row.restitution",
+                        self.restitution,
+                        &format!(
+                            "sets the dashpot's damping ratio {} under the compliant law, which \
+                             gives {between} the rate sqrt(k / m) (zeta + sqrt(zeta^2 - 1)) = {} \
+                             per second, which {rule}",
+                            crate::format::significant(zeta, 6),
+                            crate::format::significant(rate, 6)
+                        ),
+                    )
+                });
+            }
+        }
+        Ok(())
     }
 
     /// The row with Coulomb's friction of coefficient `mu` between faces in contact
@@ -274,11 +363,15 @@ impl Row {
     /// with stick and slip. The contact law must be compliant; 0 is no friction. Errors name
     /// `row.friction`.
     pub fn with_friction(mut self, mu: f64) -> Result<Self, Error> {
-        if !(mu.is_finite() && mu >= 0.0) {
+        if !(mu >= 0.0 && crate::limits::at_most(mu, MAX_FRICTION)) {
             return Err(Error::new(
                 "row.friction",
                 mu,
-                "must be a finite coefficient of friction >= 0",
+                &format!(
+                    "must be a finite coefficient of friction >= 0 and at most {MAX_FRICTION}: no \
+                     pair of materials comes near {MAX_FRICTION}, and far beyond it faces that \
+                     meet sliding stop within a time no integrator resolves"
+                ),
             ));
         }
         if mu > 0.0 && self.law == ContactLaw::Impact {

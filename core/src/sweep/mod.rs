@@ -31,7 +31,8 @@ pub use row::{Cell, Layout, Outcome, Row, Status};
 use row::{RigidMinima, RunOutcome, Scales};
 
 use crate::error::{Error, Result};
-use crate::model::{read_schema, Model, Overrides, PreparedSchema, RecordCache, Setting};
+use crate::model::{read_schema, Model, PreparedSchema, RecordCache, Setting};
+use crate::record::Record;
 use crate::rigid::{RigidBlock, RigidForm, RigidOverturning};
 
 /// Simulations per chunk, roughly: a chunk is the most a kill can lose.
@@ -160,6 +161,9 @@ pub struct Request {
     pub rigid_overturning: Option<RigidOverturning>,
     /// Housner's block's own coefficient of restitution [default: Housner's].
     pub rigid_restitution: Option<f64>,
+    /// Records held in memory (the Python bindings' ground motions), each under the path the
+    /// model's `excitation.path` names it by: a point reads it from here, not from a file.
+    pub records: Vec<(String, Record)>,
 }
 
 /// A sweep file: the axes, settings and search of a sweep, written as on the command line.
@@ -274,6 +278,8 @@ pub struct Sweep {
     /// typed the pattern), not to the model file.
     paths_base: PathBuf,
     records: RecordCache,
+    /// The records held in memory, by their paths joined to `base_dir`, with their digests.
+    in_memory: Vec<(PathBuf, String)>,
 }
 
 impl Sweep {
@@ -481,6 +487,17 @@ impl Sweep {
             row_columns,
         };
         let schema = PreparedSchema::new(table, &request.settings, source);
+        let records = RecordCache::default();
+        let in_memory = request
+            .records
+            .into_iter()
+            .map(|(path, record)| {
+                let path = crate::model::record_path(base_dir, &path);
+                let digest = record_digest(&record);
+                records.insert(&path, record);
+                (path, digest)
+            })
+            .collect();
         let mut sweep = Sweep {
             plan,
             schema,
@@ -488,10 +505,47 @@ impl Sweep {
             base_dir: base_dir.to_path_buf(),
             settings: request.settings,
             paths_base: here.to_path_buf(),
-            records: RecordCache::default(),
+            records,
+            in_memory,
         };
         sweep.plan.records = sweep.record_inputs();
+        if let Some(find) = &sweep.plan.find_min {
+            sweep.check_search_ends(find)?;
+        }
         Ok(sweep)
+    }
+
+    /// Refuses a minimum search whose interval reaches beyond the model's rules: at the first
+    /// point, the model must be valid at both ends when it is at one of them (a search whose
+    /// upper end is beyond 20 g, say, would make every point invalid). Where both ends are
+    /// refused, the points' rows say why.
+    fn check_search_ends(&self, find: &FindMin) -> Result<()> {
+        let first = self.settings_at(0);
+        let at = |value: f64| {
+            let mut settings = first.clone();
+            settings.push(Setting::number(&find.key, value));
+            self.model(&settings).err()
+        };
+        let (end, value, e) = match (at(find.lo), at(find.hi)) {
+            (None, Some(e)) => ("upper", find.hi, e),
+            (Some(e), None) => ("lower", find.lo, e),
+            _ => return Ok(()),
+        };
+        Err(Error::invalid(
+            &format!("find_min {}", find.key),
+            format!(
+                "{}:{}",
+                crate::format::shortest(find.lo),
+                crate::format::shortest(find.hi)
+            ),
+            &format!(
+                "the search interval must lie within the model's rules, and at its {end} end, \
+                 {} = {}, the model is refused: {}",
+                find.key,
+                crate::format::shortest(value),
+                reason(&e)
+            ),
+        ))
     }
 
     /// The record files the sweep reads and their digests: the model's own `excitation.path`
@@ -536,9 +590,13 @@ impl Sweep {
             if excitation.kind != "record" {
                 continue;
             }
-            let sha256 = match read_record_bytes(&self.base_dir.join(path)) {
-                Ok(bytes) => sha256_hex(&bytes),
-                Err(e) => format!("unreadable: {e}"),
+            let path = crate::model::record_path(&self.base_dir, path);
+            let sha256 = match self.in_memory.iter().find(|(p, _)| *p == path) {
+                Some((_, digest)) => digest.clone(),
+                None => match read_record_bytes(&path) {
+                    Ok(bytes) => sha256_hex(&bytes),
+                    Err(e) => format!("unreadable: {e}"),
+                },
             };
             // Into the cache now; a point whose record is bad reports it in its own row.
             if self.plan.row_columns.is_some() {
@@ -639,14 +697,26 @@ impl Sweep {
         debug_assert!(settings.starts_with(&self.settings));
         let further = settings.get(self.settings.len()..).unwrap_or_default();
         let file = self.schema.read(further, &self.source)?;
-        let overrides = Overrides::default();
-        Model::from_file_cached(file, &overrides, &self.base_dir, &self.records)
+        Model::for_peaks(file, &self.base_dir, &self.records)
     }
 
     /// The rows of the points `points`, in point order (in parallel with the `parallel`
     /// feature); `done` is called as each point finishes, from the thread that computed it.
     pub fn rows(&self, points: std::ops::Range<usize>, done: &(dyn Fn() + Sync)) -> Vec<Row> {
         self.rows_as(points, done, |_, row| row)
+    }
+
+    /// The rows of the points `points`, in point order, or None once `stop()` is true: each
+    /// point asks before it starts, so that a caller who stops waiting (the Python bindings on
+    /// Ctrl-C) waits for no more than the points under way.
+    pub fn rows_until(
+        &self,
+        points: std::ops::Range<usize>,
+        stop: &(dyn Fn() -> bool + Sync),
+    ) -> Option<Vec<Row>> {
+        in_order(points, |i| (!stop()).then(|| self.evaluate(i)))
+            .into_iter()
+            .collect()
     }
 
     /// `with(index, row)` of the points `points`, in point order; each computed in parallel
@@ -842,12 +912,28 @@ pub fn sha256_hex_of(parts: &[&[u8]]) -> String {
     for part in parts {
         hasher.update(part);
     }
-    let digest = hasher.finalize();
-    let mut text = String::with_capacity(64);
-    for byte in digest {
+    hex(&hasher.finalize())
+}
+
+/// `bytes` as lower-case hex digits, two a byte.
+fn hex(bytes: &[u8]) -> String {
+    let mut text = String::with_capacity(2 * bytes.len());
+    for byte in bytes {
         text.push_str(&format!("{byte:02x}"));
     }
     text
+}
+
+/// SHA-256 (hex) of a record held in memory: of its interval and its samples, each as the
+/// little-endian bytes of its float.
+fn record_digest(record: &Record) -> String {
+    use sha2::{Digest as _, Sha256};
+    let mut hasher = Sha256::new();
+    hasher.update(record.dt.to_le_bytes());
+    for v in &record.values {
+        hasher.update(v.to_le_bytes());
+    }
+    hex(&hasher.finalize())
 }
 
 /// The bytes of a record file, read as the record reader reads it (a regular file of bounded

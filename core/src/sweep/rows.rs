@@ -14,7 +14,7 @@ use std::path::Path;
 
 use crate::error::{Error, Result};
 use crate::model::{
-    read_schema, Model, Overrides, RecordCache, RowModel, RowSection, RowSimulationSection, Setting,
+    read_schema, Model, RecordCache, RowModel, RowSection, RowSimulationSection, Setting,
 };
 use crate::row::RowSolution;
 use crate::solver::History;
@@ -419,7 +419,14 @@ pub(crate) fn row_model(
     base_dir: &Path,
     records: &RecordCache,
 ) -> Result<RowModel> {
-    RowModel::from_table(table.clone(), source, base_dir, None, records)
+    RowModel::from_table(
+        table.clone(),
+        source,
+        base_dir,
+        None,
+        records,
+        History::PeaksOnly,
+    )
 }
 
 /// Column `i` of a row model's table alone: a single body's model with the column's body and
@@ -456,7 +463,7 @@ pub(crate) fn alone_model(
         single.insert("excitation".into(), excitation.clone());
     }
     let file = read_schema(&single, &[], source)?;
-    Model::from_file_cached(file, &Overrides::default(), base_dir, records)
+    Model::for_peaks(file, base_dir, records)
 }
 
 /// A row's run with peaks only (no samples), by its contact law's method.

@@ -28,12 +28,23 @@ from typing import Mapping, Optional, Sequence, Tuple, Union
 
 from . import _native
 from ._native import FlexrockError, GroundMotion, Model, Result, RowResult, __version__
+from ._records import Records
 from ._sweep import SweepResult
+
+
+def __getattr__(name: str):
+    # flexrock.figures needs matplotlib (the [figures] extra): imported on first use only.
+    if name == "figures":
+        import importlib
+
+        return importlib.import_module(".figures", __name__)
+    raise AttributeError(f"module 'flexrock' has no attribute {name!r}")
 
 __all__ = [
     "FlexrockError",
     "GroundMotion",
     "Model",
+    "Records",
     "Result",
     "RowResult",
     "SweepResult",
@@ -82,21 +93,34 @@ Methods
 -------
 set(key, value)
     Sets a model-file key (``"excitation.amplitude"``, ``"solver.method"``); a record path is
-    relative to the current directory. Raises FlexrockError naming the key on a bad key or value,
-    and leaves the model as it was.
+    relative to the current directory. Raises FlexrockError naming the key on a bad key or value
+    (TypeError for a value that is not a bool, a number or a str), and leaves the model as it
+    was. An int beyond 64 bits is the nearest float; one beyond the largest float is refused.
+update(settings)
+    Sets several keys at once, ``{"excitation.path": ..., "excitation.units": ...}``, checked
+    together (keys that only make sense together, such as a record file and its units); on an
+    error the model stays as it was.
 get(key)
     The value in effect: set with `set`, else the file's, else the default the core uses where it
     has one, else None. An unknown key raises FlexrockError naming it ("did you mean ...").
-to_dict(), to_toml()
+to_dict(record_path=None), to_toml(record_path=None)
     The model file with the settings applied (record paths relative to the current directory):
     ``Model.from_dict(m.to_dict())`` and ``Model.from_toml(m.to_toml())`` solve to the same
-    numbers, bit for bit. Raise FlexrockError for a model with a ground motion from arrays.
+    numbers, bit for bit. For a model with a ground motion from arrays, ``record_path`` names
+    the CSV record file ``m.ground_motion.to_csv(record_path)`` wrote (checked to hold exactly
+    its samples).
 with_ground_motion(ground_motion)
     A new model whose ``[excitation]`` is the `GroundMotion` (``kind = "record"``); the
     model's other tables and settings stay, its ``excitation.*`` settings are dropped. The record
     keys ``excitation.scale``, ``start``, ``end`` and ``tail`` may then be set as for a record
     file; ``simulation.duration``, when the model gives one, still applies (else the record's
     length plus the tail).
+copy.copy, copy.deepcopy, pickle
+    A model of its own with the same file, text, settings and ground motion. A pickled model
+    carries its file's name and text: unpickled, it reads the file again and refuses one whose
+    text has changed (as ``set`` does), so ``multiprocessing`` sends a model to other processes.
+    The functions solve a model as it stands when they start: another thread may set keys on
+    it meanwhile.
 
 Returns
 -------
@@ -106,7 +130,10 @@ Model
 Raises
 ------
 FlexrockError
-    A model that breaks a rule of the model file (the message names the key).
+    A model that breaks a rule of the model file (the message names the key, or its place in
+    a dict: ``d["body"]["height"] = -1: ...``).
+TypeError
+    A value that is not a bool, a number or a str; a dict's section that is not a dict.
 
 Examples
 --------
@@ -145,14 +172,17 @@ Returns
 -------
 GroundMotion
     Attributes ``dt`` (s), ``acceleration`` (m/s^2, numpy), ``time`` (s, numpy), ``units``,
-    ``source``, ``duration`` (s), and ``len()``.
+    ``source``, ``duration`` (s), and ``len()``; ``to_csv(path)`` writes the samples, as given,
+    to a one-column CSV record file (``read_record(path, dt=gm.dt, units=gm.units)`` reads them
+    back exactly). A GroundMotion pickles with its samples.
 
 Raises
 ------
 FlexrockError
     A value that breaks a rule, named by its argument: ``acceleration[17] = NaN: ...``,
     ``dt = -1: must be > 0 s``, ``time[3] = 0.035: the times must be uniformly spaced ...``.
-    A peak beyond 20 g is refused when a model takes the motion.
+    More samples than a record may hold (33554432) are refused from the array's shape, before
+    any is copied. A peak beyond 20 g is refused when a model takes the motion.
 
 Examples
 --------
@@ -198,6 +228,9 @@ columns : list of Result
 impacts : list of dict
     One dict per contact struck, with impacts.csv's columns (``t`` in s, ``impulse`` in N s,
     velocities in m/s, ``instant_energy_lost`` in J).
+contacts : Records
+    Every contact at every sampled instant, with contacts.csv's columns (``force`` and
+    ``friction_force`` None under the impact law): a sequence of dicts kept as numpy columns.
 summary : dict
     The keys of the row's summary.json.
 
@@ -300,6 +333,8 @@ def simulate(
     FlexrockError
         On a bad argument (the message names it and the key it sets:
         ``rtol (sets solver.rtol) = -1: ...``) or a model that cannot be solved.
+    KeyboardInterrupt
+        On Ctrl-C, at once; the run itself finishes in the background and is thrown away.
 
     Examples
     --------
@@ -366,11 +401,12 @@ def sweep(
     Parameters
     ----------
     model : Model
-        The model (its settings apply at every point). A model with a ground motion given as
-        arrays cannot be swept yet: write the samples to a record file.
+        The model (its settings, and its ground motion if given as arrays, apply at every
+        point).
     axes : mapping of str to sequence
-        Model-file keys and their values, e.g. ``{"excitation.period": [0.5, 1.0]}``; the last
-        axis varies fastest.
+        Model-file keys and their values, e.g. ``{"excitation.period": [0.5, 1.0]}`` (a list,
+        a tuple or a numpy array; a str is refused, not taken as its letters); the last axis
+        varies fastest.
     find_min : (key, lo, hi), optional
         At each point, search [lo, hi] for the smallest value of ``key`` that overturns the body
         (column ``min_overturning``; NaN where nothing in the interval overturns).
@@ -399,7 +435,17 @@ def sweep(
     Raises
     ------
     FlexrockError
-        A bad key or value (the message names it).
+        A bad key or value (the message names it), or a table beyond the 256 MiB a sweep in
+        Python may hold (about 1.3 million points of a single body's sweep over two axes),
+        refused before any point is computed; the command line's sweep writes its table to
+        disk instead.
+    TypeError
+        An axis that is not a sequence of values, or a value that is not a bool, a number or
+        a str.
+    MemoryError
+        A table the process has no memory for.
+    KeyboardInterrupt
+        On Ctrl-C, at once: no further point is started.
 
     Examples
     --------
@@ -407,11 +453,6 @@ def sweep(
     ...                               "excitation.amplitude": [2.0, 4.0]})
     >>> grid.to_xarray()["max_abs_q_over_B"].sel({"excitation.period": 1.0})
     """
-    if model.ground_motion is not None:
-        raise FlexrockError(
-            "sweep: the model's ground motion was given as arrays; a sweep reads its record from "
-            "a file: write the samples to a CSV record file and set excitation.path to it"
-        )
     return SweepResult(
         _native.sweep(
             model,
@@ -455,8 +496,8 @@ def compare(
     -------
     dict
         ``reference`` and ``newmark`` (the two solvers, as labels), ``comparison`` (matched
-        events with their time differences, peaks, grid differences) and ``grid`` (a list of
-        rows: t, q of both, their difference).
+        events with their time differences, peaks, grid differences) and ``grid`` (a
+        `Records` of rows: t, q of both, their difference).
 
     Raises
     ------
@@ -548,8 +589,8 @@ def fem_check(
     -------
     dict
         ``comparison`` (quantities of both models side by side, uplift times), ``peaks``,
-        ``uplifts`` (the finite element run's uplift episodes), ``history`` (rows of
-        fem_history.csv) and ``warnings``.
+        ``uplifts`` (the finite element run's uplift episodes), ``history`` (a `Records` of
+        the rows of fem_history.csv) and ``warnings``.
 
     Raises
     ------

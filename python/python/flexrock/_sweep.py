@@ -2,27 +2,34 @@
 
 from __future__ import annotations
 
-from typing import Any, Dict, List, Sequence, Tuple
+from typing import Any, Dict, List, Optional, Tuple
 
 import numpy as np
 
 _DTYPES = {"int": np.int64, "float": np.float64, "bool": np.bool_, "str": object}
 
 
-def _column(kind: str, values: Sequence[Any]) -> np.ndarray:
-    """One column as a numpy array of its kind's dtype (see `SweepResult.__getitem__`)."""
+def _typed(kind: str, values: Any, missing: Any = None) -> Tuple[np.ndarray, Optional[np.ndarray]]:
+    """One column as an array of its kind's dtype, and where it is missing (None if nowhere).
+
+    `values` is a numpy array of the kind's dtype (as the compiled sweep gives it, with
+    `missing` a bool array or None), or a sequence of values with None where one is missing.
+    """
     dtype = _DTYPES[kind]
-    missing = np.array([v is None for v in values], dtype=bool)
+    if isinstance(values, np.ndarray):
+        array = values if values.dtype == dtype else values.astype(dtype)
+        mask = None if missing is None else np.asarray(missing, dtype=bool)
+        return array, (mask if mask is not None and mask.any() else None)
+    values = list(values)
+    absent = np.array([v is None for v in values], dtype=bool)
     if kind == "float":
-        return np.array([np.nan if v is None else v for v in values], dtype=np.float64)
+        return np.array([np.nan if v is None else v for v in values], dtype=np.float64), None
     if kind == "str":
         out = np.empty(len(values), dtype=object)
-        out[:] = list(values)
-        return out
+        out[:] = values
+        return out, None
     filled = np.array([0 if v is None else v for v in values], dtype=dtype)
-    if missing.any():
-        return np.ma.masked_array(filled, mask=missing)
-    return filled
+    return filled, (absent if absent.any() else None)
 
 
 class SweepResult:
@@ -54,13 +61,15 @@ class SweepResult:
     def __init__(self, table: Dict[str, Any]):
         self._columns: List[str] = list(table["columns"])
         self._kinds: List[str] = list(table["kinds"])
-        self._values: List[List[Any]] = [list(v) for v in table["values"]]
+        values = list(table["values"])
+        missing = list(table.get("missing") or [None] * len(values))
         self._axes: List[Tuple[str, List[Any]]] = [(k, list(v)) for k, v in table["axes"]]
-        if not (len(self._columns) == len(self._kinds) == len(self._values)):
+        if not (len(self._columns) == len(self._kinds) == len(values) == len(missing)):
             raise ValueError("a sweep table needs one kind and one list of values per column")
         for name, kind in zip(self._columns, self._kinds):
             if kind not in _DTYPES:
                 raise ValueError(f"column {name!r}: unknown kind {kind!r}")
+        self._data = [_typed(k, v, m) for k, v, m in zip(self._kinds, values, missing)]
 
     @property
     def columns(self) -> List[str]:
@@ -78,7 +87,7 @@ class SweepResult:
         return tuple(len(v) for _, v in self._axes)
 
     def __len__(self) -> int:
-        return len(self._values[0]) if self._values else 0
+        return len(self._data[0][0]) if self._data else 0
 
     def __contains__(self, name: object) -> bool:
         return name in self._columns
@@ -102,7 +111,10 @@ class SweepResult:
             i = self._columns.index(name)
         except ValueError:
             raise KeyError(f"{name!r} is not a column of the sweep; columns: {self._columns}") from None
-        return _column(self._kinds[i], self._values[i])
+        array, mask = self._data[i]
+        if mask is not None:
+            return np.ma.masked_array(array.copy(), mask=mask.copy())
+        return array.copy()
 
     def to_dict(self) -> Dict[str, np.ndarray]:
         """The columns by name, as `__getitem__` gives them (the old flat dict of a sweep)."""
@@ -124,15 +136,15 @@ class SweepResult:
         except ImportError:
             raise ImportError("SweepResult.to_pandas() needs pandas: pip install pandas") from None
         data = {}
-        for name, kind, values in zip(self._columns, self._kinds, self._values):
-            if kind == "float":
-                data[name] = pd.array(_column(kind, values), dtype="float64")
-            elif kind == "str":
-                data[name] = pd.array(values, dtype="string")
-            elif any(v is None for v in values):
-                data[name] = pd.array(values, dtype="Int64" if kind == "int" else "boolean")
+        for name, kind, (array, mask) in zip(self._columns, self._kinds, self._data):
+            if kind == "str":
+                data[name] = pd.array(array, dtype="string")
+            elif mask is not None and kind == "int":
+                data[name] = pd.arrays.IntegerArray(array.copy(), mask.copy())
+            elif mask is not None and kind == "bool":
+                data[name] = pd.arrays.BooleanArray(array.copy(), mask.copy())
             else:
-                data[name] = pd.array(values, dtype="int64" if kind == "int" else "bool")
+                data[name] = array
         return pd.DataFrame(data, columns=self._columns)
 
     def to_xarray(self):

@@ -9,7 +9,36 @@
 
 pub mod store;
 
+use crate::error::{Error, Result};
 use flexrock_core::sweep::{Plan, Sweep};
+
+/// The most threads `--threads` takes: more than the cores of any machine a sweep runs on.
+/// Each thread reserves its stack, and a system limits how many a process may start: far
+/// above this, starting them takes minutes and then fails.
+pub const MAX_THREADS: usize = 1024;
+
+/// Starts the threads a sweep computes its points on: `threads` of them (checked against
+/// [`MAX_THREADS`], an input error naming `--threads`), or one per core. A system that cannot
+/// start them is an error (exit code 1), before anything is written.
+pub fn start_threads(threads: Option<usize>) -> Result<()> {
+    if let Some(threads) = threads {
+        if !(1..=MAX_THREADS).contains(&threads) {
+            return Err(Error::invalid(
+                "--threads",
+                threads,
+                &format!("must be from 1 to {MAX_THREADS}"),
+            ));
+        }
+    }
+    let mut builder = rayon::ThreadPoolBuilder::new();
+    if let Some(threads) = threads {
+        builder = builder.num_threads(threads);
+    }
+    builder.build_global().map_err(|e| Error::Threads {
+        threads: threads.map_or_else(|| "one per core".to_string(), |n| n.to_string()),
+        message: e.to_string(),
+    })
+}
 
 /// What a reader of a sweep must know (printed on standard error): what the store met (chunks
 /// computed again, a directory it could not lock), and points whose runs are no more accurate

@@ -45,28 +45,21 @@ use shard::chunk_points;
 pub use shard::{point_range, PointRange, Shard};
 pub use verify::sha256_hex;
 
-/// Counts of the rows, by status, and of the points that overturned (for a minimum search:
-/// that overturned somewhere in the interval).
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
-pub struct Counts {
-    /// Rows with status ok.
-    pub ok: usize,
-    /// Rows with status invalid.
-    pub invalid: usize,
-    /// Rows with status failed.
-    pub failed: usize,
-    /// Points that overturned.
-    pub overturned: usize,
-    /// Runs whose energy residual exceeds [`crate::commands::run::ENERGY_RESIDUAL_WARNING_SHARE`] of their
-    /// energy scale: no more accurate than that (a sweep with a minimum search has none).
-    pub inaccurate: usize,
-}
+pub use crate::sweep_table::Counts;
+use crate::sweep_table::Piece;
 
 /// sweep.json.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct SweepSummary {
     /// Version of flexrock that wrote it.
     pub flexrock_version: String,
+    /// The commit that flexrock was built from, or "unknown" (and empty in a sweep.json written
+    /// before it was recorded).
+    #[serde(default)]
+    pub flexrock_commit: String,
+    /// Whether the program's sources differed from that commit; null when unknown.
+    #[serde(default)]
+    pub flexrock_dirty: Option<bool>,
     /// What was computed.
     pub plan: Plan,
     /// Set for a shard's directory; absent for a whole sweep (also a merged one).
@@ -106,16 +99,14 @@ pub struct SweepReport {
 
 const SUMMARY_FILE: &str = "sweep.json";
 const TABLE_FILE: &str = "sweep.csv";
-/// Every file of a finished sweep, the only names a sweep ever removes from its directory.
-const RESULT_FILES: [&str; 7] = [
-    TABLE_FILE,
-    "map.svg",
-    "spectrum.svg",
-    figure::IDA_FILE,
-    figure::VERDICTS_SVG,
-    figure::VERDICTS_PNG,
-    SUMMARY_FILE,
-];
+/// Every file of a finished sweep, the only names a sweep ever removes from its directory: the
+/// table, each figure in each format, and sweep.json.
+fn result_files() -> Vec<String> {
+    let mut names = vec![TABLE_FILE.to_string()];
+    names.extend(figure::figure_files());
+    names.push(SUMMARY_FILE.to_string());
+    names
+}
 
 /// Progress of a sweep, for a progress bar: points done (including resumed ones) of the points
 /// this process is to do.
@@ -356,7 +347,9 @@ fn finished(
     if let Ok(Some(chunks)) = dir::chunks(dir, false) {
         warnings.extend(dir::remove_chunks(&chunks.path));
     }
-    writers::remove_stale_temporaries(dir, &RESULT_FILES);
+    let result_files = result_files();
+    let names: Vec<&str> = result_files.iter().map(String::as_str).collect();
+    writers::remove_stale_temporaries(dir, &names);
     let missing = summary.files.iter().any(|f| !dir.join(f).is_file());
     let (summary, files) = if missing {
         finish(dir, plan, shard, range, vec![Piece::read_back(body)])?
@@ -394,7 +387,7 @@ fn read_table(path: &Path, summary: &SweepSummary) -> std::result::Result<Vec<u8
 /// no result that looks finished): the names flexrock writes, and no other.
 fn remove_results(dir: &Path, summary: Option<&SweepSummary>) {
     let _ = std::fs::remove_file(dir.join(SUMMARY_FILE));
-    for name in RESULT_FILES {
+    for name in &result_files() {
         let listed = summary.is_none_or(|s| s.files.iter().any(|f| f == name));
         let path = dir.join(name);
         if listed && std::fs::symlink_metadata(&path).is_ok_and(|m| m.is_file()) {
@@ -459,23 +452,6 @@ fn rows_of(
     })
 }
 
-/// Rows of sweep.csv (CSV text without header, whole rows), verified against the plan, with
-/// their fields where they were just computed (else they are read back from the text).
-pub(crate) struct Piece {
-    pub(crate) rows: Vec<u8>,
-    pub(crate) records: Option<Vec<csv::StringRecord>>,
-}
-
-impl Piece {
-    /// Rows read from a file.
-    fn read_back(rows: Vec<u8>) -> Self {
-        Piece {
-            rows,
-            records: None,
-        }
-    }
-}
-
 fn chunk_path(dir: &Path, chunk: usize) -> PathBuf {
     dir.join(format!("{chunk:09}.csv"))
 }
@@ -510,6 +486,45 @@ fn other_sweep(path: &Path) -> Error {
                same command with --force to replace them"
             .to_string(),
     }
+}
+
+/// Draws the figures of the finished sweep in `dir` from its sweep.csv, in the formats and size
+/// of `options`, and writes them into `dir` as one set. A shard's directory, or a sweep.csv
+/// that is not the one sweep.json was written with, is refused.
+pub fn plot_dir(dir: &Path, options: &crate::figures::page::FigureOptions) -> Result<Vec<PathBuf>> {
+    options.sizes.check()?;
+    let summary = read_summary(dir)?.ok_or_else(|| Error::SweepStore {
+        path: dir.join(SUMMARY_FILE),
+        message: "cannot read it: not found".to_string(),
+    })?;
+    if summary.shard.is_some() {
+        return Err(Error::SweepStore {
+            path: dir.join(SUMMARY_FILE),
+            message: "is a shard's: merge the shards (flexrock sweep merge) and plot the merged directory".to_string(),
+        });
+    }
+    let table_path = dir.join(TABLE_FILE);
+    let bytes = std::fs::read(&table_path).map_err(|e| Error::SweepStore {
+        path: table_path.clone(),
+        message: format!("cannot read it: {e}"),
+    })?;
+    if verify::sha256_hex_of(&[bytes.as_slice()]) != summary.table_sha256 {
+        return Err(Error::SweepStore {
+            path: table_path,
+            message: "is not the table sweep.json was written with (its SHA-256 differs)"
+                .to_string(),
+        });
+    }
+    let table = crate::sweep_table::SweepTable::read(&table_path)?;
+    let files = figure::files(&summary.plan, &table, options)?;
+    if files.is_empty() {
+        return Err(Error::SweepStore {
+            path: dir.join(SUMMARY_FILE),
+            message: "is of a sweep that has no figure (a map needs two numeric axes, a spectrum a minimum search over one, an IDA records against a scale)".to_string(),
+        });
+    }
+    let set: Vec<(&str, Vec<u8>)> = files.iter().map(|(n, b)| (n.as_str(), b.clone())).collect();
+    writers::write_atomically(dir, &set)
 }
 
 fn read_summary(dir: &Path) -> Result<Option<SweepSummary>> {
@@ -550,17 +565,19 @@ fn finish(
     let columns = plan.columns();
     let header =
         writers::Table::new(&columns.iter().map(String::as_str).collect::<Vec<_>>()).into_bytes();
-    let table = figure::SweepTable::of_pieces(&columns, &mut pieces, &table_path)?;
+    let table = crate::sweep_table::SweepTable::of_pieces(&columns, &mut pieces, &table_path)?;
     let counts = table.counts(plan.layout())?;
     // sweep.csv is the header and the pieces' rows one after another (never joined in memory):
     // its digest is taken and the file written and synced while the figures are drawn.
     let table_parts: Vec<&[u8]> = std::iter::once(header.as_slice())
         .chain(pieces.iter().map(|piece| piece.rows.as_slice()))
         .collect();
-    let set = writers::FileSet::begin(dir, &RESULT_FILES)?;
+    let result_files = result_files();
+    let names: Vec<&str> = result_files.iter().map(String::as_str).collect();
+    let set = writers::FileSet::begin(dir, &names)?;
     let (figures, table_sha256) = rayon::join(
         || match shard {
-            None => figure::figures(plan, &table),
+            None => figure::sweep_files(plan, &table),
             Some(_) => Ok(Vec::new()),
         },
         || -> Result<String> {
@@ -575,6 +592,8 @@ fn finish(
     names.push(SUMMARY_FILE.to_string());
     let summary = SweepSummary {
         flexrock_version: crate::commands::run::VERSION.to_string(),
+        flexrock_commit: flexrock_core::simulate::COMMIT.to_string(),
+        flexrock_dirty: flexrock_core::simulate::DIRTY,
         plan: plan.clone(),
         shard,
         points: range,
@@ -592,7 +611,7 @@ fn finish(
     files.push((SUMMARY_FILE.to_string(), writers::json_bytes(&summary)));
     set.stage_each(&files)?;
     let written = set.commit()?;
-    for name in RESULT_FILES {
+    for name in &result_files {
         let stale = earlier.iter().any(|f| f == name) && !summary.files.iter().any(|f| f == name);
         let path = dir.join(name);
         if stale && std::fs::symlink_metadata(&path).is_ok_and(|m| m.is_file()) {
