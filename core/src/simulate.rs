@@ -271,9 +271,7 @@ fn graze_warning(estimate: &RoundingEstimate) -> Option<String> {
         format!(
             "q came within {:.1e} m of {point} (q = {} m) at t = {} s without {event}; {event} \
              there is",
-            -first.margin,
-            first.level,
-            first.t
+            -first.margin, first.level, first.t
         )
     };
     let more = match estimate.grazes.len() - 1 {
