@@ -4,12 +4,12 @@
 
 use serde::Serialize;
 
-use crate::automaton::Automaton;
+use crate::automaton::{Automaton, EventKind};
 use crate::body::{Body, SelfWeight};
 use crate::constants::{Constants, SELF_WEIGHT_BUCKLING_PARAMETER, SELF_WEIGHT_WARNING_SHARE};
 use crate::error::Result;
 use crate::model::Model;
-use crate::solution::Solution;
+use crate::solution::{RoundingEstimate, Solution};
 use crate::solver::{adaptive, exact, newmark};
 use crate::solver::{History, SolverSettings};
 
@@ -215,13 +215,15 @@ pub fn record_truncation(model: &Model) -> Option<String> {
 
 /// The warnings of a run: a record cut short by the duration ([`record_truncation`]), an
 /// energy residual beyond [`ENERGY_RESIDUAL_WARNING_SHARE`] of the energy scale, a gravity
-/// parameter beyond [`SELF_WEIGHT_WARNING_SHARE`] of buckling, and a run that ended while the
-/// body was rocking.
+/// parameter beyond [`SELF_WEIGHT_WARNING_SHARE`] of buckling, a graze within the exact
+/// method's rounding (or another sequence of events in a run moved within it), and a run that
+/// ended while the body was rocking.
 pub fn warnings(model: &Model, solution: &Solution) -> Vec<String> {
     [
         record_truncation(model),
         energy_warning(solution, "tighten the tolerance (or the Newmark step)"),
         self_weight_warning(&model.constants, "this body", "body.self_weight"),
+        solution.rounding.as_ref().and_then(graze_warning),
         rocking_warning(solution, "the body"),
     ]
     .into_iter()
@@ -316,4 +318,52 @@ fn rocking_warning(solution: &Solution, subject: &str) -> Option<String> {
             solution.final_time
         )
     })
+}
+
+/// The warning of the exact method's estimate where its sequence of events is uncertain: at its
+/// first graze (with how many follow), or where a run moved within its rounding logs another.
+fn graze_warning(estimate: &RoundingEstimate) -> Option<String> {
+    let from = estimate.uncertain_from?;
+    let after = format!(
+        "the events and peaks from t = {from} s on are uncertain (error_estimate in summary.json \
+         bounds them)"
+    );
+    let Some(first) = estimate.grazes.first() else {
+        return Some(format!(
+            "a run with the model's constants moved within their rounding logs another sequence \
+             of events: {after}"
+        ));
+    };
+    let (point, event, noun) = match first.event {
+        EventKind::Uplift => ("the uplift point", "an uplift", "uplift"),
+        EventKind::Landing => ("the landing point", "a landing", "landing"),
+        _ => ("the overturning point", "overturning", "overturning"),
+    };
+    let what = if first.happened {
+        format!(
+            "q crossed {point} (q = {} m) at t = {} s by a margin of {:.1e} m ({event}); no \
+             {noun} there is",
+            first.level, first.t, first.margin
+        )
+    } else if first.margin == 0.0 {
+        format!(
+            "q reached {point} (q = {} m) to the last bit at t = {} s without {event}; {event} \
+             there is",
+            first.level, first.t
+        )
+    } else {
+        format!(
+            "q came within {:.1e} m of {point} (q = {} m) at t = {} s without {event}; {event} \
+             there is",
+            -first.margin, first.level, first.t
+        )
+    };
+    let more = match estimate.grazes.len() - 1 {
+        0 => String::new(),
+        n => format!(" ({n} more grazes follow, listed in error_estimate.grazes)"),
+    };
+    Some(format!(
+        "a graze: {what} within the run's rounding ({:.1e} m), so {after}{more}",
+        first.rounding
+    ))
 }

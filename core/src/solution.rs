@@ -193,6 +193,34 @@ pub struct RoundingEstimate {
     pub min_q: f64,
     /// Error of the time of the smallest q, s.
     pub t_min_q: f64,
+    /// Where q came within the run's rounding of a guard without crossing it, or crossed it by
+    /// no more than that, in time order: whether the event happened there is not decided by
+    /// the run's arithmetic. Left out of summary.json where there is none.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub grazes: Vec<Graze>,
+    /// From when the sequence of events is not certain, s (the start of the first graze, or
+    /// where a run with its constants moved within their rounding logs another sequence); None
+    /// where it is certain throughout (and then left out of summary.json).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub uncertain_from: Option<f64>,
+}
+
+/// A graze: q came within the run's rounding of a guard, or crossed it by no more than that.
+#[derive(Debug, Clone, Serialize, PartialEq)]
+pub struct Graze {
+    /// When the hump of q topped (for a crossing, where its flow would have turned back), s.
+    pub t: f64,
+    /// The event the guard is.
+    pub event: EventKind,
+    /// Whether the run logged the event there.
+    pub happened: bool,
+    /// q on the guard, m.
+    pub level: f64,
+    /// How far the hump of q went beyond the guard (positive) or stayed short of it
+    /// (negative), m.
+    pub margin: f64,
+    /// The run's estimate of the error of that margin, m: the margin is within it.
+    pub rounding: f64,
 }
 
 /// Units in the last place of the body's energy scale below which an energy residual is taken

@@ -261,9 +261,167 @@ fn the_multiprecision_references_to_1e_13() {
             peaks["overturned"].as_bool().unwrap(),
             "{name}"
         );
+        // None of these grazes within its rounding: the closest, ill-graze-uplift, by 8e-11 m.
+        assert!(
+            estimate.grazes.is_empty() && estimate.uncertain_from.is_none(),
+            "{name}: {:?}",
+            estimate.grazes
+        );
         cases += 1;
     }
     assert!(cases >= 19, "{cases} cases");
+}
+
+/// The knife-edge grazes of validation/exact/grazes/: models whose hump of q reaches within
+/// 1e-18 to 1e-12 m of s_n, or beyond it by as little (among them the paper's
+/// body under a 2 s sine of 0.47223579741960314 m/s^2, which the 40-digit solution lifts off by
+/// 1.7e-17 m for 9 ns, where the run ends on s_n to the bit), sine pulses and a record scaled
+/// to such a graze, pulses and speeds that just overturn the body or just fail to, and a
+/// rocking body that just lands or just does not. Against each one's 40-digit solution:
+///
+/// - every event the run is sure of (its estimate below the duration) is the reference's, at a
+///   time within its estimate; where the sequences part, the run says its sequence is
+///   uncertain from no later than there, and the estimate of each later event is the duration;
+/// - both peaks and their times are within their estimates;
+/// - the run warns of a graze wherever the true margin is within 1e-15 m of the guard (the
+///   run's own rounding of q there is some 1e-14 m), and nowhere it is 1e-12 m or more away;
+///   near the overturning point, within 1e-8 m and 5e-7 m.
+#[test]
+fn every_knife_edge_graze_is_told_and_within_its_estimate() {
+    let dir = common::workspace_file("validation/exact/grazes/reference");
+    let margins: serde_json::Value = serde_json::from_str(
+        &std::fs::read_to_string(common::workspace_file(
+            "validation/exact/grazes/margins.json",
+        ))
+        .expect("margins.json"),
+    )
+    .expect("margins.json reads");
+    let (mut cases, mut warned) = (0, 0);
+    for entry in std::fs::read_dir(&dir).expect("validation/exact/grazes/reference") {
+        let case = entry.expect("entry").path();
+        let name = case.file_name().unwrap().to_string_lossy().to_string();
+        let file = common::workspace_file(&format!("validation/exact/grazes/cases/{name}.toml"));
+        let model = Model::load(&file, &Overrides::default()).expect("the case loads");
+        let sol = flexrock_core::simulate::simulate(&model).expect("solves");
+        let estimate = sol.rounding.as_ref().expect("an estimate");
+        let reference = read_events(&case.join("events.csv"));
+        let peaks: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(case.join("peaks.json")).unwrap())
+                .unwrap();
+        // The events up to where the sequences part.
+        let same = sol
+            .events
+            .iter()
+            .zip(&reference)
+            .take_while(|(e, (_, kind, to))| e.kind.name() == kind && e.to.name() == to)
+            .count();
+        for ((event, (t, _, _)), error) in sol
+            .events
+            .iter()
+            .zip(&reference)
+            .zip(&estimate.event_time)
+            .take(same)
+        {
+            let true_error = (event.t - t).abs();
+            assert!(
+                *error >= true_error,
+                "{name}: event {} estimate {error:e} below {true_error:e}",
+                event.index
+            );
+        }
+        if same < sol.events.len().max(reference.len()) {
+            let parted = [
+                sol.events.get(same).map(|e| e.t),
+                reference.get(same).map(|r| r.0),
+            ]
+            .into_iter()
+            .flatten()
+            .fold(f64::INFINITY, f64::min);
+            let from = estimate.uncertain_from;
+            assert!(
+                from.is_some_and(|from| from <= parted),
+                "{name}: the sequences part at {parted} s, the run is uncertain from {from:?}"
+            );
+            assert!(
+                estimate.event_time[same..]
+                    .iter()
+                    .all(|&e| e == model.duration),
+                "{name}: {:?}",
+                &estimate.event_time[same..]
+            );
+        }
+        let number = |key: &str| peaks[key].as_f64().expect(key);
+        for (key, value, error) in [
+            ("max_q", sol.max_q.value, estimate.max_q),
+            ("t_max_q", sol.max_q.t, estimate.t_max_q),
+            ("min_q", sol.min_q.value, estimate.min_q),
+            ("t_min_q", sol.min_q.t, estimate.t_min_q),
+        ] {
+            let true_error = (value - number(key)).abs();
+            assert!(
+                error >= true_error,
+                "{name}: {key} estimate {error:e} below {true_error:e}"
+            );
+        }
+        // The warning, exactly where the run's arithmetic does not decide.
+        let warning = flexrock_core::simulate::warnings(&model, &sol)
+            .into_iter()
+            .any(|w| w.starts_with("a graze") || w.contains("another sequence of events"));
+        assert_eq!(warning, estimate.uncertain_from.is_some(), "{name}");
+        // Near the overturning point, the rocking mode's saddle, the margin goes as the square
+        // root of a change of the model's numbers: their rounding moves it by some 1e-7 m.
+        let (close, far) = match margins[&name]["guard"].as_str() {
+            Some("overturn") => (1e-8, 5e-7),
+            _ => (1e-15, 1e-12),
+        };
+        if let Some(margin) = margins[&name]["margin"].as_str() {
+            let margin: f64 = margin.parse().expect("a margin");
+            if margin.abs() <= close {
+                assert!(warning, "{name}: no warning {margin:e} m from the guard");
+            }
+            if margin.abs() >= far {
+                assert!(!warning, "{name}: a warning {margin:e} m from the guard");
+            }
+        }
+        warned += usize::from(warning);
+        cases += 1;
+    }
+    assert!(cases >= 70, "{cases} cases");
+    assert!(warned >= 20, "{warned} warned");
+}
+
+/// Undamped free vibration below uplift, q = q0 cos(omega t), tops at q0 at t = 0 and every
+/// period after it, all equal: the time of the largest q is any of them, and the run's estimate
+/// of it reaches the farthest (where it was the time of the one top the run's rounding picked).
+#[test]
+fn equal_tops_make_the_time_of_the_largest_q_any_of_theirs() {
+    let text = with_exact(
+        "[body]\nheight = 4.0\nwidth = 0.7\ndepth = 1.0\ndensity = 600.0\nyoungs_modulus = 5.0e6\n\
+         damping_ratio = 0.0\ngravity = 9.81\n[excitation]\nkind = \"free\"\n\
+         [simulation]\nduration = 10.0\nq0 = 0.1\nqdot0 = 0.0",
+    );
+    let model = common::model(&text);
+    let c = &model.constants;
+    let period = 2.0 * std::f64::consts::PI / (c.generalised_stiffness / c.generalised_mass).sqrt();
+    let sol = exact(&text);
+    assert!(sol.events.is_empty());
+    let estimate = sol.rounding.as_ref().expect("an estimate");
+    let last = (model.duration / period).floor() * period;
+    let farthest = sol.max_q.t.max(last - sol.max_q.t);
+    assert!(
+        estimate.t_max_q >= farthest,
+        "t_max_q = {} s, estimate {:e} s, tops from 0 to {last} s",
+        sol.max_q.t,
+        estimate.t_max_q
+    );
+    // The smallest q, -q0 half a period on and every period after it, likewise.
+    let last = ((model.duration - 0.5 * period) / period).floor() * period + 0.5 * period;
+    let farthest = (sol.min_q.t - 0.5 * period).max(last - sol.min_q.t);
+    assert!(
+        estimate.t_min_q >= farthest,
+        "t_min_q estimate {:e} s",
+        estimate.t_min_q
+    );
 }
 
 /// The energy books of the exact method close: on every case of the multiprecision references

@@ -47,6 +47,7 @@
 //! searching for them again (`SampleBooks`), to the same bits.
 
 pub(crate) mod flow;
+pub(crate) mod graze;
 pub(crate) mod kept;
 pub(crate) mod oscillator;
 pub(crate) mod scan;
@@ -65,6 +66,7 @@ use crate::solution::{Recorder, RoundingEstimate, Solution, SolverStats};
 use crate::solver::{History, InitialState, OutputGrid, SolverError};
 
 use flow::{Flow, Point};
+use graze::{Approach, Kick};
 use scan::{first_crossing, ScanError, Watch};
 use step::StepCache;
 use work::FormCache;
@@ -103,7 +105,14 @@ pub fn solve(
     let energy = history == History::Sampled;
     let run = || {
         solve_once(
-            automaton, floor, initial, duration, settings, history, energy,
+            automaton,
+            floor,
+            initial,
+            duration,
+            settings,
+            history,
+            energy,
+            Vec::new(),
         )
     };
     if history != History::Sampled {
@@ -127,15 +136,60 @@ pub fn solve(
             settings,
             History::PeaksOnly,
             false,
+            Vec::new(),
         )
-        .map(|(shadow, _)| shadow)
     };
     // The shadow runs are independent of the run: with the `parallel` feature they run beside
     // it on another core (the same results, in less time on a machine with a core to spare).
     let (main, (first, second)) = beside(run, || (shadow(0), shadow(1)));
-    let (mut solution, mut estimate) = main?;
-    for shadow in [first?, second?] {
-        spread_into(&mut estimate, &solution, &shadow, duration);
+    let (mut solution, books) = main?;
+    let shadows = [first?, second?];
+    let mut estimate = books.estimate;
+    let mut diverged: Option<usize> = None;
+    for (shadow, _) in &shadows {
+        if let Some(index) = spread_into(&mut estimate, &solution, shadow, duration) {
+            diverged = Some(diverged.map_or(index, |other| other.min(index)));
+        }
+    }
+    let diverged = diverged.map(|index| {
+        let (max, min) = index
+            .checked_sub(1)
+            .map_or((initial.q, initial.q), |before| books.extremes[before]);
+        (index, max, min)
+    });
+    let kicks = graze::assess(
+        &mut estimate,
+        &solution,
+        &books.approaches,
+        [&shadows[0].1.approaches, &shadows[1].1.approaches],
+        diverged,
+        automaton,
+        floor,
+        duration,
+    );
+    // The small episodes of the grazes: their effect on the rest of the run, measured by two
+    // runs whose q' is kicked by each episode's bound, one way and the other.
+    if !kicks.is_empty() {
+        for sign in [1.0, -1.0] {
+            let kicked = kicks
+                .iter()
+                .map(|kick| Kick {
+                    dv: sign * kick.dv,
+                    ..*kick
+                })
+                .collect();
+            let (other, _) = solve_once(
+                automaton,
+                floor,
+                initial,
+                duration,
+                settings,
+                History::PeaksOnly,
+                false,
+                kicked,
+            )?;
+            spread_peaks(&mut estimate, &solution, &other);
+        }
     }
     solution.rounding = Some(estimate);
     solution.stats.wall_time_s = started.elapsed().as_secs_f64();
@@ -176,9 +230,16 @@ const _: () = assert!(SHADOW_RUNS == 2, "solve runs two shadow runs");
 
 /// Adds to `estimate` the safety factor times the distance of the shadow run from the run.
 /// From the first event whose kind differs (or that one run lacks) on, the event sequence itself
-/// is not robust to rounding, and the estimate is the whole duration.
-fn spread_into(estimate: &mut RoundingEstimate, run: &Solution, shadow: &Solution, duration: f64) {
+/// is not robust to rounding, and the estimate is the whole duration; returns that event's
+/// index (the run's count of events where the shadow run logs more).
+fn spread_into(
+    estimate: &mut RoundingEstimate,
+    run: &Solution,
+    shadow: &Solution,
+    duration: f64,
+) -> Option<usize> {
     let mut robust = true;
+    let mut diverged = None;
     for (i, error) in estimate.event_time.iter_mut().enumerate() {
         let other = shadow.events.get(i);
         robust = robust
@@ -186,9 +247,20 @@ fn spread_into(estimate: &mut RoundingEstimate, run: &Solution, shadow: &Solutio
         *error = if robust {
             error.max(0.0) + ESTIMATE_SAFETY * (run.events[i].t - other.map_or(0.0, |o| o.t)).abs()
         } else {
+            diverged = diverged.or(Some(i));
             duration
         };
     }
+    if robust && shadow.events.len() > run.events.len() {
+        diverged = Some(run.events.len());
+    }
+    spread_peaks(estimate, run, shadow);
+    diverged
+}
+
+/// Adds to the estimates of the peaks the safety factor times their distance in `shadow` (a run
+/// of the same model moved within its rounding).
+fn spread_peaks(estimate: &mut RoundingEstimate, run: &Solution, shadow: &Solution) {
     let spread = |a: f64, b: f64| ESTIMATE_SAFETY * (a - b).abs();
     estimate.max_q += spread(run.max_q.value, shadow.max_q.value);
     estimate.t_max_q += spread(run.max_q.t, shadow.max_q.t);
@@ -196,7 +268,9 @@ fn spread_into(estimate: &mut RoundingEstimate, run: &Solution, shadow: &Solutio
     estimate.t_min_q += spread(run.min_q.t, shadow.min_q.t);
 }
 
-/// One run; with `energy`, the energy books are kept. Returns the local rounding estimate.
+/// One run; with `energy`, the energy books are kept; q' changed by each of `kicks` on the way.
+/// Returns what it books for its own estimate.
+#[allow(clippy::too_many_arguments)]
 fn solve_once(
     automaton: &Automaton,
     floor: &dyn FloorMotion,
@@ -205,11 +279,13 @@ fn solve_once(
     settings: &ExactSettings,
     history: History,
     energy: bool,
-) -> Result<(Solution, RoundingEstimate), SolverError> {
+    kicks: Vec<Kick>,
+) -> Result<(Solution, Books), SolverError> {
     let started = Instant::now();
     let mut run = Run::new(
         automaton, floor, initial, duration, settings, history, energy,
     );
+    run.kicks = kicks;
     let final_time = run.go(duration)?;
     Ok(run.finish(final_time, started))
 }
@@ -228,13 +304,77 @@ struct Work {
     start: Option<[f64; 2]>,
 }
 
-/// Error estimates of the recorded peaks: of the value (m) and of its time (s).
-#[derive(Debug, Default, Clone, Copy)]
-struct PeakErrors {
-    max_q: f64,
-    t_max_q: f64,
-    min_q: f64,
-    t_min_q: f64,
+/// A candidate for the largest or smallest q: its time and value, with their estimates.
+#[derive(Debug, Clone, Copy)]
+struct Candidate {
+    t: f64,
+    q: f64,
+    error: f64,
+    t_error: f64,
+}
+
+/// Share of |q| below the extreme so far within which a candidate's errors are estimated to
+/// see whether it is told apart from the extreme: far beyond any estimate.
+const CLOSE_SHARE: f64 = 1e-6;
+
+/// The candidates for one extreme of q (`sign` 1 the largest, -1 the smallest) that the run
+/// cannot tell apart: the extreme so far (the first of equal values, as the recorder keeps it),
+/// and every other whose value is within the two estimates of it. Which of two such humps is
+/// the extreme is not decided by the run's arithmetic, and the time of the extreme may be
+/// either's.
+#[derive(Debug)]
+struct Top {
+    sign: f64,
+    best: Candidate,
+    close: Vec<Candidate>,
+}
+
+impl Top {
+    /// The initial state as the extreme so far: its q is the file's number rounded to a double
+    /// (half an ulp), and its time t = 0, which a root of q' found in other arithmetic puts
+    /// within rounding of it: an ulp of the run's duration.
+    fn initial(sign: f64, q0: f64, duration: f64) -> Self {
+        let best = Candidate {
+            t: 0.0,
+            q: q0,
+            error: 0.5 * scan::ulp(q0),
+            t_error: scan::ulp(duration),
+        };
+        Top {
+            sign,
+            best,
+            close: Vec::new(),
+        }
+    }
+
+    /// Whether `q` is beyond the extreme so far or near enough to it to be a candidate.
+    fn reaches(&self, q: f64) -> bool {
+        let b = &self.best;
+        self.sign * (q - b.q) > -(b.error + CLOSE_SHARE * b.q.abs())
+    }
+
+    /// Takes `c`: as the extreme where it is beyond the one so far, as a close one where the
+    /// estimates do not tell the two apart.
+    fn offer(&mut self, c: Candidate) {
+        let (s, b) = (self.sign, self.best);
+        if s * (c.q - b.q) > 0.0 {
+            self.close.push(b);
+            self.close
+                .retain(|o| s * (o.q - c.q) + o.error + c.error >= 0.0);
+            self.best = c;
+        } else if s * (c.q - b.q) + c.error + b.error >= 0.0 {
+            self.close.push(c);
+        }
+    }
+
+    /// The estimates of the extreme's value and time (m, s): its own, or those of any candidate
+    /// it cannot be told from, with the time between the two.
+    fn errors(&self) -> (f64, f64) {
+        let b = &self.best;
+        self.close.iter().fold((b.error, b.t_error), |(e, te), o| {
+            (e.max(o.error), te.max((o.t - b.t).abs() + o.t_error))
+        })
+    }
 }
 
 pub(crate) struct Run<'a> {
@@ -269,7 +409,8 @@ pub(crate) struct Run<'a> {
     /// The largest |q'| the run has met (at its samples and events), m/s: a shift of time dt
     /// moves q by at most that times dt.
     speed: f64,
-    peak_errors: PeakErrors,
+    /// The candidates for the largest and the smallest q ([`Top`]).
+    tops: [Top; 2],
     flows: usize,
     evaluations: usize,
     unresolved: usize,
@@ -292,6 +433,25 @@ pub(crate) struct Run<'a> {
     /// What the pieces between the history's samples take from the flow under way, once one of
     /// them has been integrated by kept forms ([`SampleBooks`]).
     sample_books: Option<SampleBooks>,
+    /// The close approaches of q to a guard, in time order (`graze.rs`).
+    approaches: Vec<Approach>,
+    /// The largest and smallest q before each event, m.
+    extremes: Vec<(f64, f64)>,
+    /// The time of the last event (0 before the first), s.
+    last_event: f64,
+    /// Changes of q' still to make, in time order (the runs that measure a graze's effect).
+    kicks: Vec<Kick>,
+}
+
+/// What a run books for the estimate of its own error.
+pub(crate) struct Books {
+    /// The local estimate: the rounding where each result is computed, and the earlier events'
+    /// carried.
+    pub estimate: RoundingEstimate,
+    /// The close approaches of q to a guard ([`Approach`]).
+    pub approaches: Vec<Approach>,
+    /// The largest and smallest q before each event, m.
+    pub extremes: Vec<(f64, f64)>,
 }
 
 /// The energy books of the pieces between a flow's samples, shortened. After the first such
@@ -341,6 +501,12 @@ fn work_pieces(span: f64, rate: f64) -> usize {
     (span * rate / flow::WORK_REACH).ceil().clamp(1.0, 1e7) as usize
 }
 
+/// The rounding of a guard's level as the run compares q with it, m: the guard carries the
+/// rounding of the constants it is made of, and q the rounding of its evaluation.
+fn level_error(guard: &Guard, flow: &Flow) -> f64 {
+    4.0 * f64::EPSILON * (guard.level.abs() + flow.equilibrium().abs())
+}
+
 /// A flow planned by [`Run::plan`]: its first guard crossing, if any, and the extrema of q the
 /// search found on the way.
 pub(crate) struct Planned {
@@ -362,21 +528,6 @@ impl Planned {
     /// Where the flow stops on its own: its guard crossing, or its end.
     pub(crate) fn stop(&self) -> f64 {
         self.found.map_or(self.flow.until, |(p, _)| p.t)
-    }
-}
-
-impl PeakErrors {
-    /// The errors of the initial state as a peak: its q is the file's number rounded to a
-    /// double (half an ulp), and its time t = 0, which a root of q' found in other arithmetic
-    /// puts within rounding of it: an ulp of the run's duration.
-    fn initial(q0: f64, duration: f64) -> Self {
-        let (q, t) = (0.5 * scan::ulp(q0), scan::ulp(duration));
-        PeakErrors {
-            max_q: q,
-            t_max_q: t,
-            min_q: q,
-            t_min_q: t,
-        }
     }
 }
 
@@ -428,7 +579,10 @@ impl<'a> Run<'a> {
             event_errors: Vec::new(),
             carried: 0.0,
             speed: initial.qdot.abs(),
-            peak_errors: PeakErrors::initial(initial.q, duration),
+            tops: [
+                Top::initial(1.0, initial.q, duration),
+                Top::initial(-1.0, initial.q, duration),
+            ],
             flows: 0,
             evaluations: 0,
             unresolved: 0,
@@ -439,11 +593,15 @@ impl<'a> Run<'a> {
             work_forms: FormCache::default(),
             steps: StepCache::default(),
             sample_books: None,
+            approaches: Vec::new(),
+            extremes: Vec::new(),
+            last_event: 0.0,
+            kicks: Vec::new(),
         }
     }
 
-    /// The solution booked up to `final_time`, and the local rounding estimate.
-    pub(crate) fn finish(self, final_time: f64, started: Instant) -> (Solution, RoundingEstimate) {
+    /// The solution booked up to `final_time`, and what the run booked for its estimate.
+    pub(crate) fn finish(self, final_time: f64, started: Instant) -> (Solution, Books) {
         let stats = SolverStats {
             method: NAME.to_string(),
             steps: self.flows,
@@ -454,14 +612,22 @@ impl<'a> Run<'a> {
             rhs_evaluations: self.evaluations,
             wall_time_s: started.elapsed().as_secs_f64(),
         };
+        let ((max_q, t_max_q), (min_q, t_min_q)) = (self.tops[0].errors(), self.tops[1].errors());
         let estimate = RoundingEstimate {
             event_time: self.event_errors,
-            max_q: self.peak_errors.max_q,
-            t_max_q: self.peak_errors.t_max_q,
-            min_q: self.peak_errors.min_q,
-            t_min_q: self.peak_errors.t_min_q,
+            max_q,
+            t_max_q,
+            min_q,
+            t_min_q,
+            grazes: Vec::new(),
+            uncertain_from: None,
         };
-        (self.recorder.finish(final_time, self.mode, stats), estimate)
+        let books = Books {
+            estimate,
+            approaches: self.approaches,
+            extremes: self.extremes,
+        };
+        (self.recorder.finish(final_time, self.mode, stats), books)
     }
 
     fn failed(&self, t: f64, message: impl Into<String>) -> SolverError {
@@ -476,6 +642,15 @@ impl<'a> Run<'a> {
     fn go(&mut self, end: f64) -> Result<f64, SolverError> {
         let mut budget = RunBudget::new();
         while let Some(planned) = self.plan(end, &mut budget)? {
+            if let Some(&kick) = self.kicks.first() {
+                if planned.stop() > kick.t {
+                    // Re-anchored at the kick, q' changed there.
+                    self.cut(planned, kick.t.max(self.t));
+                    self.v = self.v + kick.dv;
+                    self.kicks.remove(0);
+                    continue;
+                }
+            }
             if !self.commit(planned, end, &mut budget)? {
                 break;
             }
@@ -609,6 +784,7 @@ impl<'a> Run<'a> {
         } = planned;
         let stop = found.map_or(flow.until, |(p, _)| p.t);
         for extremum in &extrema {
+            self.approach(&flow, extremum);
             self.peak(&flow, extremum);
         }
         extrema.clear();
@@ -724,22 +900,61 @@ impl<'a> Run<'a> {
 
     /// Offers a state where q may be extremal to the recorder and to the peak trackers.
     fn peak(&mut self, flow: &Flow, p: &Point) {
-        if p.q > self.max_q {
-            self.max_q = p.q;
-            if self.estimate {
-                (self.peak_errors.max_q, self.peak_errors.t_max_q) = self.peak_error(flow, p);
-            }
-        }
-        if p.q < self.min_q {
-            self.min_q = p.q;
-            if self.estimate {
-                (self.peak_errors.min_q, self.peak_errors.t_min_q) = self.peak_error(flow, p);
+        self.max_q = self.max_q.max(p.q);
+        self.min_q = self.min_q.min(p.q);
+        if self.estimate && self.tops.iter().any(|top| top.reaches(p.q)) {
+            let (error, t_error) = self.peak_error(flow, p);
+            let candidate = Candidate {
+                t: p.t,
+                q: p.q,
+                error,
+                t_error,
+            };
+            for top in &mut self.tops {
+                if top.reaches(p.q) {
+                    top.offer(candidate);
+                }
             }
         }
         if matches!(self.mode, Mode::RockRight | Mode::RockLeft) {
             self.episode_peak = self.episode_peak.max(p.q.abs());
         }
         self.recorder.peak_candidate(p.t, p.q);
+    }
+
+    /// Books `p`, an extremum of q, where it comes close to a guard of the mode on its way back
+    /// ([`Approach`]).
+    fn approach(&mut self, flow: &Flow, p: &Point) {
+        let automaton = self.automaton;
+        for &slot in automaton.guards(self.mode) {
+            let guard = automaton.guard(self.mode, slot);
+            let margin = guard.overshoot(p.q);
+            if guard.direction * p.acc < 0.0 && margin <= 0.0 && Approach::close(&guard, margin) {
+                self.book_approach(flow, p, guard, margin, p.t);
+            }
+        }
+    }
+
+    /// Books an approach to `guard` whose hump, at `p` on `flow`, tops at `t`, `margin` beyond
+    /// the guard.
+    fn book_approach(&mut self, flow: &Flow, p: &Point, guard: Guard, margin: f64, t: f64) {
+        let error = if self.estimate {
+            self.peak_error(flow, p).0 + ESTIMATE_SAFETY * level_error(&guard, flow)
+        } else {
+            0.0
+        };
+        self.approaches.push(Approach {
+            t,
+            guard,
+            margin,
+            curvature: p.acc.abs(),
+            jerk: p.jerk.abs(),
+            error,
+            events_before: self.extremes.len(),
+            since: self.last_event,
+            max_before: self.max_q,
+            min_before: self.min_q,
+        });
     }
 
     /// The error estimate of a peak at `p`: of its value (m) and of its time (s).
@@ -1022,15 +1237,34 @@ impl<'a> Run<'a> {
     /// The event at `p` through `guard`: booked, reset applied, mode changed.
     fn event(&mut self, flow: &Flow, p: Point, guard: Guard) {
         let automaton = self.automaton;
+        // The part of q'' that turns q back towards the mode (none where it carries q on).
+        let deceleration = -guard.direction * p.acc;
+        let beyond = if guard.level == flow.equilibrium() {
+            // The overturning point is the rocking mode's saddle, where q'' vanishes: a crossing
+            // at speed v is as far from turning back as a hump that stops v/sqrt(|k|) short of
+            // it (free motion keeps v^2 + k (q - q_eq)^2 there).
+            Some((p.v.abs() / flow.stiffness().abs().sqrt(), p.t))
+        } else {
+            (deceleration > 0.0).then(|| {
+                (
+                    p.v * p.v / (2.0 * deceleration),
+                    p.t + p.v.abs() / deceleration,
+                )
+            })
+        };
+        if let Some((beyond, top)) = beyond.filter(|(beyond, _)| Approach::close(&guard, *beyond)) {
+            self.book_approach(flow, &p, guard, beyond, top);
+        }
+        self.extremes.push((self.max_q, self.min_q));
+        self.last_event = p.t;
         if self.estimate {
             let (error_q, _) = self.local_error(flow, p.t);
-            // The guard's level carries the rounding of the constants it is made of, and q at
-            // the point the rounding of its evaluation.
-            let level_error = 4.0 * f64::EPSILON * (guard.level.abs() + flow.equilibrium().abs());
-            let speed = p.v.abs().max(f64::MIN_POSITIVE);
             // The transverse error of q becomes an error of the time q reaches the guard.
-            let crossing_time =
-                (error_q + ESTIMATE_SAFETY * level_error) / speed + 2.0 * scan::ulp(p.t);
+            let crossing_time = graze::crossing_time_error(
+                error_q + ESTIMATE_SAFETY * level_error(&guard, flow),
+                p.v.abs(),
+                -deceleration,
+            ) + 2.0 * scan::ulp(p.t);
             // The earlier events' shift of time.
             self.speed = self.speed.max(p.v.abs());
             self.event_errors.push(crossing_time + self.carried);
