@@ -9,6 +9,7 @@ mod common;
 // The command line and its rules.
 mod cli;
 mod hostile_io;
+mod layers;
 mod tables;
 mod timings_apart;
 

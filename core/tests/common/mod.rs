@@ -1,6 +1,7 @@
 //! Helpers shared by the integration tests of the core crate (and, through a path module, by
 //! those of the command-line crate).
 #![allow(dead_code)]
+pub mod imports;
 
 use flexrock_core::automaton::{EventKind, Mode};
 use flexrock_core::model::{Model, Overrides};
