@@ -3,7 +3,7 @@
 use std::path::Path;
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use flexrock_core::fem::{pushover, simulate_fem, BaseSupport, FemBody, TimeScheme};
+use flexrock_core::bodies::fem::{pushover, simulate_fem, BaseSupport, FemBody, TimeScheme};
 use flexrock_core::model::{Model, Overrides};
 
 fn fem_runs(c: &mut Criterion) {

@@ -3,9 +3,9 @@
 use std::path::Path;
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use flexrock_core::body::{Body, SelfWeight};
-use flexrock_core::constants::Constants;
 use flexrock_core::model::{Model, Overrides};
+use flexrock_core::physics::body::{Body, SelfWeight};
+use flexrock_core::physics::constants::Constants;
 
 fn load(file: &str, overrides: Overrides) -> Model {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(file);

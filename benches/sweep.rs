@@ -7,8 +7,8 @@ use std::path::Path;
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use flexrock::commands::sweep::store;
+use flexrock_core::analysis::sweep::{Axis, Request, Sweep};
 use flexrock_core::model::{Model, Overrides, Setting};
-use flexrock_core::sweep::{Axis, Request, Sweep};
 
 fn model_file() -> std::path::PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("models/pulse-map.toml")

@@ -525,7 +525,7 @@ pub(crate) enum RecordCommand {
         #[arg(long, allow_negative_numbers = true)]
         period: Option<f64>,
         /// The damping ratio of Sa's oscillator.
-        #[arg(long, default_value_t = flexrock_core::intensity::DEFAULT_DAMPING, allow_negative_numbers = true)]
+        #[arg(long, default_value_t = flexrock_core::bodies::oscillator::DEFAULT_DAMPING, allow_negative_numbers = true)]
         damping: f64,
         /// Write to this file (atomically) instead of standard output.
         #[arg(long)]
@@ -544,7 +544,7 @@ pub(crate) enum RecordCommand {
         #[arg(long, value_delimiter = ',', allow_negative_numbers = true)]
         periods: Vec<f64>,
         /// The damping ratio of the oscillators.
-        #[arg(long, default_value_t = flexrock_core::intensity::DEFAULT_DAMPING, allow_negative_numbers = true)]
+        #[arg(long, default_value_t = flexrock_core::bodies::oscillator::DEFAULT_DAMPING, allow_negative_numbers = true)]
         damping: f64,
         /// Write to this file (atomically) instead of standard output.
         #[arg(long)]
@@ -573,7 +573,7 @@ pub(crate) struct OscillatorOptions {
     #[arg(long, value_delimiter = ',', allow_negative_numbers = true)]
     pub(crate) period: Vec<f64>,
     /// The damping ratio of Sa's oscillators.
-    #[arg(long, default_value_t = flexrock_core::intensity::DEFAULT_DAMPING, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = flexrock_core::bodies::oscillator::DEFAULT_DAMPING, allow_negative_numbers = true)]
     pub(crate) damping: f64,
 }
 

@@ -105,15 +105,15 @@ impl From<flexrock_core::InvalidParameter> for Error {
     }
 }
 
-impl From<flexrock_core::fem::FemError> for Error {
-    fn from(e: flexrock_core::fem::FemError) -> Self {
+impl From<flexrock_core::bodies::fem::FemError> for Error {
+    fn from(e: flexrock_core::bodies::fem::FemError) -> Self {
         Error::Core(e.into())
     }
 }
 
 impl Error {
     /// Shorthand for the core's [`flexrock_core::Error::InvalidParameter`].
-    pub fn invalid(key: &str, value: impl flexrock_core::format::Quoted, rule: &str) -> Self {
+    pub fn invalid(key: &str, value: impl flexrock_core::base::format::Quoted, rule: &str) -> Self {
         Error::Core(flexrock_core::Error::invalid(key, value, rule))
     }
 

@@ -9,7 +9,7 @@
 //! - [`sweep_table`]: sweep.csv read back, and the counts of its rows;
 //! - [`geometry`]: the body's height, width and gravity as the criteria take them.
 //!
-//! The core is used by its own name (`flexrock_core::model`, `flexrock_core::sweep`, ...); see
+//! The core is used by its own name (`flexrock_core::model`, `flexrock_core::analysis::sweep`, ...); see
 //! [`flexrock_core`] for a worked example from a model file to a sweep.
 
 #![warn(missing_docs)]

@@ -29,7 +29,7 @@ impl flexrock::commands::sweep::store::Progress for ProgressBar {
 
 fn sweep(args: SweepArgs) -> flexrock::Result<Output> {
     use flexrock::commands::sweep::store;
-    use flexrock_core::sweep::{axis, Request, Sweep};
+    use flexrock_core::analysis::sweep::{axis, Request, Sweep};
     // Before anything is read or computed: the threads asked for, or refused.
     flexrock::commands::sweep::start_threads(args.threads)?;
     if let Some(SweepCommand::Merge { dirs, out }) = args.command {
@@ -54,11 +54,14 @@ fn sweep(args: SweepArgs) -> flexrock::Result<Output> {
             tol: args.tol,
             chunk_size: args.chunk_size,
             rigid_form: match &args.rigid_form {
-                Some(text) => Some(flexrock_core::rigid::RigidForm::parse("rigid_form", text)?),
+                Some(text) => Some(flexrock_core::bodies::rigid::RigidForm::parse(
+                    "rigid_form",
+                    text,
+                )?),
                 None => None,
             },
             rigid_overturning: match &args.rigid_overturning {
-                Some(text) => Some(flexrock_core::rigid::RigidOverturning::parse(
+                Some(text) => Some(flexrock_core::bodies::rigid::RigidOverturning::parse(
                     "rigid_overturning",
                     text,
                 )?),
@@ -613,7 +616,7 @@ fn record(command: RecordCommand) -> flexrock::Result<Output> {
             out,
         } => {
             let periods = if periods.is_empty() {
-                flexrock_core::intensity::default_periods()
+                flexrock_core::bodies::oscillator::default_periods()
             } else {
                 periods
             };

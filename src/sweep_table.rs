@@ -7,7 +7,7 @@ use std::path::Path;
 use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
-use flexrock_core::sweep::Layout;
+use flexrock_core::analysis::sweep::Layout;
 
 /// Counts of the rows, by status, and of the points that overturned (for a minimum search:
 /// that overturned somewhere in the interval).

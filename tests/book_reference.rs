@@ -88,7 +88,9 @@ fn strings(list: &[&str]) -> Vec<String> {
 
 #[test]
 fn the_output_tables_list_exactly_the_columns_the_writers_write() {
-    use flexrock_core::sweep::row::{MinimumOutcome, RigidMinima, Row, RunOutcome, Scales};
+    use flexrock_core::analysis::sweep::row::{
+        MinimumOutcome, RigidMinima, Row, RunOutcome, Scales,
+    };
     let text = page("outputs.md");
     let tables: [(&str, &[&str]); 10] = [
         (
@@ -164,7 +166,7 @@ fn the_output_tables_list_exactly_the_columns_the_writers_write() {
         strings(&flexrock::commands::record::SPECTRUM_COLUMNS)
     );
     // A row's: the row's run, then each column's, named `cI_...` on the page.
-    let row = flexrock_core::sweep::rows::RowOutcome::columns(1);
+    let row = flexrock_core::analysis::sweep::rows::RowOutcome::columns(1);
     assert_eq!(listed(&text, "columns: sweep.csv row"), row[..5]);
     let column: Vec<String> = row[5..]
         .iter()
@@ -172,7 +174,7 @@ fn the_output_tables_list_exactly_the_columns_the_writers_write() {
         .collect();
     assert_eq!(listed(&text, "columns: sweep.csv row column"), column);
     assert_eq!(
-        Row::columns(flexrock_core::sweep::Layout::Row(1)),
+        Row::columns(flexrock_core::analysis::sweep::Layout::Row(1)),
         strings(&["status", "reason"])
             .into_iter()
             .chain(row)
@@ -339,8 +341,14 @@ fn value_of(cell: &str) -> Option<f64> {
 fn known_values() -> BTreeMap<&'static str, f64> {
     use flexrock::commands::run;
     use flexrock::writers::run_dir;
-    use flexrock_core::sweep::axis;
-    use flexrock_core::{constants, excitation, fem, model, record, solution, solver};
+    use flexrock_core::analysis::sweep::axis;
+    use flexrock_core::bodies::fem;
+    use flexrock_core::floor as excitation;
+    use flexrock_core::floor::record;
+    use flexrock_core::integrate as solver;
+    use flexrock_core::integrate::solution;
+    use flexrock_core::model;
+    use flexrock_core::physics::constants;
     BTreeMap::from([
         ("MAX_MODEL_FILE_BYTES", model::MAX_MODEL_FILE_BYTES as f64),
         ("MIN_RTOL", model::MIN_RTOL),
@@ -374,7 +382,7 @@ fn known_values() -> BTreeMap<&'static str, f64> {
         ("MAX_SUMMARY_BYTES", run_dir::MAX_SUMMARY_BYTES as f64),
         (
             "MAX_HISTORY_ROW_BYTES",
-            flexrock_core::run_tables::MAX_HISTORY_ROW_BYTES as f64,
+            flexrock_core::tables::run_tables::MAX_HISTORY_ROW_BYTES as f64,
         ),
         ("MAX_POINTS", axis::MAX_POINTS as f64),
         ("MAX_AXIS_VALUES", axis::MAX_AXIS_VALUES as f64),

@@ -8,8 +8,8 @@ use crate::common::{flexrock, reference_model};
 use std::path::Path;
 
 use flexrock::commands::compare::compare;
+use flexrock_core::integrate::SolverSettings;
 use flexrock_core::model::{Model, Overrides};
-use flexrock_core::solver::SolverSettings;
 
 /// Max |q - closed form| over the step ends of a Newmark run on a harmonic too weak to uplift.
 fn closed_form_error(beta: f64, dt: f64) -> f64 {
@@ -322,7 +322,7 @@ fn converge_writes_its_files_with_stable_columns() {
 /// The sine-pulse model under sub-stepping Newmark at dt = 0.02 s with the pulse amplitude `a`.
 fn substep_pulse(
     amplitude: f64,
-) -> flexrock_core::error::Result<flexrock_core::solution::Solution> {
+) -> flexrock_core::error::Result<flexrock_core::integrate::solution::Solution> {
     let overrides = Overrides {
         method: Some("newmark".into()),
         dt: Some(0.02),

@@ -130,7 +130,7 @@ fn the_path_over_f_of_q_goes_beyond_uplift_and_the_curve_is_the_model_s() {
     let ke = c["generalised_stiffness"].as_f64().unwrap();
 
     let data = RunData::read(&run).unwrap();
-    let automaton = flexrock_core::automaton::Automaton::new(&data.summary.constants);
+    let automaton = flexrock_core::physics::automaton::Automaton::new(&data.summary.constants);
     let panels = flexrock::figures::run::force_panels(&data, &automaton);
     let force = &panels[0];
     let path = force.series.iter().find(|s| s.name == "this run").unwrap();
@@ -191,7 +191,7 @@ fn the_velocity_panel_marks_every_event_and_the_energy_books_close() {
 
     // E(t) - E(0) = input work - damping work - lost at events + residual, on every row: the
     // figure's energies, work columns and event losses are the solver's books.
-    let automaton = flexrock_core::automaton::Automaton::new(&data.summary.constants);
+    let automaton = flexrock_core::physics::automaton::Automaton::new(&data.summary.constants);
     let lost = flexrock::figures::run::energy_lost_at_events(&data, &automaton);
     let energy = |r: &flexrock::writers::run_dir::HistoryRow| {
         automaton.kinetic_energy(r.qdot) + automaton.potential_energy(r.mode, r.q)

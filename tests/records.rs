@@ -7,7 +7,7 @@ use crate::common::{flexrock, repo};
 
 use std::path::{Path, PathBuf};
 
-use flexrock_core::excitation::{FloorMotion, PulseShape, Ricker, SinePulse};
+use flexrock_core::floor::{FloorMotion, PulseShape, Ricker, SinePulse};
 use flexrock_core::model::{Model, Overrides};
 
 /// A model in `dir` whose excitation is the given record section.
@@ -620,7 +620,7 @@ fn a_run_on_a_record_says_its_record_and_a_duration_that_cuts_it() {
 
 #[test]
 fn a_suite_is_a_directory_or_a_list_file() {
-    use flexrock_core::record::suite::read_suite;
+    use flexrock_core::floor::record::suite::read_suite;
     let d = common::scratch_dir("rec-suite");
     for name in [
         "b.AT2",

@@ -5,10 +5,10 @@
 
 use crate::common;
 
-use flexrock_core::automaton::{Automaton, Mode};
-use flexrock_core::body::SelfWeight;
-use flexrock_core::constants::Constants;
 use flexrock_core::model::Model;
+use flexrock_core::physics::automaton::{Automaton, Mode};
+use flexrock_core::physics::body::SelfWeight;
+use flexrock_core::physics::constants::Constants;
 
 fn body(youngs_modulus: f64, self_weight: &str) -> Model {
     common::model(&format!(
@@ -186,7 +186,7 @@ fn a_consistent_run_keeps_its_energy_books() {
          [simulation]\nduration = 6.0\n[solver]\nmethod = \"bdf\"\nrtol = 1e-10\natol = 1e-12\n",
     );
     let solution = common::solve(&text);
-    assert!(solution.count(flexrock_core::automaton::EventKind::Uplift) >= 1);
+    assert!(solution.count(flexrock_core::physics::automaton::EventKind::Uplift) >= 1);
     assert!(
         solution.energy_residual_share() < 1e-6,
         "{}",

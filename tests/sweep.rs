@@ -99,7 +99,7 @@ fn every_row_is_the_run_of_its_point_and_the_dimensionless_numbers_are_the_close
         assert_eq!(
             row["n_uplift"],
             solution
-                .count(flexrock_core::automaton::EventKind::Uplift)
+                .count(flexrock_core::physics::automaton::EventKind::Uplift)
                 .to_string()
         );
         assert_eq!(row["steps"], solution.stats.steps.to_string());
@@ -1114,7 +1114,7 @@ fn a_sweep_file_is_the_flags_written_down() {
 #[test]
 fn the_rows_in_memory_are_the_rows_of_sweep_csv() {
     use flexrock::commands::sweep::store;
-    use flexrock_core::sweep::{Axis, Request, Sweep};
+    use flexrock_core::analysis::sweep::{Axis, Request, Sweep};
     let dir = scratch_dir("sweep-in-memory");
     status_ok(&mut grid_sweep(&dir, &[]));
     let request = Request {
@@ -1146,7 +1146,7 @@ fn the_rows_in_memory_are_the_rows_of_sweep_csv() {
 
 #[test]
 fn rows_until_stops_starting_points_once_told() {
-    use flexrock_core::sweep::{Axis, Request, Sweep};
+    use flexrock_core::analysis::sweep::{Axis, Request, Sweep};
     use std::sync::atomic::{AtomicUsize, Ordering};
     let request = Request {
         axes: vec![Axis::parse("excitation.period=lin:0.3:1.5:24", Path::new(".")).unwrap()],
@@ -1154,7 +1154,7 @@ fn rows_until_stops_starting_points_once_told() {
     };
     let sweep = Sweep::new(&pulse_model(), request, Path::new(".")).unwrap();
     let layout = sweep.plan.layout();
-    let fields = |rows: Vec<flexrock_core::sweep::Row>| -> Vec<Vec<String>> {
+    let fields = |rows: Vec<flexrock_core::analysis::sweep::Row>| -> Vec<Vec<String>> {
         rows.iter().map(|r| r.fields(layout)).collect()
     };
     let all = fields(sweep.rows(0..sweep.points(), &|| {}));
@@ -1171,8 +1171,8 @@ fn rows_until_stops_starting_points_once_told() {
 
 #[test]
 fn a_record_held_in_memory_sweeps_as_its_file() {
-    use flexrock_core::record::read_record;
-    use flexrock_core::sweep::{Axis, Request, Sweep};
+    use flexrock_core::analysis::sweep::{Axis, Request, Sweep};
+    use flexrock_core::floor::record::read_record;
     let model = repo("models/elcentro1940.toml");
     let axes = || vec![Axis::parse("excitation.scale=0.5,1", Path::new(".")).unwrap()];
     let from_file = Sweep::new(
@@ -1207,7 +1207,7 @@ fn a_record_held_in_memory_sweeps_as_its_file() {
     let layout = from_file.plan.layout();
     let rows = in_memory.rows(0..2, &|| {});
     assert!(rows.iter().all(|r| r.reason.is_empty()), "{rows:?}");
-    let fields = |rows: &[flexrock_core::sweep::Row]| -> Vec<Vec<String>> {
+    let fields = |rows: &[flexrock_core::analysis::sweep::Row]| -> Vec<Vec<String>> {
         rows.iter().map(|r| r.fields(layout)).collect()
     };
     assert_eq!(fields(&rows), fields(&from_file.rows(0..2, &|| {})));

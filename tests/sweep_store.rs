@@ -583,7 +583,7 @@ fn a_merge_killed_at_random_moments_leaves_the_old_result_or_the_new() {
 /// place off, so that a sweep's stored plan was taken for another sweep's.
 #[test]
 fn a_plan_reads_back_bit_for_bit() {
-    use flexrock_core::sweep::{FindMin, Plan};
+    use flexrock_core::analysis::sweep::{FindMin, Plan};
     let mut state: u64 = 0x9E37_79B9_7F4A_7C15;
     let mut values = vec![(15.0 - 0.5) / 1e4, 0.1 + 0.2, f64::MIN_POSITIVE, 1e308];
     for _ in 0..2000 {

@@ -2,7 +2,7 @@
 
 use std::path::PathBuf;
 
-use crate::invalid::InvalidParameter;
+use crate::base::invalid::InvalidParameter;
 
 /// Everything that can go wrong in the core, from reading a model file to a sweep (the command
 /// line adds what can go wrong with its files and figures).
@@ -55,11 +55,11 @@ pub enum Error {
         key: String,
         /// What is wrong with the record.
         #[source]
-        source: crate::record::RecordError,
+        source: crate::floor::record::RecordError,
     },
 
     /// The integrator could not continue.
-    #[error("the {method} solver failed at t = {} s: {message}", crate::format::readable(*.t))]
+    #[error("the {method} solver failed at t = {} s: {message}", crate::base::format::readable(*.t))]
     Solver {
         /// The solver's name, e.g. "bdf".
         method: String,
@@ -80,10 +80,10 @@ pub enum Error {
 
     /// The finite element analysis could not be set up or did not finish.
     #[error("finite element analysis: {0}")]
-    Fem(#[from] crate::fem::FemError),
+    Fem(#[from] crate::bodies::fem::FemError),
 }
 
-pub use crate::format::Quoted;
+pub use crate::base::format::Quoted;
 
 impl<T: Quoted + ?Sized> Quoted for &T {
     fn quoted(&self) -> String {
@@ -135,7 +135,7 @@ impl Error {
                 | Error::InModel { .. }
                 | Error::Record { .. }
                 | Error::SweepFile { .. }
-                | Error::Fem(crate::fem::FemError::InvalidParameter { .. })
+                | Error::Fem(crate::bodies::fem::FemError::InvalidParameter { .. })
         )
     }
 }
@@ -150,11 +150,11 @@ impl From<InvalidParameter> for Error {
     }
 }
 
-impl From<crate::solver::SolverError> for Error {
-    fn from(e: crate::solver::SolverError) -> Self {
+impl From<crate::integrate::SolverError> for Error {
+    fn from(e: crate::integrate::SolverError) -> Self {
         match e {
-            crate::solver::SolverError::Invalid(e) => e.into(),
-            crate::solver::SolverError::Failed { method, t, message } => {
+            crate::integrate::SolverError::Invalid(e) => e.into(),
+            crate::integrate::SolverError::Failed { method, t, message } => {
                 Error::Solver { method, t, message }
             }
         }

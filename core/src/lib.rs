@@ -11,16 +11,16 @@
 //! 2. **A solution**: [`simulate()`] solves it with the solver the file names and returns a
 //!    [`Solution`]: the sampled history, every event (uplift, landing, overturning) located to
 //!    the solver's tolerance, the rocking episodes, peaks and energy books;
-//!    [`summary::summary`] is the run's summary.json.
-//! 3. **A study**: a [`sweep::Request`] (axes over any keys, settings, a minimum overturning
+//!    [`tables::summary::summary`] is the run's summary.json.
+//! 3. **A study**: a [`analysis::sweep::Request`] (axes over any keys, settings, a minimum overturning
 //!    search) on a model file makes a [`Sweep`]; [`Sweep::rows`] computes every point (in
-//!    parallel with the `parallel` feature) into typed [`sweep::Row`]s whose cells
-//!    ([`sweep::Cell`]) are the columns of sweep.csv.
+//!    parallel with the `parallel` feature) into typed [`analysis::sweep::Row`]s whose cells
+//!    ([`analysis::sweep::Cell`]) are the columns of sweep.csv.
 //!
 //! ```
 //! use std::path::Path;
 //!
-//! use flexrock_core::sweep::{Axis, Cell, Request, Row};
+//! use flexrock_core::analysis::sweep::{Axis, Cell, Request, Row};
 //! use flexrock_core::{Model, Overrides, Sweep};
 //!
 //! # let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
@@ -45,34 +45,26 @@
 //! # Ok::<(), flexrock_core::Error>(())
 //! ```
 //!
-//! The pieces, each in its own module:
-//! The pieces, each in its own module:
-//! - [`body`]: the physical body; [`constants`]: everything derived from it
-//!   (book/src/model.md §2-§5);
-//! - [`automaton`]: the hybrid automaton (modes, right-hand sides, guards, resets);
-//! - [`excitation`]: floor motions behind the [`excitation::FloorMotion`] trait; [`record`]:
-//!   recorded ground motions read from their files; [`intensity`]: their intensity measures;
-//! - [`solver`]: solvers that drive the automaton (the adaptive diffsol driver, Newmark, the
-//!   run budget); [`solution`]: what they return; [`simulate`](mod@simulate): a model solved
-//!   with the solver it names, and [`properties`];
-//! - [`model`]: the TOML model file (its schema and checks);
-//! - [`fem`]: the plane-stress finite element check of the paper's Section 3 (mesh, elements,
-//!   banded solver, eigenvalues, dynamics, pushover);
-//! - [`rigid`]: the rigid block of the rigid limit (Housner's block), which the elastic body must
-//!   tend to as E grows, by the small-angle (default) or the full rocking equation;
-//!   [`rigid_criteria`]: published overturning criteria of rigid bodies (Ishiyama 1982);
-//!   [`findings`]: the paper's qualitative findings in numbers;
-//! - `flexural_shape` (private): the self-weighted cantilever mode psi of the consistent variant;
-//! - [`run_tables`]: the columns of a run's tables; [`summary`]: summary.json of a run;
-//! - [`sweep`]: parametric studies and minimum overturning searches;
-//! - [`error`]: the one error type; [`format`](mod@format): numbers and file kinds for messages;
-//!   [`columns`]: a table's columns as one list of (name, field), for the analyses' typed rows;
-//! - the analyses above [`simulate`](mod@simulate): [`compare`](mod@compare) (two solutions of
-//!   one model measured against each other: matched events, peaks, q(t) on the output grid),
-//!   [`converge`](mod@converge) (the convergence study: cases, orders and efficiency slopes),
-//!   [`fem_check`] (a finite element run, its uplift episodes and peaks, and its comparison with
-//!   the one-degree-of-freedom model) and [`pushover_check`] (the static pushover curves against
-//!   the model's restoring force).
+//! The pieces, in layers from the bottom up: each module uses only its own layer and those
+//! below it (the book's code map draws them; `core/tests/layers.rs` checks it).
+//! - [`base`]: numbers as text ([`base::format`]), units, the rule of a refused value
+//!   ([`InvalidParameter`]), double-double arithmetic, suggestions for mistyped names;
+//! - [`physics`]: the body ([`physics::body`]), everything derived from it
+//!   ([`physics::constants`]), the hybrid automaton ([`physics::automaton`]: modes, right-hand
+//!   sides, guards, resets; the only home of the dynamics), published rigid-body criteria;
+//! - [`floor`]: floor motions behind the [`FloorMotion`] trait; recorded ground motions read
+//!   from their files ([`floor::record`]) and the ground's intensity measures
+//!   ([`floor::intensity`]);
+//! - [`integrate`]: the solvers that drive the automaton (the exact method, the adaptive diffsol
+//!   driver, Newmark, the run budget) and the [`Solution`] they return;
+//! - [`bodies`]: what is built on the automaton: the rigid block ([`bodies::rigid`]), rows of
+//!   pounding columns ([`bodies::row`]), the finite element check ([`bodies::fem`]) and the
+//!   linear oscillator of a response spectrum ([`bodies::oscillator`]);
+//! - [`error`]: the one error type; [`model`]: the TOML model file, its schema and checks;
+//! - [`simulate()`](fn@simulate): a model solved with the solver it names, and [`properties`];
+//! - [`tables`]: the columns of a run's tables, summary.json, a row's results, a table's fields;
+//! - [`analysis`]: studies over runs: comparisons, convergence, the FEM and pushover checks,
+//!   the overturning criteria, the paper's findings, sweeps and minimum overturning searches.
 //!
 //! # Example
 //!
@@ -108,53 +100,30 @@
 
 #![warn(missing_docs)]
 
-pub mod automaton;
-pub mod body;
-pub mod columns;
-pub mod compare;
-pub mod constants;
-pub mod converge;
-pub mod criteria;
-mod double_double;
+pub mod analysis;
+pub mod base;
+pub mod bodies;
 pub mod error;
-pub mod excitation;
-pub mod fem;
-pub mod fem_check;
-pub mod findings;
-mod flexural_shape;
-pub mod format;
-pub mod intensity;
-mod invalid;
-mod limits;
+pub mod floor;
+pub mod integrate;
 pub mod model;
-pub mod pushover_check;
-pub mod record;
-pub mod rigid;
-pub mod rigid_criteria;
-pub mod row;
-pub mod row_results;
-pub mod run_tables;
+pub mod physics;
 pub mod simulate;
-pub mod solution;
-pub mod solver;
-mod suggest;
-pub mod summary;
-pub mod sweep;
-mod units;
+pub mod tables;
 
-pub use automaton::Automaton;
-pub use body::Body;
-pub use compare::{match_events, Comparison, EventPair};
-pub use constants::Constants;
-pub use converge::{Case, Convergence, Slope, SlopeKind};
+pub use analysis::compare::{match_events, Comparison, EventPair};
+pub use analysis::converge::{Case, Convergence, Slope, SlopeKind};
+pub use analysis::fem_check::{FemAnalysis, FemComparison};
+pub use analysis::pushover_check::PushoverAnalysis;
+pub use analysis::sweep::Sweep;
+pub use base::invalid::InvalidParameter;
+pub use base::units::{unit_of_key, Unit, STANDARD_GRAVITY};
 pub use error::{Error, Result};
-pub use excitation::FloorMotion;
-pub use fem_check::{FemAnalysis, FemComparison};
-pub use invalid::InvalidParameter;
+pub use floor::FloorMotion;
+pub use integrate::solution::Solution;
+pub use integrate::SolverSettings;
 pub use model::{Model, Overrides};
-pub use pushover_check::PushoverAnalysis;
+pub use physics::automaton::Automaton;
+pub use physics::body::Body;
+pub use physics::constants::Constants;
 pub use simulate::{properties, simulate, simulate_peaks, simulate_with, Properties, Provenance};
-pub use solution::Solution;
-pub use solver::SolverSettings;
-pub use sweep::Sweep;
-pub use units::{unit_of_key, Unit, STANDARD_GRAVITY};

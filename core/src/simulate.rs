@@ -4,14 +4,16 @@
 
 use serde::Serialize;
 
-use crate::automaton::{Automaton, EventKind};
-use crate::body::{Body, SelfWeight};
-use crate::constants::{Constants, SELF_WEIGHT_BUCKLING_PARAMETER, SELF_WEIGHT_WARNING_SHARE};
 use crate::error::Result;
+use crate::integrate::solution::{RoundingEstimate, Solution};
+use crate::integrate::{adaptive, exact, newmark};
+use crate::integrate::{History, SolverSettings};
 use crate::model::Model;
-use crate::solution::{RoundingEstimate, Solution};
-use crate::solver::{adaptive, exact, newmark};
-use crate::solver::{History, SolverSettings};
+use crate::physics::automaton::{Automaton, EventKind};
+use crate::physics::body::{Body, SelfWeight};
+use crate::physics::constants::{
+    Constants, SELF_WEIGHT_BUCKLING_PARAMETER, SELF_WEIGHT_WARNING_SHARE,
+};
 
 /// Version of flexrock that made a result.
 pub const VERSION: &str = env!("CARGO_PKG_VERSION");
@@ -40,9 +42,9 @@ pub fn simulate_with(model: &Model, settings: &SolverSettings) -> Result<Solutio
 
 /// Solves a row of columns (its own exact method, or Tsit45 under the compliant contact law)
 /// keeping every column's history.
-pub fn simulate_row(model: &crate::model::RowModel) -> Result<crate::row::RowSolution> {
+pub fn simulate_row(model: &crate::model::RowModel) -> Result<crate::bodies::row::RowSolution> {
     if let Some(settings) = &model.compliant {
-        return Ok(crate::row::solve_row_compliant(
+        return Ok(crate::bodies::row::solve_row_compliant(
             &model.row,
             model.floor.as_ref(),
             model.duration,
@@ -50,7 +52,7 @@ pub fn simulate_row(model: &crate::model::RowModel) -> Result<crate::row::RowSol
             History::Sampled,
         )?);
     }
-    Ok(crate::row::solve_row(
+    Ok(crate::bodies::row::solve_row(
         &model.row,
         model.floor.as_ref(),
         model.duration,
@@ -68,7 +70,7 @@ pub fn simulate_row(model: &crate::model::RowModel) -> Result<crate::row::RowSol
 pub fn row_state_at(
     model: &crate::model::RowModel,
     t: f64,
-) -> Result<Vec<crate::solution::Sample>> {
+) -> Result<Vec<crate::integrate::solution::Sample>> {
     if !(t.is_finite() && (0.0..=model.duration).contains(&t)) {
         return Err(crate::Error::invalid(
             "t",
@@ -84,7 +86,7 @@ pub fn row_state_at(
         model.duration.min(model.settings.output_dt)
     };
     let settings = exact::ExactSettings { output_dt: end };
-    let solution = crate::row::solve_row(
+    let solution = crate::bodies::row::solve_row(
         &model.row,
         model.floor.as_ref(),
         end,
@@ -206,9 +208,9 @@ pub fn record_truncation(model: &Model) -> Option<String> {
         format!(
             "the run lasts {} s (simulation.duration) but the record lasts {} s: its last {} s \
              are not applied; leave simulation.duration out to run the whole record",
-            crate::format::readable(model.duration),
-            crate::format::readable(end),
-            crate::format::readable(end - model.duration)
+            crate::base::format::readable(model.duration),
+            crate::base::format::readable(end),
+            crate::base::format::readable(end - model.duration)
         )
     })
 }
@@ -236,7 +238,7 @@ pub fn warnings(model: &Model, solution: &Solution) -> Vec<String> {
 /// run cut short by an overturning column, after which no other column's motion is computed.
 pub fn row_warnings(
     model: &crate::model::RowModel,
-    solution: &crate::row::RowSolution,
+    solution: &crate::bodies::row::RowSolution,
 ) -> Vec<String> {
     let advice = match model.compliant {
         Some(_) => "tighten solver.rtol and solver.atol",

@@ -4,7 +4,7 @@
 use crate::common;
 
 use approx::assert_relative_eq;
-use flexrock_core::constants::{Constants, ModeShapeIntegrals, MODE_ROOT};
+use flexrock_core::physics::constants::{Constants, ModeShapeIntegrals, MODE_ROOT};
 
 #[test]
 fn mode_shape_integrals_match_the_table() {
@@ -168,13 +168,13 @@ fn period_input_gives_that_period() {
 fn paper_ramp_coefficients() {
     // book/src/model.md §8: for A = 5, Tp = 1, ramp = 0.412:
     // c1 = -133.694, c2 = 1043.29, c3 = -1707.09.
-    let ramp = flexrock_core::excitation::PaperSine::new(5.0, 1.0, 0.412);
+    let ramp = flexrock_core::floor::PaperSine::new(5.0, 1.0, 0.412);
     let [c1, c2, c3] = ramp.ramp_coefficients;
     assert!((c1 + 133.694).abs() < 5e-4, "c1 = {c1}");
     assert!((c2 - 1043.29).abs() < 5e-3, "c2 = {c2}");
     assert!((c3 + 1707.09).abs() < 5e-3, "c3 = {c3}");
     // Continuity at the join: acceleration from both sides.
-    use flexrock_core::excitation::FloorMotion;
+    use flexrock_core::floor::FloorMotion;
     let before = ramp.acceleration(0.412 - 1e-12);
     let after = 5.0 * (2.0 * std::f64::consts::PI * 0.412).sin();
     assert!((before - after).abs() < 1e-8);

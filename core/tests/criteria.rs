@@ -3,7 +3,7 @@
 
 use std::path::Path;
 
-use flexrock_core::criteria::{self, Excitation, Study};
+use flexrock_core::analysis::criteria::{self, Excitation, Study};
 
 #[test]
 fn the_elastic_criterion_tends_to_the_rigid_limit_decade_by_decade() {

@@ -3,7 +3,7 @@
 
 use crate::common;
 
-use flexrock_core::automaton::{EventKind, Mode};
+use flexrock_core::physics::automaton::{EventKind, Mode};
 
 fn free_body(e_factor: f64, damping: f64, q0: f64, qdot0: f64, duration: f64) -> String {
     format!(
@@ -101,7 +101,7 @@ fn no_missed_events_at_loose_tolerance() {
     );
     let tight = loose.replace("rtol = 1e-4\natol = 1e-6", "rtol = 1e-10\natol = 1e-12");
     let (a, b) = (common::solve(&loose), common::solve(&tight));
-    let seq = |s: &flexrock_core::solution::Solution| {
+    let seq = |s: &flexrock_core::integrate::solution::Solution| {
         s.events
             .iter()
             .map(|e| (e.kind, e.from, e.to))

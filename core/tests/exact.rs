@@ -5,9 +5,9 @@
 
 use crate::common;
 
-use flexrock_core::automaton::{EventKind, Mode};
+use flexrock_core::integrate::solution::Solution;
 use flexrock_core::model::{Model, Overrides};
-use flexrock_core::solution::Solution;
+use flexrock_core::physics::automaton::{EventKind, Mode};
 
 fn exact(text: &str) -> Solution {
     let model = common::model(text);
@@ -654,7 +654,7 @@ fn a_stiff_body_under_a_slow_floor_is_searched_in_long_pieces() {
 /// which the stretch ending at t gives: a single point, which no integral sees.
 #[test]
 fn every_closed_form_of_the_floor_is_the_floor_motion() {
-    use flexrock_core::excitation::{
+    use flexrock_core::floor::{
         FloorMotion, Free, Harmonic, PaperSine, PulseShape, RecordedMotion, Ricker, SinePulse,
     };
     let record: Vec<f64> = (0..700)
@@ -712,7 +712,7 @@ fn every_closed_form_of_the_floor_is_the_floor_motion() {
 /// near its end, 1e5 times its stated bound, which moved that run's peaks by 1.5e-14 m.
 #[test]
 fn each_taylor_piece_of_the_ricker_wavelet_is_its_own_from_its_start() {
-    use flexrock_core::excitation::{FloorMotion, Ricker};
+    use flexrock_core::floor::{FloorMotion, Ricker};
     for (amplitude, period, center) in [(6.0, 0.5, 0.6), (4.0, 1.0, 1.5), (-2.5, 0.37, 0.9)] {
         let floor = Ricker {
             amplitude,

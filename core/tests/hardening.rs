@@ -15,11 +15,11 @@
 
 use crate::common;
 
-use flexrock_core::automaton::{EventKind, Mode};
+use flexrock_core::integrate::adaptive::{AdaptiveMethod, AdaptiveSettings};
+use flexrock_core::integrate::solution::Solution;
+use flexrock_core::integrate::SolverSettings;
 use flexrock_core::model::{Model, Overrides};
-use flexrock_core::solution::Solution;
-use flexrock_core::solver::adaptive::{AdaptiveMethod, AdaptiveSettings};
-use flexrock_core::solver::SolverSettings;
+use flexrock_core::physics::automaton::{EventKind, Mode};
 
 const METHODS: [AdaptiveMethod; 4] = [
     AdaptiveMethod::Bdf,
@@ -345,7 +345,7 @@ fn a_jump_of_the_floor_at_a_pulse_end_restarts_the_method() {
             let model = common::model(&text(method, rtol));
             let solution = flexrock_core::simulate::simulate(&model)
                 .unwrap_or_else(|e| panic!("{method} at rtol {rtol:e}: {e}"));
-            let kinds = |s: &flexrock_core::solution::Solution| -> Vec<&'static str> {
+            let kinds = |s: &flexrock_core::integrate::solution::Solution| -> Vec<&'static str> {
                 s.events.iter().map(|e| e.kind.name()).collect()
             };
             assert_eq!(kinds(&solution), kinds(&reference), "{method} {rtol:e}");

@@ -1,209 +1,170 @@
-//! The core's modules form layers with no circle: units and formatting at the bottom, then the
-//! physics (body, flexural shape, constants, automaton, records, excitations), then the numerics
-//! (solution, solvers, intensity measures, rigid block, finite elements), then the model file and simulation, then
-//! the analyses (comparisons, convergence studies, the finite element checks). Every `crate::`
-//! path in a module's code (its tests aside) must name a module listed before it.
+//! The core's folders are its layers, bottom up: the base (units, formatting, limits), the physics
+//! of one body, the floor motions, the integrators, the bodies built on them, then the error,
+//! the model file and simulation, the tables, and the analyses. A file may take names only from
+//! its own layer and the layers below it, and no files import each other round a loop
+//! (book/src/developer/code-map.md).
 
-use std::collections::BTreeMap;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
-/// The modules from the bottom up. A module may use only the modules before it.
-const LAYERS: [&str; 33] = [
-    // units and formatting
-    "units",
-    "format",
-    "columns",
-    "suggest",
-    "limits",
-    "invalid",
-    "double_double",
-    // physics
-    "body",
-    "flexural_shape",
-    "constants",
-    "automaton",
-    "record",
-    "excitation",
-    // numerics
-    "solution",
-    "run_tables",
-    "solver",
-    "intensity",
-    "rigid",
-    "rigid_criteria",
-    "row",
-    "fem",
-    "findings",
-    // the model file and simulation
+use crate::common::imports::{named_paths, Graph};
+
+/// The entries of core/src from the bottom up (lib.rs aside). A file may use only its own layer
+/// and those before it.
+const LAYERS: [&str; 10] = [
+    "base",
+    "physics",
+    "floor",
+    "integrate",
+    "bodies",
     "error",
     "model",
     "simulate",
-    "summary",
-    "row_results",
-    // analysis
-    "sweep",
-    "compare",
-    "converge",
-    "fem_check",
-    "pushover_check",
-    "criteria",
+    "tables",
+    "analysis",
 ];
 
-/// The files of module `name` under `src`: `name.rs`, or every file under `name/`.
-fn files_of(src: &Path, name: &str) -> Vec<PathBuf> {
-    let single = src.join(format!("{name}.rs"));
-    if single.is_file() {
-        return vec![single];
-    }
-    let mut files = Vec::new();
-    let mut dirs = vec![src.join(name)];
-    while let Some(dir) = dirs.pop() {
-        for entry in std::fs::read_dir(&dir).unwrap_or_else(|e| panic!("{}: {e}", dir.display())) {
-            let path = entry.unwrap().path();
-            if path.is_dir() {
-                dirs.push(path);
-            } else if path.extension().is_some_and(|e| e == "rs") {
-                files.push(path);
-            }
-        }
-    }
-    files
+fn src() -> std::path::PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("src")
 }
 
-/// The code of a file without its test module (a `#[cfg(test)]` followed by `mod tests`, which
-/// by the project's convention ends the file) and without its comments; a file named `tests.rs`
-/// is all test.
-fn code_without_tests(path: &Path) -> String {
-    if path.file_name().is_some_and(|n| n == "tests.rs") {
-        return String::new();
-    }
-    let text = std::fs::read_to_string(path).unwrap();
-    let lines: Vec<&str> = text.lines().collect();
-    let end = lines
-        .windows(2)
-        .position(|w| w[0].trim() == "#[cfg(test)]" && w[1].trim_start().starts_with("mod tests"))
-        .unwrap_or(lines.len());
-    lines[..end]
-        .iter()
-        .map(|line| line.split("//").next().unwrap_or(""))
-        .collect::<Vec<_>>()
-        .join("\n")
-}
-
-/// The top-level modules that `code` names as `crate::NAME`.
-fn used_modules(code: &str) -> Vec<String> {
-    let mut used = Vec::new();
-    let mut rest = code;
-    while let Some(at) = rest.find("crate::") {
-        rest = &rest[at + "crate::".len()..];
-        let name: String = rest
-            .chars()
-            .take_while(|c| c.is_ascii_alphanumeric() || *c == '_')
-            .collect();
-        if name == "Error" || name == "Result" {
-            // The crate's error, re-exported at its root.
-            used.push("error".to_string());
-        } else if name.is_empty() {
-            // `crate::{a, b}`: every name in the braces.
-            if let Some(group) = rest.strip_prefix('{').and_then(|g| g.split_once('}')) {
-                for part in group.0.split(',') {
-                    let name = part.trim().split("::").next().unwrap_or("").trim();
-                    if !name.is_empty() {
-                        used.push(name.to_string());
-                    }
-                }
-            }
-        } else {
-            used.push(name);
-        }
-    }
-    used
-}
-
-/// Module -> the modules it uses (other than itself), for every module in the layers.
-fn import_graph() -> BTreeMap<&'static str, Vec<String>> {
-    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
-    LAYERS
-        .iter()
-        .map(|&name| {
-            let mut used: Vec<String> = files_of(&src, name)
-                .iter()
-                .flat_map(|file| used_modules(&code_without_tests(file)))
-                .filter(|used| used != name)
-                .collect();
-            used.sort();
-            used.dedup();
-            (name, used)
-        })
-        .collect()
+/// The layer of a file of core/src (its first path component, without `.rs`).
+fn layer_of(file: &str) -> &str {
+    let first = file.split('/').next().unwrap();
+    first.strip_suffix(".rs").unwrap_or(first)
 }
 
 #[test]
-fn every_module_uses_only_the_layers_below_it() {
+fn core_src_holds_the_layers_and_lib_rs() {
+    let mut entries: Vec<String> = std::fs::read_dir(src())
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().to_string())
+        .map(|name| name.strip_suffix(".rs").map(str::to_string).unwrap_or(name))
+        .filter(|name| name != "lib")
+        .collect();
+    entries.sort();
+    let mut layers: Vec<String> = LAYERS.iter().map(|s| s.to_string()).collect();
+    layers.sort();
+    assert_eq!(entries, layers, "core/src's entries are not the layers");
+}
+
+#[test]
+fn every_file_uses_only_its_layer_and_those_below() {
     let position = |name: &str| LAYERS.iter().position(|&m| m == name);
+    let graph = Graph::of(&src());
     let mut upward = Vec::new();
-    for (module, used) in import_graph() {
-        for name in used {
-            match position(&name) {
-                Some(at) if at < position(module).unwrap() => {}
-                Some(_) => upward.push(format!("{module} -> {name}")),
-                None => upward.push(format!("{module} -> {name} (a module not in the layers)")),
+    for (file, targets) in &graph.arrows {
+        if file == "lib.rs" {
+            continue;
+        }
+        let own = position(layer_of(file)).unwrap_or_else(|| panic!("{file}: no layer"));
+        for (target, names) in targets {
+            if target == "lib.rs" {
+                // The crate's error and result, re-exported at its root.
+                continue;
+            }
+            match position(layer_of(target)) {
+                Some(at) if at <= own => {}
+                _ => upward.push(format!("{file} -> {target}: {names:?}")),
             }
         }
     }
-    assert!(
-        upward.is_empty(),
-        "imports up the layers (or into a module the layers do not list): {upward:?}"
+    assert!(upward.is_empty(), "imports up the layers: {upward:#?}");
+}
+
+/// Folders whose files still import each other round a loop: each is to be taken apart, and
+/// none may be added (a folder taken apart leaves this list).
+const FOLDERS_WITH_CIRCLES: [&str; 4] =
+    ["analysis/sweep", "bodies/row", "integrate/exact", "model"];
+
+/// The folder of a circle's line "from -> to: names" (its first file's).
+fn folder_of(line: &str) -> &str {
+    let file = line.split(" -> ").next().unwrap_or("");
+    file.rsplit_once('/').map_or("", |(folder, _)| folder)
+}
+
+#[test]
+fn no_files_of_the_core_import_each_other_round_a_loop() {
+    let circles = Graph::of(&src()).circles();
+    let mut folders = Vec::new();
+    for circle in &circles {
+        let folder = folder_of(&circle[0]);
+        // A circle across folders is one between modules: never allowed.
+        assert!(
+            circle.iter().all(|line| folder_of(line) == folder)
+                && circle.iter().all(|line| {
+                    let to = line.split(" -> ").nth(1).unwrap_or("");
+                    to.rsplit_once('/').map_or("", |(f, _)| f) == folder
+                }),
+            "a circle between modules: {circle:#?}"
+        );
+        assert!(
+            FOLDERS_WITH_CIRCLES.contains(&folder),
+            "a new circle in {folder}: {circle:#?}"
+        );
+        folders.push(folder);
+    }
+    for known in FOLDERS_WITH_CIRCLES {
+        assert!(
+            folders.contains(&known),
+            "{known} has no circle any more: take it off FOLDERS_WITH_CIRCLES"
+        );
+    }
+}
+
+#[test]
+fn the_reader_sees_use_trees_and_inline_paths() {
+    let code = "use crate::physics::{automaton::{Automaton, Mode as M}, body};\n\
+                pub use flow::Flow;\n\
+                fn f() -> crate::Result<()> { crate::base::format::number(1.0); super::super::x::Y }\n";
+    let paths: Vec<String> = named_paths(code)
+        .iter()
+        .map(|n| {
+            format!(
+                "{}::{}{}",
+                n.start,
+                n.segments.join("::"),
+                if n.reexport { " (re-export)" } else { "" }
+            )
+        })
+        .collect();
+    assert_eq!(
+        paths,
+        [
+            "crate::physics::automaton::Automaton",
+            "crate::physics::automaton::Mode",
+            "crate::physics::body",
+            "flow::Flow (re-export)",
+            "crate::Result",
+            "crate::base::format::number",
+            "super::super::x::Y",
+        ]
     );
 }
 
 #[test]
-fn every_module_of_the_crate_is_in_the_layers() {
-    let lib =
-        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("src/lib.rs")).unwrap();
-    let declared: Vec<&str> = lib
-        .lines()
-        .filter_map(|line| {
-            let line = line.trim();
-            let rest = line
-                .strip_prefix("pub mod ")
-                .or(line.strip_prefix("mod "))?;
-            rest.strip_suffix(';')
-        })
-        .collect();
-    assert!(!declared.is_empty());
-    for module in &declared {
-        assert!(
-            LAYERS.contains(module),
-            "src/lib.rs declares {module}, which no layer lists"
-        );
-    }
-    for module in LAYERS {
-        assert!(
-            declared.contains(&module),
-            "the layers list {module}, which src/lib.rs lacks"
-        );
-    }
-}
-
-#[test]
-fn the_checker_sees_an_upward_import() {
-    let code = "use crate::model::Model;\nfn f() -> crate::Result<()> { crate::format::shortest(1.0); }\nuse crate::{units, limits::at_most};\n// crate::simulate in a comment\n";
-    let mut used = used_modules(&code_without_tests_of(code));
-    used.sort();
-    assert_eq!(used, ["error", "format", "limits", "model", "units"]);
-}
-
-/// [`code_without_tests`] of text rather than a file.
-fn code_without_tests_of(text: &str) -> String {
-    let dir = crate::common::scratch_dir("layers-module");
-    let file = dir.join("module.rs");
-    std::fs::write(
-        &file,
-        format!("{text}#[cfg(test)]\nmod tests {{ use crate::simulate; }}\n"),
-    )
-    .unwrap();
-    let code = code_without_tests(&file);
+fn the_checker_finds_a_circle_and_sees_through_a_face() {
+    let dir = crate::common::scratch_dir("layers-circle");
+    let write = |name: &str, text: &str| {
+        let path = dir.join(name);
+        std::fs::create_dir_all(path.parent().unwrap()).unwrap();
+        std::fs::write(path, text).unwrap();
+    };
+    write("lib.rs", "pub mod a;\npub mod b;\n");
+    // a's face re-exports its submodule; b takes the name through the face.
+    write("a/mod.rs", "mod inner;\npub use inner::Thing;\n");
+    write("a/inner.rs", "use crate::b::Other;\npub struct Thing;\n");
+    write(
+        "b.rs",
+        "use crate::a::Thing;\npub struct Other;\n#[cfg(test)]\nmod tests { use crate::a; }\n",
+    );
+    let circles = Graph::of(&dir).circles();
+    assert_eq!(circles.len(), 1, "{circles:?}");
+    assert_eq!(
+        circles[0],
+        ["a/inner.rs -> b.rs: Other", "b.rs -> a/inner.rs: Thing"]
+    );
+    // Without the arrow back there is no circle, and the face draws none.
+    write("a/inner.rs", "pub struct Thing;\n");
+    assert!(Graph::of(&dir).circles().is_empty());
     std::fs::remove_dir_all(&dir).ok();
-    code
 }

@@ -8,7 +8,7 @@ use crate::common;
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 
-use flexrock_core::constants::Constants;
+use flexrock_core::physics::constants::Constants;
 
 const CHAPTER: &str = include_str!("../../book/src/model.md");
 

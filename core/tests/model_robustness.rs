@@ -77,7 +77,7 @@ fn documented_inclusive_limits_accept_their_exact_values() {
         "youngs_modulus = 5e6\n{PULSE}amplitude = 1.0\n[solver]\nmethod = \"newmark\"\ndt = 9e-9\n"
     ));
     // 1e6 FEM steps: 0.9 / 9e-7.
-    flexrock_core::fem::check_run_size(2, 5, 9e-7, 0.9).expect("1e6 steps");
+    flexrock_core::bodies::fem::check_run_size(2, 5, 9e-7, 0.9).expect("1e6 steps");
 
     // Beyond the limits, the message prints the limit as written.
     let refused = |extra: &str| match reference_with(extra, &none) {

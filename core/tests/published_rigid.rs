@@ -4,7 +4,7 @@
 //! - Ishiyama (1982, Earthquake Eng. Struct. Dyn. 10, 635-650): overturning needs a peak floor
 //!   acceleration above g B/H and a peak floor velocity above 10 B/sqrt(H) (cm, cm/s), lower
 //!   limits (necessary conditions) read off shaking-table and simulated frequency sweeps
-//!   ([`flexrock_core::rigid_criteria`]; the velocity constant is the commonly quoted one, not
+//!   ([`flexrock_core::physics::rigid_criteria`]; the velocity constant is the commonly quoted one, not
 //!   confirmed from the paper), set beside the closed-form overturning velocity of a single
 //!   floor velocity step;
 //! - Zhang and Makris (2001, J. Eng. Mech. 127(5), 473-483): under a one-sine (type-A) pulse a
@@ -26,11 +26,11 @@
 
 use std::f64::consts::PI;
 
-use flexrock_core::excitation::{PulseShape, SinePulse};
-use flexrock_core::rigid::{
+use flexrock_core::bodies::rigid::{
     simulate_block, RigidBlock, RigidEventKind, RigidForm, RigidOutcome, RigidOverturning,
 };
-use flexrock_core::rigid_criteria::{ishiyama_acceleration, ishiyama_velocity};
+use flexrock_core::floor::{PulseShape, SinePulse};
+use flexrock_core::physics::rigid_criteria::{ishiyama_acceleration, ishiyama_velocity};
 use flexrock_core::STANDARD_GRAVITY as G;
 
 fn full_block(width: f64, height: f64) -> RigidBlock {
@@ -872,8 +872,8 @@ fn makris_and_konstantinidis_one_cosine() {
 /// full one), as by the default rule; below it the block comes back and rocks on.
 #[test]
 fn a_free_block_cannot_return_from_its_overturning_velocity() {
-    use flexrock_core::rigid::{simulate_from, RigidSettings};
-    use flexrock_core::solver::InitialState;
+    use flexrock_core::bodies::rigid::{simulate_from, RigidSettings};
+    use flexrock_core::integrate::InitialState;
     // A floor that stays still, at rest for good after 1 s (when the free motion is judged).
     let still = SinePulse::new(0.0, 1.0, 1.0, PulseShape::Antisymmetric);
     for form in RigidForm::ALL {

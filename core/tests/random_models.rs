@@ -4,8 +4,8 @@
 
 use crate::common;
 
-use flexrock_core::automaton::{EventKind, Mode};
 use flexrock_core::model::{Model, Overrides};
+use flexrock_core::physics::automaton::{EventKind, Mode};
 use proptest::prelude::*;
 
 proptest! {

@@ -3,10 +3,10 @@
 
 use crate::common;
 
-use flexrock_core::automaton::Automaton;
-use flexrock_core::excitation::{FloorMotion, RecordedMotion};
-use flexrock_core::solver::adaptive::{solve, AdaptiveMethod, AdaptiveSettings};
-use flexrock_core::solver::{History, InitialState};
+use flexrock_core::floor::{FloorMotion, RecordedMotion};
+use flexrock_core::integrate::adaptive::{solve, AdaptiveMethod, AdaptiveSettings};
+use flexrock_core::integrate::{History, InitialState};
+use flexrock_core::physics::automaton::Automaton;
 
 /// Exact response of q'' + 2 h w q' + w^2 q = -beta a(t), a linear on each [k dt, (k+1) dt].
 fn exact_response(w: f64, h: f64, beta: f64, dt: f64, a: &[f64], t_end: f64) -> Vec<(f64, f64)> {

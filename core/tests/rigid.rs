@@ -3,12 +3,12 @@
 //! constant floor acceleration the motion is x = x_e + (x0 - x_e) cosh(k t) + (v0/k) sinh(k t),
 //! x_e = 3 a/(2 k^2) = a H/g, from which every expected value below is derived.
 
-use flexrock_core::excitation::{ClosedForm, FloorMotion, Free, Harmonic, PulseShape, SinePulse};
-use flexrock_core::rigid::{
+use flexrock_core::bodies::rigid::{
     simulate_block, simulate_from, RigidBlock, RigidEventKind, RigidForm, RigidOutcome,
     RigidOverturning, RigidPhase, RigidSettings,
 };
-use flexrock_core::solver::InitialState;
+use flexrock_core::floor::{ClosedForm, FloorMotion, Free, Harmonic, PulseShape, SinePulse};
+use flexrock_core::integrate::InitialState;
 
 const H: f64 = 4.0;
 const B: f64 = 0.7;
@@ -36,7 +36,7 @@ fn block_quantities() {
     assert!((b.restitution() - (1.0 - 1.5 * alpha.sin().powi(2))).abs() < 1e-15);
     assert!((b.restitution() - 0.955_427_531_837_477).abs() < 1e-14);
     assert!((b.uplift_acceleration() - G * B / H).abs() < 1e-15);
-    let l = flexrock_core::constants::MODE_ROOT;
+    let l = flexrock_core::physics::constants::MODE_ROOT;
     let sigma = (l.cosh() + l.cos()) / (l.sinh() + l.sin());
     let factor = l.powi(3) / (8.0 * sigma);
     assert!((elastic_limit().uplift_acceleration() - factor * G * B / H).abs() < 1e-14);
@@ -79,7 +79,10 @@ fn from(block: &RigidBlock, floor: &dyn FloorMotion, q: f64, qdot: f64, t: f64) 
     .unwrap()
 }
 
-fn first(outcome: &RigidOutcome, kind: RigidEventKind) -> &flexrock_core::rigid::RigidEvent {
+fn first(
+    outcome: &RigidOutcome,
+    kind: RigidEventKind,
+) -> &flexrock_core::bodies::rigid::RigidEvent {
     outcome
         .events
         .iter()
@@ -264,7 +267,8 @@ fn chatter_ends_at_the_accumulation_point() {
     let mut settle_predicted = None;
     while v > 1e-300 {
         let remaining_bound = 2.0 * v / (1.5 * G * B / H * (1.0 - e));
-        if settle_predicted.is_none() && remaining_bound <= flexrock_core::rigid::ZENO_TIME {
+        if settle_predicted.is_none() && remaining_bound <= flexrock_core::bodies::rigid::ZENO_TIME
+        {
             settle_predicted = Some((accumulation, n));
         }
         accumulation += 2.0 * (v / (k() * B)).atanh() / k();
@@ -280,7 +284,7 @@ fn chatter_ends_at_the_accumulation_point() {
         "settled at {} s, predicted {t_settle} s",
         settle.t
     );
-    assert!(accumulation - settle.t < flexrock_core::rigid::ZENO_TIME);
+    assert!(accumulation - settle.t < flexrock_core::bodies::rigid::ZENO_TIME);
     assert!(accumulation - settle.t > 0.0);
     assert_eq!(o.final_state.phase, RigidPhase::Rest);
     assert_eq!((o.final_state.q, o.final_state.qdot), (0.0, 0.0));
@@ -439,8 +443,8 @@ impl FloorMotion for Nan {
 /// body from E x 1e3 on overturns, and overturns 0.22 s earlier under 1.0 s, 2.5 m/s^2.
 #[test]
 fn a_stiff_elastic_body_tends_to_the_elastic_limit_block() {
-    use flexrock_core::automaton::EventKind;
     use flexrock_core::model::{Model, Overrides};
+    use flexrock_core::physics::automaton::EventKind;
 
     struct Case {
         period: f64,
@@ -631,7 +635,7 @@ fn two_rules_agree(case: TwoRulesCase) -> Result<(), proptest::test_runner::Test
             proptest::prop_assert_eq!(a.to_string(), b.to_string());
             return Ok(());
         }
-        (Ok(a), Err(flexrock_core::solver::SolverError::Failed { t, message, .. })) => {
+        (Ok(a), Err(flexrock_core::integrate::SolverError::Failed { t, message, .. })) => {
             proptest::prop_assert!(
                 a.t_overturn.is_some_and(|limit| t >= limit),
                 "the papers' rule stopped at t = {t} before the limit: {message}"

@@ -10,11 +10,11 @@
 //! amplitudes of the 0.8 s one-sine pulse on the reference body (2.998 and 3.033 m/s^2) were
 //! computed independently before this code existed (and again by a separate script).
 
-use flexrock_core::excitation::{FloorMotion, Free, PulseShape, SinePulse};
-use flexrock_core::rigid::{
+use flexrock_core::bodies::rigid::{
     simulate_block, simulate_from, RigidBlock, RigidEventKind, RigidForm, RigidSettings,
 };
-use flexrock_core::solver::InitialState;
+use flexrock_core::floor::{FloorMotion, Free, PulseShape, SinePulse};
+use flexrock_core::integrate::InitialState;
 
 const H: f64 = 4.0;
 const B: f64 = 0.7;

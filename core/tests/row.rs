@@ -6,19 +6,19 @@
 //! its quasi-static contact force vanishes; bad rows are refused by name.
 
 use crate::common;
-use flexrock_core::automaton::Automaton;
+use flexrock_core::physics::automaton::Automaton;
 use std::f64::consts::PI;
 
-use flexrock_core::automaton::{EventKind, Mode};
-use flexrock_core::body::{
+use flexrock_core::bodies::row::{solve_row, ColumnSpec, Row};
+use flexrock_core::floor::{FloorMotion, Free, PaperSine, PulseShape, SinePulse};
+use flexrock_core::integrate::exact::{self, ExactSettings};
+use flexrock_core::integrate::solution::Solution;
+use flexrock_core::integrate::{History, InitialState};
+use flexrock_core::physics::automaton::{EventKind, Mode};
+use flexrock_core::physics::body::{
     prism_mass, solid_section_flexural_rigidity, Body, ConstantSet, SelfWeight,
 };
-use flexrock_core::constants::Constants;
-use flexrock_core::excitation::{FloorMotion, Free, PaperSine, PulseShape, SinePulse};
-use flexrock_core::row::{solve_row, ColumnSpec, Row};
-use flexrock_core::solution::Solution;
-use flexrock_core::solver::exact::{self, ExactSettings};
-use flexrock_core::solver::{History, InitialState};
+use flexrock_core::physics::constants::Constants;
 
 /// The first root of cos L cosh L = -1 and sigma of the cantilever mode, from their closed
 /// forms (book/src/model.md §2), for the hand calculations.
@@ -614,7 +614,7 @@ fn soft_and_stiff() -> [ColumnSpec; 2] {
 
 /// Contacts that share no column do not push on each other: eighteen pairs of
 /// models/row-pair.toml, 10 m from pair to pair, strike at the same instants, eighteen contacts
-/// at once (more than [`flexrock_core::row::MAX_SIMULTANEOUS`] of one chain), and every pair
+/// at once (more than [`flexrock_core::bodies::row::MAX_SIMULTANEOUS`] of one chain), and every pair
 /// moves to the last digit as the pair alone; and in a row of 35 columns, soft and stiff in
 /// turn 2 cm apart, the seventeen contacts with a soft column on the left strike first, at once,
 /// each as the pair's first impact. (Both were refused: "17 contacts close at one instant".)

@@ -6,12 +6,14 @@
 //! each column's energy books close with the contact's work; bad `[row]` keys are refused by
 //! name.
 
-use flexrock_core::automaton::{EventKind, Mode};
-use flexrock_core::excitation::{Free, PaperSine, PulseShape, SinePulse};
+use flexrock_core::bodies::row::{
+    solve_row, solve_row_compliant, ColumnSpec, CompliantSettings, Row,
+};
+use flexrock_core::floor::{Free, PaperSine, PulseShape, SinePulse};
+use flexrock_core::integrate::solution::Solution;
+use flexrock_core::integrate::{History, InitialState};
 use flexrock_core::model::RowModel;
-use flexrock_core::row::{solve_row, solve_row_compliant, ColumnSpec, CompliantSettings, Row};
-use flexrock_core::solution::Solution;
-use flexrock_core::solver::{History, InitialState};
+use flexrock_core::physics::automaton::{EventKind, Mode};
 
 use crate::common;
 use crate::row::{alone, at_rest, body, mass_and_frequency, mode_shape, sigma, L, SETTINGS};
@@ -130,7 +132,10 @@ fn a_stiffer_and_stiffer_contact_tends_to_newtons_law() {
 
 /// The reduced mass of the contact points of a column of height `h_left` at its top against
 /// one of height 4 m at xi = h_left / 4: M/4 over Phi^2 of each (int U^2 = 1/4).
-fn reduced_mass(left: &flexrock_core::body::Body, right: &flexrock_core::body::Body) -> f64 {
+fn reduced_mass(
+    left: &flexrock_core::physics::body::Body,
+    right: &flexrock_core::physics::body::Body,
+) -> f64 {
     let u = mode_shape(left.height / right.height);
     let (ml, mr) = (left.mass / 4.0, right.mass / 4.0 / (u * u));
     ml * mr / (ml + mr)
@@ -261,7 +266,7 @@ fn energy_books_close_with_the_contact_work() {
     let specs = [at_rest(stiff.clone()), at_rest(soft.clone())];
     let (gap, amplitude, period) = (0.003, 0.8, 20.0);
     let beta1 = 4.0 * sigma() / L;
-    let omega2 = |b: &flexrock_core::body::Body| {
+    let omega2 = |b: &flexrock_core::physics::body::Body| {
         let (_, w) = mass_and_frequency(b);
         w * w
     };

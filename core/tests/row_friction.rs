@@ -5,12 +5,12 @@
 //! inverse mass friction changes (written out here); zero friction against the frictionless
 //! row, bit for bit; the energy books with the friction's work; bad keys refused by name.
 
-use flexrock_core::automaton::{Automaton, EventKind, Mode};
-use flexrock_core::constants::Constants;
-use flexrock_core::excitation::{PaperSine, PulseShape, SinePulse};
+use flexrock_core::bodies::row::{solve_row_compliant, ColumnSpec, CompliantSettings, Face, Row};
+use flexrock_core::floor::{PaperSine, PulseShape, SinePulse};
+use flexrock_core::integrate::{History, InitialState};
 use flexrock_core::model::RowModel;
-use flexrock_core::row::{solve_row_compliant, ColumnSpec, CompliantSettings, Face, Row};
-use flexrock_core::solver::{History, InitialState};
+use flexrock_core::physics::automaton::{Automaton, EventKind, Mode};
+use flexrock_core::physics::constants::Constants;
 
 use crate::common;
 use crate::row::{at_rest, body, mode_shape, sigma, L};
@@ -121,7 +121,10 @@ struct Pair {
 }
 
 impl Pair {
-    fn new(left: &flexrock_core::body::Body, right: &flexrock_core::body::Body) -> Self {
+    fn new(
+        left: &flexrock_core::physics::body::Body,
+        right: &flexrock_core::physics::body::Body,
+    ) -> Self {
         let xi = left.height / right.height;
         Pair {
             phi: (1.0, mode_shape(xi)),
@@ -149,7 +152,7 @@ impl Pair {
 }
 
 /// Each column's q' where the contact ends.
-fn after_contact(solved: &flexrock_core::row::RowSolution) -> (f64, f64) {
+fn after_contact(solved: &flexrock_core::bodies::row::RowSolution) -> (f64, f64) {
     let at_end = |i: usize| {
         solved.columns[i]
             .events
@@ -197,7 +200,7 @@ fn an_isolated_contact_slides_or_sticks_as_the_oscillator_says() {
             .unwrap()
             .with_friction(mu)
             .unwrap();
-        let floor = flexrock_core::excitation::Free;
+        let floor = flexrock_core::floor::Free;
         solve_row_compliant(&row, &floor, 2e-3, &settings, History::Sampled)
             .unwrap_or_else(|err| panic!("mu = {mu}: {err}"))
     };
@@ -207,7 +210,9 @@ fn an_isolated_contact_slides_or_sticks_as_the_oscillator_says() {
             .compliant(k)
             .unwrap();
         match row.law() {
-            flexrock_core::row::ContactLaw::Compliant { damping_ratio, .. } => damping_ratio,
+            flexrock_core::bodies::row::ContactLaw::Compliant { damping_ratio, .. } => {
+                damping_ratio
+            }
             _ => unreachable!(),
         }
     };
@@ -340,7 +345,7 @@ fn zero_friction_is_the_frictionless_row() {
         History::Sampled,
     )
     .unwrap();
-    let largest = |s: &flexrock_core::row::RowSolution| {
+    let largest = |s: &flexrock_core::bodies::row::RowSolution| {
         s.columns
             .iter()
             .map(|c| c.max_q.value.max(-c.min_q.value))
@@ -506,7 +511,7 @@ fn locked_faces_slide_where_the_quasi_static_friction_reaches_mu_p() {
     let beta = 4.0 * sigma() / L;
     let psi = 0.5 * 0.7 * mode_slope(1.0) / 4.0;
     let (psi_l, psi_r) = (-psi, psi);
-    let column = |b: &flexrock_core::body::Body| {
+    let column = |b: &flexrock_core::physics::body::Body| {
         let m = b.mass / 4.0;
         let omega2 = L.powi(4) * b.flexural_rigidity / (b.mass * b.height.powi(3));
         (m, m * omega2)

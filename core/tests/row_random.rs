@@ -77,7 +77,7 @@ fn solve_to_its_end(
     text: &str,
     name: &str,
     duration: f64,
-) -> Result<Option<flexrock_core::row::RowSolution>, TestCaseError> {
+) -> Result<Option<flexrock_core::bodies::row::RowSolution>, TestCaseError> {
     let dir = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(name);
     std::fs::create_dir_all(&dir).expect("temporary directory");
     let path = dir.join("row.toml");

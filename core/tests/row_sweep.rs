@@ -6,7 +6,7 @@
 
 use std::path::Path;
 
-use flexrock_core::sweep::{Axis, Cell, Plan, Request, Row, Sweep};
+use flexrock_core::analysis::sweep::{Axis, Cell, Plan, Request, Row, Sweep};
 
 /// Two columns of 4 m x 0.7 m (E = 5 MPa and 50 MPa) under the paper's sine of amplitude
 /// `amplitude`, for 6 s, `gap` m apart: models/row-pair.toml written out.

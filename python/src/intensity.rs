@@ -6,8 +6,9 @@ use numpy::PyArray1;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use flexrock_core::excitation::RecordedMotion;
-use flexrock_core::intensity;
+use flexrock_core::floor::RecordedMotion;
+use flexrock_core::bodies::oscillator;
+use flexrock_core::floor::intensity;
 use flexrock_core::model::STANDARD_GRAVITY;
 
 use crate::model::Model;
@@ -64,7 +65,7 @@ fn invalid(e: impl std::fmt::Display) -> PyErr {
 ///     omega^2 max |u|, between samples included), ``sa_g``, ``sd`` (m), ``t_sa`` (s),
 ///     ``sa_at_samples`` (m/s^2, the peak over the samples alone), ``period``, ``damping``.
 #[pyfunction]
-#[pyo3(signature = (motion, period=None, damping=intensity::DEFAULT_DAMPING))]
+#[pyo3(signature = (motion, period=None, damping=oscillator::DEFAULT_DAMPING))]
 pub(crate) fn intensity_measures<'py>(
     py: Python<'py>,
     motion: &Bound<'py, PyAny>,
@@ -74,13 +75,13 @@ pub(crate) fn intensity_measures<'py>(
     let (recorded, default_period) = motion_of(motion)?;
     let period = period.or(default_period);
     if let Some(period) = period {
-        intensity::check_oscillator("period", period, "damping", damping).map_err(invalid)?;
+        oscillator::check_oscillator("period", period, "damping", damping).map_err(invalid)?;
     }
     let (ground, sa) = py
-        .detach(|| -> Result<_, flexrock_core::solver::SolverError> {
+        .detach(|| -> Result<_, flexrock_core::integrate::SolverError> {
             let ground = intensity::ground_measures(&recorded);
             let sa = period
-                .map(|p| intensity::spectral_acceleration(&recorded, p, damping))
+                .map(|p| oscillator::spectral_acceleration(&recorded, p, damping))
                 .transpose()?;
             Ok((ground, sa))
         })
@@ -123,7 +124,7 @@ pub(crate) fn intensity_measures<'py>(
 /// dict of numpy arrays
 ///     ``period`` (s), ``sa`` (m/s^2), ``sd`` (m), ``t_peak`` (s), ``sa_at_samples`` (m/s^2).
 #[pyfunction]
-#[pyo3(signature = (motion, periods=None, damping=intensity::DEFAULT_DAMPING))]
+#[pyo3(signature = (motion, periods=None, damping=oscillator::DEFAULT_DAMPING))]
 pub(crate) fn response_spectrum<'py>(
     py: Python<'py>,
     motion: &Bound<'py, PyAny>,
@@ -131,12 +132,12 @@ pub(crate) fn response_spectrum<'py>(
     damping: f64,
 ) -> PyResult<Bound<'py, PyDict>> {
     let (recorded, _) = motion_of(motion)?;
-    let periods = periods.unwrap_or_else(intensity::default_periods);
+    let periods = periods.unwrap_or_else(oscillator::default_periods);
     let ordinates = py
-        .detach(|| intensity::spectrum(&recorded, &periods, damping))
+        .detach(|| oscillator::spectrum(&recorded, &periods, damping))
         .map_err(invalid)?;
     let out = PyDict::new(py);
-    let column = |f: fn(&intensity::SpectralOrdinate) -> f64| {
+    let column = |f: fn(&oscillator::SpectralOrdinate) -> f64| {
         PyArray1::from_iter(py, ordinates.iter().map(f))
     };
     out.set_item("period", column(|s| s.period))?;

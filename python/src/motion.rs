@@ -11,8 +11,8 @@ use numpy::{PyArray1, PyReadonlyArray1};
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyTuple};
 
-use flexrock_core::excitation::RecordedMotion;
-use flexrock_core::record::{
+use flexrock_core::floor::RecordedMotion;
+use flexrock_core::floor::record::{
     acceleration_unit, dt_from_times, read_record as read_record_file, record_from_samples,
     resolve_units, Record, RecordFormat, MAX_RECORD_BYTES, MAX_RECORD_SAMPLES,
 };
@@ -81,7 +81,7 @@ impl Motion {
                 path.display(),
                 self.record.source,
                 self.record.values.len(),
-                flexrock_core::format::shortest(self.record.dt)
+                flexrock_core::base::format::shortest(self.record.dt)
             )));
         }
         Ok(())
@@ -260,12 +260,12 @@ impl GroundMotion {
             "# {}: {} samples at dt = {} s, in {}\n{}\n",
             record.source,
             record.values.len(),
-            flexrock_core::format::shortest(record.dt),
+            flexrock_core::base::format::shortest(record.dt),
             self.motion.units,
             column_name(self.motion.units)
         ));
         for &v in &record.values {
-            flexrock_core::format::push_shortest(&mut text, v);
+            flexrock_core::base::format::push_shortest(&mut text, v);
             text.push('\n');
             if text.len() as u64 > MAX_RECORD_BYTES {
                 return Err(FlexrockError::new_err(format!(
@@ -414,7 +414,7 @@ pub(crate) fn read_record(
                 other => other,
             },
             record.source,
-            flexrock_core::record::UNIT_NAMES
+            flexrock_core::floor::record::UNIT_NAMES
         )));
     }
     let (units, factor) = resolve_units(&record, "units", units).map_err(invalid)?;

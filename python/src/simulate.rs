@@ -9,7 +9,7 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 
 use flexrock_core::model::{Overrides, Setting};
-use flexrock_core::run_tables::HISTORY_COLUMNS;
+use flexrock_core::tables::run_tables::HISTORY_COLUMNS;
 
 use crate::model::Model;
 use crate::{err, interrupt, FlexrockError};
@@ -179,7 +179,7 @@ pub(crate) fn simulate(
     }
     let solving = Arc::clone(&m);
     let solution = interrupt::run(py, move || flexrock_core::simulate(&solving))?.map_err(err)?;
-    let summary = json(py, &flexrock_core::summary::summary(&m, &solution))?.unbind();
+    let summary = json(py, &flexrock_core::tables::summary::summary(&m, &solution))?.unbind();
     result_of(py, &solution, m.body.height, summary)
 }
 
@@ -187,12 +187,12 @@ pub(crate) fn simulate(
 /// and `summary`.
 fn result_of(
     py: Python<'_>,
-    solution: &flexrock_core::solution::Solution,
+    solution: &flexrock_core::integrate::solution::Solution,
     height: f64,
     summary: Py<PyAny>,
 ) -> PyResult<SimResult> {
     let samples = &solution.samples;
-    let column = |f: fn(&flexrock_core::solution::Sample) -> f64| -> Py<PyAny> {
+    let column = |f: fn(&flexrock_core::integrate::solution::Sample) -> f64| -> Py<PyAny> {
         PyArray1::from_vec(py, samples.iter().map(f).collect())
             .into_any()
             .unbind()
@@ -215,7 +215,7 @@ fn result_of(
     }
     let episodes = PyList::empty(py);
     for e in &solution.episodes {
-        use flexrock_core::run_tables::{episode_fields, EpisodeField, EPISODE_COLUMNS};
+        use flexrock_core::tables::run_tables::{episode_fields, EpisodeField, EPISODE_COLUMNS};
         let d = PyDict::new(py);
         for (column, field) in EPISODE_COLUMNS.iter().zip(episode_fields(e, height)) {
             match field {
@@ -283,7 +283,7 @@ pub(crate) fn simulate_row(
     path: std::path::PathBuf,
     duration: Option<f64>,
 ) -> PyResult<RowResult> {
-    use flexrock_core::row_results::{impact_rows, row_summary};
+    use flexrock_core::tables::row_results::{impact_rows, row_summary};
     let model = flexrock_core::model::RowModel::load(&path, duration)
         .map_err(|e| err_naming(e, &[("simulation.duration", "duration")]))?;
     let model = Arc::new(model);

@@ -9,9 +9,9 @@ use pyo3::exceptions::{PyMemoryError, PyTypeError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyFloat, PyList, PyString};
 
-use flexrock_core::sweep::axis::MAX_AXIS_VALUES;
-use flexrock_core::sweep::row::Kind;
-use flexrock_core::sweep::{Axis, Cell, Interval, Layout, Plan, Request, Row, Sweep};
+use flexrock_core::analysis::sweep::axis::MAX_AXIS_VALUES;
+use flexrock_core::analysis::sweep::row::Kind;
+use flexrock_core::analysis::sweep::{Axis, Cell, Interval, Layout, Plan, Request, Row, Sweep};
 
 use crate::interrupt;
 use crate::model::{short_repr, toml_value, Model};
@@ -30,13 +30,13 @@ fn size_text(b: u64) -> String {
     if mib < 1024.0 {
         format!(
             "{} MiB",
-            flexrock_core::format::shortest((mib * 10.0).round() / 10.0)
+            flexrock_core::base::format::shortest((mib * 10.0).round() / 10.0)
         )
     } else {
         let gib = mib / 1024.0;
         format!(
             "{} GiB",
-            flexrock_core::format::shortest((gib * 10.0).round() / 10.0)
+            flexrock_core::base::format::shortest((gib * 10.0).round() / 10.0)
         )
     }
 }
@@ -44,7 +44,7 @@ fn size_text(b: u64) -> String {
 /// A sweep value as the axis text `KEY=A,B` would hold.
 fn axis_text(value: &Bound<'_, PyAny>, name: &str) -> PyResult<String> {
     Ok(match toml_value(value, name)? {
-        toml::Value::Float(x) => flexrock_core::format::shortest(x),
+        toml::Value::Float(x) => flexrock_core::base::format::shortest(x),
         toml::Value::String(s) => s,
         other => other.to_string(),
     })
@@ -272,14 +272,14 @@ pub(crate) fn sweep<'py>(
     let state = model.state();
     let rigid_form = match rigid_form {
         Some(text) => Some(
-            flexrock_core::rigid::RigidForm::parse("rigid_form", &text)
+            flexrock_core::bodies::rigid::RigidForm::parse("rigid_form", &text)
                 .map_err(|e| request_error(e.into()))?,
         ),
         None => None,
     };
     let rigid_overturning = match rigid_overturning {
         Some(text) => Some(
-            flexrock_core::rigid::RigidOverturning::parse("rigid_overturning", &text)
+            flexrock_core::bodies::rigid::RigidOverturning::parse("rigid_overturning", &text)
                 .map_err(|e| request_error(e.into()))?,
         ),
         None => None,

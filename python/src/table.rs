@@ -10,8 +10,8 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyString};
 use serde::Serialize;
 
-use flexrock_core::sweep::row::Kind;
-use flexrock_core::sweep::Cell;
+use flexrock_core::analysis::sweep::row::Kind;
+use flexrock_core::analysis::sweep::Cell;
 
 use crate::FlexrockError;
 

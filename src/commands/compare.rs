@@ -1,6 +1,6 @@
 //! `flexrock compare`: a tight adaptive reference and Newmark at the paper's dt, side by side:
 //! the solves, the files (compare.csv, compare_history.csv, compare.json and the figures) and the
-//! printed table. The measuring is [`flexrock_core::compare`] (re-exported here): [`match_events`]
+//! printed table. The measuring is [`flexrock_core::analysis::compare`] (re-exported here): [`match_events`]
 //! aligns two event logs, [`compare`] measures two solutions of one model against each other.
 
 use std::fmt::Write as _;
@@ -12,23 +12,23 @@ use crate::commands::run::{simulate_with, VERSION};
 use crate::error::Result;
 use crate::figures::plot::{self, Dash, Figure, Panel, Series};
 use crate::writers::{self, count, readable, Table};
-use flexrock_core::automaton::EventKind;
-use flexrock_core::columns;
-use flexrock_core::findings::{self, Findings};
+use flexrock_core::analysis::findings::{self, Findings};
+use flexrock_core::integrate::solution::{Extremum, Sample, Solution, SolverStats};
+use flexrock_core::integrate::SolverSettings;
 use flexrock_core::model::Model;
-use flexrock_core::solution::{Extremum, Sample, Solution, SolverStats};
-use flexrock_core::solver::SolverSettings;
+use flexrock_core::physics::automaton::EventKind;
+use flexrock_core::tables::fields;
 
-pub use flexrock_core::compare::{
+pub use flexrock_core::analysis::compare::{
     compare, grid_rows, match_events, max_event_shift, on_grid, Comparison, EventAgreement,
     EventPair, EventRow, GridDifferences, GridRow, PeakComparison, EVENT_COLUMNS, GRID_COLUMNS,
 };
 
 /// Column names of compare.csv (a contract): the names of [`EVENT_COLUMNS`].
-pub const COMPARE_COLUMNS: [&str; 11] = columns::names(&EVENT_COLUMNS);
+pub const COMPARE_COLUMNS: [&str; 11] = fields::names(&EVENT_COLUMNS);
 
 /// Column names of compare_history.csv (a contract): the names of [`GRID_COLUMNS`].
-pub const COMPARE_HISTORY_COLUMNS: [&str; 10] = columns::names(&GRID_COLUMNS);
+pub const COMPARE_HISTORY_COLUMNS: [&str; 10] = fields::names(&GRID_COLUMNS);
 
 /// Options of `flexrock compare`.
 #[derive(Debug, Clone)]
@@ -88,7 +88,7 @@ fn solution_summary<'a>(
         statistics: &s.stats,
         findings: findings::measure(
             s,
-            &flexrock_core::automaton::Automaton::new(&model.constants),
+            &flexrock_core::physics::automaton::Automaton::new(&model.constants),
         ),
     }
 }
@@ -218,7 +218,7 @@ pub fn run_compare(
 fn events_table(comparison: &Comparison) -> Vec<u8> {
     let mut table = Table::new(&COMPARE_COLUMNS);
     for row in comparison.event_rows() {
-        table.row(columns::fields(&EVENT_COLUMNS, &row));
+        table.row(fields::fields(&EVENT_COLUMNS, &row));
     }
     table.into_bytes()
 }
@@ -226,7 +226,7 @@ fn events_table(comparison: &Comparison) -> Vec<u8> {
 fn history_table(reference: &Solution, other: &Solution, output_dt: f64) -> Vec<u8> {
     let mut table = Table::new(&COMPARE_HISTORY_COLUMNS);
     for row in grid_rows(reference, other, output_dt) {
-        table.row(columns::fields(&GRID_COLUMNS, &row));
+        table.row(fields::fields(&GRID_COLUMNS, &row));
     }
     table.into_bytes()
 }

@@ -1,6 +1,6 @@
 //! `flexrock converge`: how Newmark converges as dt shrinks, and what each adaptive method costs
 //! for a given accuracy, all measured against one tight adaptive reference. The study is
-//! [`flexrock_core::converge`] (re-exported here); this module checks the flags, writes
+//! [`flexrock_core::analysis::converge`] (re-exported here); this module checks the flags, writes
 //! convergence.csv, convergence.json and the figures, and prints the table.
 
 use std::fmt::Write as _;
@@ -12,18 +12,18 @@ use crate::commands::run::VERSION;
 use crate::error::Result;
 use crate::figures::plot::{self, Dash, Figure, Panel, Series};
 use crate::writers::{self, count, readable, scientific, Table};
-use flexrock_core::columns;
+use flexrock_core::integrate::solution::SolverStats;
+use flexrock_core::integrate::SolverSettings;
 use flexrock_core::model::Model;
-use flexrock_core::solution::SolverStats;
-use flexrock_core::solver::SolverSettings;
+use flexrock_core::tables::fields;
 
-pub use flexrock_core::converge::{
+pub use flexrock_core::analysis::converge::{
     converge, methods, slopes, Case, Configuration, Convergence, Slope, SlopeKind, CASE_COLUMNS,
     DEFAULT_DTS, DEFAULT_RTOLS, METRICS,
 };
 
 /// Column names of convergence.csv (a contract): the names of [`CASE_COLUMNS`].
-pub const CONVERGENCE_COLUMNS: [&str; 13] = columns::names(&CASE_COLUMNS);
+pub const CONVERGENCE_COLUMNS: [&str; 13] = fields::names(&CASE_COLUMNS);
 
 /// Options of `flexrock converge`.
 #[derive(Debug, Clone)]
@@ -104,10 +104,11 @@ pub fn configurations(
     }
     let reference_settings =
         crate::commands::compare::reference_settings(model, options.reference_rtol)?;
-    let mut configurations = flexrock_core::converge::newmark_configurations(model, &options.dts)
-        .map_err(|e| e.renamed("solver.dt", "--dt"))?;
+    let mut configurations =
+        flexrock_core::analysis::converge::newmark_configurations(model, &options.dts)
+            .map_err(|e| e.renamed("solver.dt", "--dt"))?;
     configurations.extend(
-        flexrock_core::converge::adaptive_configurations(model, &options.rtols)
+        flexrock_core::analysis::converge::adaptive_configurations(model, &options.rtols)
             .map_err(flag("--rtol"))?,
     );
     // Every value is valid on its own; errors are measured against the reference: one no tighter than a case measures the
@@ -182,7 +183,7 @@ pub fn run_converge(
 fn cases_table(cases: &[Case]) -> Vec<u8> {
     let mut table = Table::new(&CONVERGENCE_COLUMNS);
     for c in cases {
-        table.row(columns::fields(&CASE_COLUMNS, c));
+        table.row(fields::fields(&CASE_COLUMNS, c));
     }
     table.into_bytes()
 }

@@ -1,4 +1,4 @@
-//! `flexrock criteria`: the overturning criteria study of [`flexrock_core::criteria`] on the
+//! `flexrock criteria`: the overturning criteria study of [`flexrock_core::analysis::criteria`] on the
 //! body of a model file, written as criteria.csv, continuity.csv, fit.json, criteria.json and
 //! two figures (SVG and PNG); the wall time and the commit flexrock was built from go to
 //! timings.json, so that every other file is byte-stable.
@@ -12,9 +12,9 @@ use crate::commands::run::VERSION;
 use crate::error::Result;
 use crate::figures::criteria as figures;
 use crate::writers::{self, Table};
-use flexrock_core::criteria::{self, continuity, fit, Point, Study};
-use flexrock_core::format::shortest;
-use flexrock_core::rigid_criteria::{
+use flexrock_core::analysis::criteria::{self, continuity, fit, Point, Study};
+use flexrock_core::base::format::shortest;
+use flexrock_core::physics::rigid_criteria::{
     ishiyama_acceleration, ishiyama_velocity, ISHIYAMA_VELOCITY_COEFFICIENT,
 };
 use flexrock_core::simulate::{COMMIT, DIRTY};

@@ -2,7 +2,7 @@
 //! (fem_history.csv, fem_events.csv, fem_summary.json, the figures), its comparison with the
 //! one-degree-of-freedom model written out, the printed summaries, and the fixed-base modes'
 //! table. The analysis (uplift episodes, peaks, line fits, the comparison's numbers) is
-//! [`flexrock_core::fem_check`], re-exported here.
+//! [`flexrock_core::analysis::fem_check`], re-exported here.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -13,25 +13,26 @@ use crate::commands::run::VERSION;
 use crate::error::{Error, Result};
 use crate::figures::plot::{self, Figure, Panel, Series};
 use crate::writers::{self, count, readable, Table};
-use flexrock_core::fem::{FemResult, FemStep};
+use flexrock_core::analysis::fem_check;
+use flexrock_core::bodies::fem::{FemResult, FemStep};
+use flexrock_core::integrate::solution::Solution;
 use flexrock_core::model::{FemSetup, Model, ModelFile};
-use flexrock_core::solution::Solution;
-use flexrock_core::{columns, fem_check};
+use flexrock_core::tables::fields;
 
-use flexrock_core::fem_check::{analyse as analyse_run, compare as compare_solutions};
-pub use flexrock_core::fem_check::{
+use flexrock_core::analysis::fem_check::{analyse as analyse_run, compare as compare_solutions};
+pub use flexrock_core::analysis::fem_check::{
     event_rows, history_rows, modes, peaks, uplift_episodes, EventRow, FemAnalysis, FemComparison,
     FemComparisonRow, FemPeaks, FemWarning, HistoryRow, Modes, UpliftEpisode, COMPARISON_COLUMNS,
     ELEMENT, MODE_COUNT, UPLIFT_ROCKING_FRACTION,
 };
 
 /// Column names of fem_history.csv (a contract): the names of
-/// [`flexrock_core::fem_check::HISTORY_COLUMNS`].
-pub const HISTORY_COLUMNS: [&str; 12] = columns::names(&fem_check::HISTORY_COLUMNS);
+/// [`flexrock_core::analysis::fem_check::HISTORY_COLUMNS`].
+pub const HISTORY_COLUMNS: [&str; 12] = fields::names(&fem_check::HISTORY_COLUMNS);
 
 /// Column names of fem_events.csv (a contract): the names of
-/// [`flexrock_core::fem_check::EVENT_COLUMNS`].
-pub const EVENT_COLUMNS: [&str; 7] = columns::names(&fem_check::EVENT_COLUMNS);
+/// [`flexrock_core::analysis::fem_check::EVENT_COLUMNS`].
+pub const EVENT_COLUMNS: [&str; 7] = fields::names(&fem_check::EVENT_COLUMNS);
 
 /// Magnification of the deformed shapes (the paper's Fig. 9).
 pub const SHAPE_MAGNIFICATION: f64 = 5.0;
@@ -42,7 +43,7 @@ pub fn warning_text(warning: &FemWarning) -> String {
     warning.text("--scheme")
 }
 
-/// Runs the finite element analysis of a model ([`flexrock_core::fem_check::analyse`]); the
+/// Runs the finite element analysis of a model ([`flexrock_core::analysis::fem_check::analyse`]); the
 /// command refuses an initial velocity, since the run starts at rest.
 pub fn analyse(model: &Model, setup: &FemSetup) -> Result<FemAnalysis> {
     if model.initial.qdot != 0.0 {
@@ -58,7 +59,7 @@ pub fn analyse(model: &Model, setup: &FemSetup) -> Result<FemAnalysis> {
 pub(crate) fn history_csv(model: &Model, steps: &[FemStep]) -> Vec<u8> {
     let mut table = Table::new(&HISTORY_COLUMNS);
     for row in history_rows(model, steps) {
-        table.row(columns::fields(&fem_check::HISTORY_COLUMNS, &row));
+        table.row(fields::fields(&fem_check::HISTORY_COLUMNS, &row));
     }
     table.into_bytes()
 }
@@ -66,7 +67,7 @@ pub(crate) fn history_csv(model: &Model, steps: &[FemStep]) -> Vec<u8> {
 pub(crate) fn events_csv(result: &FemResult) -> Vec<u8> {
     let mut table = Table::new(&EVENT_COLUMNS);
     for row in event_rows(result) {
-        table.row(columns::fields(&fem_check::EVENT_COLUMNS, &row));
+        table.row(fields::fields(&fem_check::EVENT_COLUMNS, &row));
     }
     table.into_bytes()
 }
@@ -78,8 +79,8 @@ pub(crate) struct FemSummary<'a> {
     #[serde(flatten)]
     pub provenance: crate::commands::run::Provenance,
     pub element: &'static str,
-    pub body: &'a flexrock_core::fem::FemBody,
-    pub settings: &'a flexrock_core::fem::FemSettings,
+    pub body: &'a flexrock_core::bodies::fem::FemBody,
+    pub settings: &'a flexrock_core::bodies::fem::FemSettings,
     pub scheme: &'static str,
     pub mass: f64,
     pub flexural_rigidity: f64,
@@ -350,9 +351,9 @@ pub fn fem(
 }
 
 pub(crate) fn comparison_csv(c: &FemComparison) -> Vec<u8> {
-    let mut table = Table::new(&columns::names(&COMPARISON_COLUMNS));
+    let mut table = Table::new(&fields::names(&COMPARISON_COLUMNS));
     for r in &c.rows {
-        table.row(columns::fields(&COMPARISON_COLUMNS, r));
+        table.row(fields::fields(&COMPARISON_COLUMNS, r));
     }
     table.into_bytes()
 }
@@ -385,7 +386,7 @@ fn comparison_figures(
     a: &FemAnalysis,
 ) -> Vec<(&'static str, Panel)> {
     let steps = &a.result.steps;
-    let sdof_series = |f: fn(&flexrock_core::solution::Sample) -> (f64, f64)| {
+    let sdof_series = |f: fn(&flexrock_core::integrate::solution::Sample) -> (f64, f64)| {
         Series::line("SDOF", sdof.samples.iter().map(f).collect(), 1)
     };
     let mut q = Panel::new("Top displacement: SDOF and FEM", "t (s)", "q (m)")
@@ -481,7 +482,7 @@ pub fn report_text(report: &FemReport) -> String {
         t,
         "  highest frequency {:.1} rad/s: linear acceleration stable for dt <= {} s",
         a.result.highest_frequency,
-        flexrock_core::format::short_seconds(a.linear_acceleration_limit)
+        flexrock_core::base::format::short_seconds(a.linear_acceleration_limit)
     );
     let _ = writeln!(
         t,
@@ -536,7 +537,7 @@ pub fn modes_text(m: &Modes) -> String {
         t,
         "  highest frequency {:.1} rad/s; linear acceleration stable for dt <= {} s",
         m.highest_frequency,
-        flexrock_core::format::short_seconds(m.linear_acceleration_stability_limit)
+        flexrock_core::base::format::short_seconds(m.linear_acceleration_stability_limit)
     );
     t
 }

@@ -1,7 +1,7 @@
 //! The `flexrock fem --pushover` command: static pushover curves of the model's body on its
 //! mesh, for both ways the base can meet the floor (flexible and rigid plate), against the
 //! SDOF model's restoring force F(q) (book/src/model.md §3, restoring force). The curves and
-//! their summaries are [`flexrock_core::pushover_check`] (re-exported here); this module writes
+//! their summaries are [`flexrock_core::analysis::pushover_check`] (re-exported here); this module writes
 //! pushover.csv, pushover.json and pushover.svg and prints the summary.
 
 use std::fmt::Write as _;
@@ -14,24 +14,25 @@ use crate::commands::run::VERSION;
 use crate::error::Result;
 use crate::figures::plot::{self, Figure, Panel, Series};
 use crate::writers::{self, Table};
-use flexrock_core::automaton::Automaton;
-use flexrock_core::fem::FemBody;
+use flexrock_core::analysis::pushover_check;
+use flexrock_core::bodies::fem::FemBody;
 use flexrock_core::model::{FemSetup, Model, ModelFile};
-use flexrock_core::{columns, pushover_check};
+use flexrock_core::physics::automaton::Automaton;
+use flexrock_core::tables::fields;
 
-pub use flexrock_core::pushover_check::{
+pub use flexrock_core::analysis::pushover_check::{
     analyse, rows, sdof_force, summarise, CurveSummary, PushoverAnalysis, PushoverRow, BASES,
     SWEEP_POINTS,
 };
 
 /// Column names of pushover.csv (a contract): the names of
-/// [`flexrock_core::pushover_check::PUSHOVER_COLUMNS`].
-pub const PUSHOVER_COLUMNS: [&str; 12] = columns::names(&pushover_check::PUSHOVER_COLUMNS);
+/// [`flexrock_core::analysis::pushover_check::PUSHOVER_COLUMNS`].
+pub const PUSHOVER_COLUMNS: [&str; 12] = fields::names(&pushover_check::PUSHOVER_COLUMNS);
 
 pub(crate) fn curves_csv(model: &Model, a: &PushoverAnalysis) -> Vec<u8> {
     let mut table = Table::new(&PUSHOVER_COLUMNS);
     for row in rows(model, a) {
-        table.row(columns::fields(&pushover_check::PUSHOVER_COLUMNS, &row));
+        table.row(fields::fields(&pushover_check::PUSHOVER_COLUMNS, &row));
     }
     table.into_bytes()
 }

@@ -6,11 +6,12 @@ use std::path::{Path, PathBuf};
 
 use crate::error::{Error, Result};
 use crate::writers::{number, readable, Table};
-use flexrock_core::excitation::RecordedMotion;
-use flexrock_core::intensity::{self, GroundMeasures, SpectralOrdinate};
+use flexrock_core::analysis::sweep::{Cell, RecordCells};
+use flexrock_core::bodies::oscillator::{self, SpectralOrdinate};
+use flexrock_core::floor::intensity::{self, GroundMeasures};
+use flexrock_core::floor::record::{read_record, resolve_units, Record, RecordFormat};
+use flexrock_core::floor::RecordedMotion;
 use flexrock_core::model::STANDARD_GRAVITY;
-use flexrock_core::record::{read_record, resolve_units, Record, RecordFormat};
-use flexrock_core::sweep::{Cell, RecordCells};
 
 /// The acceleration column of the CSV files `flexrock record csv` writes.
 pub const CSV_ACCELERATION_COLUMN: &str = "acc_m_s2";
@@ -67,13 +68,15 @@ pub fn load(
 
 /// The unit's canonical name and its factor to m/s^2.
 pub fn unit_factor(units: &str) -> Result<(&'static str, f64)> {
-    Ok(flexrock_core::record::acceleration_unit("--units", units)?)
+    Ok(flexrock_core::floor::record::acceleration_unit(
+        "--units", units,
+    )?)
 }
 
 /// Periods (s) and the damping ratio of the spectral ordinates a command computes, checked.
 pub fn check_periods(periods: &[f64], damping: f64) -> Result<()> {
     for &period in periods {
-        intensity::check_oscillator("--period", period, "--damping", damping)?;
+        oscillator::check_oscillator("--period", period, "--damping", damping)?;
     }
     Ok(())
 }
@@ -85,7 +88,7 @@ fn ordinates(
     damping: f64,
 ) -> Result<Vec<SpectralOrdinate>> {
     check_periods(periods, damping)?;
-    intensity::spectrum(motion, periods, damping)
+    oscillator::spectrum(motion, periods, damping)
         .map_err(|e| Error::from(flexrock_core::Error::from(e)))
 }
 
@@ -220,7 +223,7 @@ pub fn spectrum_csv(loaded: &LoadedRecord, periods: &[f64], damping: f64) -> Res
 }
 
 /// The record files `inputs` name: each file itself, and the records of each directory or
-/// list file (`*.list`) as a suite ([`flexrock_core::record::suite`]), with the suite's scale.
+/// list file (`*.list`) as a suite ([`flexrock_core::floor::record::suite`]), with the suite's scale.
 pub fn expand_inputs(inputs: &[PathBuf]) -> Result<Vec<(PathBuf, f64)>> {
     let mut files = Vec::new();
     for input in inputs {
@@ -228,12 +231,13 @@ pub fn expand_inputs(inputs: &[PathBuf]) -> Result<Vec<(PathBuf, f64)>> {
             .extension()
             .is_some_and(|e| e.eq_ignore_ascii_case("list"));
         if input.is_dir() || is_list {
-            let suite = flexrock_core::record::suite::read_suite(input).map_err(|source| {
-                flexrock_core::Error::Record {
-                    key: "suite".to_string(),
-                    source,
-                }
-            })?;
+            let suite =
+                flexrock_core::floor::record::suite::read_suite(input).map_err(|source| {
+                    flexrock_core::Error::Record {
+                        key: "suite".to_string(),
+                        source,
+                    }
+                })?;
             files.extend(suite.entries.into_iter().map(|e| (e.path, e.scale)));
         } else {
             files.push((input.clone(), 1.0));
@@ -247,7 +251,7 @@ pub fn expand_inputs(inputs: &[PathBuf]) -> Result<Vec<(PathBuf, f64)>> {
 /// units), the times of the peaks, the format, units, sampling and Sa's oscillator.
 pub fn intensity_columns() -> Vec<String> {
     let mut columns = vec!["file".to_string(), "scale".to_string()];
-    columns.extend(flexrock_core::sweep::Row::record_columns());
+    columns.extend(flexrock_core::analysis::sweep::Row::record_columns());
     columns.extend(
         [
             "t_pga_s",

@@ -20,7 +20,7 @@ use crate::commands::converge::{Case, Slope};
 use crate::commands::run::VERSION;
 use crate::error::{Error, Result};
 use crate::writers;
-use flexrock_core::solver::newmark::critical_omega_dt;
+use flexrock_core::integrate::newmark::critical_omega_dt;
 
 /// Where the inputs of the report are.
 #[derive(Debug, Clone)]
@@ -40,7 +40,7 @@ pub struct ReportInputs {
 }
 
 /// Readers of values written as null (NaN) and of optional values whose key must be there.
-pub(crate) use flexrock_core::columns::{nan_if_null, required};
+pub(crate) use flexrock_core::tables::fields::{nan_if_null, required};
 
 /// A peak of q, as compare.json writes it.
 #[derive(Debug, Clone, Deserialize)]
@@ -325,7 +325,7 @@ fn read_inputs(inputs: &ReportInputs) -> Result<Read> {
     let substep: CompareFile = read_json(&substep_json)?;
     Ok(Read {
         reference_rtol: match compensate.reference.method.as_str() {
-            flexrock_core::solver::exact::NAME => None,
+            flexrock_core::integrate::exact::NAME => None,
             _ => Some(setting(
                 compensate.reference.solver.rtol,
                 &compensate_json,

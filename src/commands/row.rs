@@ -7,15 +7,15 @@ use std::path::{Path, PathBuf};
 use crate::error::Result;
 use crate::figures::row::ShapeTime;
 use crate::writers;
-use flexrock_core::automaton::EventKind;
-use flexrock_core::columns::fields;
+use flexrock_core::bodies::row::{ContactLaw, RowSolution, METHOD};
 use flexrock_core::model::RowModel;
-use flexrock_core::row::{ContactLaw, RowSolution, METHOD};
-use flexrock_core::row_results::{
+use flexrock_core::physics::automaton::EventKind;
+use flexrock_core::simulate::{simulate_row, VERSION};
+use flexrock_core::tables::fields::fields;
+use flexrock_core::tables::row_results::{
     impact_rows, row_summary, CONTACT_COLUMNS, CONTACT_COLUMN_NAMES, IMPACT_COLUMNS,
     IMPACT_COLUMN_NAMES,
 };
-use flexrock_core::simulate::{simulate_row, VERSION};
 
 /// What `flexrock run` on a row returns.
 pub struct RowReport {

@@ -5,12 +5,12 @@ use std::path::{Path, PathBuf};
 
 use crate::error::Result;
 use crate::writers;
-use flexrock_core::automaton::EventKind;
-use flexrock_core::body::SelfWeight;
-use flexrock_core::excitation::FloorMotion;
+use flexrock_core::floor::FloorMotion;
+use flexrock_core::integrate::solution::Solution;
 use flexrock_core::model::Model;
 use flexrock_core::model::STANDARD_GRAVITY;
-use flexrock_core::solution::Solution;
+use flexrock_core::physics::automaton::EventKind;
+use flexrock_core::physics::body::SelfWeight;
 
 pub use flexrock_core::simulate::{
     properties, simulate, simulate_peaks, simulate_with, warnings, Properties, Provenance,
@@ -142,7 +142,7 @@ fn fmt(x: f64) -> String {
     }
 }
 
-pub use flexrock_core::summary::{summary, RunSummary};
+pub use flexrock_core::tables::summary::{summary, RunSummary};
 
 /// Result of `flexrock run`.
 pub struct RunReport {
@@ -153,7 +153,7 @@ pub struct RunReport {
     /// What a reader of the result must know (also in summary.json).
     pub warnings: Vec<String>,
     /// The run against the exact solution, with `--check`.
-    pub check: Option<flexrock_core::compare::Check>,
+    pub check: Option<flexrock_core::analysis::compare::Check>,
 }
 
 /// What `flexrock run` writes besides its four files.
@@ -180,7 +180,7 @@ pub fn run_to_dir_checked(
     let (plots, wall_times) = (options.plots, options.wall_times);
     let mut solution = simulate(model)?;
     let check = if options.check {
-        Some(flexrock_core::compare::check(model, &solution)?)
+        Some(flexrock_core::analysis::compare::check(model, &solution)?)
     } else {
         None
     };

@@ -4,10 +4,10 @@
 
 use crate::figures::plot::{Marker, Panel, Series, VerticalLine};
 use crate::geometry::Geometry;
-use flexrock_core::criteria::fit::{Fit, Surface};
-use flexrock_core::criteria::{continuity, Point};
-use flexrock_core::format::shortest;
-use flexrock_core::rigid_criteria::{ishiyama_acceleration, ishiyama_velocity};
+use flexrock_core::analysis::criteria::fit::{Fit, Surface};
+use flexrock_core::analysis::criteria::{continuity, Point};
+use flexrock_core::base::format::shortest;
+use flexrock_core::physics::rigid_criteria::{ishiyama_acceleration, ishiyama_velocity};
 
 const SELF_WEIGHTS: [&str; 2] = ["paper", "consistent"];
 

@@ -76,7 +76,11 @@ impl Length {
 
 impl std::fmt::Display for Length {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "{} mm", flexrock_core::format::significant(self.0, 4))
+        write!(
+            f,
+            "{} mm",
+            flexrock_core::base::format::significant(self.0, 4)
+        )
     }
 }
 
@@ -152,7 +156,7 @@ impl Sizes {
                 rule,
             })
         };
-        let mm_text = |v: f64| format!("{} mm", flexrock_core::format::significant(v, 4));
+        let mm_text = |v: f64| format!("{} mm", flexrock_core::base::format::significant(v, 4));
         let (lo, hi) = WIDTH_LIMITS_MM;
         for (flag, length, low) in [("--width", self.width, lo), ("--height", self.height, 20.0)] {
             if let Some(l) = length {
@@ -293,7 +297,7 @@ pub fn on_paper(svg: String, (width_mm, height_mm): (f64, f64), desc: &str) -> S
         return svg;
     };
     // To a hundredth of a millimetre, in the fewest digits: 85mm, 137.58mm.
-    let length = |v: f64| flexrock_core::format::shortest((v * 100.0).round() / 100.0);
+    let length = |v: f64| flexrock_core::base::format::shortest((v * 100.0).round() / 100.0);
     let mut out = format!(
         "<svg width=\"{}mm\" height=\"{}mm\" viewBox=\"0 0 {w} {h}\" xmlns=\"http://www.w3.org/2000/svg\">\n",
         length(width_mm),

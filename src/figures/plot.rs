@@ -755,7 +755,7 @@ fn log_ticks(lo: f64, hi: f64, max: usize) -> Ticks {
     let label = |e: i64, m: f64| -> String {
         let v = m * 10f64.powi(e as i32);
         if (-3..4).contains(&e) {
-            flexrock_core::format::significant(v, 2)
+            flexrock_core::base::format::significant(v, 2)
         } else if m == 1.0 {
             format!("10{}", superscript(e))
         } else {
@@ -871,7 +871,7 @@ impl Layout {
                 key: "--height".to_string(),
                 value: format!(
                     "{} mm",
-                    flexrock_core::format::significant(page.height.unwrap_or(0.0), 4)
+                    flexrock_core::base::format::significant(page.height.unwrap_or(0.0), 4)
                 ),
                 rule: format!("{message} ({name})"),
             })
@@ -931,7 +931,7 @@ impl Layout {
                 if plot_h < dots(MIN_PLOT_MM) {
                     return Err(bad_size(format!(
                         "must leave each of the {rows} rows of panels at least {MIN_PLOT_MM} mm: give at least {} mm",
-                        flexrock_core::format::significant(page::mm(fixed + rows as f64 * dots(MIN_PLOT_MM)), 3)
+                        flexrock_core::base::format::significant(page::mm(fixed + rows as f64 * dots(MIN_PLOT_MM)), 3)
                     )));
                 }
                 plot_h
@@ -980,7 +980,7 @@ impl Layout {
         if plot_w < dots(MIN_PLOT_MM) {
             return Err(Error::from(flexrock_core::Error::InvalidParameter {
                 key: "--width".to_string(),
-                value: format!("{} mm", flexrock_core::format::significant(page.width, 4)),
+                value: format!("{} mm", flexrock_core::base::format::significant(page.width, 4)),
                 rule: format!(
                     "must leave each of the {columns} panels across at least {MIN_PLOT_MM} mm of plotting area ({name})"
                 ),

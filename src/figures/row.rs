@@ -1,7 +1,7 @@
 //! The figure of a row's run, `row_motion.svg` (and `.png`): the floor acceleration; every
 //! column's top displacement q(t); and the clear gap of every contact, which falls to zero at
 //! each impact. Impacts are thin vertical lines in every panel. The gaps come from the row's
-//! own contact geometry ([`flexrock_core::row::Contact::gap`]): no formula of the model is
+//! own contact geometry ([`flexrock_core::bodies::row::Contact::gap`]): no formula of the model is
 //! written here. Stretches of held (persistent) contact, and under the compliant law every
 //! stretch of contact, are shaded on the gap panel; stretches of faces stuck by friction in a
 //! stronger tint over them.
@@ -13,8 +13,8 @@
 use crate::error::Result;
 use crate::figures::page::{FigureOptions, Format, PAGE_MM};
 use crate::figures::plot::{self, Figure, Marker, Panel, RugMark, Series, Span};
+use flexrock_core::bodies::row::RowSolution;
 use flexrock_core::model::RowModel;
-use flexrock_core::row::RowSolution;
 
 /// The figure's file stem.
 pub const ROW_FIGURE: &str = "row_motion";
@@ -61,7 +61,7 @@ pub fn panels(model: &RowModel, solution: &RowSolution) -> Vec<Panel> {
         // The pre-uplift period from the automaton's own rate: k = omega^2.
         let period = model.row.columns()[i]
             .automaton
-            .linear_form(flexrock_core::automaton::Mode::PreUplift)
+            .linear_form(flexrock_core::physics::automaton::Mode::PreUplift)
             .map_or(f64::NAN, |f| std::f64::consts::TAU / f.stiffness.sqrt());
         let name = format!(
             "column {i}: H × B = {} × {} m, T = {} s",
@@ -181,7 +181,7 @@ pub struct ShapeTime {
 /// `AUTOMATIC_TIMES` (4) of them, a time within 1 % of the duration of one already taken left
 /// out, sorted. A row where none of these happens (a row at rest) is drawn at its end.
 pub fn automatic_shape_times(model: &RowModel, solution: &RowSolution) -> Vec<ShapeTime> {
-    use flexrock_core::automaton::EventKind;
+    use flexrock_core::physics::automaton::EventKind;
     let mut candidates: Vec<(f64, String)> = Vec::new();
     let first_uplift = solution
         .columns
@@ -295,7 +295,7 @@ pub fn column_outline(
     x0: f64,
     (width, height): (f64, f64),
     (s, r): (f64, f64),
-    mode: flexrock_core::automaton::Mode,
+    mode: flexrock_core::physics::automaton::Mode,
     shape: &dyn Fn(f64) -> f64,
     segments: usize,
 ) -> Vec<(f64, f64)> {
@@ -315,11 +315,11 @@ pub fn deformed_point(
     x0: f64,
     (width, height): (f64, f64),
     (s, r): (f64, f64),
-    mode: flexrock_core::automaton::Mode,
+    mode: flexrock_core::physics::automaton::Mode,
     shape: &dyn Fn(f64) -> f64,
     (x, y): (f64, f64),
 ) -> (f64, f64) {
-    use flexrock_core::automaton::Mode;
+    use flexrock_core::physics::automaton::Mode;
     let pivot = match mode {
         Mode::RockLeft => x0,
         Mode::RockRight => x0 + width,
@@ -381,9 +381,9 @@ pub fn shape_panels(
     model: &RowModel,
     solution: &RowSolution,
     times: &[ShapeTime],
-    states: &[Vec<flexrock_core::solution::Sample>],
+    states: &[Vec<flexrock_core::integrate::solution::Sample>],
 ) -> Vec<Panel> {
-    use flexrock_core::constants::flexural_shape_at;
+    use flexrock_core::physics::constants::flexural_shape_at;
     let bases = base_positions(model);
     let shapes: Vec<_> = model
         .bodies
@@ -503,7 +503,7 @@ pub fn shape_panels(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use flexrock_core::automaton::Mode;
+    use flexrock_core::physics::automaton::Mode;
 
     fn close(a: (f64, f64), b: (f64, f64)) -> bool {
         (a.0 - b.0).abs() < 1e-12 && (a.1 - b.1).abs() < 1e-12

@@ -20,7 +20,7 @@ use crate::figures::page::{Sizes, PAGE_MM};
 use crate::figures::plot::{self, Dash, Figure, Format, Marker, Panel, RugMark, Series};
 use crate::writers;
 use crate::writers::run_dir::{HistoryRow, RunData};
-use flexrock_core::automaton::{Automaton, EventKind};
+use flexrock_core::physics::automaton::{Automaton, EventKind};
 
 /// The figure files, in the order they are written.
 pub const FIGURES: [&str; 3] = ["plot_motion.svg", "plot_force.svg", "plot_energy.svg"];
@@ -66,7 +66,7 @@ impl PlotOptions {
                 if !t.is_finite() || t < 0.0 {
                     return Err(bad(
                         flag,
-                        flexrock_core::format::shortest(t),
+                        flexrock_core::base::format::shortest(t),
                         "must be a finite time in seconds, 0 or more".to_string(),
                     ));
                 }
@@ -76,10 +76,10 @@ impl PlotOptions {
             if from >= to {
                 return Err(bad(
                     "--from",
-                    flexrock_core::format::shortest(from),
+                    flexrock_core::base::format::shortest(from),
                     format!(
                         "must be less than --to ({} s)",
-                        flexrock_core::format::shortest(to)
+                        flexrock_core::base::format::shortest(to)
                     ),
                 ));
             }

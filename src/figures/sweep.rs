@@ -15,7 +15,7 @@ use std::path::Path;
 use crate::error::Result;
 use crate::figures::page::{FigureOptions, PAGE_MM};
 use crate::figures::plot::{self, Dash, Figure, Marker, Panel, Series, Swatch};
-use flexrock_core::sweep::Plan;
+use flexrock_core::analysis::sweep::Plan;
 
 use crate::figures::sweep_axes::axis_label;
 use crate::figures::sweep_axes::{ascending, drawable, edges};
@@ -446,7 +446,7 @@ fn map(plan: &Plan, table: &SweepTable, x: usize, y: usize) -> Result<Option<Fig
 
 /// A class bound as a legend writes it: 0, 0.2, ..., 1.
 fn tick(v: f64) -> String {
-    flexrock_core::format::significant(v, 2)
+    flexrock_core::base::format::significant(v, 2)
 }
 
 /// The classes of max |q|/B a map's cells are coloured by: five of 0.2 each, the last to 1.
@@ -648,7 +648,7 @@ fn spectrum(plan: &Plan, table: &SweepTable, x: usize) -> Result<Option<Figure>>
             if let Some(s) = table.number(r, y_scaled_column) {
                 scaled.push((xs, s));
             }
-        } else if row[status_column] == *flexrock_core::sweep::Status::Ok.name() {
+        } else if row[status_column] == *flexrock_core::analysis::sweep::Status::Ok.name() {
             stands_physical.push((xv, find.hi));
             let g_tan_alpha = [
                 (rigid_column, rigid_scaled_column),
@@ -704,7 +704,7 @@ fn spectrum(plan: &Plan, table: &SweepTable, x: usize) -> Result<Option<Figure>>
     let housner = housner_label(&find.housner());
     let limit = format!(
         "model's rigid limit: uplift at {:.3} g B/H",
-        flexrock_core::constants::ModeShapeIntegrals::exact().rigid_limit_uplift_factor()
+        flexrock_core::physics::constants::ModeShapeIntegrals::exact().rigid_limit_uplift_factor()
     );
     // The two rigid curves nearly coincide: Housner's wide, orange and solid underneath, the
     // rigid limit thin, dashed and black on top of it, so that both show where they meet.
@@ -762,7 +762,7 @@ fn spectrum(plan: &Plan, table: &SweepTable, x: usize) -> Result<Option<Figure>>
 
 /// The legend label of Housner's block, naming its equation and each choice made:
 /// "Housner block, small-angle eq.", "Housner block, full eq., no return, e=0.825".
-fn housner_label(options: &flexrock_core::sweep::HousnerOptions) -> String {
+fn housner_label(options: &flexrock_core::analysis::sweep::HousnerOptions) -> String {
     let mut label = if options.form.is_small_angle() {
         "Housner block, small-angle eq.".to_string()
     } else {
@@ -785,8 +785,8 @@ mod tests {
     /// every choice made and a restitution of many digits.
     #[test]
     fn housners_label_names_its_equation_and_each_choice() {
-        use flexrock_core::rigid::{RigidForm, RigidOverturning};
-        use flexrock_core::sweep::HousnerOptions;
+        use flexrock_core::analysis::sweep::HousnerOptions;
+        use flexrock_core::bodies::rigid::{RigidForm, RigidOverturning};
         let mut labels = Vec::new();
         for form in RigidForm::ALL {
             for overturning in RigidOverturning::ALL {
@@ -824,7 +824,7 @@ mod tests {
 
     #[test]
     fn edges_are_finite_and_growing_for_extreme_but_allowed_values() {
-        let m = flexrock_core::sweep::axis::MAX_MAGNITUDE;
+        let m = flexrock_core::analysis::sweep::axis::MAX_MAGNITUDE;
         for centres in [
             vec![-m, m],
             vec![m / 2.0, m],

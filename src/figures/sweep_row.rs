@@ -8,7 +8,7 @@ use crate::error::{Error, Result};
 use crate::figures::plot::{self, Figure, Panel, Series, Swatch};
 use crate::figures::sweep_axes::{ascending, axis_label, drawable, edges};
 use crate::sweep_table::SweepTable;
-use flexrock_core::sweep::Plan;
+use flexrock_core::analysis::sweep::Plan;
 
 /// What the row did to a column at one point.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -1,5 +1,5 @@
 //! Output files: CSV tables and JSON summaries, written atomically. Writers see only the
-//! solver-agnostic [`Solution`](flexrock_core::solution::Solution) types, never a solver.
+//! solver-agnostic [`Solution`](flexrock_core::integrate::solution::Solution) types, never a solver.
 
 pub mod run_dir;
 
@@ -7,10 +7,10 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use crate::error::{Error, Result};
+use flexrock_core::integrate::solution::{Episode, Event, Sample};
 use flexrock_core::simulate::{Commit, Provenance};
-use flexrock_core::solution::{Episode, Event, Sample};
 
-pub use flexrock_core::run_tables::{
+pub use flexrock_core::tables::run_tables::{
     episode_fields, EpisodeField, EPISODE_COLUMNS, EVENT_COLUMNS, HISTORY_COLUMNS,
 };
 
@@ -50,7 +50,7 @@ impl Table {
     }
 }
 
-pub use flexrock_core::format::{
+pub use flexrock_core::base::format::{
     count, file_kind, list, number, push_number, readable, scientific, shortest, significant,
 };
 
@@ -826,7 +826,7 @@ mod tests {
     /// mode, over more rows than one block so that blocks are joined.
     #[test]
     fn history_text_is_the_csv_crates() {
-        use flexrock_core::automaton::Mode;
+        use flexrock_core::physics::automaton::Mode;
         let values = [
             0.0,
             -0.0,

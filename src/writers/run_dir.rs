@@ -14,9 +14,9 @@ use serde::de::DeserializeOwned;
 
 use crate::error::{Error, Result};
 use crate::writers::{EPISODE_COLUMNS, EVENT_COLUMNS, HISTORY_COLUMNS};
-use flexrock_core::constants::Constants;
-use flexrock_core::run_tables::MAX_HISTORY_ROW_BYTES;
-use flexrock_core::solution::{Event, Sample};
+use flexrock_core::integrate::solution::{Event, Sample};
+use flexrock_core::physics::constants::Constants;
+use flexrock_core::tables::run_tables::MAX_HISTORY_ROW_BYTES;
 
 /// The sampled history of a run.
 pub const HISTORY_FILE: &str = "history.csv";

@@ -437,7 +437,7 @@ def summarise(res, min_len=0.02):
 
 RECORDS = ["elCentro.AT2", "ANLA196.AT2", "A-ELC180.AT2", "PBFEAS.AT2", "HEN-E.AT2"]
 RECORD_SCALES = (1.0, 5.0)  # 1.0 as models/elcentro1940.toml; 5.0 as core/tests/hardening.rs (0, 1, 5)
-STANDARD_GRAVITY = 9.80665  # records in units of g, as flexrock reads them (core/src/units.rs)
+STANDARD_GRAVITY = 9.80665  # records in units of g, as flexrock reads them (core/src/base/units.rs)
 RECORD_TAIL = 5.0       # s of free vibration after a record, as models/elcentro1940.toml
 MIN_EPISODE = 0.02      # s: shorter uplift episodes are counted as chatter, not as uplifts
 Q_OVERTURN = 1.0        # m: |q| beyond this = overturned (static zero-force point is 0.735 m)

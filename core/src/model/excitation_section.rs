@@ -5,15 +5,15 @@ use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
 
 use super::{BodySection, ExcitationSection};
-use crate::body::{positive, Body, ConstantSet, SelfWeight};
-use crate::constants::Constants;
 use crate::error::{Error, Result};
-use crate::excitation::{
+use crate::floor::record::{read_record_named, Record, RecordFormat};
+use crate::floor::{
     above_floor_minimum, floor_limit_rule, floor_minimum_rule, within_floor_limit, FloorMotion,
     Free, Harmonic, PaperSine, PulseShape, RecordedMotion, Ricker, SinePulse,
     MIN_EXCITATION_PERIOD,
 };
-use crate::record::{read_record_named, Record, RecordFormat};
+use crate::physics::body::{positive, Body, ConstantSet, SelfWeight};
+use crate::physics::constants::Constants;
 
 /// A record is known by its path, format and given sampling interval (as bits).
 type RecordKey = (PathBuf, Option<RecordFormat>, Option<u64>);
@@ -107,7 +107,7 @@ impl RecordCache {
         name: &str,
         format: Option<RecordFormat>,
         dt: Option<f64>,
-    ) -> std::result::Result<Arc<Record>, crate::record::RecordError> {
+    ) -> std::result::Result<Arc<Record>, crate::floor::record::RecordError> {
         let key = (path.to_path_buf(), format, dt.map(f64::to_bits));
         if let Some(record) = self.lock().get(&key) {
             return Ok(Arc::clone(record));
@@ -300,7 +300,7 @@ enum Given<'a> {
 impl Given<'_> {
     fn text(self) -> String {
         match self {
-            Given::Number(x) => crate::format::number(x),
+            Given::Number(x) => crate::base::format::number(x),
             Given::Text(t) => t.to_string(),
         }
     }
@@ -368,7 +368,7 @@ pub(super) fn floor_from_section(
         Kind::PaperSine => {
             let ramp = s.ramp.unwrap_or(0.0);
             positive("excitation.ramp", ramp)?;
-            if !crate::limits::at_least(ramp, MIN_EXCITATION_PERIOD) {
+            if !crate::base::limits::at_least(ramp, MIN_EXCITATION_PERIOD) {
                 return Err(Error::invalid(
                     "excitation.ramp",
                     ramp,
@@ -396,7 +396,7 @@ pub(super) fn floor_from_section(
                 }
             };
             let pulse = SinePulse::new(amplitude, period, cycles, shape);
-            if !crate::limits::at_least(pulse.end(), MIN_EXCITATION_PERIOD) {
+            if !crate::base::limits::at_least(pulse.end(), MIN_EXCITATION_PERIOD) {
                 return Err(Error::invalid(
                     "excitation.cycles",
                     cycles,
@@ -404,7 +404,7 @@ pub(super) fn floor_from_section(
                         "the pulse, cycles x period = {} s, must last at least \
                          {MIN_EXCITATION_PERIOD} s, the shortest time over which a floor motion \
                          may change (as its period)",
-                        crate::format::shortest(pulse.end())
+                        crate::base::format::shortest(pulse.end())
                     ),
                 ));
             }
@@ -486,14 +486,17 @@ fn finish_analytic(
         // Within the limit the amplitude itself, beyond it the paper-sine's ramp (with the
         // period, which sets how far the ramp's cubic overshoots), is to blame.
         let (key, value) = if within_floor_limit(amplitude.abs()) {
-            let ramp = crate::format::shortest(s.ramp.unwrap_or(0.0));
-            let period = crate::format::shortest(s.period.unwrap_or(0.0));
+            let ramp = crate::base::format::shortest(s.ramp.unwrap_or(0.0));
+            let period = crate::base::format::shortest(s.period.unwrap_or(0.0));
             (
                 "excitation.ramp",
                 format!("{ramp} (with excitation.period = {period})"),
             )
         } else {
-            ("excitation.amplitude", crate::format::shortest(amplitude))
+            (
+                "excitation.amplitude",
+                crate::base::format::shortest(amplitude),
+            )
         };
         return Err(Error::invalid(key, value, &floor_limit_rule(peak)));
     }
@@ -515,7 +518,7 @@ fn check_tail(tail: f64) -> Result<f64> {
     Ok(tail)
 }
 
-pub use crate::units::STANDARD_GRAVITY;
+pub use crate::base::units::STANDARD_GRAVITY;
 
 /// The file an `excitation.path` names, read from the directory `base_dir` (the directory of the
 /// model file as its path was given): joined and normalised by path arithmetic alone, `..`
@@ -557,7 +560,7 @@ fn recorded_motion(
         })?;
     // The file's declared unit, else the key's; both, disagreeing, are refused.
     let (units, unit_factor) =
-        crate::record::resolve_units(&record, "excitation.units", s.units.as_deref())?;
+        crate::floor::record::resolve_units(&record, "excitation.units", s.units.as_deref())?;
     let scale = s.scale.unwrap_or(1.0);
     if !scale.is_finite() {
         return Err(Error::invalid(

@@ -3,11 +3,13 @@
 use serde::Serialize;
 
 use super::{FemOverrides, FemSection, ModelFile};
-use crate::body::{positive, Body};
-use crate::constants::Constants;
+use crate::base::format::readable;
+use crate::bodies::fem::{
+    check_run_size, BaseSupport, FemBody, FemSettings, SizeLimit, TimeScheme,
+};
 use crate::error::{Error, Result};
-use crate::fem::{check_run_size, BaseSupport, FemBody, FemSettings, SizeLimit, TimeScheme};
-use crate::format::readable;
+use crate::physics::body::{positive, Body};
+use crate::physics::constants::Constants;
 
 /// Default Poisson's ratio of the plane-stress body (`[body] poisson_ratio`).
 pub const DEFAULT_POISSON_RATIO: f64 = 0.25;
@@ -58,7 +60,7 @@ const FILE_NAMES: Names = Names {
 /// ([`FemOverrides::sets`] tells which values came from outside the file). The plane-stress body
 /// takes E = 12 EI/(D B^3) and the density M/(H B D) from the validated body, so every way of
 /// giving the stiffness and the mass works; the damping period defaults to the pre-uplift period
-/// T. Every rule is here, the size limits of `crate::fem` included. Only `flexrock fem` builds
+/// T. Every rule is here, the size limits of `crate::bodies::fem` included. Only `flexrock fem` builds
 /// it: `run` and `sweep` do not fail for settings that only the finite element analysis uses.
 pub fn fem_with_overrides(
     file: &ModelFile,
@@ -123,7 +125,7 @@ fn fem_setup(
     };
     if file.fem.is_none() {
         // The defaults: only the mesh (see above).
-        crate::fem::check_mesh_size(nx, ny).map_err(size_error)?;
+        crate::bodies::fem::check_mesh_size(nx, ny).map_err(size_error)?;
     } else {
         if dt > duration {
             return Err(Error::invalid(
@@ -181,7 +183,7 @@ fn fem_setup(
             mu_k,
             &format!(
                 "kinetic friction cannot exceed static friction (fem.mu_s = {})",
-                crate::format::shortest(mu_s)
+                crate::base::format::shortest(mu_s)
             ),
         ));
     }
@@ -195,7 +197,7 @@ fn fem_setup(
     })?;
     let damping_period = s.damping_period.unwrap_or(constants.period);
     positive("fem.damping_period", damping_period)?;
-    if damping_period > crate::limits::MAX_DURATION {
+    if damping_period > crate::base::limits::MAX_DURATION {
         // The damping is C = (h T_d / pi) K: at 1e12 s it swamps the mass in the stepped matrix,
         // which rounds to singular.
         return Err(Error::invalid(
@@ -204,7 +206,7 @@ fn fem_setup(
             &format!(
                 "must be at most {:e} s, the longest run: a vibration of a longer period is never \
                  seen, and far beyond it the damping matrix swamps the mass matrix",
-                crate::limits::MAX_DURATION
+                crate::base::limits::MAX_DURATION
             ),
         ));
     }

@@ -34,13 +34,13 @@ use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
-use crate::body::{positive, Body, ConstantSet, SelfWeight};
-use crate::constants::Constants;
 use crate::error::{Error, Result};
-use crate::excitation::FloorMotion;
-use crate::solver::adaptive::{AdaptiveMethod, AdaptiveSettings};
-use crate::solver::newmark::NewmarkSettings;
-use crate::solver::{History, InitialState, SolverSettings};
+use crate::floor::FloorMotion;
+use crate::integrate::adaptive::{AdaptiveMethod, AdaptiveSettings};
+use crate::integrate::newmark::NewmarkSettings;
+use crate::integrate::{History, InitialState, SolverSettings};
+use crate::physics::body::{positive, Body, ConstantSet, SelfWeight};
+use crate::physics::constants::Constants;
 
 /// The model file as written.
 #[derive(Debug, Clone, Deserialize, Serialize)]
@@ -281,7 +281,7 @@ pub fn read_model_text(path: &Path) -> Result<String> {
     if !metadata.is_file() {
         return Err(invalid(format!(
             "it is {}; a model file must be a regular file",
-            crate::format::file_kind(metadata.file_type())
+            crate::base::format::file_kind(metadata.file_type())
         )));
     }
     let mut text = String::new();
@@ -327,7 +327,7 @@ fn parse_model_text(text: &str, settings: &[Setting], source: &Path) -> Result<M
             }
             Error::ParseModel {
                 path: source.to_path_buf(),
-                message: crate::suggest::schema_hint(e.to_string().trim_end()),
+                message: crate::base::suggest::schema_hint(e.to_string().trim_end()),
             }
         });
     }
@@ -531,9 +531,9 @@ fn methods_first(settings: &[Setting]) -> impl Iterator<Item = &Setting> {
 /// the setting's, and the error names its key.
 pub fn read_schema(table: &toml::Table, settings: &[Setting], source: &Path) -> Result<ModelFile> {
     let read = |table: toml::Table| -> std::result::Result<ModelFile, String> {
-        table
-            .try_into::<ModelFile>()
-            .map_err(|e| crate::suggest::schema_hint(&e.to_string().trim_end().replace('\n', " ")))
+        table.try_into::<ModelFile>().map_err(|e| {
+            crate::base::suggest::schema_hint(&e.to_string().trim_end().replace('\n', " "))
+        })
     };
     if settings.is_empty() {
         return read(table.clone()).map_err(|message| Error::ParseModel {
@@ -584,7 +584,7 @@ pub const DEFAULT_ATOL: f64 = 1e-12;
 pub const DEFAULT_OUTPUT_DT: f64 = 0.005;
 /// Largest initial top velocity, m/s.
 pub const MAX_INITIAL_VELOCITY: f64 = 100.0;
-pub use crate::limits::MAX_DURATION;
+pub use crate::base::limits::MAX_DURATION;
 
 /// A validated model, ready to run.
 pub struct Model {
@@ -796,7 +796,7 @@ impl Model {
     /// [`Model::reference_settings`].
     pub fn reference(&self, rtol: Option<f64>) -> Result<SolverSettings> {
         Ok(match rtol {
-            None => SolverSettings::Exact(crate::solver::exact::ExactSettings {
+            None => SolverSettings::Exact(crate::integrate::exact::ExactSettings {
                 output_dt: self.solver.output_dt(),
             }),
             Some(rtol) => SolverSettings::Adaptive(self.reference_settings(rtol)?),
@@ -875,14 +875,14 @@ fn run_duration(
                 let tail = excitation.tail.unwrap_or(0.0);
                 let (key, value) = match excitation.kind.as_str() {
                     _ if d - tail <= MAX_DURATION => {
-                        ("excitation.tail", crate::format::shortest(tail))
+                        ("excitation.tail", crate::base::format::shortest(tail))
                     }
                     "sine-pulse" => (
                         "excitation.cycles",
                         format!(
                             "{} (with excitation.period = {})",
-                            crate::format::shortest(excitation.cycles.unwrap_or(1.0)),
-                            crate::format::shortest(excitation.period.unwrap_or(0.0))
+                            crate::base::format::shortest(excitation.cycles.unwrap_or(1.0)),
+                            crate::base::format::shortest(excitation.period.unwrap_or(0.0))
                         ),
                     ),
                     _ => {
@@ -893,7 +893,7 @@ fn run_duration(
                                 "the record lasts {} s: with no simulation.duration the run lasts \
                              the record and the tail, which {rule} (give simulation.duration \
                              or excitation.end)",
-                                crate::format::shortest(d - tail)
+                                crate::base::format::shortest(d - tail)
                             ),
                         ))
                     }
@@ -905,8 +905,8 @@ fn run_duration(
                         "with no simulation.duration the run lasts the {} ({} s) and the tail, \
                          {} s in all, which {rule}",
                         excitation.kind,
-                        crate::format::shortest(d - tail),
-                        crate::format::shortest(d)
+                        crate::base::format::shortest(d - tail),
+                        crate::base::format::shortest(d)
                     ),
                 ));
             }
@@ -995,7 +995,7 @@ fn body_from_section(s: &BodySection) -> Result<Body> {
             derived_product(
                 "mass M = density H B D",
                 "kg",
-                crate::body::prism_mass(density, s.height, s.width, depth),
+                crate::physics::body::prism_mass(density, s.height, s.width, depth),
                 &[
                     ("body.density", density),
                     ("body.height", s.height),
@@ -1041,7 +1041,7 @@ fn body_from_section(s: &BodySection) -> Result<Body> {
             derived_product(
                 "flexural rigidity EI = E D B^3/12",
                 "N m^2",
-                crate::body::solid_section_flexural_rigidity(e, s.width, depth),
+                crate::physics::body::solid_section_flexural_rigidity(e, s.width, depth),
                 &[
                     ("body.youngs_modulus", e),
                     ("body.width", s.width),
@@ -1095,7 +1095,7 @@ fn derived_product(what: &str, unit: &str, value: f64, factors: &[(&str, f64)]) 
         &format!(
             "with it the {what} is {} {unit}, beyond the range of numbers, whose smallest normal \
              positive value is 2.2e-308 (give sizes in m, densities in kg/m^3, moduli in Pa)",
-            crate::format::shortest(value)
+            crate::base::format::shortest(value)
         ),
     ))
 }
@@ -1134,9 +1134,9 @@ fn check_stands_up(s: &BodySection, body: &Body, constants: &Constants) -> Resul
             "the body is unstable under its own weight: its derived uplift displacement s_n = {} m \
              (body.self_weight = \"{}\") must be less than the width B = {} m (body.width); \
              {remedy}, or lower {mass_key} or body.height",
-            crate::format::significant(s_n, 6),
+            crate::base::format::significant(s_n, 6),
             body.self_weight.name(),
-            crate::format::shortest(body.width),
+            crate::base::format::shortest(body.width),
         ),
     ))
 }

@@ -14,13 +14,13 @@ use super::{
     body_from_section, check_stands_up, initial_from_section, parse_table, read_model_text,
     BodySection, ExcitationSection, SimulationSection, SolverSection, MODEL_TEXT,
 };
-use crate::body::Body;
-use crate::constants::Constants;
+use crate::bodies::row::{ColumnSpec, CompliantSettings, Row, DEFAULT_TOLERANCE, METHOD};
 use crate::error::{Error, Result};
-use crate::excitation::FloorMotion;
-use crate::row::{ColumnSpec, CompliantSettings, Row, DEFAULT_TOLERANCE, METHOD};
-use crate::solver::exact::ExactSettings;
-use crate::solver::{History, SolverSettings};
+use crate::floor::FloorMotion;
+use crate::integrate::exact::ExactSettings;
+use crate::integrate::{History, SolverSettings};
+use crate::physics::body::Body;
+use crate::physics::constants::Constants;
 
 /// The `[row]` table.
 #[derive(Debug, Clone, Deserialize, Serialize)]

@@ -178,7 +178,7 @@ fn relative_path(base: &Path, target: &Path) -> PathBuf {
 /// A value as a user reads it: numbers in their shortest exact form, strings bare.
 pub fn value_text(value: &toml::Value) -> String {
     match value {
-        toml::Value::Float(x) => crate::format::shortest(*x),
+        toml::Value::Float(x) => crate::base::format::shortest(*x),
         toml::Value::String(s) => s.clone(),
         other => other.to_string(),
     }

@@ -1,12 +1,12 @@
 //! Rules of the `[solver]` section: the adaptive methods' tolerances and Newmark's step.
 
 use super::{SolverSection, DEFAULT_ATOL, DEFAULT_OUTPUT_DT, DEFAULT_RTOL};
-use crate::body::positive;
 use crate::error::{Error, Result};
-use crate::solver::adaptive::{AdaptiveMethod, AdaptiveSettings};
-use crate::solver::exact::ExactSettings;
-use crate::solver::newmark::{critical_omega_dt, NewmarkSettings, NewmarkVariant};
-use crate::solver::{History, SolverSettings};
+use crate::integrate::adaptive::{AdaptiveMethod, AdaptiveSettings};
+use crate::integrate::exact::ExactSettings;
+use crate::integrate::newmark::{critical_omega_dt, NewmarkSettings, NewmarkVariant};
+use crate::integrate::{History, SolverSettings};
+use crate::physics::body::positive;
 
 /// The paper's time step (section 2.5).
 pub const DEFAULT_NEWMARK_DT: f64 = 0.02;
@@ -47,7 +47,7 @@ pub const MIN_ATOL_OVER_WIDTH: f64 = 1e-18;
 /// The rule for an absolute tolerance (m for q, m/s for q') of a body of width `width`.
 pub(crate) fn check_atol(key: &str, atol: f64, width: f64) -> Result<()> {
     let (min, max) = (MIN_ATOL_OVER_WIDTH * width, MAX_ATOL_OVER_WIDTH * width);
-    if crate::limits::at_least(atol, min) && crate::limits::at_most(atol, max) {
+    if crate::base::limits::at_least(atol, min) && crate::base::limits::at_most(atol, max) {
         Ok(())
     } else {
         Err(Error::invalid(
@@ -57,9 +57,9 @@ pub(crate) fn check_atol(key: &str, atol: f64, width: f64) -> Result<()> {
                 "the absolute tolerance must lie in [{}, {}] (1e-18 to 0.01 of the width B = \
                  {} m: a looser one resolves neither uplift nor overturning, a tighter one is \
                  far below the rounding of q)",
-                crate::format::readable(min),
-                crate::format::readable(max),
-                crate::format::shortest(width)
+                crate::base::format::readable(min),
+                crate::base::format::readable(max),
+                crate::base::format::shortest(width)
             ),
         ))
     }
@@ -105,7 +105,7 @@ pub(crate) fn default_method(gives_tolerance: bool) -> &'static str {
 }
 
 /// The exact method's model-file name.
-const EXACT: &str = crate::solver::exact::NAME;
+const EXACT: &str = crate::integrate::exact::NAME;
 
 /// The solver settings of a `[solver]` section, for a run of `duration` s that keeps `history`
 /// (the limit on history rows applies only to a run that keeps one).
@@ -166,13 +166,15 @@ pub(super) fn solver_from_section(
     }
     let output_dt = s.output_dt.unwrap_or(DEFAULT_OUTPUT_DT);
     positive("solver.output_dt", output_dt)?;
-    if history == History::Sampled && !crate::limits::at_most(duration / output_dt, MAX_SAMPLES) {
+    if history == History::Sampled
+        && !crate::base::limits::at_most(duration / output_dt, MAX_SAMPLES)
+    {
         return Err(Error::invalid(
             "solver.output_dt",
             output_dt,
             &format!(
                 "gives more than {MAX_SAMPLES:e} history rows over {} s; choose a larger spacing",
-                crate::format::shortest(duration)
+                crate::base::format::shortest(duration)
             ),
         ));
     }
@@ -204,13 +206,13 @@ pub(super) fn newmark_from_section(
 ) -> Result<NewmarkSettings> {
     let dt = s.dt.unwrap_or(DEFAULT_NEWMARK_DT);
     positive("solver.dt", dt)?;
-    if !crate::limits::at_most(duration / dt, MAX_NEWMARK_STEPS) {
+    if !crate::base::limits::at_most(duration / dt, MAX_NEWMARK_STEPS) {
         return Err(Error::invalid(
             "solver.dt",
             dt,
             &format!(
                 "gives more than {MAX_NEWMARK_STEPS:e} steps over {} s; choose a larger step",
-                crate::format::shortest(duration)
+                crate::base::format::shortest(duration)
             ),
         ));
     }

@@ -131,7 +131,7 @@ pub fn value_in_effect(table: &toml::Table, key: &str) -> Result<Option<toml::Va
     super::check_key(key).map_err(|rule| Error::invalid("key", key, &rule))?;
     let keys = schema_keys();
     if !keys.iter().any(|k| k == key) {
-        let hint = match crate::suggest::closest(key, keys.iter().map(String::as_str)) {
+        let hint = match crate::base::suggest::closest(key, keys.iter().map(String::as_str)) {
             Some(close) => format!("; did you mean {close}?"),
             None => String::new(),
         };

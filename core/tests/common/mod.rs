@@ -3,9 +3,9 @@
 #![allow(dead_code)]
 pub mod imports;
 
-use flexrock_core::automaton::{EventKind, Mode};
+use flexrock_core::integrate::solution::Solution;
 use flexrock_core::model::{Model, Overrides};
-use flexrock_core::solution::Solution;
+use flexrock_core::physics::automaton::{EventKind, Mode};
 
 /// The reference body of book/src/model.md §8 (the paper's example) with the given excitation,
 /// simulation and solver sections (TOML text) appended.
@@ -155,7 +155,7 @@ pub fn documents() -> Vec<std::path::PathBuf> {
 
 /// Every column of a solved row closes its energy books to `share` of its scale (the largest
 /// energy or work it booked); `what` names the case in messages.
-pub fn row_books_close(what: &str, solved: &flexrock_core::row::RowSolution, share: f64) {
+pub fn row_books_close(what: &str, solved: &flexrock_core::bodies::row::RowSolution, share: f64) {
     for (i, c) in solved.columns.iter().enumerate() {
         eprintln!(
             "{what}, column {i}: energy residual {} of {} J",
@@ -181,8 +181,8 @@ pub const OPEN_GAP_TOLERANCE: f64 = 1e-12;
 /// no contact between them, as a message: an open contact's gap below -[`OPEN_GAP_TOLERANCE`],
 /// or parting faces (the compliant law's faces let go at zero force) that do not overlap, that
 /// close, or that carry a force.
-pub fn faces_passing(solved: &flexrock_core::row::RowSolution) -> Option<String> {
-    use flexrock_core::row::ContactState;
+pub fn faces_passing(solved: &flexrock_core::bodies::row::RowSolution) -> Option<String> {
+    use flexrock_core::bodies::row::ContactState;
     solved.contact_history.iter().find_map(|c| {
         let wrong = match c.state {
             ContactState::Open => c.gap < -OPEN_GAP_TOLERANCE,

@@ -1,5 +1,5 @@
 #![warn(missing_docs)]
-//! `flexrock sweep`: the core's parametric studies ([`flexrock_core::sweep`]) on disk.
+//! `flexrock sweep`: the core's parametric studies ([`flexrock_core::analysis::sweep`]) on disk.
 //!
 //! - [`store`]: chunks on disk, resuming, shards and their merge;
 //! - the map and the spectrum, drawn from sweep.csv alone, are in [`crate::figures::sweep`].
@@ -10,7 +10,7 @@
 pub mod store;
 
 use crate::error::{Error, Result};
-use flexrock_core::sweep::{Plan, Sweep};
+use flexrock_core::analysis::sweep::{Plan, Sweep};
 
 /// The most threads `--threads` takes: more than the cores of any machine a sweep runs on.
 /// Each thread reserves its stack, and a system limits how many a process may start: far

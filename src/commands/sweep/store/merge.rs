@@ -160,7 +160,7 @@ fn check_part(dir: &Path, summary: &SweepSummary) -> Result<()> {
         .axes
         .iter()
         .try_fold(1usize, |n, a| n.checked_mul(a.len()))
-        .filter(|&n| n <= flexrock_core::sweep::axis::MAX_POINTS)
+        .filter(|&n| n <= flexrock_core::analysis::sweep::axis::MAX_POINTS)
         .ok_or_else(|| refuse("its axes have more points than a sweep may".to_string()))?;
     let expected = match summary.shard {
         Some(shard) => {

@@ -458,7 +458,11 @@ fn chunk_path(dir: &Path, chunk: usize) -> PathBuf {
 
 /// The fields of point `index`'s row: its index, its coordinates, then the row's cells (each
 /// written into one buffer, not a string of its own).
-fn row_record(plan: &Plan, index: usize, row: &flexrock_core::sweep::Row) -> csv::StringRecord {
+fn row_record(
+    plan: &Plan,
+    index: usize,
+    row: &flexrock_core::analysis::sweep::Row,
+) -> csv::StringRecord {
     use std::fmt::Write as _;
     let cells = row.cells(plan.layout());
     let mut record = csv::StringRecord::with_capacity(256, 1 + plan.axes.len() + cells.len());

@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
-use flexrock_core::sweep::Plan;
+use flexrock_core::analysis::sweep::Plan;
 
 /// Which slice of the chunks a process computes: shard `index` of `count` (1-based, as a user
 /// writes `--shard 3/8`).
@@ -167,7 +167,7 @@ pub(super) fn chunk_points(plan: &Plan, chunk: usize, end: usize) -> std::ops::R
 #[cfg(test)]
 mod tests {
     use super::*;
-    use flexrock_core::sweep::Axis;
+    use flexrock_core::analysis::sweep::Axis;
 
     fn plan(points: usize, chunk_size: usize) -> Plan {
         Plan {

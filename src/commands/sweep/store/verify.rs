@@ -5,9 +5,9 @@
 //! CRLF line ends: each fails one of these checks, and is never taken for rows of this sweep.
 
 use crate::writers;
-use flexrock_core::sweep::Plan;
+use flexrock_core::analysis::sweep::Plan;
 
-pub use flexrock_core::sweep::{sha256_hex, sha256_hex_of};
+pub use flexrock_core::analysis::sweep::{sha256_hex, sha256_hex_of};
 
 /// The first line of a chunk file: the seal of its rows.
 const CHUNK_SEAL_PREFIX: &str = "# flexrock sweep chunk, sha256 ";
