@@ -1188,6 +1188,52 @@ fn a_set_solver_key_survives_a_method_of_another_family() {
     );
 }
 
+/// `--set solver.method=exact` on a file that gives rtol is the file with its method changed:
+/// refused as a file that says `method = "exact"` beside rtol is, with the same message (before,
+/// the set method dropped the file's rtol and atol and ran).
+#[test]
+fn a_set_method_is_refused_as_the_same_method_written_in_the_file() {
+    let body = "[body]\nheight = 4.0\nwidth = 0.7\ndensity = 600.0\nyoungs_modulus = 5.0e6\n\
+                [excitation]\nkind = \"free\"\n[simulation]\nduration = 1.0\nq0 = 0.01\n";
+    let after_the_file = |message: &str| {
+        let (_, rest) = message
+            .split_once("model.toml")
+            .unwrap_or_else(|| panic!("names the file: {message}"));
+        rest.to_string()
+    };
+    let written = common::refused_with(
+        "run",
+        "method-written",
+        &format!("{body}[solver]\nmethod = \"exact\"\nrtol = 1e-10\n"),
+        &[],
+    );
+    let set = common::refused_with(
+        "run",
+        "method-set",
+        &format!("{body}[solver]\nmethod = \"bdf\"\nrtol = 1e-10\n"),
+        &["--set", "solver.method=exact"],
+    );
+    assert!(
+        written.contains("solver.rtol = 1e-10") && written.contains("method = \"exact\""),
+        "{written}"
+    );
+    assert_eq!(after_the_file(&set), after_the_file(&written));
+    // A method of the same family, and one whose rules the file's keys meet, run alike.
+    let dir = common::scratch_dir("cli-method-set-same-family");
+    let model = dir.join("model.toml");
+    std::fs::write(&model, format!("{body}[solver]\nmethod = \"bdf\"\nrtol = 1e-10\n")).unwrap();
+    let out = dir.join("out");
+    let o = common::flexrock(&[
+        "run",
+        model.to_str().unwrap(),
+        "--set",
+        "solver.method=tsit45",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+}
+
 /// A relative record path is read from the directory of the model file as its path is given:
 /// through a linked file, from the link's directory; after a linked directory, `..` leads where
 /// the path says (before, the message named the file the path says while the one in the link's
