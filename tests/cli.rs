@@ -1218,10 +1218,14 @@ fn a_set_method_is_refused_as_the_same_method_written_in_the_file() {
         "{written}"
     );
     assert_eq!(after_the_file(&set), after_the_file(&written));
-    // A method of the same family, and one whose rules the file's keys meet, run alike.
+    // A method whose rules the file's keys meet (of the same family) runs.
     let dir = common::scratch_dir("cli-method-set-same-family");
     let model = dir.join("model.toml");
-    std::fs::write(&model, format!("{body}[solver]\nmethod = \"bdf\"\nrtol = 1e-10\n")).unwrap();
+    std::fs::write(
+        &model,
+        format!("{body}[solver]\nmethod = \"bdf\"\nrtol = 1e-10\n"),
+    )
+    .unwrap();
     let out = dir.join("out");
     let o = common::flexrock(&[
         "run",
