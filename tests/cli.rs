@@ -385,7 +385,7 @@ fn loose_tolerances_are_refused() {
         ("--atol", "0.01", &["solver.atol", "width"][..]),
     ] {
         let out = common::scratch_dir("loose").join("out");
-        let o = common::run_reference(&out, &[flag, value]);
+        let o = common::run_reference(&out, &["--method", "bdf", flag, value]);
         assert_eq!(o.status.code(), Some(2), "{flag} {value}");
         assert_mentions(&String::from_utf8_lossy(&o.stderr), words);
         assert!(!out.exists());
@@ -452,7 +452,16 @@ fn warnings_reach_stderr_and_the_summary() {
     let out = common::scratch_dir("warnings").join("out");
     let o = common::run_reference(
         &out,
-        &["--duration", "1.2", "--rtol", "1e-2", "--atol", "1e-3"],
+        &[
+            "--duration",
+            "1.2",
+            "--method",
+            "bdf",
+            "--rtol",
+            "1e-2",
+            "--atol",
+            "1e-3",
+        ],
     );
     assert!(o.status.success());
     let stdout = String::from_utf8_lossy(&o.stdout);
@@ -519,7 +528,10 @@ fn warnings_reach_stderr_and_the_summary() {
 fn a_large_energy_residual_is_a_warning() {
     // At the loosest tolerance allowed the paper's example loses a fifth of its energy scale.
     let out = common::scratch_dir("residual").join("out");
-    let o = common::run_reference(&out, &["--rtol", "1e-2", "--atol", "1e-3"]);
+    let o = common::run_reference(
+        &out,
+        &["--method", "bdf", "--rtol", "1e-2", "--atol", "1e-3"],
+    );
     assert!(o.status.success());
     let stderr = String::from_utf8_lossy(&o.stderr);
     assert_mentions(
