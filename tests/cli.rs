@@ -385,7 +385,7 @@ fn loose_tolerances_are_refused() {
         ("--atol", "0.01", &["solver.atol", "width"][..]),
     ] {
         let out = common::scratch_dir("loose").join("out");
-        let o = common::run_reference(&out, &[flag, value]);
+        let o = common::run_reference(&out, &["--method", "bdf", flag, value]);
         assert_eq!(o.status.code(), Some(2), "{flag} {value}");
         assert_mentions(&String::from_utf8_lossy(&o.stderr), words);
         assert!(!out.exists());
@@ -452,7 +452,16 @@ fn warnings_reach_stderr_and_the_summary() {
     let out = common::scratch_dir("warnings").join("out");
     let o = common::run_reference(
         &out,
-        &["--duration", "1.2", "--rtol", "1e-2", "--atol", "1e-3"],
+        &[
+            "--duration",
+            "1.2",
+            "--method",
+            "bdf",
+            "--rtol",
+            "1e-2",
+            "--atol",
+            "1e-3",
+        ],
     );
     assert!(o.status.success());
     let stdout = String::from_utf8_lossy(&o.stdout);
@@ -519,7 +528,10 @@ fn warnings_reach_stderr_and_the_summary() {
 fn a_large_energy_residual_is_a_warning() {
     // At the loosest tolerance allowed the paper's example loses a fifth of its energy scale.
     let out = common::scratch_dir("residual").join("out");
-    let o = common::run_reference(&out, &["--rtol", "1e-2", "--atol", "1e-3"]);
+    let o = common::run_reference(
+        &out,
+        &["--method", "bdf", "--rtol", "1e-2", "--atol", "1e-3"],
+    );
     assert!(o.status.success());
     let stderr = String::from_utf8_lossy(&o.stderr);
     assert_mentions(
@@ -1186,6 +1198,56 @@ fn a_set_solver_key_survives_a_method_of_another_family() {
         message.contains("--set solver.rtol") && message.contains("newmark"),
         "{message}"
     );
+}
+
+/// `--set solver.method=exact` on a file that gives rtol is the file with its method changed:
+/// refused as a file that says `method = "exact"` beside rtol is, with the same message (before,
+/// the set method dropped the file's rtol and atol and ran).
+#[test]
+fn a_set_method_is_refused_as_the_same_method_written_in_the_file() {
+    let body = "[body]\nheight = 4.0\nwidth = 0.7\ndensity = 600.0\nyoungs_modulus = 5.0e6\n\
+                [excitation]\nkind = \"free\"\n[simulation]\nduration = 1.0\nq0 = 0.01\n";
+    let after_the_file = |message: &str| {
+        let (_, rest) = message
+            .split_once("model.toml")
+            .unwrap_or_else(|| panic!("names the file: {message}"));
+        rest.to_string()
+    };
+    let written = common::refused_with(
+        "run",
+        "method-written",
+        &format!("{body}[solver]\nmethod = \"exact\"\nrtol = 1e-10\n"),
+        &[],
+    );
+    let set = common::refused_with(
+        "run",
+        "method-set",
+        &format!("{body}[solver]\nmethod = \"bdf\"\nrtol = 1e-10\n"),
+        &["--set", "solver.method=exact"],
+    );
+    assert!(
+        written.contains("solver.rtol = 1e-10") && written.contains("method = \"exact\""),
+        "{written}"
+    );
+    assert_eq!(after_the_file(&set), after_the_file(&written));
+    // A method whose rules the file's keys meet (of the same family) runs.
+    let dir = common::scratch_dir("cli-method-set-same-family");
+    let model = dir.join("model.toml");
+    std::fs::write(
+        &model,
+        format!("{body}[solver]\nmethod = \"bdf\"\nrtol = 1e-10\n"),
+    )
+    .unwrap();
+    let out = dir.join("out");
+    let o = common::flexrock(&[
+        "run",
+        model.to_str().unwrap(),
+        "--set",
+        "solver.method=tsit45",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
 }
 
 /// A relative record path is read from the directory of the model file as its path is given:

@@ -647,7 +647,7 @@ fn every_method_is_accepted_and_documented() {
         .unwrap();
     let file_line = docs
         .lines()
-        .find(|l| l.starts_with("method = \"bdf\""))
+        .find(|l| l.starts_with("method = \"exact\""))
         .unwrap();
     for method in METHODS {
         assert!(

@@ -1230,6 +1230,8 @@ fn a_loose_tolerance_is_flagged_point_by_point_and_on_standard_error() {
             "--vary",
             "excitation.amplitude=lin:1.5:3:7",
             "--set",
+            "solver.method=bdf",
+            "--set",
             &format!("solver.rtol={rtol}"),
             "--set",
             "solver.atol=1e-6",

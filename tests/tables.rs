@@ -283,6 +283,8 @@ fn history_rows_stay_within_their_bound_for_tiny_and_huge_numbers() {
         "excitation.amplitude=0",
         "--duration",
         "2",
+        "--method",
+        "bdf",
         "--out",
         out.to_str().unwrap(),
     ]);

@@ -409,6 +409,7 @@ fn the_energy_warning_ignores_rounding_of_tiny_energies() {
     // Over 1 microsecond the energies are near 1e-19 J, and their books balance only to rounding
     // (a few % of them): no warning, whose advice (a tighter tolerance) would change nothing.
     let overrides = Overrides {
+        method: Some("bdf".into()),
         rtol: Some(1e-14),
         duration: Some(1e-6),
         ..Overrides::default()
@@ -428,6 +429,7 @@ fn the_energy_warning_ignores_rounding_of_tiny_energies() {
     );
     // A real imbalance still warns: the paper's example at rtol = 1e-2 (about 20 % off).
     let overrides = Overrides {
+        method: Some("bdf".into()),
         rtol: Some(1e-2),
         ..Overrides::default()
     };

@@ -96,7 +96,7 @@ def test_get_gives_the_value_in_effect():
     assert model.get("excitation.amplitude") == 3.25
     # Omitted keys: the core's defaults (the book's model-file reference), else None.
     defaults = [("body.gravity", 9.81), ("body.depth", 1.0), ("body.damping_ratio", 0.05),
-                ("body.self_weight", "paper"), ("body.constants", "exact"), ("solver.method", "bdf"),
+                ("body.self_weight", "paper"), ("body.constants", "exact"), ("solver.method", "exact"),
                 ("solver.rtol", 1e-10), ("solver.atol", 1e-12), ("solver.output_dt", 0.005),
                 ("simulation.q0", 0.0)]
     omitted = 0

@@ -120,6 +120,17 @@ def test_set_is_editing_the_file(tmp_path):
     assert model.settings == ["excitation.amplitude=4", "solver.method=tsit45"]
 
 
+def test_a_set_method_meets_the_rules_of_the_same_method_in_the_file():
+    bdf = MODEL.read_text().replace('method = "exact"', 'method = "bdf"\nrtol = 1e-10', 1)
+    model = flexrock.Model.from_toml(bdf)
+    with pytest.raises(flexrock.FlexrockError, match="solver.rtol") as set_error:
+        model.set("solver.method", "exact")
+    with pytest.raises(flexrock.FlexrockError, match="solver.rtol") as file_error:
+        flexrock.Model.from_toml(bdf.replace('method = "bdf"', 'method = "exact"'))
+    assert str(set_error.value).endswith(str(file_error.value).split(": ", 1)[-1])
+    assert model.get("solver.method") == "bdf"
+
+
 def test_bad_keys_and_values_raise_with_the_key():
     model = flexrock.Model.from_file(MODEL)
     with pytest.raises(flexrock.FlexrockError, match="excitation.period"):

@@ -426,7 +426,7 @@ impl PreparedSchema {
     pub fn new(table: toml::Table, common: &[Setting], source: &Path) -> Self {
         let prepared = read_schema(&table, common, source).ok().and_then(|file| {
             let mut with_common = table.clone();
-            for setting in methods_first(common) {
+            for setting in common {
                 setting.apply(&mut with_common).ok()?;
             }
             Some((with_common, file))
@@ -452,12 +452,6 @@ impl PreparedSchema {
         let Some((table, base)) = &self.prepared else {
             return whole();
         };
-        // A method set here goes before the common settings' solver keys (see methods_first).
-        if further.iter().any(|s| s.key == "solver.method")
-            && self.common.iter().any(|s| s.key.starts_with("solver."))
-        {
-            return whole();
-        }
         let mut file = base.clone();
         let mut done: Vec<&str> = Vec::new();
         for setting in further {
@@ -473,7 +467,7 @@ impl PreparedSchema {
             if let Some(value) = table.get(section) {
                 one.insert(section.to_string(), value.clone());
             }
-            for s in methods_first(further) {
+            for s in further {
                 if s.key.split_once('.').is_some_and(|(of, _)| of == section)
                     && s.apply(&mut one).is_err()
                 {
@@ -511,21 +505,6 @@ impl ModelFile {
     }
 }
 
-/// `settings` in the order they are applied: `solver.method` first, then the others, each in
-/// the order given. A method of another family sets aside the table's keys of the old family
-/// ([`Setting::apply`]); applied first, it sets aside only the file's, and a solver key set
-/// beside it (`--set solver.dt=0.01 --set solver.method=newmark`) stays, to meet the method's
-/// rules.
-fn methods_first(settings: &[Setting]) -> impl Iterator<Item = &Setting> {
-    fn is_method(s: &&Setting) -> bool {
-        s.key == "solver.method"
-    }
-    settings
-        .iter()
-        .filter(is_method)
-        .chain(settings.iter().filter(|s| !is_method(s)))
-}
-
 /// Reads a model file's table into the schema, with `settings` applied first. A table that does
 /// not follow the schema is the file's fault (`source` names it); a setting that breaks it is
 /// the setting's, and the error names its key.
@@ -542,7 +521,7 @@ pub fn read_schema(table: &toml::Table, settings: &[Setting], source: &Path) -> 
         });
     }
     let mut with_settings = table.clone();
-    for setting in methods_first(settings) {
+    for setting in settings {
         setting.apply(&mut with_settings)?;
     }
     match read(with_settings) {

@@ -101,25 +101,6 @@ impl Setting {
             .or_insert_with(|| toml::Value::Table(toml::Table::new()));
         match entry {
             toml::Value::Table(section_table) => {
-                // A method of another family sets aside the keys of the table's method's family,
-                // as `--method` does.
-                if self.key == "solver.method" {
-                    use super::solver_section::{method_family, FAMILY_KEYS};
-                    let gives_tolerance = ["rtol", "atol"]
-                        .iter()
-                        .any(|key| section_table.contains_key(*key));
-                    let old = section_table
-                        .get("method")
-                        .and_then(|v| v.as_str())
-                        .unwrap_or(super::solver_section::default_method(gives_tolerance));
-                    if let Some(new) = self.value.as_str() {
-                        if method_family(old) != method_family(new) {
-                            for key in FAMILY_KEYS {
-                                section_table.remove(key);
-                            }
-                        }
-                    }
-                }
                 section_table.insert(name.to_string(), self.value.clone());
                 Ok(())
             }
@@ -208,38 +189,25 @@ pub fn check_key(key: &str) -> std::result::Result<(), String> {
 mod tests {
     use super::*;
 
+    /// A method set from outside the file is the file's line changed, and nothing more: the
+    /// keys of the file's method stay, to meet the new method's rules as they would in the file
+    /// (before, a method of another family dropped them).
     #[test]
-    fn a_method_of_another_family_sets_aside_the_keys_of_the_old_one() {
+    fn a_method_set_leaves_the_files_other_solver_keys_as_they_are() {
         let mut table: toml::Table = toml::from_str(
             "[solver]\nmethod = \"bdf\"\nrtol = 1e-8\natol = 1e-10\noutput_dt = 0.01\n",
         )
         .unwrap();
-        Setting::parse("solver.method=tsit45")
+        let mut expected = table.clone();
+        expected["solver"]
+            .as_table_mut()
             .unwrap()
-            .apply(&mut table)
-            .unwrap();
-        assert!(table["solver"].get("rtol").is_some(), "same family: kept");
+            .insert("method".into(), toml::Value::String("exact".into()));
         Setting::parse("solver.method=exact")
             .unwrap()
             .apply(&mut table)
             .unwrap();
-        let solver = table["solver"].as_table().unwrap();
-        assert_eq!(solver.get("rtol"), None);
-        assert_eq!(solver.get("atol"), None);
-        assert_eq!(solver["output_dt"].as_float(), Some(0.01));
-        Setting::parse("solver.method=newmark")
-            .unwrap()
-            .apply(&mut table)
-            .unwrap();
-        Setting::parse("solver.dt=0.01")
-            .unwrap()
-            .apply(&mut table)
-            .unwrap();
-        Setting::parse("solver.method=bdf")
-            .unwrap()
-            .apply(&mut table)
-            .unwrap();
-        assert_eq!(table["solver"].get("dt"), None);
+        assert_eq!(table, expected);
     }
 
     #[test]

@@ -73,8 +73,9 @@ enum Family {
 }
 
 /// Which family of methods `name` belongs to: Newmark, the exact method, or the adaptive
-/// methods (any other name). Switching families from outside a file sets aside the file's keys
-/// of the other family ([`FAMILY_KEYS`]): they were written for the file's method.
+/// methods (any other name). `--method` of another family sets aside the file's keys of its
+/// method's family: they were written for the file's method. A `--set solver.method` does not:
+/// it is the file's line changed, and meets the rules the file meets.
 pub(crate) fn method_family(name: &str) -> u8 {
     match name {
         "newmark" => 1,
@@ -82,16 +83,6 @@ pub(crate) fn method_family(name: &str) -> u8 {
         _ => 0,
     }
 }
-
-/// The `[solver]` keys that belong to one family of methods.
-pub(crate) const FAMILY_KEYS: [&str; 6] = [
-    "rtol",
-    "atol",
-    "dt",
-    "newmark_beta",
-    "newmark_gamma",
-    "newmark_variant",
-];
 
 /// The method of a `[solver]` section that names none: the exact method, or BDF (the default
 /// before the exact method existed) when the section gives an adaptive tolerance, so that such
@@ -142,7 +133,7 @@ pub(super) fn solver_from_section(
         newmark_gamma,
         newmark_variant,
     } = s;
-    let number = |x: &Option<f64>| x.map(|v| v.to_string());
+    let number = |x: &Option<f64>| x.map(crate::format::shortest);
     let family_keys: [(&str, Option<String>, Family); 6] = [
         ("rtol", number(rtol), Family::Adaptive),
         ("atol", number(atol), Family::Adaptive),
