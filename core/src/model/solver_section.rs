@@ -133,7 +133,7 @@ pub(super) fn solver_from_section(
         newmark_gamma,
         newmark_variant,
     } = s;
-    let number = |x: &Option<f64>| x.map(crate::format::shortest);
+    let number = |x: &Option<f64>| x.map(crate::base::format::shortest);
     let family_keys: [(&str, Option<String>, Family); 6] = [
         ("rtol", number(rtol), Family::Adaptive),
         ("atol", number(atol), Family::Adaptive),
