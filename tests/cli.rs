@@ -1250,12 +1250,11 @@ fn a_set_method_is_refused_as_the_same_method_written_in_the_file() {
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
 }
 
-/// A relative record path is read from the directory of the model file as its path is given:
-/// through a linked file, from the link's directory; after a linked directory, `..` leads where
-/// the path says (before, the message named the file the path says while the one in the link's
-/// target was read).
+/// A relative record path is read from the directory of the model file: through a link to the
+/// file, from beside the file it leads to (a model and its record stay a pair); after a linked
+/// directory, `..` leads where the path says.
 #[test]
-fn a_record_path_is_read_from_the_model_path_as_given() {
+fn a_record_path_is_read_beside_the_model_file() {
     let dir = common::scratch_dir("cli-record-links");
     let record = "t,acc\n0,0\n0.01,0.5\n0.02,0\n0.03,-0.5\n0.04,0\n";
     let model = |path: &str| {
@@ -1264,11 +1263,11 @@ fn a_record_path_is_read_from_the_model_path_as_given() {
              [excitation]\nkind = \"record\"\npath = \"{path}\"\nunits = \"m/s2\"\ntail = 0.1\n"
         )
     };
-    // A linked file: a/link.toml -> ../b/model.toml, the record beside the link only.
+    // A linked file: a/link.toml -> ../b/model.toml, the record beside the target only.
     for sub in ["a", "b", "real/deep", "records"] {
         std::fs::create_dir_all(dir.join(sub)).unwrap();
     }
-    std::fs::write(dir.join("a/r.csv"), record).unwrap();
+    std::fs::write(dir.join("b/r.csv"), record).unwrap();
     std::fs::write(dir.join("b/model.toml"), model("r.csv")).unwrap();
     std::os::unix::fs::symlink("../b/model.toml", dir.join("a/link.toml")).unwrap();
     // A linked directory: linked -> real/deep, the record in records/ beside the link, none in
@@ -1276,7 +1275,7 @@ fn a_record_path_is_read_from_the_model_path_as_given() {
     std::fs::write(dir.join("records/r.csv"), record).unwrap();
     std::fs::write(dir.join("real/deep/model.toml"), model("../records/r.csv")).unwrap();
     std::os::unix::fs::symlink("real/deep", dir.join("linked")).unwrap();
-    // Each record exists only where the path as given leads.
+    // Each record exists only where the rule leads.
     for model in ["a/link.toml", "linked/model.toml"] {
         let out = dir.join(format!("out-{}", model.replace('/', "-")));
         let o = common::run_model(&dir.join(model), &out, &[]);

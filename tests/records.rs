@@ -283,6 +283,37 @@ fn shipped_scenarios_run() {
     }
 }
 
+/// A model reached through a symbolic link reads its record beside the file it links to, as
+/// when it is opened where it lies: the same record, the same motion.
+#[cfg(unix)]
+#[test]
+fn a_model_through_a_link_reads_its_record_beside_the_file_it_links_to() {
+    let dir = common::scratch_dir("rec-link");
+    let link = dir.join("link.toml");
+    std::os::unix::fs::symlink(repo("models/elcentro1940.toml"), &link).unwrap();
+    let by_link = Model::load(&link, &Overrides::default()).expect("the linked model loads");
+    let direct = Model::load(&repo("models/elcentro1940.toml"), &Overrides::default()).unwrap();
+    let (a, b) = (by_link.floor.recorded(), direct.floor.recorded());
+    assert_eq!(
+        a.map(|r| r.values().to_vec()),
+        b.map(|r| r.values().to_vec())
+    );
+    // The command line likewise, from the link's own folder.
+    let out = dir.join("out");
+    let o = common::flexrock_in(
+        &dir,
+        &[
+            "run",
+            "link.toml",
+            "--duration",
+            "0.5",
+            "--out",
+            out.to_str().unwrap(),
+        ],
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+}
+
 /// A fixture of tests/data/records (synthetic records of known samples, one per format and
 /// unit), copied into `dir`.
 fn fixture(dir: &Path, name: &str) -> PathBuf {

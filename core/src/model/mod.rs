@@ -590,7 +590,10 @@ impl Model {
     pub fn load(path: &Path, overrides: &Overrides) -> Result<Model> {
         let text = read_model_text(path)?;
         let file = parse_model_text(&text, &overrides.settings, path)?;
-        let base_dir = path.parent().unwrap_or(Path::new("."));
+        let linked = setting::linked_dir(path);
+        let base_dir = linked
+            .as_deref()
+            .unwrap_or_else(|| path.parent().unwrap_or(Path::new(".")));
         let mut model = Model::from_file(file, overrides, base_dir).map_err(|e| match e {
             // A value set from outside the file is not the file's fault: the error names its
             // key alone, and the caller names it as it was given.

@@ -80,7 +80,10 @@ impl RowModel {
     /// Reads and validates a row model file; `duration` overrides `simulation.duration`.
     pub fn load(path: &Path, duration: Option<f64>) -> Result<RowModel> {
         let text = read_model_text(path)?;
-        let base_dir = path.parent().unwrap_or(Path::new("."));
+        let linked = super::setting::linked_dir(path);
+        let base_dir = linked
+            .as_deref()
+            .unwrap_or_else(|| path.parent().unwrap_or(Path::new(".")));
         let mut model = RowModel::from_text(&text, path, base_dir, duration).map_err(|e| {
             match e {
                 e @ (Error::ParseModel { .. } | Error::ReadModel { .. }) => e,

@@ -118,9 +118,23 @@ impl Setting {
 /// `here` itself for a model given as text.
 pub fn model_dir(here: &Path, model: Option<&Path>) -> PathBuf {
     match model {
-        Some(model) => here.join(model.parent().unwrap_or(Path::new(""))),
+        Some(model) => linked_dir(&here.join(model))
+            .unwrap_or_else(|| here.join(model.parent().unwrap_or(Path::new("")))),
         None => here.to_path_buf(),
     }
+}
+
+/// The folder of the file a symbolic link `path` leads to, where a model reached through a link
+/// reads its record paths (as it does when opened where it lies). None for a path that is not
+/// a link: its own folder, as given, is the model's.
+pub(crate) fn linked_dir(path: &Path) -> Option<PathBuf> {
+    let link = std::fs::symlink_metadata(path)
+        .ok()?
+        .file_type()
+        .is_symlink();
+    link.then(|| std::fs::canonicalize(path).ok())
+        .flatten()
+        .and_then(|real| real.parent().map(Path::to_path_buf))
 }
 
 pub(crate) fn normalised(path: &Path) -> PathBuf {
