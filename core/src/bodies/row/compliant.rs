@@ -32,7 +32,7 @@ use super::{ContactLaw, ContactSample, ContactState, Row, RowSolution};
 use crate::floor::FloorMotion;
 use crate::integrate::adaptive::{at_stop, snap_to_stop};
 use crate::integrate::budget::RunBudget;
-use crate::integrate::exact::scan::ulp;
+use crate::integrate::exact::rounding::ulp;
 use crate::integrate::solution::{Recorder, SolverStats};
 use crate::integrate::{History, OutputGrid, SolverError};
 use crate::physics::automaton::{Automaton, EventKind, Guard, Mode};

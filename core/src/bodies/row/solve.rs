@@ -35,6 +35,7 @@ use super::{
     StickStretch,
 };
 use crate::integrate::exact::flow::{Flow, Point, STEADY_BOUND_GAIN};
+use crate::integrate::exact::rounding;
 use crate::integrate::exact::scan::{self, first_crossing, ScanError, Smooth, Watch};
 use crate::integrate::exact::{ExactSettings, Planned, Run, NAME};
 use crate::physics::automaton::{Automaton, EventKind, Guard, LinearForm, Mode};
@@ -608,7 +609,7 @@ impl<'a> RowRun<'a> {
             if std::mem::take(&mut self.fresh_rounding[c]) {
                 // As many ulps of the terms the two flows sum, where those are larger.
                 let (ulps, below) = self.gap_rounding(c);
-                let flows = GAP_ROUNDING_ULPS * scan::ulp(terms);
+                let flows = GAP_ROUNDING_ULPS * rounding::ulp(terms);
                 if flows > ulps {
                     self.rounding[c] = Some(flows + below);
                     self.fall[c] = flows;
@@ -640,9 +641,9 @@ impl<'a> RowRun<'a> {
                     ),
                 ));
             }
-            let rounding = gap.allowance + below + GAP_ROUNDING_ULPS * scan::ulp(size);
+            let rounding = gap.allowance + below + GAP_ROUNDING_ULPS * rounding::ulp(size);
             self.rounding[c] = Some(rounding);
-            self.fall[c] = GAP_ROUNDING_ULPS * scan::ulp(size);
+            self.fall[c] = GAP_ROUNDING_ULPS * rounding::ulp(size);
             self.widest_rounding[c] = self.widest_rounding[c].max(rounding);
         }
         Ok(())
@@ -847,7 +848,7 @@ impl<'a> RowRun<'a> {
         let (left, right) = (self.runs[c].state(), self.runs[c + 1].state());
         let (left, right) = ((left.1, left.2), (right.1, right.2));
         let contact = &self.row.contacts()[c];
-        let rounding = GAP_ROUNDING_ULPS * scan::ulp(contact.gap_size(automata, left, right));
+        let rounding = GAP_ROUNDING_ULPS * rounding::ulp(contact.gap_size(automata, left, right));
         (rounding, (-contact.gap(automata, left, right)).max(0.0))
     }
 
@@ -1002,7 +1003,7 @@ impl<'a> RowRun<'a> {
             let automaton = self.runs[i].automaton();
             loss += automaton.body_kinetic_energy(mode, v.value())
                 - automaton.body_kinetic_energy(mode, after.value());
-            let error = 2.0 * scan::ulp(t) + SIMULTANEOUS * t.max(1.0);
+            let error = 2.0 * rounding::ulp(t) + SIMULTANEOUS * t.max(1.0);
             self.runs[i]
                 .impact(after, error, &mut self.budgets[i])
                 .map_err(|e| in_column(i, e))?;

@@ -28,13 +28,12 @@ use std::f64::consts::PI;
 use crate::floor::{ClosedForm, Shape, MAX_DEGREE};
 use crate::physics::automaton::LinearForm;
 
+use super::equation::{by_the_equation, SERIES_REACH};
 use super::step::Propagator;
 
 /// Terms of the series form: with rho = max(|k|^(1/2), |c|) tau <= 1/2 the first term left
 /// out is below 0.5^30 / 15! of the state, far below rounding.
 const SERIES_TERMS: usize = 30;
-/// Largest rho = max(|k|^(1/2), |c|, forcing rate) tau of a flow of the series form.
-pub(crate) const SERIES_REACH: f64 = 0.5;
 /// Largest growth exponent (|sigma| + mu) tau of a flow of the oscillator form before it is
 /// re-anchored: e^30 keeps every term far from overflow.
 const OSCILLATOR_REACH: f64 = 30.0;
@@ -185,13 +184,6 @@ impl Series {
         let lo3 = next_coefficient(0.0, k, c, 1, v.lo, lo2);
         [x.hi + x.lo, v.hi + v.lo, hi2 + lo2, hi3 + lo3]
     }
-}
-
-/// x'' and x''' from the mode's equation x'' + c x' + k x = f at a point, given f and f' there.
-#[inline(always)]
-pub(crate) fn by_the_equation(k: f64, c: f64, [f, df]: [f64; 2], x: f64, v: f64) -> (f64, f64) {
-    let acc = f - k * x - c * v;
-    (acc, df - k * v - c * acc)
 }
 
 /// The series' recurrence, a_(n+2) = (f_n - k a_n - c (n+1) a_(n+1)) / ((n+1)(n+2)).

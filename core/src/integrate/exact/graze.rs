@@ -28,7 +28,12 @@ use crate::floor::FloorMotion;
 use crate::integrate::solution::{Graze, RoundingEstimate, Solution};
 use crate::physics::automaton::{Automaton, EventKind, Guard};
 
-use super::{ESTIMATE_SAFETY, SHADOW_RUNS};
+/// Safety factor on the first-order error estimate.
+pub(crate) const ESTIMATE_SAFETY: f64 = 4.0;
+
+/// Runs that estimate the error of a run with a history.
+pub const SHADOW_RUNS: usize = 2;
+const _: () = assert!(SHADOW_RUNS == 2, "solve runs two shadow runs");
 
 /// Share of a guard's level within which a run books an approach to it: far beyond any run's
 /// rounding (a run whose q is that uncertain logs other sequences of events in its shadow runs).

@@ -46,10 +46,12 @@
 //! sample, its pieces take those forms and the factors that turn them into work without
 //! searching for them again (`SampleBooks`), to the same bits.
 
+pub(crate) mod equation;
 pub(crate) mod flow;
 pub(crate) mod graze;
 pub(crate) mod kept;
 pub(crate) mod oscillator;
+pub(crate) mod rounding;
 pub(crate) mod scan;
 pub(crate) mod step;
 pub(crate) mod work;
@@ -66,7 +68,8 @@ use crate::integrate::{History, InitialState, OutputGrid, SolverError};
 use crate::physics::automaton::{Automaton, EventKind, Guard, LinearForm, Mode};
 
 use flow::{Flow, Point};
-use graze::{Approach, Kick};
+pub use graze::SHADOW_RUNS;
+use graze::{Approach, Kick, ESTIMATE_SAFETY};
 use scan::{first_crossing, ScanError, Watch};
 use step::StepCache;
 use work::FormCache;
@@ -80,9 +83,6 @@ pub struct ExactSettings {
     /// Spacing of the sampled history, s.
     pub output_dt: f64,
 }
-
-/// Safety factor on the first-order error estimate.
-const ESTIMATE_SAFETY: f64 = 4.0;
 
 /// Solves the automaton exactly from `initial` over [0, duration].
 ///
@@ -225,10 +225,6 @@ fn beside<A, B>(main: impl FnOnce() -> A, aside: impl FnOnce() -> B) -> (A, B) {
 /// those of three modes, [`step::KEPT`] recurrences.
 const OFFSETS_KEPT: usize = 3;
 
-/// Runs that estimate the error of a run with a history.
-pub const SHADOW_RUNS: usize = 2;
-const _: () = assert!(SHADOW_RUNS == 2, "solve runs two shadow runs");
-
 /// Adds to `estimate` the safety factor times the distance of the shadow run from the run.
 /// From the first event whose kind differs (or that one run lacks) on, the event sequence itself
 /// is not robust to rounding, and the estimate is the whole duration; returns that event's
@@ -338,8 +334,8 @@ impl Top {
         let best = Candidate {
             t: 0.0,
             q: q0,
-            error: 0.5 * scan::ulp(q0),
-            t_error: scan::ulp(duration),
+            error: 0.5 * rounding::ulp(q0),
+            t_error: rounding::ulp(duration),
         };
         Top {
             sign,
@@ -975,7 +971,7 @@ impl<'a> Run<'a> {
         } else {
             self.speed
         };
-        let t_error = t_error + 2.0 * scan::ulp(p.t) + self.carried;
+        let t_error = t_error + 2.0 * rounding::ulp(p.t) + self.carried;
         let error_q = error_q
             + 4.0 * f64::EPSILON * (p.q.abs() + flow.equilibrium().abs())
             + free_speed.max(p.v.abs()) * self.carried;
@@ -1071,7 +1067,8 @@ impl<'a> Run<'a> {
         // Forms for a piece of the grid's spacing are built at the spacing itself (not at this
         // span, which differs from it by the rounding of the grid's times), so that they, and
         // the integrals they give, do not depend on which span came first.
-        let nominal = (sample && work::near(span, spacing, end.t)).then(|| spacing / pieces as f64);
+        let nominal =
+            (sample && rounding::near(span, spacing, end.t)).then(|| spacing / pieces as f64);
         let (a, mode) = (self.automaton, self.mode);
         let (mut force_work, mut square) = (0.0, 0.0);
         let mut start = self.work.start;
@@ -1190,7 +1187,7 @@ impl<'a> Run<'a> {
         let span = end.t - self.work.t;
         // (The general path's count of pieces, and the forms' test of a length.)
         let whole = work_pieces(span, books.rate) == 1;
-        if !(span > 0.0 && whole && work::near(span, forms.length(), end.t)) {
+        if !(span > 0.0 && whole && rounding::near(span, forms.length(), end.t)) {
             return false;
         }
         let data = flow.work_data::<{ work::FORM_LEN }>(end, force);
@@ -1265,7 +1262,7 @@ impl<'a> Run<'a> {
                 error_q + ESTIMATE_SAFETY * level_error(&guard, flow),
                 p.v.abs(),
                 -deceleration,
-            ) + 2.0 * scan::ulp(p.t);
+            ) + 2.0 * rounding::ulp(p.t);
             // The earlier events' shift of time.
             self.speed = self.speed.max(p.v.abs());
             self.event_errors.push(crossing_time + self.carried);
@@ -1281,7 +1278,7 @@ impl<'a> Run<'a> {
         let (q_found, v_found) = flow.state_at_event(p.t);
         let rest = (Dd::exact(guard.level) - q_found).value() / v_found.value();
         // The search stops within a few ulps of the crossing; more would be no rest of it.
-        let rest = if rest.abs() <= 16.0 * scan::ulp(p.t) {
+        let rest = if rest.abs() <= 16.0 * rounding::ulp(p.t) {
             rest
         } else {
             0.0

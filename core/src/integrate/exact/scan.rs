@@ -21,6 +21,7 @@
 use crate::physics::automaton::Guard;
 
 use super::flow::{Flow, Point};
+use super::rounding::ulp;
 
 /// A smooth function of time searched for crossings: q along one flow, or the gap between two
 /// columns of a row along theirs. Its [`Point`]s hold the value and three derivatives.
@@ -285,10 +286,4 @@ fn refine<F: Smooth>(
         }
     }
     Ok(best)
-}
-
-/// The spacing of doubles at |t|.
-pub(crate) fn ulp(t: f64) -> f64 {
-    let t = t.abs().max(f64::MIN_POSITIVE);
-    f64::from_bits(t.to_bits() + 1) - t
 }

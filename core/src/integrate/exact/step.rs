@@ -23,9 +23,9 @@
 //! of t). That sliver, of length d, is added by the Taylor step d x' + d^2/2 x'' (and d x'' +
 //! d^2/2 x''' for x'), whose remainder, of the order of d^3, lies below 1e-40 of the state.
 
-use super::flow::{by_the_equation, SERIES_REACH};
+use super::equation::{by_the_equation, SERIES_REACH};
 use super::kept::Kept;
-use super::work::near;
+use super::rounding::near;
 use crate::base::double_double::{fused, two_product, two_sum, DoubleDouble as Dd};
 
 /// Propagators kept at once: a run meets at most three modes' forms (before uplift and rocking

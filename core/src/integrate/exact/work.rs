@@ -20,15 +20,12 @@
 
 use super::flow::{Flow, WorkKey, RECIPROCALS, WORK_TERMS};
 use super::kept::Kept;
+use super::rounding::near;
 
 /// Largest data of a flow whose work integrals are kept as quadratic forms: x, x' and a cubic's
 /// four coefficients (the ramp; a record's pieces are linear and a sinusoid has f and f'). The
 /// Ricker wavelet's pieces of degree 18 are integrated as series, piece by piece.
 pub(crate) const FORM_LEN: usize = 6;
-
-/// Units in the last place of the piece's end time (the rounding of the grid's times) and of
-/// h by which a piece may be longer or shorter than the length the forms were built for.
-const LENGTH_ULPS: f64 = 4.0;
 
 /// Forms kept at once: a run goes back and forth between its modes (before uplift and
 /// rocking), and between kinds of forcing (the ramp's cubic, then the sine).
@@ -161,12 +158,6 @@ impl WorkForms {
         let (force, square) = (form(&self.force, 2), form(&self.square, 0));
         (force, square)
     }
-}
-
-/// Whether a piece of length `h` ending at `t` has the length `length` but for the rounding of
-/// the grid's times.
-pub(crate) fn near(h: f64, length: f64, t: f64) -> bool {
-    (h - length).abs() <= LENGTH_ULPS * (super::scan::ulp(t) + f64::EPSILON * length)
 }
 
 /// sum over i, j of a_i b_j / (i + j + 1): the integral over [0, 1] of the product of the
