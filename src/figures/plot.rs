@@ -911,8 +911,13 @@ impl Layout {
         };
         // Vertical parts: per row a panel label line, the plotting area, and (unless shared)
         // an x axis of tick labels and its label.
+        // A lone panel's title, drawn above it, needs its own line too (else it runs into the
+        // legend).
+        let titled = figure.panels.iter().any(|p| !p.title.is_empty());
         let label_h = if labelled {
             pt(PANEL_PT) * 1.15 + pt(TICK_PT) * 0.5
+        } else if titled {
+            pt(LABEL_PT) * 1.15 + pt(TICK_PT) * 0.6
         } else {
             pt(TICK_PT) * 0.6
         };
