@@ -7,7 +7,7 @@ from typing import Any, Dict, Iterator, List, Union
 
 import numpy as np
 
-from ._sweep import _typed
+from ._sweep import _frame, _typed
 
 
 class Records:
@@ -108,19 +108,7 @@ class Records:
             import pandas as pd
         except ImportError:
             raise ImportError("Records.to_pandas() needs pandas: pip install pandas") from None
-        data = {}
-        for name, kind, (array, mask) in zip(self._columns, self._kinds, self._data):
-            if kind == "str":
-                data[name] = pd.array(array, dtype="string")
-            elif mask is not None and kind == "int":
-                data[name] = pd.arrays.IntegerArray(array.copy(), mask.copy())
-            elif mask is not None and kind == "bool":
-                data[name] = pd.arrays.BooleanArray(array.copy(), mask.copy())
-            elif mask is not None:
-                data[name] = np.where(mask, np.nan, array)
-            else:
-                data[name] = array
-        return pd.DataFrame(data, columns=self._columns)
+        return _frame(pd, self._columns, self._kinds, self._data)
 
     def __repr__(self) -> str:
         return f"Records({len(self)} rows; columns {', '.join(self._columns)})"

@@ -32,6 +32,24 @@ def _typed(kind: str, values: Any, missing: Any = None) -> Tuple[np.ndarray, Opt
     return filled, (absent if absent.any() else None)
 
 
+def _frame(pd: Any, columns: List[str], kinds: List[str], data: List[Any]) -> Any:
+    """Typed columns (as `_typed` gives them) as a pandas DataFrame: int and bool columns with
+    a missing value in pandas' nullable dtypes, text as "string", missing floats as NaN."""
+    frame = {}
+    for name, kind, (array, mask) in zip(columns, kinds, data):
+        if kind == "str":
+            frame[name] = pd.array(array, dtype="string")
+        elif mask is not None and kind == "int":
+            frame[name] = pd.arrays.IntegerArray(array.copy(), mask.copy())
+        elif mask is not None and kind == "bool":
+            frame[name] = pd.arrays.BooleanArray(array.copy(), mask.copy())
+        elif mask is not None:
+            frame[name] = np.where(mask, np.nan, array)
+        else:
+            frame[name] = array
+    return pd.DataFrame(frame, columns=columns)
+
+
 class SweepResult:
     """The result of `flexrock.sweep`: one row per point, the columns of ``sweep.csv``.
 
@@ -135,17 +153,7 @@ class SweepResult:
             import pandas as pd
         except ImportError:
             raise ImportError("SweepResult.to_pandas() needs pandas: pip install pandas") from None
-        data = {}
-        for name, kind, (array, mask) in zip(self._columns, self._kinds, self._data):
-            if kind == "str":
-                data[name] = pd.array(array, dtype="string")
-            elif mask is not None and kind == "int":
-                data[name] = pd.arrays.IntegerArray(array.copy(), mask.copy())
-            elif mask is not None and kind == "bool":
-                data[name] = pd.arrays.BooleanArray(array.copy(), mask.copy())
-            else:
-                data[name] = array
-        return pd.DataFrame(data, columns=self._columns)
+        return _frame(pd, self._columns, self._kinds, self._data)
 
     def to_xarray(self):
         """The table as an xarray Dataset with one dimension per axis.
