@@ -4,7 +4,7 @@ use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
 
-use super::{BodySection, ExcitationSection};
+use super::schema::{BodySection, ExcitationSection};
 use crate::error::{Error, Result};
 use crate::floor::record::{read_record_named, Record, RecordFormat};
 use crate::floor::{

@@ -2,7 +2,7 @@
 
 use serde::Serialize;
 
-use super::{FemOverrides, FemSection, ModelFile};
+use super::schema::{FemOverrides, FemSection, ModelFile};
 use crate::base::format::readable;
 use crate::bodies::fem::{
     check_run_size, BaseSupport, FemBody, FemSettings, SizeLimit, TimeScheme,

@@ -7,13 +7,13 @@ use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
+use super::body_section::{body_from_section, check_stands_up};
 use super::excitation_section::{floor_from_section, RecordCache};
+use super::read::{parse_table, read_model_text, MODEL_TEXT};
+use super::schema::{BodySection, ExcitationSection, SimulationSection, SolverSection};
+use super::simulation_section::{initial_from_section, run_duration};
 use super::solver_section::solver_from_section;
 use super::solver_section::{check_atol, check_rtol};
-use super::{
-    body_from_section, check_stands_up, initial_from_section, parse_table, read_model_text,
-    BodySection, ExcitationSection, SimulationSection, SolverSection, MODEL_TEXT,
-};
 use crate::bodies::row::{ColumnSpec, CompliantSettings, Row, DEFAULT_TOLERANCE, METHOD};
 use crate::error::{Error, Result};
 use crate::floor::FloorMotion;
@@ -69,11 +69,6 @@ pub struct RowModel {
     pub settings: ExactSettings,
     /// The compliant law's integration settings; None under the impact law.
     pub compliant: Option<CompliantSettings>,
-}
-
-/// True when a model file's table describes a row (it has a `[row]` table).
-pub fn is_row_table(table: &toml::Table) -> bool {
-    table.contains_key("row")
 }
 
 impl RowModel {
@@ -269,7 +264,7 @@ impl RowModel {
             None => row,
         };
         let (floor, natural_duration) = floor_from_section(&excitation, base_dir, records)?;
-        let duration = super::run_duration(
+        let duration = run_duration(
             duration.or(simulation.duration),
             natural_duration,
             &excitation,

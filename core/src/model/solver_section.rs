@@ -1,6 +1,6 @@
 //! Rules of the `[solver]` section: the adaptive methods' tolerances and Newmark's step.
 
-use super::{SolverSection, DEFAULT_ATOL, DEFAULT_OUTPUT_DT, DEFAULT_RTOL};
+use super::schema::{SolverSection, DEFAULT_ATOL, DEFAULT_OUTPUT_DT, DEFAULT_RTOL};
 use crate::error::{Error, Result};
 use crate::integrate::adaptive::{AdaptiveMethod, AdaptiveSettings};
 use crate::integrate::exact::ExactSettings;

@@ -6,12 +6,19 @@
 
 use std::path::Path;
 
-use super::{
-    BodySection, ExcitationSection, FemSection, ModelFile, Setting, SimulationSection,
-    SolverSection, DEFAULT_ATOL, DEFAULT_DAMPING_RATIO, DEFAULT_DEPTH, DEFAULT_FEM_DT,
-    DEFAULT_FEM_MU_K, DEFAULT_FEM_MU_S, DEFAULT_FEM_NX, DEFAULT_FEM_NY, DEFAULT_FEM_THETA,
-    DEFAULT_GRAVITY, DEFAULT_NEWMARK_BETA, DEFAULT_NEWMARK_DT, DEFAULT_NEWMARK_GAMMA,
-    DEFAULT_OUTPUT_DT, DEFAULT_POISSON_RATIO, DEFAULT_RTOL,
+use super::fem_section::{
+    DEFAULT_FEM_DT, DEFAULT_FEM_MU_K, DEFAULT_FEM_MU_S, DEFAULT_FEM_NX, DEFAULT_FEM_NY,
+    DEFAULT_FEM_THETA, DEFAULT_POISSON_RATIO,
+};
+use super::read::read_schema;
+use super::schema::{
+    BodySection, ExcitationSection, FemSection, ModelFile, SimulationSection, SolverSection,
+    DEFAULT_ATOL, DEFAULT_DAMPING_RATIO, DEFAULT_DEPTH, DEFAULT_GRAVITY, DEFAULT_OUTPUT_DT,
+    DEFAULT_RTOL,
+};
+use super::setting::{check_key, Setting};
+use super::solver_section::{
+    default_method, DEFAULT_NEWMARK_BETA, DEFAULT_NEWMARK_DT, DEFAULT_NEWMARK_GAMMA,
 };
 use crate::error::{Error, Result};
 
@@ -23,7 +30,7 @@ pub fn effective_table(
     settings: &[Setting],
     source: &Path,
 ) -> Result<toml::Table> {
-    super::read_schema(table, settings, source)?;
+    read_schema(table, settings, source)?;
     let mut out = table.clone();
     for setting in settings {
         setting.apply(&mut out)?;
@@ -128,7 +135,7 @@ pub fn default_value(key: &str) -> Option<toml::Value> {
 /// core's default, else None. A key the schema does not know is an error naming it, with the
 /// closest known key.
 pub fn value_in_effect(table: &toml::Table, key: &str) -> Result<Option<toml::Value>> {
-    super::check_key(key).map_err(|rule| Error::invalid("key", key, &rule))?;
+    check_key(key).map_err(|rule| Error::invalid("key", key, &rule))?;
     let keys = schema_keys();
     if !keys.iter().any(|k| k == key) {
         let hint = match crate::base::suggest::closest(key, keys.iter().map(String::as_str)) {
@@ -154,7 +161,7 @@ pub fn value_in_effect(table: &toml::Table, key: &str) -> Result<Option<toml::Va
             .and_then(toml::Value::as_table)
             .is_some_and(|t| t.contains_key("rtol") || t.contains_key("atol"));
         return Ok(Some(toml::Value::String(
-            super::solver_section::default_method(gives_tolerance).to_string(),
+            default_method(gives_tolerance).to_string(),
         )));
     }
     Ok(given.or_else(|| default_value(key)))
