@@ -52,7 +52,7 @@ pub fn read_model_text(path: &Path) -> Result<String> {
 }
 
 /// A model file's text and its TOML table, as written (the schema is checked by
-/// [`read_schema`]); the file is read as [`Model::load`] reads it (a regular file of at most
+/// [`read_schema`]); the file is read as [`Model::load`](super::Model::load) reads it (a regular file of at most
 /// [`MAX_MODEL_FILE_BYTES`]).
 pub fn read_model_table(path: &Path) -> Result<(String, toml::Table)> {
     let text = read_model_text(path)?;

@@ -19,7 +19,7 @@ pub struct ModelFile {
     #[serde(default)]
     /// The `[solver]` table (optional).
     pub solver: SolverSection,
-    /// Settings of `flexrock fem` (optional; see [`Model::fem_with`]).
+    /// Settings of `flexrock fem` (optional; see [`Model::fem_with`](super::Model::fem_with)).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub fem: Option<FemSection>,
 }
