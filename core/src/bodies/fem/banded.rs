@@ -6,7 +6,7 @@
 //! LDLᵀ needs no positive definiteness, only non-zero pivots: the tangent stiffness with the
 //! gravity prestress is indefinite once the body rocks on one toe, and the pushover solves it.
 
-use super::FemError;
+use super::error::FemError;
 
 /// Symmetric matrix holding only its lower band: entry (i, j), `i - hb <= j <= i`.
 #[derive(Debug, Clone)]

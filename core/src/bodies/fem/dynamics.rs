@@ -3,13 +3,14 @@
 use std::collections::HashMap;
 use std::f64::consts::PI;
 
+use super::assembly::Assembly;
 use super::banded::{BandedLdl, BandedSym};
-use super::model::Model;
-use super::{
-    critical_time_step, decompose, highest_frequency_of, validate_body, validate_settings,
-    ContactEvent, ContactState, FemBody, FemError, FemResult, FemSettings, FemStep, Snapshot,
-    TimeScheme,
-};
+use super::body::{validate_body, FemBody};
+use super::decomposition::decompose;
+use super::error::FemError;
+use super::frequencies::{critical_time_step, highest_frequency_of};
+use super::results::{ContactEvent, ContactState, FemResult, FemStep, Snapshot};
+use super::settings::{validate_settings, FemSettings, TimeScheme};
 
 /// Most friction re-solves within one step.
 const FRICTION_ITERATIONS: usize = 10;
@@ -31,7 +32,7 @@ pub fn simulate_fem(
 ) -> Result<FemResult, FemError> {
     validate_body(body)?;
     validate_settings(settings)?;
-    let model = Model::build(body, settings.nx, settings.ny)?;
+    let model = Assembly::build(body, settings.nx, settings.ny)?;
     let omega_max = highest_frequency_of(&model)?;
     let mut run = Run::new(&model, body, settings, floor_acc)?;
     let mut result = FemResult {
@@ -98,7 +99,7 @@ impl StepRule {
 }
 
 struct Run<'a> {
-    model: &'a Model,
+    model: &'a Assembly,
     settings: &'a FemSettings,
     floor_acc: &'a dyn Fn(f64) -> f64,
     rule: StepRule,
@@ -127,7 +128,7 @@ struct Run<'a> {
 
 impl<'a> Run<'a> {
     fn new(
-        model: &'a Model,
+        model: &'a Assembly,
         body: &FemBody,
         settings: &'a FemSettings,
         floor_acc: &'a dyn Fn(f64) -> f64,

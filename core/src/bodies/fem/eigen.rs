@@ -8,7 +8,7 @@
 use nalgebra::{DMatrix, SymmetricEigen};
 
 use super::banded::{BandedLdl, BandedSym};
-use super::FemError;
+use super::error::FemError;
 
 /// Free-dof count above which subspace iteration finds the lowest modes.
 pub(crate) const DENSE_LIMIT: usize = 1200;

@@ -10,7 +10,7 @@
 
 use nalgebra::{Matrix2, Matrix3, SMatrix, Vector3};
 
-use super::FemError;
+use super::error::FemError;
 
 pub(crate) type Matrix8 = SMatrix<f64, 8, 8>;
 type Matrix3x8 = SMatrix<f64, 3, 8>;

@@ -2,12 +2,14 @@
 
 use std::collections::HashMap;
 
+use super::assembly::Assembly;
 use super::banded::{BandedLdl, BandedSym};
-use super::model::Model;
-use super::{
-    cantilever_mode, decompose, invalid, validate_body, validate_mesh, BaseSupport, FemBody,
-    FemError, Pushover, PushoverPoint,
-};
+use super::body::{validate_body, BaseSupport, FemBody};
+use super::decomposition::decompose;
+use super::error::{invalid, FemError};
+use super::limits::validate_mesh;
+use super::results::{Pushover, PushoverPoint};
+use crate::physics::constants::cantilever_mode;
 
 /// Displacement-controlled static pushover from the gravity state.
 ///
@@ -30,7 +32,7 @@ pub fn pushover(
     if let Some(q) = top_displacements.iter().find(|q| !q.is_finite()) {
         return Err(invalid("top_displacements", q, "must be finite"));
     }
-    let model = Model::build(body, nx, ny)?;
+    let model = Assembly::build(body, nx, ny)?;
     let mut problem = ContactProblem::new(body, &model, p_delta);
     let base_nodes = problem.base_nodes;
     let mut contact: Vec<bool> = (0..base_nodes)
@@ -91,7 +93,7 @@ pub fn pushover(
 /// load pattern of one mesh, and the factorised tangents of the contact sets tried so far.
 struct ContactProblem<'a> {
     body: &'a FemBody,
-    model: &'a Model,
+    model: &'a Assembly,
     /// Degrees of freedom of the mesh.
     n: usize,
     base_nodes: usize,
@@ -108,7 +110,7 @@ struct ContactProblem<'a> {
 }
 
 impl<'a> ContactProblem<'a> {
-    fn new(body: &'a FemBody, model: &'a Model, p_delta: bool) -> Self {
+    fn new(body: &'a FemBody, model: &'a Assembly, p_delta: bool) -> Self {
         let mesh = &model.mesh;
         let n = mesh.dof_count();
         let pattern: Vec<f64> = (0..n)
@@ -134,7 +136,7 @@ impl<'a> ContactProblem<'a> {
             // compliance: that much is not a gap or a penetration
             penetration_tolerance: match body.base {
                 BaseSupport::Flexible => 1e-12 * body.height,
-                BaseSupport::RigidPlate => Model::plate_compliance_gap(body),
+                BaseSupport::RigidPlate => Assembly::plate_compliance_gap(body),
             },
             factors: HashMap::new(),
         }

@@ -4,10 +4,11 @@ use std::f64::consts::PI;
 
 use nalgebra::{DMatrix, DVector, SMatrix, Vector3};
 
+use super::assembly::Assembly;
 use super::banded::{BandedLdl, BandedSym};
 use super::element::{plane_stress_matrix, Qm6};
-use super::model::Model;
 use super::*;
+use crate::physics::constants::cantilever_mode;
 
 const L: f64 = 1.875_104_068_711_961;
 const SIG: f64 = 0.734_095_513_758_9;
@@ -163,7 +164,7 @@ fn patch_test_distorted_two_element_patch() {
 fn gravity_reactions_sum_to_weight() {
     for (nx, ny) in [(2, 5), (8, 40)] {
         let body = FemBody::reference();
-        let model = Model::build(&body, nx, ny).unwrap();
+        let model = Assembly::build(&body, nx, ny).unwrap();
         let weight = body.mass() * body.gravity;
         let ry: f64 = model.static_reactions.iter().map(|r| r[1]).sum();
         let rx: f64 = model.static_reactions.iter().map(|r| r[0]).sum();
@@ -199,7 +200,7 @@ fn fixed_base_period_converges_to_cantilever() {
 #[test]
 fn iterative_eigen_solvers_agree_with_dense() {
     let body = FemBody::reference();
-    let model = Model::build(&body, 4, 20).unwrap();
+    let model = Assembly::build(&body, 4, 20).unwrap();
     let base = model.base_dof_count();
     let fixed: Vec<bool> = (0..model.mesh.dof_count()).map(|d| d < base).collect();
     let k = model.tangent(true);
@@ -238,7 +239,7 @@ fn stability_limit_is_linear_acceleration_bound() {
 #[test]
 fn highest_frequency_bounds_every_contact_state() {
     let body = FemBody::reference();
-    let model = Model::build(&body, 2, 5).unwrap();
+    let model = Assembly::build(&body, 2, 5).unwrap();
     let n = model.mesh.dof_count();
     let base = model.base_dof_count();
     let fixed: Vec<bool> = (0..n).map(|d| d < base).collect();

@@ -3,14 +3,14 @@
 use nalgebra::SMatrix;
 
 use super::banded::{BandedLdl, BandedSym};
+use super::body::{BaseSupport, FemBody};
 use super::element::{plane_stress_matrix, Qm6};
+use super::error::FemError;
 use super::mesh::Mesh;
-use super::FemError;
-use super::{BaseSupport, FemBody};
 
 /// The discretised body: lumped masses, elastic and geometric stiffness, gravity state.
 #[derive(Debug, Clone)]
-pub(crate) struct Model {
+pub(crate) struct Assembly {
     pub mesh: Mesh,
     /// Lumped mass of every dof (the node's mass on both its dofs), kg.
     pub mass: Vec<f64>,
@@ -27,7 +27,7 @@ pub(crate) struct Model {
     pub total_mass: f64,
 }
 
-impl Model {
+impl Assembly {
     pub fn build(body: &FemBody, nx: usize, ny: usize) -> Result<Self, FemError> {
         let mesh = Mesh::rectangle(body.width, body.height, nx, ny);
         let n = mesh.dof_count();
