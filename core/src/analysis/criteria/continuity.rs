@@ -4,7 +4,7 @@
 
 use serde::Serialize;
 
-use super::Point;
+use super::point::Point;
 
 /// One Young's modulus of one self-weight variant and slenderness: the largest |critical /
 /// rigid - 1| over the excitations where both overturned.

@@ -21,7 +21,7 @@
 
 use serde::Serialize;
 
-use super::Point;
+use super::point::Point;
 use crate::physics::rigid_criteria::{ishiyama_acceleration, ishiyama_velocity};
 
 /// A fitted point: (phi, s, value, fitted / value - 1).
