@@ -5,6 +5,7 @@
 use serde::Serialize;
 
 use crate::error::Result;
+use crate::floor::RecordedMotion;
 use crate::integrate::solution::{RoundingEstimate, Solution};
 use crate::integrate::{adaptive, exact, newmark};
 use crate::integrate::{History, SolverSettings};
@@ -201,7 +202,7 @@ pub const ENERGY_RESIDUAL_WARNING_SHARE: f64 = 1e-2;
 /// The warning of a model whose duration ends before its record does: the rest of the record
 /// is not applied. None where the record is applied whole (or there is none).
 pub fn record_truncation(model: &Model) -> Option<String> {
-    let record = model.floor.recorded()?;
+    let record = RecordedMotion::of(model.floor.as_ref())?;
     let end = record.end();
     // A duration within rounding of the record's end applies it whole.
     (model.duration < end * (1.0 - 1e-12)).then(|| {

@@ -24,7 +24,7 @@ fn motion_of(source: &Bound<'_, PyAny>) -> PyResult<(RecordedMotion, Option<f64>
     }
     if let Ok(model) = source.cast::<Model>() {
         let m = model.get().state().model;
-        return match m.floor.recorded() {
+        return match RecordedMotion::of(m.floor.as_ref()) {
             Some(record) => Ok((record.clone(), Some(m.constants.period))),
             None => Err(FlexrockError::new_err(format!(
                 "the model's excitation is kind = \"{}\", not a record: intensity measures are \

@@ -4,7 +4,8 @@ use std::f64::consts::PI;
 
 use serde::Serialize;
 
-use super::{ClosedForm, FloorMotion, Shape, MAX_DEGREE};
+use super::closed_form::{ClosedForm, Shape, MAX_DEGREE};
+use super::motion::FloorMotion;
 
 /// Shape of a [`SinePulse`] over its cycles.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]

@@ -2,7 +2,8 @@
 
 use serde::Serialize;
 
-use super::{ClosedForm, FloorMotion, Shape};
+use super::closed_form::{ClosedForm, Shape};
+use super::motion::FloorMotion;
 use crate::floor::record::RecordMeta;
 
 /// Floor acceleration given by samples a_k at t_k = k dt (k = 0..n-1, already in m/s^2 and
@@ -24,6 +25,12 @@ pub struct RecordedMotion {
 }
 
 impl RecordedMotion {
+    /// The recorded ground motion `floor` is, for its metadata and intensity measures; None for
+    /// the analytic motions.
+    pub fn of(floor: &dyn FloorMotion) -> Option<&RecordedMotion> {
+        (floor as &dyn std::any::Any).downcast_ref()
+    }
+
     /// `values` in m/s^2, first sample at t = 0.
     pub fn new(source: String, dt: f64, values: Vec<f64>) -> Self {
         let sample_times = (0..values.len()).map(|k| k as f64 * dt).collect();
@@ -73,9 +80,6 @@ impl RecordedMotion {
 }
 
 impl FloorMotion for RecordedMotion {
-    fn recorded(&self) -> Option<&RecordedMotion> {
-        Some(self)
-    }
     fn quiet_after(&self) -> Option<f64> {
         Some(self.end())
     }

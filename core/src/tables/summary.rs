@@ -3,6 +3,7 @@
 
 use serde::Serialize;
 
+use crate::floor::RecordedMotion;
 use crate::integrate::solution::{RoundingEstimate, Solution, SolverStats};
 use crate::integrate::{InitialState, SolverSettings};
 use crate::model::{Model, ModelFile};
@@ -115,7 +116,7 @@ pub fn summary<'a>(model: &'a Model, solution: &'a Solution) -> RunSummary<'a> {
 fn excitation_parameters(model: &Model) -> serde_json::Value {
     use crate::bodies::oscillator;
     let mut parameters = model.floor.parameters();
-    if let Some(record) = model.floor.recorded() {
+    if let Some(record) = RecordedMotion::of(model.floor.as_ref()) {
         let period = model.constants.period;
         if let Ok(measures) =
             oscillator::intensity_measures(record, period, oscillator::DEFAULT_DAMPING)

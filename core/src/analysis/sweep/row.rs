@@ -10,6 +10,7 @@ use crate::base::units::STANDARD_GRAVITY;
 use crate::bodies::oscillator;
 use crate::floor::intensity::{self, GroundMeasures};
 use crate::floor::record::RecordMeta;
+use crate::floor::RecordedMotion;
 use crate::integrate::solution::Solution;
 use crate::model::Model;
 use crate::physics::automaton::EventKind;
@@ -253,7 +254,7 @@ pub struct RecordCells {
 impl RecordCells {
     /// The record of a point's model (all empty for an analytic motion).
     pub fn of(model: &Model) -> RecordCells {
-        let Some(record) = model.floor.recorded() else {
+        let Some(record) = RecordedMotion::of(model.floor.as_ref()) else {
             return RecordCells::default();
         };
         RecordCells {

@@ -34,10 +34,13 @@
 //! mark are accepted.
 //!
 
-use super::{
-    check_dt, check_samples, numbered_lines, parse_number, quote, strip_byte_order_mark,
-    strip_prefix_ignore_case, unit_of, Location, NumberError, Quantity, Record, RecordError,
-    RecordMeta,
+use super::accelerogram::Record;
+use super::error::{Location, RecordError};
+use super::meta::{unit_of, Quantity, RecordMeta};
+use super::sampling::{check_dt, check_samples};
+use super::text::{
+    numbered_lines, parse_number, quote, strip_byte_order_mark, strip_prefix_ignore_case,
+    NumberError,
 };
 
 /// What the 4th line of an AT2 file must look like (used in messages).

@@ -30,10 +30,11 @@
 //! the data line's approximate seconds (to 1 s and 1 %), and exactly NPTS values. A second
 //! channel in the same file is refused.
 
-use super::{
-    check_dt, check_samples, numbered_lines, parse_number, quote, strip_byte_order_mark, unit_of,
-    Location, NumberError, Quantity, Record, RecordError, RecordMeta,
-};
+use super::accelerogram::Record;
+use super::error::{Location, RecordError};
+use super::meta::{unit_of, Quantity, RecordMeta};
+use super::sampling::{check_dt, check_samples};
+use super::text::{numbered_lines, parse_number, quote, strip_byte_order_mark, NumberError};
 
 /// A numbered line of the file.
 type Line<'a> = (usize, &'a str);

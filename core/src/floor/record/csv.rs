@@ -8,10 +8,11 @@
 //! that is the unit the file declares. `#` starts a comment that runs to the end of the line;
 //! blank lines are skipped.
 
-use super::{
-    check_dt, check_samples, dt_agrees, numbered_lines, parse_number, quote, strip_byte_order_mark,
-    Location, NumberError, Record, RecordError, RecordMeta, RELATIVE_DT_TOLERANCE,
-};
+use super::accelerogram::Record;
+use super::error::{Location, RecordError};
+use super::meta::RecordMeta;
+use super::sampling::{check_dt, check_samples, dt_agrees, RELATIVE_DT_TOLERANCE};
+use super::text::{numbered_lines, parse_number, quote, strip_byte_order_mark, NumberError};
 
 /// Acceleration column names that declare their unit, with that unit: the names `flexrock
 /// record csv` writes.

@@ -2,8 +2,6 @@
 
 use std::fmt;
 
-use super::shown;
-
 /// Where in which file something went wrong: displays as `file` or `file line N`.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Location {
@@ -345,4 +343,9 @@ pub enum RecordError {
         /// The rule, with what was found.
         rule: String,
     },
+}
+
+/// A number in a message (shortest exact form: `1e-300`, not 300 zeros).
+fn shown(x: f64) -> String {
+    crate::base::format::shortest(x)
 }

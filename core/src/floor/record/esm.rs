@@ -21,10 +21,11 @@
 
 use std::collections::HashMap;
 
-use super::{
-    check_dt, check_samples, numbered_lines, parse_number, quote, strip_byte_order_mark, unit_of,
-    Location, NumberError, Quantity, Record, RecordError, RecordMeta,
-};
+use super::accelerogram::Record;
+use super::error::{Location, RecordError};
+use super::meta::{unit_of, Quantity, RecordMeta};
+use super::sampling::{check_dt, check_samples};
+use super::text::{numbered_lines, parse_number, quote, strip_byte_order_mark, NumberError};
 
 /// The keys an ESM file must give.
 const REQUIRED: [&str; 4] = ["SAMPLING_INTERVAL_S", "NDATA", "UNITS", "DATA_TYPE"];

@@ -4,9 +4,6 @@
 
 use serde::Serialize;
 
-use super::Record;
-use crate::base::invalid::InvalidParameter;
-
 /// A record's metadata: each field as the file gives it, None where it gives none.
 #[derive(Debug, Clone, Default, PartialEq, Serialize)]
 pub struct RecordMeta {
@@ -107,44 +104,6 @@ pub fn unit_of(word: &str) -> Option<(Quantity, &'static str)> {
         "MM" => (Quantity::Displacement, "mm"),
         _ => return None,
     })
-}
-
-/// The unit of a record's values and its factor to m/s^2 (g is standard gravity): the unit its
-/// file declares, or the one `given` by the key or flag `key` where the file declares none.
-/// Refused when both are there and disagree (nothing is rescaled silently), and when neither
-/// is (nothing is assumed).
-pub fn resolve_units(
-    record: &Record,
-    key: &str,
-    given: Option<&str>,
-) -> Result<(&'static str, f64), InvalidParameter> {
-    let given = given
-        .map(|u| super::acceleration_unit(key, u))
-        .transpose()?;
-    match (record.meta.units, given) {
-        (Some(declared), Some((name, _))) if declared != name => Err(InvalidParameter::new(
-            key,
-            format!("\"{name}\""),
-            &format!(
-                "contradicts the record file {}, whose header says its values are in {declared} \
-                 ({}); leave {key} out, or give the file's unit",
-                record.source, record.meta.units_said
-            ),
-        )),
-        (Some(declared), _) => super::acceleration_unit(key, declared),
-        (None, Some(unit)) => Ok(unit),
-        (None, None) => Err(InvalidParameter::new(
-            key,
-            "(missing)",
-            &format!(
-                "required: the record file {} does not say the unit of its values ({} file); \
-                 give it as {}",
-                record.source,
-                record.meta.format,
-                super::UNIT_NAMES
-            ),
-        )),
-    }
 }
 
 #[cfg(test)]

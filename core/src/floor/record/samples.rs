@@ -3,10 +3,10 @@
 //! argument that holds the bad value (`acceleration[17]`, `dt`, `time[3]`) rather than a file
 //! and line.
 
-use super::{
-    dt_rule, DtRule, Record, RecordMeta, MAX_RECORD_BYTES, MIN_DT, MIN_SAMPLES,
-    RELATIVE_DT_TOLERANCE,
-};
+use super::accelerogram::Record;
+use super::meta::RecordMeta;
+use super::read::MAX_RECORD_BYTES;
+use super::sampling::{dt_rule, DtRule, MIN_DT, MIN_SAMPLES, RELATIVE_DT_TOLERANCE};
 use crate::base::invalid::InvalidParameter;
 
 /// Most samples a record in memory may have: as many as the largest record file can hold

@@ -16,9 +16,10 @@
 
 use std::path::{Path, PathBuf};
 
-use super::{
-    decode_utf8, numbered_lines, quote, read_bounded, Location, RecordError, RecordFormat,
-};
+use super::error::{Location, RecordError};
+use super::format::RecordFormat;
+use super::read::{decode_utf8, read_bounded};
+use super::text::{numbered_lines, quote};
 
 /// One record of a suite.
 #[derive(Debug, Clone, PartialEq)]

@@ -2,8 +2,10 @@
 
 use std::fmt;
 
+use super::read::decode_utf8;
 use super::*;
 use proptest::prelude::*;
+use std::path::Path;
 
 const EL_CENTRO: &str = concat!(
     env!("CARGO_MANIFEST_DIR"),
