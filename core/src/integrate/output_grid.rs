@@ -1,0 +1,86 @@
+//! The times at which a run samples its history.
+
+use super::solution::History;
+
+/// The times at which the history is sampled: every `output_dt` from 0, and the final time.
+#[derive(Debug, Clone)]
+pub struct OutputGrid {
+    output_dt: f64,
+    count: usize,
+    end: f64,
+    next: usize,
+}
+
+impl OutputGrid {
+    /// The grid of a run that keeps `history`: none at all for [`History::PeaksOnly`].
+    pub fn for_history(history: History, end: f64, output_dt: f64) -> Self {
+        match history {
+            History::Sampled => OutputGrid::new(end, output_dt),
+            History::PeaksOnly => OutputGrid {
+                output_dt,
+                count: 0,
+                end,
+                next: 0,
+            },
+        }
+    }
+
+    /// The grid 0, dt, 2 dt, ... over [0, end] (s) with dt = `output_dt` (s), ending at `end`.
+    pub fn new(end: f64, output_dt: f64) -> Self {
+        // Points closer to `end` than a millionth of a step merge with it.
+        let count = (end / output_dt * (1.0 + 1e-12) + 1e-6).floor() as usize + 1;
+        OutputGrid {
+            output_dt,
+            count,
+            end,
+            next: 0,
+        }
+    }
+
+    fn time(&self, index: usize) -> f64 {
+        if index + 1 >= self.count {
+            // Clamp to the end; the last point is always the final time.
+            (index as f64 * self.output_dt).min(self.end)
+        } else {
+            index as f64 * self.output_dt
+        }
+    }
+
+    /// The next grid time not yet emitted, if any.
+    pub fn peek(&self) -> Option<f64> {
+        if self.next < self.count {
+            Some(self.time(self.next))
+        } else if self.count > 0 && self.next == self.count && self.time(self.count - 1) < self.end
+        {
+            Some(self.end)
+        } else {
+            None
+        }
+    }
+
+    /// How many grid times are not yet emitted (the final time included).
+    pub fn remaining(&self) -> usize {
+        (self.count + 1).saturating_sub(self.next)
+    }
+
+    /// The grid's spacing, s.
+    pub fn spacing(&self) -> f64 {
+        self.output_dt
+    }
+
+    /// Marks the next grid time emitted.
+    pub fn advance(&mut self) {
+        self.next += 1;
+    }
+
+    /// Every time of the grid over [0, end], as every solver samples it.
+    pub fn times(end: f64, output_dt: f64) -> Vec<f64> {
+        let mut grid = OutputGrid::new(end, output_dt);
+        let mut times = Vec::new();
+        while let Some(t) = grid.peek() {
+            times.push(t);
+            grid.advance();
+        }
+        times
+    }
+}
