@@ -30,7 +30,7 @@ use diffsol::{NalgebraMat, OdeBuilder, OdeEquations, OdeSolverMethod, OdeSolverS
 use super::contact::OVERLAP_ERROR_SHARE;
 use super::{ContactLaw, ContactSample, ContactState, Row, RowSolution};
 use crate::floor::FloorMotion;
-use crate::integrate::adaptive::{at_stop, snap_to_stop};
+use crate::integrate::event_loop::{at_stop, snap_to_stop};
 use crate::integrate::budget::RunBudget;
 use crate::integrate::exact::rounding::ulp;
 use crate::integrate::solution::{Recorder, SolverStats};
