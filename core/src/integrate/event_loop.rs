@@ -138,7 +138,7 @@ pub(crate) fn at_stop(t: f64, stop: f64) -> bool {
 /// 33 s of a record), until a stop is missed by more than diffsol's own tolerance; and a
 /// landing just short of a stop leaves it a sliver step. The state is not changed: it is that
 /// of a time within 1e-12 s.
-pub(crate) fn snap_to_stop<'a, Eqn, S>(solver: &mut S, stop: f64, h_taken: f64)
+fn snap_to_stop<'a, Eqn, S>(solver: &mut S, stop: f64, h_taken: f64)
 where
     Eqn: OdeEquations<T = f64, V = Vector> + 'a,
     S: OdeSolverMethod<'a, Eqn>,
