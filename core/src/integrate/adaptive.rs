@@ -1,6 +1,6 @@
 //! Adaptive integration of the automaton with diffsol (BDF, ESDIRK34, TR-BDF2; Tsit45).
 //!
-//! The steps, stops, retakes and restarts are the event loop's ([`super::event_loop`]); the
+//! The steps, stops, retakes and restarts are the event loop's (`event_loop.rs`); the
 //! body's equations, guards, resets and records are here.
 //!
 //! How events are found. After every step the body splits the step at the root of q' inside it
@@ -11,12 +11,12 @@
 //! crossed is located on the dense output by regula falsi. diffsol's own root finder is not used:
 //! it reports any sign change of a guard function, whichever way the state moves.
 //!
-//! A step whose dense output cannot resolve its crossing is taken again, four times shorter, from
-//! its exact start (by the loop): that is a crossing placed where q' already points back into the mode, or a
-//! piece that starts beyond the guard, or a step that ends beyond a guard with no crossing found
-//! (q turned twice). This happens at a grazing uplift, where the excursion beyond s_n is shorter
-//! than the step and a low-order interpolant puts q back inside before q' turns; taking such a
-//! crossing at face value logged hundreds of uplifts and landings within 1e-12 s.
+//! A step whose dense output cannot resolve its crossing is taken again by the loop, four times
+//! shorter, from its exact start: that is a crossing placed where q' already points back into
+//! the mode, or a piece that starts beyond the guard, or a step that ends beyond a guard with no
+//! crossing found (q turned twice). This happens at a grazing uplift, where the excursion beyond
+//! s_n is shorter than the step and a low-order interpolant puts q back inside before q' turns;
+//! taking such a crossing at face value logged hundreds of uplifts and landings within 1e-12 s.
 //!
 //! At an event the solver is moved back to the event time, q is placed exactly on the guard, the
 //! angular-momentum reset is applied to q', and the method restarts in the new mode. A state that

@@ -20,7 +20,8 @@
 //! contact's start from the modes then (the reduced mass of the two contact points, m / Phi^2 of
 //! each, depends on them) and kept to its end. At an event the solver is moved back to it, the
 //! reset (or the change of contacts) is applied, and the method restarts there. An overturning
-//! column ends the row's run. [`RunBudget`]s cap events (and the loop steps), so that every run ends.
+//! column ends the row's run. [`RunBudget`]s cap events (and the loop steps), so that every run
+//! ends.
 
 use std::cell::RefCell;
 use std::time::Instant;
