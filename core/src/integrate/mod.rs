@@ -4,6 +4,7 @@
 pub mod adaptive;
 pub mod budget;
 mod error;
+pub(crate) mod event_loop;
 pub mod exact;
 mod initial_state;
 pub mod newmark;

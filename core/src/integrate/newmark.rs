@@ -28,7 +28,7 @@
 //!   Events are logged at the located crossing.
 //!
 //! A fixed-step method sees only step ends: a guard crossed and re-crossed inside one step goes
-//! unnoticed by both variants (the adaptive driver stops at every root of q' and catches it).
+//! unnoticed by both variants (the adaptive method stops at every root of q' and catches it).
 //!
 //! Between step ends the history is the cubic Hermite interpolant of (q, q') at both ends. For
 //! linear acceleration (beta = 1/6, gamma = 1/2) that cubic is exactly the trajectory the method

@@ -1,6 +1,6 @@
 //! Where a function of time passes from one side of zero to the other, by the Illinois variant
-//! of regula falsi: the one root finder of the adaptive drivers (the single body's and the
-//! compliant row's), which locate each event on a step's dense output.
+//! of regula falsi: the one root finder of the bodies of the diffsol event loop (the single body
+//! and the compliant row), which locate each event on a step's dense output.
 
 /// The time in [lo, hi] at which `f` passes from the sign it has at `lo` (zero counts as that
 /// side: a state that starts on a guard is not past it) to the sign it has at `hi`, to a few

@@ -1,6 +1,6 @@
 //! A row of columns with the compliant contact law (book/src/row.md §4a), integrated by diffsol's
-//! Tsit45 with the events located as the single body's adaptive driver locates them
-//! (`solver::adaptive`).
+//! Tsit45 in the event loop of every diffsol run ([`crate::integrate::event_loop`]), with the
+//! events located as the single body's are ([`crate::integrate::adaptive`]).
 //!
 //! The state is (q_i, q'_i) of every column. Each column's own acceleration is its automaton's,
 //! in its mode; a contact in force adds Phi P / m_Phi (book/src/row.md §2) with
@@ -20,33 +20,31 @@
 //! contact's start from the modes then (the reduced mass of the two contact points, m / Phi^2 of
 //! each, depends on them) and kept to its end. At an event the solver is moved back to it, the
 //! reset (or the change of contacts) is applied, and the method restarts there. An overturning
-//! column ends the row's run. [`RunBudget`]s cap steps and events, so that every run ends.
+//! column ends the row's run. [`RunBudget`]s cap events (and the loop steps), so that every run
+//! ends.
 
 use std::cell::RefCell;
 use std::time::Instant;
 
-use diffsol::{NalgebraMat, OdeBuilder, OdeEquations, OdeSolverMethod, OdeSolverStopReason};
+use diffsol::{NalgebraMat, OdeBuilder};
 
 use super::contact::OVERLAP_ERROR_SHARE;
 use super::{ContactLaw, ContactSample, ContactState, Row, RowSolution};
 use crate::floor::FloorMotion;
-use crate::integrate::adaptive::{at_stop, snap_to_stop};
 use crate::integrate::budget::RunBudget;
+use crate::integrate::event_loop::{self, DenseOutput, EventBody, Found, Outcome, Run, StepStart};
 use crate::integrate::exact::rounding::ulp;
 use crate::integrate::solution::{Recorder, SolverStats};
 use crate::integrate::{History, OutputGrid, SolverError};
 use crate::physics::automaton::{Automaton, EventKind, Guard, Mode};
 
 type Matrix = NalgebraMat<f64>;
-type Vector = diffsol::NalgebraVec<f64>;
 type Result<T> = std::result::Result<T, SolverError>;
 
 /// The method the compliant row is integrated with.
 pub const METHOD: &str = "tsit45";
 /// rtol and atol of the compliant row when the model file gives none.
 pub const DEFAULT_TOLERANCE: f64 = 1e-10;
-/// Retakes of one step whose crossing its dense output could not resolve before giving up.
-const MAX_CROSSING_RETRIES: usize = 60;
 /// Events at one instant (a reset that lets a contact go, that starts another), per column of
 /// the row, before giving up: identical columns may all lift off, and their contacts all close,
 /// at one instant.
@@ -473,10 +471,6 @@ impl Model<'_> {
     }
 }
 
-fn values(v: &Vector, len: usize) -> Vec<f64> {
-    (0..len).map(|i| v[i]).collect()
-}
-
 fn failed(t: f64, message: impl std::fmt::Display) -> SolverError {
     SolverError::Failed {
         method: METHOD.to_string(),
@@ -598,42 +592,60 @@ pub fn solve_row_compliant(
         .map_err(|e| failed(0.0, e))?;
     problem.ode_options.min_timestep = problem.ode_options.min_timestep.min(1e-3 * duration);
     let solver = problem.tsit45().map_err(|e| failed(0.0, e))?;
-    let mut driver = Driver {
-        model: &model,
-        cfg: &cfg,
+    let run = Run {
+        method: METHOD,
         floor,
         duration,
         history,
-        recorders: Vec::new(),
+        output_dt: settings.output_dt,
+    };
+    let modes = cfg.borrow().modes.clone();
+    let mut body = Columns {
+        model: &model,
+        cfg: &cfg,
+        floor,
+        history,
+        recorders: (0..n)
+            .map(|i| {
+                Recorder::new(
+                    model.automaton(i),
+                    0.0,
+                    initial[2 * i],
+                    initial[2 * i + 1],
+                    modes[i],
+                    history,
+                )
+            })
+            .collect(),
         budgets: (0..n).map(|_| RunBudget::new()).collect(),
         stretches: Vec::new(),
         open: vec![None; n - 1],
         overturned: None,
-        output_dt: settings.output_dt,
         contact_history: Vec::new(),
         sticking: Vec::new(),
         stuck: vec![None; n - 1],
     };
-    let (final_time, steps, retries) = driver.run(solver)?;
+    let finish = event_loop::run(&run, &mut body, solver)?;
+    let final_time = finish.t;
     let stats = SolverStats {
         method: METHOD.to_string(),
-        steps,
+        steps: finish.statistics.number_of_steps,
         error_test_failures: 0,
         nonlinear_iterations: 0,
         jacobian_evaluations: 0,
-        crossing_retries: retries,
+        crossing_retries: finish.crossing_retries,
         rhs_evaluations: rhs_evaluations.get(),
         wall_time_s: started.elapsed().as_secs_f64(),
     };
     let modes = cfg.borrow().modes.clone();
-    let Driver {
+    let Columns {
         recorders,
         stretches,
         overturned,
         contact_history,
         sticking,
         ..
-    } = driver;
+    } = body;
     let columns = recorders
         .into_iter()
         .zip(modes)
@@ -666,23 +678,11 @@ enum What {
     Friction(usize, Option<f64>),
 }
 
-enum Crossing {
-    None,
-    At(f64, What),
-    Unresolved,
-}
-
-struct StepStart {
-    t: f64,
-    y: Vec<f64>,
-    g: Vec<f64>,
-}
-
-struct Driver<'d> {
+/// The row, as the event loop drives it.
+struct Columns<'d> {
     model: &'d Model<'d>,
     cfg: &'d RefCell<Config>,
     floor: &'d dyn FloorMotion,
-    duration: f64,
     history: History,
     recorders: Vec<Recorder<'d>>,
     budgets: Vec<RunBudget>,
@@ -691,7 +691,6 @@ struct Driver<'d> {
     /// dashpot took and of what friction took, at its start.
     open: Vec<Option<(usize, f64, f64)>>,
     overturned: Option<(usize, f64)>,
-    output_dt: f64,
     /// Every contact at every sampled instant.
     contact_history: Vec<ContactSample>,
     /// Every stretch of sticking faces, and per contact the index of the one under way.
@@ -699,169 +698,9 @@ struct Driver<'d> {
     stuck: Vec<Option<usize>>,
 }
 
-impl<'d> Driver<'d> {
+impl<'d> Columns<'d> {
     fn n(&self) -> usize {
         self.model.n()
-    }
-
-    fn run<'a, Eqn, S>(&mut self, mut solver: S) -> Result<(f64, usize, usize)>
-    where
-        Eqn: OdeEquations<T = f64, V = Vector> + 'a,
-        S: OdeSolverMethod<'a, Eqn>,
-    {
-        let n = self.n();
-        let end = self.duration;
-        let step_budget = RunBudget::new();
-        let mut retries = 0usize;
-        let mut retries_in_a_row = 0usize;
-        let mut stops: Vec<f64> = self
-            .floor
-            .breakpoints()
-            .iter()
-            .copied()
-            .filter(|&b| b > 0.0 && !at_stop(b, end) && b < end)
-            .collect();
-        stops.push(end);
-        let mut stop_index = 0;
-        if solver.state().h > stops[0] {
-            *solver.state_mut().h = stops[0];
-        }
-        solver.set_stop_time(stops[0]).map_err(|e| failed(0.0, e))?;
-        let y0 = values(solver.state().y, 2 * n);
-        {
-            let cfg = self.cfg.borrow();
-            let model = self.model;
-            self.recorders = (0..n)
-                .map(|i| {
-                    Recorder::new(
-                        model.automaton(i),
-                        0.0,
-                        y0[2 * i],
-                        y0[2 * i + 1],
-                        cfg.modes[i],
-                        self.history,
-                    )
-                })
-                .collect();
-        }
-        let mut grid = OutputGrid::for_history(self.history, end, self.output_dt);
-        self.emit(&solver, &mut grid, 0.0, true)?;
-        // A column that starts on a guard moving across it: an event at t = 0.
-        if self.settle(&mut solver, 0.0, None)? {
-            return Ok((0.0, 0, 0));
-        }
-        loop {
-            let start = StepStart {
-                t: solver.state().t,
-                y: values(solver.state().y, 2 * n),
-                g: values(solver.state().g, self.nout()),
-            };
-            let reason = solver.step().map_err(|e| failed(start.t, e))?;
-            let step_end = solver.state().t;
-            let stop = stops[stop_index];
-            let steps = solver.get_statistics().number_of_steps;
-            step_budget
-                .step(step_end, steps)
-                .map_err(|m| failed(step_end, m))?;
-            if step_end > stop && !at_stop(step_end, stop) {
-                return Err(failed(
-                    step_end,
-                    format!("stepped past the stop time {stop} s"),
-                ));
-            }
-            match self.find_crossing(&solver, &start, step_end, &grid)? {
-                Crossing::Unresolved => {
-                    retries += 1;
-                    retries_in_a_row += 1;
-                    if retries_in_a_row == MAX_CROSSING_RETRIES {
-                        return Err(failed(
-                            start.t,
-                            format!(
-                                "an event could not be resolved: {MAX_CROSSING_RETRIES} ever \
-                                 shorter steps from t = {} s",
-                                start.t
-                            ),
-                        ));
-                    }
-                    self.set_state(&mut solver, start.t, &start.y);
-                    {
-                        let state = solver.state_mut();
-                        for (i, v) in start.g.iter().enumerate() {
-                            state.g[i] = *v;
-                        }
-                        *state.h = 0.25 * (step_end - start.t);
-                    }
-                    solver.set_stop_time(stop).map_err(|e| failed(start.t, e))?;
-                    continue;
-                }
-                Crossing::At(t, what) => {
-                    retries_in_a_row = 0;
-                    self.peaks(&solver, &start, t)?;
-                    self.emit(&solver, &mut grid, t, false)?;
-                    solver.state_mut_back(t).map_err(|e| failed(t, e))?;
-                    if self.settle(&mut solver, t, Some(what))? {
-                        return Ok((t, steps, retries));
-                    }
-                    if at_stop(t, stop) {
-                        if stop_index + 1 == stops.len() {
-                            self.emit(&solver, &mut grid, t, true)?;
-                            self.close_open(&values(solver.state().g, self.nout()));
-                            return Ok((t, steps, retries));
-                        }
-                        stop_index += 1;
-                    }
-                    solver
-                        .set_stop_time(stops[stop_index])
-                        .map_err(|e| failed(t, e))?;
-                }
-                Crossing::None => {
-                    retries_in_a_row = 0;
-                    self.peaks(&solver, &start, step_end)?;
-                    self.emit(&solver, &mut grid, step_end, true)?;
-                    if matches!(reason, OdeSolverStopReason::TstopReached)
-                        || at_stop(step_end, stop)
-                    {
-                        snap_to_stop(&mut solver, stop, step_end - start.t);
-                        let now = solver.state().t;
-                        if self.floor.jumps_at(stop) {
-                            let y = values(solver.state().y, 2 * n);
-                            self.set_state(&mut solver, now, &y);
-                        }
-                        self.emit(&solver, &mut grid, now, true)?;
-                        if stop_index + 1 == stops.len() {
-                            let y = values(solver.state().y, 2 * n);
-                            for (i, r) in self.recorders.iter_mut().enumerate() {
-                                r.peak_candidate(now, y[2 * i]);
-                            }
-                            self.close_open(&values(solver.state().g, self.nout()));
-                            return Ok((now, steps, retries));
-                        }
-                        stop_index += 1;
-                        solver
-                            .set_stop_time(stops[stop_index])
-                            .map_err(|e| failed(now, e))?;
-                    }
-                }
-            }
-        }
-    }
-
-    fn nout(&self) -> usize {
-        5 * self.n() - 2
-    }
-
-    /// The state at `t` within the current step.
-    fn state_at<'a, Eqn, S>(&self, solver: &S, t: f64) -> Result<Vec<f64>>
-    where
-        Eqn: OdeEquations<T = f64, V = Vector> + 'a,
-        S: OdeSolverMethod<'a, Eqn>,
-    {
-        let len = 2 * self.n();
-        if t == solver.state().t {
-            return Ok(values(solver.state().y, len));
-        }
-        let y = solver.interpolate(t).map_err(|e| failed(t, e))?;
-        Ok(values(&y, len))
     }
 
     /// q'' of every column at (t, x) in the current configuration.
@@ -874,12 +713,8 @@ impl<'d> Driver<'d> {
 
     /// The value and rate of the event function of `what` at `t`: q of a column, the gap of a
     /// free contact, the force of a contact.
-    fn function<'a, Eqn, S>(&self, solver: &S, t: f64, what: Watch) -> Result<(f64, f64)>
-    where
-        Eqn: OdeEquations<T = f64, V = Vector> + 'a,
-        S: OdeSolverMethod<'a, Eqn>,
-    {
-        let x = self.state_at(solver, t)?;
+    fn function(&self, dense: &dyn DenseOutput, t: f64, what: Watch) -> Result<(f64, f64)> {
+        let x = dense.state_at(t)?;
         let cfg = self.cfg.borrow();
         Ok(match what {
             Watch::Q(i) => (x[2 * i], x[2 * i + 1]),
@@ -909,7 +744,7 @@ impl<'d> Driver<'d> {
             Watch::Margin(c, sign, t0, t1) => {
                 drop(cfg);
                 let margin = |t: f64| -> Result<f64> {
-                    let x = self.state_at(solver, t)?;
+                    let x = dense.state_at(t)?;
                     let cfg = self.cfg.borrow();
                     let forces = self.model.forces(&cfg, &x, self.floor.acceleration(t));
                     Ok(self.model.mu * forces.normal[c] - sign * forces.friction[c])
@@ -938,21 +773,17 @@ impl<'d> Driver<'d> {
     /// The monotone pieces of the function of `what` over [t0, t1]: split at the root of its
     /// rate, each with the direction it moves in, and the root itself (an extremum), if any.
     #[allow(clippy::type_complexity)]
-    fn pieces<'a, Eqn, S>(
+    fn pieces(
         &self,
-        solver: &S,
+        dense: &dyn DenseOutput,
         t0: f64,
         t1: f64,
         what: Watch,
-    ) -> Result<(Vec<(f64, f64, f64)>, Option<f64>)>
-    where
-        Eqn: OdeEquations<T = f64, V = Vector> + 'a,
-        S: OdeSolverMethod<'a, Eqn>,
-    {
-        let d0 = self.function(solver, t0, what)?.1;
-        let d1 = self.function(solver, t1, what)?.1;
+    ) -> Result<(Vec<(f64, f64, f64)>, Option<f64>)> {
+        let d0 = self.function(dense, t0, what)?.1;
+        let d1 = self.function(dense, t1, what)?.1;
         if d0 * d1 < 0.0 {
-            let tp = self.locate(t0, t1, |t| Ok(self.function(solver, t, what)?.1))?;
+            let tp = self.locate(t0, t1, |t| Ok(self.function(dense, t, what)?.1))?;
             Ok((vec![(t0, tp, d0.signum()), (tp, t1, d1.signum())], Some(tp)))
         } else {
             let d = if d1 != 0.0 { d1 } else { d0 };
@@ -966,22 +797,18 @@ impl<'d> Driver<'d> {
     /// The first crossing of zero by the function of `what` in `direction` (+1 rising, -1
     /// falling) over the step, found piece by piece; `Err(())` when its dense output put it
     /// where the rate points back.
-    fn first_crossing_of<'a, Eqn, S>(
+    fn first_crossing_of(
         &self,
-        solver: &S,
+        dense: &dyn DenseOutput,
         t0: f64,
         t1: f64,
         what: Watch,
         level: f64,
         direction: f64,
-    ) -> Result<std::result::Result<Option<f64>, ()>>
-    where
-        Eqn: OdeEquations<T = f64, V = Vector> + 'a,
-        S: OdeSolverMethod<'a, Eqn>,
-    {
-        let (pieces, _) = self.pieces(solver, t0, t1, what)?;
+    ) -> Result<std::result::Result<Option<f64>, ()>> {
+        let (pieces, _) = self.pieces(dense, t0, t1, what)?;
         let over =
-            |t: f64| -> Result<f64> { Ok(direction * (self.function(solver, t, what)?.0 - level)) };
+            |t: f64| -> Result<f64> { Ok(direction * (self.function(dense, t, what)?.0 - level)) };
         for (from, to, moving) in pieces {
             if moving != direction || over(to)? <= 0.0 {
                 continue;
@@ -990,7 +817,7 @@ impl<'d> Driver<'d> {
                 return Ok(Err(()));
             }
             let t = self.locate(from, to, over)?;
-            if direction * self.function(solver, t, what)?.1 <= 0.0 {
+            if direction * self.function(dense, t, what)?.1 <= 0.0 {
                 return Ok(Err(()));
             }
             return Ok(Ok(Some(t)));
@@ -1000,17 +827,13 @@ impl<'d> Driver<'d> {
 
     /// The first event of the step [start, t1]; `Unresolved` where the dense output cannot
     /// place one, or leaves a contact out of force overlapping and pressing before it.
-    fn find_crossing<'a, Eqn, S>(
+    fn find_crossing(
         &self,
-        solver: &S,
+        dense: &dyn DenseOutput,
         start: &StepStart,
         t1: f64,
         grid: &OutputGrid,
-    ) -> Result<Crossing>
-    where
-        Eqn: OdeEquations<T = f64, V = Vector> + 'a,
-        S: OdeSolverMethod<'a, Eqn>,
-    {
+    ) -> Result<Found<What>> {
         let n = self.n();
         let t0 = start.t;
         let mut first: Option<(f64, What)> = None;
@@ -1027,14 +850,14 @@ impl<'d> Driver<'d> {
             for &slot in automaton.guards(mode) {
                 let guard = automaton.guard(mode, slot);
                 match self.first_crossing_of(
-                    solver,
+                    dense,
                     t0,
                     t1,
                     Watch::Q(i),
                     guard.level,
                     guard.direction,
                 )? {
-                    Err(()) => return Ok(Crossing::Unresolved),
+                    Err(()) => return Ok(Found::Unresolved),
                     Ok(Some(t)) => {
                         crossed = true;
                         consider(t, What::Guard(i, guard));
@@ -1043,35 +866,35 @@ impl<'d> Driver<'d> {
                 }
             }
             // The column must end inside its mode; if not, q turned more than once.
-            let q1 = self.state_at(solver, t1)?[2 * i];
+            let q1 = dense.state_at(t1)?[2 * i];
             if !crossed
                 && automaton
                     .guards(mode)
                     .iter()
                     .any(|&slot| automaton.guard(mode, slot).overshoot(q1) > 0.0)
             {
-                return Ok(Crossing::Unresolved);
+                return Ok(Found::Unresolved);
             }
         }
         for c in 0..n - 1 {
             if cfg.active[c] {
                 let watch = Watch::Force(c, cfg.damping[c]);
                 // A contact whose force starts at zero or below is let go at once (settle).
-                if let Ok(Some(t)) = self.first_crossing_of(solver, t0, t1, watch, 0.0, -1.0)? {
+                if let Ok(Some(t)) = self.first_crossing_of(dense, t0, t1, watch, 0.0, -1.0)? {
                     consider(t, What::End(c));
                 }
                 match cfg.friction[c] {
                     Friction::Off => {}
                     // Sliding faces that come to a stop: stick, or slide back.
                     Friction::Slip(sign) => {
-                        let x0 = self.state_at(solver, t0)?;
+                        let x0 = dense.state_at(t0)?;
                         let level = -sign * self.model.sliding_tolerance(c, &cfg.modes, &x0);
                         let watch = Watch::Sliding(c);
-                        match self.first_crossing_of(solver, t0, t1, watch, level, -sign)? {
+                        match self.first_crossing_of(dense, t0, t1, watch, level, -sign)? {
                             Ok(Some(t)) => consider(t, What::Friction(c, None)),
                             Ok(None) => {}
                             Err(()) => {
-                                if -sign * (self.function(solver, t0, watch)?.0 - level) >= 0.0 {
+                                if -sign * (self.function(dense, t0, watch)?.0 - level) >= 0.0 {
                                     // Past the stop already at the step's start: look again
                                     // there, unless the answer is the state it has (which would
                                     // stop the run at the same instant without end).
@@ -1079,7 +902,7 @@ impl<'d> Driver<'d> {
                                         consider(t0, What::Friction(c, None));
                                     }
                                 } else {
-                                    return Ok(Crossing::Unresolved);
+                                    return Ok(Found::Unresolved);
                                 }
                             }
                         }
@@ -1088,14 +911,14 @@ impl<'d> Driver<'d> {
                     Friction::Stick => {
                         for sign in [1.0, -1.0] {
                             let watch = Watch::Margin(c, sign, t0, t1);
-                            match self.first_crossing_of(solver, t0, t1, watch, 0.0, -1.0)? {
+                            match self.first_crossing_of(dense, t0, t1, watch, 0.0, -1.0)? {
                                 Ok(Some(t)) => consider(t, What::Friction(c, Some(-sign))),
                                 Ok(None) => {}
                                 Err(()) => {
-                                    if self.function(solver, t0, watch)?.0 <= 0.0 {
+                                    if self.function(dense, t0, watch)?.0 <= 0.0 {
                                         consider(t0, What::Friction(c, Some(-sign)));
                                     } else {
-                                        return Ok(Crossing::Unresolved);
+                                        return Ok(Found::Unresolved);
                                     }
                                 }
                             }
@@ -1103,7 +926,7 @@ impl<'d> Driver<'d> {
                     }
                 }
             } else {
-                let x0 = self.state_at(solver, t0)?;
+                let x0 = dense.state_at(t0)?;
                 // Faces that touch and press at the step's start (a closing a hair too late,
                 // found at the end of the step before): in contact there.
                 if self.model.presses(c, &cfg.modes, &x0) {
@@ -1111,22 +934,22 @@ impl<'d> Driver<'d> {
                     continue;
                 }
                 let overlapping = |t: f64| -> Result<bool> {
-                    Ok(self.function(solver, t, Watch::Gap(c))?.0 < 0.0)
+                    Ok(self.function(dense, t, Watch::Gap(c))?.0 < 0.0)
                 };
                 let parting = overlapping(t0)?;
-                match self.first_crossing_of(solver, t0, t1, Watch::Gap(c), 0.0, -1.0)? {
+                match self.first_crossing_of(dense, t0, t1, Watch::Gap(c), 0.0, -1.0)? {
                     Ok(Some(t)) => consider(t, What::Start(c)),
                     Ok(None) => {}
                     // Faces that still overlap after a release open their gap from below
                     // zero: the force's search below finds where they press again.
                     Err(()) if parting => {}
-                    Err(()) => return Ok(Crossing::Unresolved),
+                    Err(()) => return Ok(Found::Unresolved),
                 }
                 // Faces that still overlap after a release: contact again where the force
                 // would push.
                 if parting {
                     let watch = Watch::Force(c, self.model.dashpot(c, &cfg.modes));
-                    match self.first_crossing_of(solver, t0, t1, watch, 0.0, 1.0)? {
+                    match self.first_crossing_of(dense, t0, t1, watch, 0.0, 1.0)? {
                         Ok(Some(t)) => {
                             if overlapping(t)? {
                                 consider(t, What::Start(c));
@@ -1137,7 +960,7 @@ impl<'d> Driver<'d> {
                         Err(()) if self.model.force_if_started(c, &cfg.modes, &x0) >= 0.0 => {
                             consider(t0, What::Start(c));
                         }
-                        Err(()) => return Ok(Crossing::Unresolved),
+                        Err(()) => return Ok(Found::Unresolved),
                     }
                 }
             }
@@ -1162,33 +985,29 @@ impl<'d> Driver<'d> {
             times.push(t1);
         }
         for ts in times {
-            let x = self.state_at(solver, ts)?;
+            let x = dense.state_at(ts)?;
             for c in (0..n - 1).filter(|&c| !cfg.active[c]) {
                 if self.model.idle_state(c, &cfg.modes, &x, ts, 0.0).is_err() {
-                    return Ok(Crossing::Unresolved);
+                    return Ok(Found::Unresolved);
                 }
             }
         }
         Ok(match first {
-            Some((t, what)) => Crossing::At(t, what),
-            None => Crossing::None,
+            Some((t, what)) => Found::At(t, what),
+            None => Found::None,
         })
     }
 
     /// Books the peaks of q of every column and the peak forces of the contacts within
     /// [start, until].
-    fn peaks<'a, Eqn, S>(&mut self, solver: &S, start: &StepStart, until: f64) -> Result<()>
-    where
-        Eqn: OdeEquations<T = f64, V = Vector> + 'a,
-        S: OdeSolverMethod<'a, Eqn>,
-    {
+    fn peaks(&mut self, dense: &dyn DenseOutput, start: &StepStart, until: f64) -> Result<()> {
         if until <= start.t {
             return Ok(());
         }
         let cfg = self.cfg.borrow().clone();
         for i in 0..self.n() {
-            if let (_, Some(tp)) = self.pieces(solver, start.t, until, Watch::Q(i))? {
-                let q = self.state_at(solver, tp)?[2 * i];
+            if let (_, Some(tp)) = self.pieces(dense, start.t, until, Watch::Q(i))? {
+                let q = dense.state_at(tp)?[2 * i];
                 self.recorders[i].peak_candidate(tp, q);
             }
         }
@@ -1197,12 +1016,12 @@ impl<'d> Driver<'d> {
                 continue;
             }
             let watch = Watch::Force(c, cfg.damping[c]);
-            let (_, root) = self.pieces(solver, start.t, until, watch)?;
+            let (_, root) = self.pieces(dense, start.t, until, watch)?;
             for t in root.into_iter().chain([until]) {
-                let p = self.function(solver, t, watch)?.0;
+                let p = self.function(dense, t, watch)?.0;
                 self.force_candidate(c, t, p);
                 if cfg.friction[c] != Friction::Off {
-                    let x = self.state_at(solver, t)?;
+                    let x = dense.state_at(t)?;
                     let f = self
                         .model
                         .forces(&cfg, &x, self.floor.acceleration(t))
@@ -1227,67 +1046,13 @@ impl<'d> Driver<'d> {
         }
     }
 
-    /// Samples every column at every grid time up to `until`.
-    fn emit<'a, Eqn, S>(
-        &mut self,
-        solver: &S,
-        grid: &mut OutputGrid,
-        until: f64,
-        inclusive: bool,
-    ) -> Result<()>
-    where
-        Eqn: OdeEquations<T = f64, V = Vector> + 'a,
-        S: OdeSolverMethod<'a, Eqn>,
-    {
-        let (n, nout) = (self.n(), self.nout());
-        while let Some(t) = grid.peek() {
-            if t > until || (!inclusive && t == until) {
-                break;
-            }
-            let (y, g) = if at_stop(t, solver.state().t) {
-                (
-                    values(solver.state().y, 2 * n),
-                    values(solver.state().g, nout),
-                )
-            } else {
-                let y = solver.interpolate(t).map_err(|e| failed(t, e))?;
-                let g = solver.interpolate_out(t).map_err(|e| failed(t, e))?;
-                (values(&y, 2 * n), values(&g, nout))
-            };
-            let floor_acc = self.floor.acceleration(t);
-            let modes = self.cfg.borrow().modes.clone();
-            if self.history == History::Sampled {
-                self.sample_contacts(t, &y, floor_acc)?;
-            }
-            for (i, r) in self.recorders.iter_mut().enumerate() {
-                r.set_contact_work(g[3 * i + 2]);
-                r.sample(
-                    t,
-                    modes[i],
-                    y[2 * i],
-                    y[2 * i + 1],
-                    floor_acc,
-                    g[3 * i],
-                    g[3 * i + 1],
-                );
-            }
-            grid.advance();
-        }
-        Ok(())
-    }
-
-    /// Applies `what` at `t` (the solver already there), then whatever else the new state
-    /// asks for at the same instant: a guard crossed by the start, a contact whose force is not
-    /// compressive after a reset, a contact whose faces touch and would press. Returns true
-    /// when a column overturned (the run ends).
-    fn settle<'a, Eqn, S>(&mut self, solver: &mut S, t: f64, what: Option<What>) -> Result<bool>
-    where
-        Eqn: OdeEquations<T = f64, V = Vector> + 'a,
-        S: OdeSolverMethod<'a, Eqn>,
-    {
+    /// Applies `what` at `t` to the state `y` with work integrals `g`, then whatever else the
+    /// new state asks for at the same instant: a guard crossed by the start, a contact whose
+    /// force is not compressive after a reset, a contact whose faces touch and would press.
+    /// Stops the run when a column overturned.
+    fn settle(&mut self, t: f64, y: &[f64], g: &[f64], what: Option<What>) -> Result<Outcome> {
         let n = self.n();
-        let mut y = values(solver.state().y, 2 * n);
-        let g = values(solver.state().g, self.nout());
+        let mut y = y.to_vec();
         let mut next = what;
         let mut started_now = vec![false; n - 1];
         let mut pending: Vec<usize> = Vec::new();
@@ -1323,8 +1088,8 @@ impl<'d> Driver<'d> {
                             }
                         }
                         self.overturned = Some((i, t));
-                        self.close_open(&g);
-                        return Ok(true);
+                        self.close_open(g);
+                        return Ok(Outcome::Stop);
                     }
                 }
                 Some(What::Start(c)) => {
@@ -1355,7 +1120,7 @@ impl<'d> Driver<'d> {
                     self.open[c] = Some((self.stretches.len() - 1, g[3 * n + c], g[4 * n - 1 + c]));
                     let p = self.model.force_with(c, &modes, damping, &y);
                     self.force_candidate(c, t, p);
-                    self.contact_events(c, t, EventKind::ContactStart, &y, &g)?;
+                    self.contact_events(c, t, EventKind::ContactStart, &y, g)?;
                     // With friction, the faces meet sliding or sticking: an event of its own.
                     if self.model.mu > 0.0 {
                         let state = self.friction_state(c, t, &y);
@@ -1365,11 +1130,11 @@ impl<'d> Driver<'d> {
                         } else {
                             EventKind::FrictionSlip
                         };
-                        self.contact_events(c, t, kind, &y, &g)?;
+                        self.contact_events(c, t, kind, &y, g)?;
                     }
                 }
                 Some(What::End(c)) => {
-                    self.end_contact(c, t, &y, &g)?;
+                    self.end_contact(c, t, &y, g)?;
                 }
                 Some(What::Friction(c, slide)) => {
                     let state = match slide {
@@ -1387,7 +1152,7 @@ impl<'d> Driver<'d> {
                         } else {
                             EventKind::FrictionSlip
                         };
-                        self.contact_events(c, t, kind, &y, &g)?;
+                        self.contact_events(c, t, kind, &y, g)?;
                     }
                 }
                 None => {}
@@ -1439,8 +1204,7 @@ impl<'d> Driver<'d> {
                 next = self.friction_due(t, &y);
             }
             if next.is_none() {
-                self.set_state(solver, t, &y);
-                return Ok(false);
+                return Ok(Outcome::Restart(y));
             }
         }
         Err(failed(t, "endless chain of events at one instant"))
@@ -1585,30 +1349,64 @@ impl<'d> Driver<'d> {
             Friction::Slip(-f.signum())
         }
     }
+}
 
-    /// Sets the solver's time and state, with derivatives consistent with the configuration.
-    fn set_state<'a, Eqn, S>(&self, solver: &mut S, t: f64, x: &[f64])
-    where
-        Eqn: OdeEquations<T = f64, V = Vector> + 'a,
-        S: OdeSolverMethod<'a, Eqn>,
-    {
+impl EventBody for Columns<'_> {
+    type Event = What;
+
+    fn derivatives(&self, t: f64, y: &[f64], dy: &mut [f64], dg: &mut [f64]) {
         let floor_acc = self.floor.acceleration(t);
-        let mut dy = vec![0.0; x.len()];
-        let mut dg = vec![0.0; self.nout()];
-        {
-            let cfg = self.cfg.borrow();
-            self.model.rhs(&cfg, x, floor_acc, &mut dy);
-            self.model.integrands(&cfg, x, floor_acc, &mut dg);
+        let cfg = self.cfg.borrow();
+        self.model.rhs(&cfg, y, floor_acc, dy);
+        self.model.integrands(&cfg, y, floor_acc, dg);
+    }
+
+    fn find_event(
+        &mut self,
+        dense: &dyn DenseOutput,
+        start: &StepStart,
+        t1: f64,
+        grid: &OutputGrid,
+    ) -> Result<Found<What>> {
+        self.find_crossing(dense, start, t1, grid)
+    }
+
+    fn book_step(&mut self, dense: &dyn DenseOutput, start: &StepStart, until: f64) -> Result<()> {
+        self.peaks(dense, start, until)
+    }
+
+    fn apply(&mut self, t: f64, y: &[f64], g: &[f64], event: Option<What>) -> Result<Outcome> {
+        self.settle(t, y, g, event)
+    }
+
+    /// Samples every column, and every contact when the history is kept.
+    fn sample(&mut self, t: f64, y: &[f64], g: &[f64]) -> Result<()> {
+        let floor_acc = self.floor.acceleration(t);
+        let modes = self.cfg.borrow().modes.clone();
+        if self.history == History::Sampled {
+            self.sample_contacts(t, y, floor_acc)?;
         }
-        let state = solver.state_mut();
-        *state.t = t;
-        for i in 0..x.len() {
-            state.y[i] = x[i];
-            state.dy[i] = dy[i];
+        for (i, r) in self.recorders.iter_mut().enumerate() {
+            r.set_contact_work(g[3 * i + 2]);
+            r.sample(
+                t,
+                modes[i],
+                y[2 * i],
+                y[2 * i + 1],
+                floor_acc,
+                g[3 * i],
+                g[3 * i + 1],
+            );
         }
-        for (i, v) in dg.into_iter().enumerate() {
-            state.dg[i] = v;
+        Ok(())
+    }
+
+    /// Offers every column's end state as a peak and closes the books of the open contacts.
+    fn finish(&mut self, t: f64, y: &[f64], g: &[f64]) {
+        for (i, r) in self.recorders.iter_mut().enumerate() {
+            r.peak_candidate(t, y[2 * i]);
         }
+        self.close_open(g);
     }
 }
 
