@@ -505,16 +505,18 @@ fn fragility_csv(summary: &Summary) -> Vec<u8> {
         other => other,
     };
     let theta = format!("theta_{unit}");
+    let theta_lo = format!("theta_p5_{unit}");
+    let theta_hi = format!("theta_p95_{unit}");
     let columns = [
         "state",
         "im",
         theta.as_str(),
         "beta",
         "beta_unbiased",
-        "theta_lo",
-        "theta_hi",
-        "beta_lo",
-        "beta_hi",
+        theta_lo.as_str(),
+        theta_hi.as_str(),
+        "beta_p5",
+        "beta_p95",
         "records",
         "censored",
         "method",
