@@ -113,6 +113,13 @@ fn capacities(summary: &Summary) -> Figure {
     let mut panel = Panel::new("", &im_label(summary), "record");
     let n = summary.records.len();
     panel.y_range = Some((0.0, n as f64 + 1.0));
+    // From 0, and wide enough for the 84 % fractile, which may lie beyond every capacity.
+    let right = summary
+        .records
+        .iter()
+        .map(|r| r.capacity.value())
+        .fold(fit.fractile_84, f64::max);
+    panel.x_range = Some((0.0, 1.05 * right));
     let mut observed = Vec::new();
     let mut censored = Vec::new();
     for (i, r) in summary.records.iter().enumerate() {
