@@ -2,7 +2,7 @@
 //! function, no derivatives needed.
 
 /// Most evaluations of one search.
-const MAX_EVALUATIONS: usize = 20_000;
+const EVALUATION_BUDGET: usize = 20_000;
 
 /// The minimum of `f` near `start`, first steps `step`: the simplex search with the standard
 /// coefficients (reflection 1, expansion 2, contraction 1/2, shrink 1/2), restarted from its
@@ -35,7 +35,7 @@ fn simplex(f: &impl Fn([f64; 2]) -> f64, start: [f64; 2], step: [f64; 2]) -> [f6
     let mut evaluations = 3;
     let at =
         |a: [f64; 2], b: [f64; 2], t: f64| [a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])];
-    while evaluations < MAX_EVALUATIONS {
+    while evaluations < EVALUATION_BUDGET {
         let mut order = [0, 1, 2];
         order.sort_by(|&i, &j| values[i].total_cmp(&values[j]));
         points = order.map(|i| points[i]);
