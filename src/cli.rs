@@ -114,6 +114,13 @@ pub(crate) enum Command {
     /// outcome in the row and alone, with a verdict (saved, toppled, same) and, over two numeric
     /// axes, verdicts.svg and verdicts.png. Re-running the same command resumes an interrupted sweep.
     Sweep(SweepArgs),
+    /// Fragility function of overturning over a suite of records, by incremental dynamic
+    /// analysis: per record the smallest overturning excitation.scale (the sweep's minimum
+    /// search, stored, resumed and sharded as a sweep in OUT/sweep), expressed in an intensity
+    /// measure; a lognormal fit (censored records by their likelihood) with bootstrap intervals.
+    /// Writes fragility.json, fragility.csv, fragility-pelicun.csv and figures (fragility,
+    /// capacities).
+    Fragility(FragilityArgs),
     /// Overturning criteria of elastic bodies of the model's geometry (and of other
     /// slendernesses B/H), E from near-rigid to beyond the paper's body, under sines, one-sine
     /// and one-cosine pulses and records, beside Housner's block: writes criteria.csv,
@@ -441,6 +448,61 @@ pub(crate) struct SweepArgs {
     /// No progress bar.
     #[arg(long)]
     pub(crate) quiet: bool,
+    #[command(flatten)]
+    pub(crate) set: SetArgs,
+}
+
+#[derive(clap::Args)]
+pub(crate) struct FragilityArgs {
+    /// Model file (TOML) with a record excitation (kind = "record"): the body.
+    pub(crate) model: PathBuf,
+    /// The suite: a directory of record files, a list file (one record a line), or a file
+    /// pattern such as 'records/*.AT2'.
+    #[arg(long, value_name = "DIR|LIST|PATTERN")]
+    pub(crate) records: String,
+    /// The intensity measure: pga (g), pgv (m/s), pgd (m), arias (m/s; scales with the square
+    /// of the record's factor), cav (m/s), sa (Sa(T, 5 %), g).
+    #[arg(long, default_value = "pga")]
+    pub(crate) im: String,
+    /// The period T of Sa, s [default: the body's pre-uplift period]. With --im sa only.
+    #[arg(long, value_name = "T")]
+    pub(crate) period: Option<f64>,
+    /// The range of excitation.scale searched for each record's smallest overturning scale.
+    #[arg(long, value_name = "LO:HI", default_value = "0.1:5")]
+    pub(crate) scale: String,
+    /// Scales scanned before the bisection [default: 100].
+    #[arg(long)]
+    pub(crate) scan: Option<usize>,
+    /// Width of the final bracket, in scale [default: (HI - LO)/1e4].
+    #[arg(long)]
+    pub(crate) tol: Option<f64>,
+    /// Bootstrap resamples over records for the 5-95 % intervals (0: none).
+    #[arg(long, default_value_t = 1000)]
+    pub(crate) bootstrap: usize,
+    /// Seed of the bootstrap's generator (SplitMix64), reported in fragility.json.
+    #[arg(long, default_value_t = 1)]
+    pub(crate) seed: u64,
+    /// Output directory [default: out/<model file stem>-fragility].
+    #[arg(long)]
+    pub(crate) out: Option<PathBuf>,
+    /// Compute only shard K of N of the sweep (as flexrock sweep --shard); set from
+    /// SLURM_ARRAY_TASK_ID and SLURM_ARRAY_TASK_COUNT in a Slurm job array.
+    #[arg(long, value_name = "K/N")]
+    pub(crate) shard: Option<String>,
+    /// Records per chunk of the sweep (what a kill can lose).
+    #[arg(long)]
+    pub(crate) chunk_size: Option<usize>,
+    /// Threads, 1 to 1024 [default: one per core].
+    #[arg(long)]
+    pub(crate) threads: Option<usize>,
+    /// Replace the results of another sweep in OUT/sweep.
+    #[arg(long)]
+    pub(crate) force: bool,
+    /// No progress bar.
+    #[arg(long)]
+    pub(crate) quiet: bool,
+    #[command(flatten)]
+    pub(crate) figure: FigureArgs,
     #[command(flatten)]
     pub(crate) set: SetArgs,
 }

@@ -3,7 +3,10 @@
 
 mod cli;
 
-use cli::{Cli, Command, PlotArgs, RecordCommand, RecordOptions, SetArgs, SweepArgs, SweepCommand};
+use cli::{
+    Cli, Command, FragilityArgs, PlotArgs, RecordCommand, RecordOptions, SetArgs, SweepArgs,
+    SweepCommand,
+};
 
 use std::io::Write as _;
 use std::path::PathBuf;
@@ -121,6 +124,57 @@ fn sweep(args: SweepArgs) -> flexrock::Result<Output> {
     })
 }
 
+fn fragility(args: FragilityArgs) -> flexrock::Result<Output> {
+    use flexrock::commands::fragility;
+    use flexrock::commands::sweep::store;
+    flexrock::commands::sweep::start_threads(args.threads)?;
+    let measure = flexrock_core::analysis::fragility::Measure::parse("--im", &args.im)?;
+    let (_, scale) = flexrock_core::analysis::sweep::axis::parse_interval(&format!(
+        "excitation.scale={}",
+        args.scale
+    ))
+    .map_err(|e| e.renamed("find_min excitation.scale", "--scale"))?;
+    let shard = match &args.shard {
+        Some(text) => Some(store::Shard::parse(text)?),
+        None => store::Shard::from_slurm(|name| std::env::var(name).ok())?,
+    };
+    let options = fragility::Options {
+        out: args
+            .out
+            .unwrap_or_else(|| default_out_dir(&args.model, "-fragility")),
+        settings: args.set.settings_for(&args.model),
+        model: args.model,
+        records: args.records,
+        measure,
+        period: args.period,
+        scale,
+        scan: args.scan,
+        tol: args.tol,
+        bootstrap: args.bootstrap,
+        seed: args.seed,
+        chunk_size: args.chunk_size,
+        shard,
+        force: args.force,
+        figures: args.figure.options(&[flexrock::figures::page::Format::Svg]),
+    };
+    options.figures.sizes.check()?;
+    let bar = if args.quiet {
+        indicatif::ProgressBar::hidden()
+    } else {
+        indicatif::ProgressBar::with_draw_target(None, indicatif::ProgressDrawTarget::stderr())
+    };
+    let report = fragility::run(&options, &ProgressBar(bar.clone()))?;
+    bar.finish_and_clear();
+    let mut warnings = flexrock::commands::sweep::warnings(&report.sweep);
+    if let Some(summary) = &report.summary {
+        warnings.extend(summary.warnings.iter().cloned());
+    }
+    Ok(Output {
+        stdout: fragility::report_text(&report).into_bytes(),
+        warnings,
+    })
+}
+
 /// Exit code for bad input (model file, parameters): nothing was written.
 const EXIT_INPUT: u8 = 2;
 /// Exit code for a failure of the computation or of writing results (standard output included).
@@ -190,6 +244,7 @@ fn write_stderr(text: &str) {
 fn execute(command: Command) -> flexrock::Result<Output> {
     match command {
         Command::Sweep(args) => sweep(args),
+        Command::Fragility(args) => fragility(args),
         Command::Criteria {
             model,
             out,

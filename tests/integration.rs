@@ -22,6 +22,7 @@ mod self_weight;
 mod criteria;
 mod fem_cli;
 mod figures;
+mod fragility;
 mod plot_cli;
 mod report;
 mod row_sweep;

@@ -11,6 +11,7 @@ mod criteria;
 mod dynamics;
 mod exact;
 mod finite_inputs;
+mod fragility;
 mod hardening;
 mod independent;
 mod layers;

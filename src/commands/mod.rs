@@ -14,6 +14,7 @@ pub mod compare;
 pub mod converge;
 pub mod criteria;
 pub mod fem;
+pub mod fragility;
 pub mod pushover;
 pub mod record;
 pub mod report;

@@ -2,9 +2,10 @@
 //! formats; [`plot`] lays out and draws panels from plain series; [`run`] the figures of a run
 //! from its files; [`criteria`] the overturning criteria's figures; [`sweep`] the map, the
 //! spectrum and the IDA curves from sweep.csv alone, with [`sweep_axes`] their labels and cells;
-//! [`row`] and [`sweep_row`] those of rows.
+//! [`row`] and [`sweep_row`] those of rows; [`fragility`] the fragility curves and capacities.
 
 pub mod criteria;
+pub mod fragility;
 pub mod page;
 pub mod plot;
 pub mod row;

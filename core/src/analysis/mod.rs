@@ -6,5 +6,6 @@ pub mod converge;
 pub mod criteria;
 pub mod fem_check;
 pub mod findings;
+pub mod fragility;
 pub mod pushover_check;
 pub mod sweep;

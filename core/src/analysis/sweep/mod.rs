@@ -643,6 +643,14 @@ impl Sweep {
         self.plan.points()
     }
 
+    /// The model of point `index` with `further` keys set after the axes' values (a record's
+    /// scale, say): what a study built on a sweep reads of a point besides its row.
+    pub fn model_at(&self, index: usize, further: &[Setting]) -> Result<Model> {
+        let mut settings = self.settings_at(index);
+        settings.extend_from_slice(further);
+        self.model(&settings)
+    }
+
     /// The settings of point `index`: the `--set` keys, then the axes' values.
     fn settings_at(&self, index: usize) -> Vec<Setting> {
         let mut settings = self.settings.clone();
