@@ -11,6 +11,7 @@ use std::process::ExitCode;
 
 use clap::Parser as _;
 use flexrock::commands::record as record_command;
+use flexrock::figures::page::Format;
 use flexrock_core::model::{FemOverrides, FemSetup, Model, Overrides};
 
 /// A progress bar on standard error, drawn only on a terminal.
@@ -228,8 +229,12 @@ fn execute(command: Command) -> flexrock::Result<Output> {
             check,
             plot,
             shapes_at,
+            figure,
             timings,
         } => {
+            if !plot && shapes_at.is_none() {
+                refuse_figure_flags(&figure, "they set the figures of --plot (and --shapes-at)")?;
+            }
             let overrides = Overrides {
                 method,
                 rtol,
@@ -243,9 +248,9 @@ fn execute(command: Command) -> flexrock::Result<Output> {
                 &path,
                 out,
                 &overrides,
-                check,
-                plot,
+                (check, plot),
                 shapes_at.as_deref(),
+                &figure,
                 timings.wall_times(),
             )
         }
@@ -286,6 +291,7 @@ fn execute(command: Command) -> flexrock::Result<Output> {
         Command::Compare {
             model: path,
             out,
+            figure,
             dt,
             variant,
             reference_rtol,
@@ -299,6 +305,7 @@ fn execute(command: Command) -> flexrock::Result<Output> {
                 dt,
                 variant,
                 wall_times: timings.wall_times(),
+                figures: figure.checked(&[Format::Svg])?,
             };
             let out = out.unwrap_or_else(|| default_out_dir(&path, "-compare"));
             flexrock::writers::check_creatable(&out)?;
@@ -307,6 +314,7 @@ fn execute(command: Command) -> flexrock::Result<Output> {
         Command::Converge {
             model: path,
             out,
+            figure,
             dt,
             rtol,
             reference_rtol,
@@ -320,6 +328,7 @@ fn execute(command: Command) -> flexrock::Result<Output> {
                 rtols: rtol,
                 reference_rtol,
                 wall_times: timings.wall_times(),
+                figures: figure.checked(&[Format::Svg])?,
             };
             let out = out.unwrap_or_else(|| default_out_dir(&path, "-converge"));
             flexrock::writers::check_creatable(&out)?;
@@ -354,9 +363,14 @@ fn execute(command: Command) -> flexrock::Result<Output> {
             compare,
             modes,
             pushover,
+            figure,
             set,
             timings,
         } => {
+            if modes {
+                refuse_figure_flags(&figure, "--modes prints the periods and draws no figure")?;
+            }
+            let figures = figure.checked(&[Format::Svg])?;
             let overrides = set.overrides(&path);
             let model = load(&path, &overrides)?;
             let fem_overrides = FemOverrides { nx, ny, scheme, dt };
@@ -368,13 +382,21 @@ fn execute(command: Command) -> flexrock::Result<Output> {
             } else if pushover {
                 let out = out.unwrap_or_else(|| default_out_dir(&path, "-pushover"));
                 flexrock::writers::check_creatable(&out)?;
-                fem_pushover(&model, &setup, out, timings.wall_times())
+                fem_pushover(&model, &setup, out, timings.wall_times(), &figures)
             } else {
                 let out = out.unwrap_or_else(|| default_out_dir(&path, "-fem"));
                 flexrock::writers::check_creatable(&out)?;
-                fem(&model, &setup, out, compare, timings.wall_times())
+                fem(&model, &setup, out, compare, timings.wall_times(), &figures)
             }
         }
+    }
+}
+
+/// Refuses a figure flag given to a command that draws nothing with it (`why` says so).
+fn refuse_figure_flags(figure: &cli::FigureArgs, why: &str) -> flexrock::Result<()> {
+    match figure.given() {
+        Some((flag, value)) => Err(flexrock_core::Error::invalid(flag, value, why).into()),
+        None => Ok(()),
     }
 }
 
@@ -396,13 +418,14 @@ fn run(
     path: &std::path::Path,
     out: Option<PathBuf>,
     overrides: &Overrides,
-    check: bool,
-    plot: bool,
+    (check, plot): (bool, bool),
     shapes_at: Option<&str>,
+    figure: &cli::FigureArgs,
     wall_times: flexrock::writers::WallTimes,
 ) -> flexrock::Result<Output> {
     if is_row_model(path) {
-        return run_row(path, out, overrides, check, plot, shapes_at);
+        let figures = figure.checked(&flexrock::figures::row::FORMATS)?;
+        return run_row(path, out, overrides, (check, plot), shapes_at, &figures);
     }
     if let Some(times) = shapes_at {
         return Err(flexrock_core::Error::invalid(
@@ -419,6 +442,7 @@ fn run(
     let options = flexrock::commands::run::RunOptions {
         check,
         plots: plot,
+        figures: figure.checked(&[flexrock::figures::page::Format::Svg])?,
         wall_times,
     };
     let report = flexrock::commands::run::run_to_dir_checked(&model, &out, &options)?;
@@ -440,9 +464,9 @@ fn run_row(
     path: &std::path::Path,
     out: Option<PathBuf>,
     overrides: &Overrides,
-    check: bool,
-    plot: bool,
+    (check, plot): (bool, bool),
     shapes_at: Option<&str>,
+    figures: &flexrock::figures::page::FigureOptions,
 ) -> flexrock::Result<Output> {
     let refuse = |flag: &str, value: String| -> flexrock::Result<Output> {
         Err(flexrock_core::Error::invalid(
@@ -478,7 +502,8 @@ fn run_row(
     let shapes_at = shapes_at
         .map(|text| flexrock::figures::row::parse_shape_times(text, model.duration))
         .transpose()?;
-    let report = flexrock::commands::row::run_row_to_dir(&model, &out, plot, shapes_at.as_deref())?;
+    let report =
+        flexrock::commands::row::run_row_to_dir(&model, &out, plot, shapes_at.as_deref(), figures)?;
     Ok(Output {
         stdout: flexrock::commands::row::row_report_text(&model, &report).into_bytes(),
         warnings: flexrock_core::simulate::row_warnings(&model, &report.solution),
@@ -487,7 +512,6 @@ fn run_row(
 
 /// `flexrock plot`: the figures of a run or sweep directory.
 fn plot(args: PlotArgs) -> flexrock::Result<Output> {
-    use flexrock::figures::page::Format;
     let figure = args.figure.options(&[Format::Svg]);
     let written =
         if args.dir.join("sweep.json").is_file() && !args.dir.join("summary.json").exists() {
@@ -675,8 +699,9 @@ fn fem_pushover(
     setup: &FemSetup,
     out: PathBuf,
     wall_times: flexrock::writers::WallTimes,
+    figures: &flexrock::figures::page::FigureOptions,
 ) -> flexrock::Result<Output> {
-    let report = flexrock::commands::pushover::run(model, setup, &out, wall_times)?;
+    let report = flexrock::commands::pushover::run(model, setup, &out, wall_times, figures)?;
     Ok(Output::text(flexrock::commands::pushover::report_text(
         &report,
     )))
@@ -690,12 +715,13 @@ fn fem(
     out: PathBuf,
     compare: bool,
     wall_times: flexrock::writers::WallTimes,
+    figures: &flexrock::figures::page::FigureOptions,
 ) -> flexrock::Result<Output> {
     use flexrock::commands::fem;
     let report = if compare {
-        fem::compare(model, setup, &out, wall_times)?
+        fem::compare(model, setup, &out, wall_times, figures)?
     } else {
-        fem::fem(model, setup, &out, wall_times)?
+        fem::fem(model, setup, &out, wall_times, figures)?
     };
     Ok(Output {
         stdout: fem::report_text(&report).into_bytes(),

@@ -1068,10 +1068,12 @@ impl Layout {
                 ))?;
             } else if !panel.title.is_empty() {
                 let (left, top, w, _) = layout.area;
+                // Set smaller (down to 6 pt) where it is wider than the plotting area.
+                let size = (LABEL_PT * w / text_width(&panel.title, LABEL_PT)).clamp(6.0, LABEL_PT);
                 root.draw(&Text::new(
                     panel.title.clone(),
                     ((left + w / 2.0) as i32, (top - pt(TICK_PT) * 0.6) as i32),
-                    font(LABEL_PT, Pos::new(HPos::Center, VPos::Bottom)),
+                    font(size, Pos::new(HPos::Center, VPos::Bottom)),
                 ))?;
             }
         }
