@@ -264,6 +264,21 @@ pub fn figures(model: &Model, a: &FemAnalysis) -> Vec<(&'static str, Panel)> {
     ]
 }
 
+/// The width over the height of what `chart` draws, with the paddings of an equal-aspect panel
+/// (3 % each side across, 5 % up and down), from 0.5 to 8 (1.8 for a chart of no extent).
+fn drawing_aspect(chart: &Panel) -> f64 {
+    let (mut x0, mut x1, mut y0, mut y1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
+    for &(x, y) in chart.series.iter().flat_map(|s| &s.points) {
+        (x0, x1, y0, y1) = (x0.min(x), x1.max(x), y0.min(y), y1.max(y));
+    }
+    let aspect = (1.06 * (x1 - x0)) / (1.1 * (y1 - y0));
+    if aspect.is_finite() && aspect > 0.0 {
+        aspect.clamp(0.5, 8.0)
+    } else {
+        1.8
+    }
+}
+
 /// The files of `charts` (a figure of one panel each, named by its stem) in the formats and size
 /// of `options`.
 fn render(
@@ -272,7 +287,13 @@ fn render(
 ) -> Result<Vec<(String, Vec<u8>)>> {
     let mut files = Vec::new();
     for (stem, chart) in charts {
-        let figure = Figure::new(vec![chart], 1).aspect(1.8, 40.0);
+        // A drawing to scale takes a plotting area of its own proportions.
+        let (aspect, min_mm) = if chart.equal_aspect {
+            (drawing_aspect(&chart), 0.0)
+        } else {
+            (1.8, 40.0)
+        };
+        let figure = Figure::new(vec![chart], 1).aspect(aspect, min_mm);
         files.extend(plot::files(stem, &figure, options, PAGE_MM)?);
     }
     Ok(files)

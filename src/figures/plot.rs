@@ -1047,17 +1047,26 @@ impl Layout {
         DB::ErrorType: 'static,
     {
         root.fill(&WHITE)?;
+        let label_text = |i: usize, panel: &Panel| match panel.title.as_str() {
+            "" => panel_label(i),
+            title => format!("{} {title}", panel_label(i)),
+        };
+        // One size for every panel's label: set smaller (down to 6 pt) where one would run
+        // into the next panel's.
+        let label_size = (figure.panels.iter().zip(&self.panels).enumerate())
+            .map(|(i, (panel, layout))| {
+                let (left, _, w, _) = layout.area;
+                let room = left + w - layout.cell_left;
+                PANEL_PT * room / text_width(&label_text(i, panel), PANEL_PT)
+            })
+            .fold(PANEL_PT, f64::min)
+            .max(6.0);
         for (i, (panel, layout)) in figure.panels.iter().zip(&self.panels).enumerate() {
             draw_panel(root, panel, layout)?;
             if self.labelled {
-                let mut text = panel_label(i);
-                if !panel.title.is_empty() {
-                    text = format!("{text} {}", panel.title);
-                }
-                let (left, top, w, _) = layout.area;
-                // Set smaller (down to 6 pt) where it would run into the next panel's.
-                let room = left + w - layout.cell_left;
-                let size = (PANEL_PT * room / text_width(&text, PANEL_PT)).clamp(6.0, PANEL_PT);
+                let text = label_text(i, panel);
+                let (_, top, _, _) = layout.area;
+                let size = label_size;
                 root.draw(&Text::new(
                     text,
                     (
