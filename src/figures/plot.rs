@@ -1281,6 +1281,88 @@ where
     Ok(())
 }
 
+/// The cells of `panel` as they show at the figure's resolution, as few rectangles (left, top,
+/// right, bottom, colour; dots, the right and bottom edges outside): each dot of the plotting area takes the colour of the cell over
+/// its centre (the last drawn), and the dots are gathered into runs along each row, a run that
+/// continues one of the row above into the same rectangle. So a map of a million cells is no
+/// more rectangles than its plotting area has changes of colour along its rows, whatever the
+/// grid.
+fn cell_rectangles(panel: &Panel, layout: &PanelLayout) -> Vec<(f64, f64, f64, f64, (u8, u8, u8))> {
+    if panel.cells.is_empty() {
+        return Vec::new();
+    }
+    let (left, top, w, h) = layout.area;
+    let (x0, x1, y0, y1) = layout.ranges;
+    let (nx, ny) = (w.round().max(1.0) as usize, h.round().max(1.0) as usize);
+    // The dots whose centres lie in [a, b), a and b in dots from the area's edge.
+    let dots_in = |a: f64, b: f64, n: usize| {
+        let first = (a - 0.5).ceil().clamp(0.0, n as f64) as usize;
+        let end = (b - 0.5).ceil().clamp(0.0, n as f64) as usize;
+        first..end.max(first)
+    };
+    let mut colours: Vec<(u8, u8, u8)> = Vec::new();
+    // 0: no cell; k: colours[k - 1].
+    let mut grid = vec![0usize; nx * ny];
+    for c in &panel.cells {
+        let (Some(ax), Some(ay), Some(bx), Some(by)) = (
+            panel.x_axis(c.from.0),
+            panel.y_axis(c.from.1),
+            panel.x_axis(c.to.0),
+            panel.y_axis(c.to.1),
+        ) else {
+            continue;
+        };
+        let (xa, xb) = ((ax - x0) / (x1 - x0) * w, (bx - x0) / (x1 - x0) * w);
+        let (ya, yb) = ((y1 - ay) / (y1 - y0) * h, (y1 - by) / (y1 - y0) * h);
+        let k = match colours.iter().position(|&rgb| rgb == c.rgb) {
+            Some(k) => k + 1,
+            None => {
+                colours.push(c.rgb);
+                colours.len()
+            }
+        };
+        let across = dots_in(xa.min(xb), xa.max(xb), nx);
+        for j in dots_in(ya.min(yb), ya.max(yb), ny) {
+            grid[j * nx..(j + 1) * nx][across.clone()].fill(k);
+        }
+    }
+    let mut done = Vec::new();
+    // Rectangles still growing down: (first dot, end dot, colour) -> their top row.
+    let mut open: std::collections::HashMap<(usize, usize, usize), usize> = Default::default();
+    for j in 0..=ny {
+        let mut runs = std::collections::HashMap::new();
+        if j < ny {
+            let row = &grid[j * nx..(j + 1) * nx];
+            let mut i = 0;
+            while i < nx {
+                let (k, start) = (row[i], i);
+                while i < nx && row[i] == k {
+                    i += 1;
+                }
+                if k != 0 {
+                    let top_row = open.remove(&(start, i, k)).unwrap_or(j);
+                    runs.insert((start, i, k), top_row);
+                }
+            }
+        }
+        done.extend(open.drain().map(|((a, b, k), t)| (t, a, b, j, k)));
+        open = runs;
+    }
+    // In a fixed order, so that the same figure gives the same bytes.
+    done.sort_unstable();
+    done.into_iter()
+        .map(|(t, a, b, end, k)| {
+            (
+                left + a as f64,
+                top + t as f64,
+                left + b as f64,
+                top + end as f64,
+                colours[k - 1],
+            )
+        })
+        .collect()
+}
+
 /// Draws one panel: cells, spans, grid, reference lines, series, rug, frame, ticks and labels.
 fn draw_panel<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
@@ -1302,23 +1384,13 @@ where
     let rect = |a: (f64, f64), b: (f64, f64), c: RGBColor| {
         Rectangle::new([(dot(a.0), dot(a.1)), (dot(b.0), dot(b.1))], c.filled())
     };
-    for c in &panel.cells {
-        let (Some(ax), Some(ay), Some(bx), Some(by)) = (
-            panel.x_axis(c.from.0),
-            panel.y_axis(c.from.1),
-            panel.x_axis(c.to.0),
-            panel.y_axis(c.to.1),
-        ) else {
-            continue;
-        };
+    for (l, t, r, b, rgb) in cell_rectangles(panel, layout) {
         // A dot wider and taller on the right and below, within the plotting area, so that
         // neighbours overlap and no seam of the background shows between them in any viewer.
-        let (l, r) = (sx(ax).min(sx(bx)), sx(ax).max(sx(bx)) + 1.0);
-        let (t, b) = (sy(by).min(sy(ay)), sy(by).max(sy(ay)) + 1.0);
         root.draw(&rect(
             (clip_x(l), clip_y(t)),
-            (clip_x(r), clip_y(b)),
-            RGBColor(c.rgb.0, c.rgb.1, c.rgb.2),
+            (clip_x(r + 1.0), clip_y(b + 1.0)),
+            RGBColor(rgb.0, rgb.1, rgb.2),
         ))?;
     }
     for span in &panel.spans {
