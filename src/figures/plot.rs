@@ -1847,6 +1847,35 @@ mod tests {
         assert!(svg.len() < 2_000_000, "{} bytes", svg.len());
     }
 
+    /// A map's file does not grow with its grid beyond what its dots show: the same field
+    /// (rings of five colours) over 600 x 600 and over 1200 x 1200 cells, both finer than the
+    /// dots of a 40 mm figure, draws about as many rectangles (a rectangle per run of a colour
+    /// up each column of cells drew twice as many).
+    #[test]
+    fn a_map_of_a_finer_grid_draws_no_more_rectangles() {
+        let rectangles = |n: usize| {
+            let mut panel = Panel::new("", "x", "y");
+            for i in 0..n {
+                for j in 0..n {
+                    let (x, y) = (i as f64 / n as f64, j as f64 / n as f64);
+                    let ring = ((x * x + y * y).sqrt() * 7.0) as usize % 5;
+                    panel.cells.push(Cell {
+                        from: (x, y),
+                        to: (x + 1.0 / n as f64, y + 1.0 / n as f64),
+                        rgb: palette(ring + 1),
+                    });
+                }
+            }
+            let svg = svg("map.svg", &Figure::new(vec![panel], 1), &page(40.0)).unwrap();
+            svg.matches("<rect").count()
+        };
+        let (coarse, fine) = (rectangles(600), rectangles(1200));
+        assert!(
+            (fine as f64) < 1.1 * coarse as f64,
+            "{coarse} rectangles for 600 x 600 cells, {fine} for 1200 x 1200"
+        );
+    }
+
     #[test]
     fn markers_rugs_and_dashes_draw() {
         let mut panel = Panel::new("", "t (s)", "q' (m/s)")
