@@ -68,14 +68,16 @@ pub(crate) enum Command {
         #[arg(long)]
         check: bool,
         /// Also draw the figures of `flexrock plot` (plot_motion.svg, plot_force.svg,
-        /// plot_energy.svg), written with the run's files as one set.
+        /// plot_energy.svg; a row's row_motion and row_shapes), written with the run's files as
+        /// one set, in the formats and size of --format, --width and --height.
         #[arg(long)]
         plot: bool,
         /// A row only: the times (s, comma-separated, at most 8, within the duration) of the
         /// strip of the row's deformed shapes, row_shapes.svg and .png (drawn to true scale at
-        /// the model's exact state at each time; drawn even without --plot). Without it, --plot
-        /// draws the strip at times chosen from the run (first uplift, first impact, largest
-        /// lean, held contact, last impact).
+        /// the run's state at each time, which must be an instant of its history: a multiple of
+        /// simulation.output_dt; drawn even without --plot). Without it, --plot draws the strip
+        /// at instants chosen from the run (first uplift, first impact, largest lean, held
+        /// contact, last impact, or the first instant after one).
         #[arg(long, value_name = "T1,T2,...", allow_hyphen_values = true)]
         shapes_at: Option<String>,
         #[command(flatten)]

@@ -757,11 +757,26 @@ fn drawing_commands() -> Vec<(Vec<String>, Vec<&'static str>)> {
             vec!["compare", "compare_relations"],
         ),
         (
-            args(&["converge", &model, "--duration", "2", "--dt", "0.02,0.01", "--rtol", "1e-4,1e-6"]),
+            args(&[
+                "converge",
+                &model,
+                "--duration",
+                "2",
+                "--dt",
+                "0.02,0.01",
+                "--rtol",
+                "1e-4,1e-6",
+            ]),
             vec!["convergence_dt", "convergence_work"],
         ),
         (
-            args(&["fem", &model, "--compare", "--set", "simulation.duration=1.5"]),
+            args(&[
+                "fem",
+                &model,
+                "--compare",
+                "--set",
+                "simulation.duration=1.5",
+            ]),
             vec![
                 "fem_deformed_shapes",
                 "fem_components",
@@ -776,10 +791,7 @@ fn drawing_commands() -> Vec<(Vec<String>, Vec<&'static str>)> {
                 "compare_s_vs_r",
             ],
         ),
-        (
-            args(&["fem", &model, "--pushover"]),
-            vec!["pushover"],
-        ),
+        (args(&["fem", &model, "--pushover"]), vec!["pushover"]),
         (
             args(&["run", &row, "--plot", "--duration", "2"]),
             vec!["row_motion", "row_shapes"],
@@ -792,8 +804,18 @@ fn drawing_commands() -> Vec<(Vec<String>, Vec<&'static str>)> {
 fn assert_texts_fit(svg: &str, what: &str) {
     let elements = parse_svg(svg);
     let root = elements.iter().find(|e| e.tag == "svg").expect("an svg");
-    let width: f64 = root.attr("viewBox").unwrap().split(' ').nth(2).unwrap().parse().unwrap();
-    for e in elements.iter().filter(|e| e.tag == "text" && !e.text.is_empty()) {
+    let width: f64 = root
+        .attr("viewBox")
+        .unwrap()
+        .split(' ')
+        .nth(2)
+        .unwrap()
+        .parse()
+        .unwrap();
+    for e in elements
+        .iter()
+        .filter(|e| e.tag == "text" && !e.text.is_empty())
+    {
         if e.attr("transform").is_some() {
             continue;
         }
