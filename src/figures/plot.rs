@@ -1281,13 +1281,16 @@ where
     Ok(())
 }
 
+/// A filled rectangle in dots: left, top, right, bottom, colour.
+type DotRectangle = (f64, f64, f64, f64, (u8, u8, u8));
+
 /// The cells of `panel` as they show at the figure's resolution, as few rectangles (left, top,
 /// right, bottom, colour; dots, the right and bottom edges outside): each dot of the plotting area takes the colour of the cell over
 /// its centre (the last drawn), and the dots are gathered into runs along each row, a run that
 /// continues one of the row above into the same rectangle. So a map of a million cells is no
 /// more rectangles than its plotting area has changes of colour along its rows, whatever the
 /// grid.
-fn cell_rectangles(panel: &Panel, layout: &PanelLayout) -> Vec<(f64, f64, f64, f64, (u8, u8, u8))> {
+fn cell_rectangles(panel: &Panel, layout: &PanelLayout) -> Vec<DotRectangle> {
     if panel.cells.is_empty() {
         return Vec::new();
     }

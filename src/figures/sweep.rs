@@ -561,7 +561,7 @@ fn map_panel(
     // The boundary: every cell edge between an overturned and a standing cell, as edges between
     // corners (i, j) of the grid, joined end to end into lines (one drawn path per line, not
     // per edge: a map of a million cells has thousands of edges on its boundary).
-    let mut edges: Vec<((usize, usize), (usize, usize))> = Vec::new();
+    let mut edges: Vec<(Corner, Corner)> = Vec::new();
     for i in 0..cells.len() {
         for j in 0..cells[i].len() {
             let here = cells[i][j].overturned;
@@ -585,10 +585,13 @@ fn map_panel(
     panel
 }
 
+/// A corner of a map's grid: the indices of its cell edges across and up.
+type Corner = (usize, usize);
+
 /// The lines `edges` (pairs of corners) make, joined end to end: each edge once, in the order
 /// found (at a corner where four edges meet, a line goes on along any of the others).
-fn join_edges(edges: &[((usize, usize), (usize, usize))]) -> Vec<Vec<(usize, usize)>> {
-    let mut at: std::collections::HashMap<(usize, usize), Vec<usize>> = Default::default();
+fn join_edges(edges: &[(Corner, Corner)]) -> Vec<Vec<Corner>> {
+    let mut at: std::collections::HashMap<Corner, Vec<usize>> = Default::default();
     for (k, &(a, b)) in edges.iter().enumerate() {
         at.entry(a).or_default().push(k);
         at.entry(b).or_default().push(k);
