@@ -473,7 +473,8 @@ fn map_labels_are_quantities_and_the_colour_bar_is_labelled() {
             (x, y, x + e.number("width"), y + e.number("height"))
         })
         .collect();
-    assert!(cells.len() >= 36, "{} cells", cells.len());
+    // Runs of one colour are drawn as one rectangle: fewer than the cells, but some.
+    assert!(cells.len() >= 6, "{} cells", cells.len());
     let mut abutting = 0;
     for c in &cells {
         for d in &cells {
@@ -485,8 +486,8 @@ fn map_labels_are_quantities_and_the_colour_bar_is_labelled() {
             }
         }
     }
-    // (Runs of one colour up a column are one rectangle each: 6 by 6 cells make fewer.)
-    assert!(abutting >= 10, "{abutting} neighbouring cells");
+    // (Runs of one colour are one rectangle each: 6 by 6 cells make fewer.)
+    assert!(abutting >= 4, "{abutting} neighbouring cells");
 }
 
 #[test]
