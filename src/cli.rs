@@ -68,16 +68,20 @@ pub(crate) enum Command {
         #[arg(long)]
         check: bool,
         /// Also draw the figures of `flexrock plot` (plot_motion.svg, plot_force.svg,
-        /// plot_energy.svg), written with the run's files as one set.
+        /// plot_energy.svg; a row's row_motion and row_shapes), written with the run's files as
+        /// one set, in the formats and size of --format, --width and --height.
         #[arg(long)]
         plot: bool,
         /// A row only: the times (s, comma-separated, at most 8, within the duration) of the
         /// strip of the row's deformed shapes, row_shapes.svg and .png (drawn to true scale at
-        /// the model's exact state at each time; drawn even without --plot). Without it, --plot
-        /// draws the strip at times chosen from the run (first uplift, first impact, largest
-        /// lean, held contact, last impact).
+        /// the run's state at each time, which must be an instant of its history: a multiple of
+        /// simulation.output_dt; drawn even without --plot). Without it, --plot draws the strip
+        /// at instants chosen from the run (first uplift, first impact, largest lean, held
+        /// contact, last impact, or the first instant after one).
         #[arg(long, value_name = "T1,T2,...", allow_hyphen_values = true)]
         shapes_at: Option<String>,
+        #[command(flatten)]
+        figure: FigureArgs,
         #[command(flatten)]
         timings: TimingsArg,
     },
@@ -158,13 +162,16 @@ pub(crate) enum Command {
         command: RecordCommand,
     },
     /// Compare Newmark at the paper's dt with the exact solution; write compare.csv,
-    /// compare_history.csv, compare.json, compare.svg and compare_relations.svg.
+    /// compare_history.csv, compare.json and the figures compare and compare_relations (SVG,
+    /// PDF or PNG, at a size on paper).
     Compare {
         /// Model file (TOML).
         model: PathBuf,
         /// Output directory [default: out/<model file stem>-compare].
         #[arg(long)]
         out: Option<PathBuf>,
+        #[command(flatten)]
+        figure: FigureArgs,
         /// Newmark time step, s [default: the file's solver.dt, else 0.02].
         #[arg(long, allow_negative_numbers = true)]
         dt: Option<f64>,
@@ -184,13 +191,16 @@ pub(crate) enum Command {
         timings: TimingsArg,
     },
     /// Convergence study: Newmark at each dt and each adaptive method at each tolerance against
-    /// the exact solution; write convergence.csv, convergence.json and two SVG figures.
+    /// the exact solution; write convergence.csv, convergence.json and two figures,
+    /// convergence_dt and convergence_work (SVG, PDF or PNG, at a size on paper).
     Converge {
         /// Model file (TOML).
         model: PathBuf,
         /// Output directory [default: out/<model file stem>-converge].
         #[arg(long)]
         out: Option<PathBuf>,
+        #[command(flatten)]
+        figure: FigureArgs,
         /// Newmark time steps, s, separated by commas.
         #[arg(long, value_delimiter = ',', default_value = DTS_TEXT.as_str())]
         dt: Vec<f64>,
@@ -235,7 +245,8 @@ pub(crate) enum Command {
         out: PathBuf,
     },
     /// Plane-stress finite element analysis of the body (the paper's Section 3): writes
-    /// fem_history.csv, fem_events.csv, fem_summary.json and SVG figures.
+    /// fem_history.csv, fem_events.csv, fem_summary.json and figures (SVG, PDF or PNG, at a
+    /// size on paper).
     Fem {
         /// Model file (TOML); its optional [fem] section holds the settings.
         model: PathBuf,
@@ -266,6 +277,8 @@ pub(crate) enum Command {
         /// writes pushover.csv, pushover.json and pushover.svg. Use a refined mesh (--nx 8 --ny 40).
         #[arg(long)]
         pushover: bool,
+        #[command(flatten)]
+        figure: FigureArgs,
         #[command(flatten)]
         set: SetArgs,
         #[command(flatten)]
@@ -332,6 +345,32 @@ pub(crate) struct FigureArgs {
 }
 
 impl FigureArgs {
+    /// The first of these flags given, and its value as typed, for a command that draws
+    /// nothing with them.
+    pub(crate) fn given(&self) -> Option<(&'static str, String)> {
+        if let Some(f) = self.format.first() {
+            return Some(("--format", format!("{f:?}").to_lowercase()));
+        }
+        if let Some(w) = self.width {
+            return Some(("--width", w.to_string()));
+        }
+        if let Some(h) = self.height {
+            return Some(("--height", h.to_string()));
+        }
+        self.dpi.map(|d| ("--dpi", d.to_string()))
+    }
+
+    /// As [`FigureArgs::options`], the sizes checked (the error names the flag, its value and
+    /// the rule) before anything is computed.
+    pub(crate) fn checked(
+        &self,
+        default: &[flexrock::figures::page::Format],
+    ) -> flexrock::Result<flexrock::figures::page::FigureOptions> {
+        let options = self.options(default);
+        options.sizes.check()?;
+        Ok(options)
+    }
+
     /// The options these flags give, `default` the formats when none is asked.
     pub(crate) fn options(
         &self,

@@ -14,6 +14,7 @@ use std::process::ExitCode;
 
 use clap::Parser as _;
 use flexrock::commands::record as record_command;
+use flexrock::figures::page::Format;
 use flexrock_core::model::{FemOverrides, FemSetup, Model, Overrides};
 
 /// A progress bar on standard error, drawn only on a terminal.
@@ -283,8 +284,12 @@ fn execute(command: Command) -> flexrock::Result<Output> {
             check,
             plot,
             shapes_at,
+            figure,
             timings,
         } => {
+            if !plot && shapes_at.is_none() {
+                refuse_figure_flags(&figure, "they set the figures of --plot (and --shapes-at)")?;
+            }
             let overrides = Overrides {
                 method,
                 rtol,
@@ -298,9 +303,9 @@ fn execute(command: Command) -> flexrock::Result<Output> {
                 &path,
                 out,
                 &overrides,
-                check,
-                plot,
+                (check, plot),
                 shapes_at.as_deref(),
+                &figure,
                 timings.wall_times(),
             )
         }
@@ -341,6 +346,7 @@ fn execute(command: Command) -> flexrock::Result<Output> {
         Command::Compare {
             model: path,
             out,
+            figure,
             dt,
             variant,
             reference_rtol,
@@ -354,6 +360,7 @@ fn execute(command: Command) -> flexrock::Result<Output> {
                 dt,
                 variant,
                 wall_times: timings.wall_times(),
+                figures: figure.checked(&[Format::Svg])?,
             };
             let out = out.unwrap_or_else(|| default_out_dir(&path, "-compare"));
             flexrock::writers::check_creatable(&out)?;
@@ -362,6 +369,7 @@ fn execute(command: Command) -> flexrock::Result<Output> {
         Command::Converge {
             model: path,
             out,
+            figure,
             dt,
             rtol,
             reference_rtol,
@@ -375,6 +383,7 @@ fn execute(command: Command) -> flexrock::Result<Output> {
                 rtols: rtol,
                 reference_rtol,
                 wall_times: timings.wall_times(),
+                figures: figure.checked(&[Format::Svg])?,
             };
             let out = out.unwrap_or_else(|| default_out_dir(&path, "-converge"));
             flexrock::writers::check_creatable(&out)?;
@@ -409,9 +418,14 @@ fn execute(command: Command) -> flexrock::Result<Output> {
             compare,
             modes,
             pushover,
+            figure,
             set,
             timings,
         } => {
+            if modes {
+                refuse_figure_flags(&figure, "--modes prints the periods and draws no figure")?;
+            }
+            let figures = figure.checked(&[Format::Svg])?;
             let overrides = set.overrides(&path);
             let model = load(&path, &overrides)?;
             let fem_overrides = FemOverrides { nx, ny, scheme, dt };
@@ -423,13 +437,21 @@ fn execute(command: Command) -> flexrock::Result<Output> {
             } else if pushover {
                 let out = out.unwrap_or_else(|| default_out_dir(&path, "-pushover"));
                 flexrock::writers::check_creatable(&out)?;
-                fem_pushover(&model, &setup, out, timings.wall_times())
+                fem_pushover(&model, &setup, out, timings.wall_times(), &figures)
             } else {
                 let out = out.unwrap_or_else(|| default_out_dir(&path, "-fem"));
                 flexrock::writers::check_creatable(&out)?;
-                fem(&model, &setup, out, compare, timings.wall_times())
+                fem(&model, &setup, out, compare, timings.wall_times(), &figures)
             }
         }
+    }
+}
+
+/// Refuses a figure flag given to a command that draws nothing with it (`why` says so).
+fn refuse_figure_flags(figure: &cli::FigureArgs, why: &str) -> flexrock::Result<()> {
+    match figure.given() {
+        Some((flag, value)) => Err(flexrock_core::Error::invalid(flag, value, why).into()),
+        None => Ok(()),
     }
 }
 
@@ -451,13 +473,14 @@ fn run(
     path: &std::path::Path,
     out: Option<PathBuf>,
     overrides: &Overrides,
-    check: bool,
-    plot: bool,
+    (check, plot): (bool, bool),
     shapes_at: Option<&str>,
+    figure: &cli::FigureArgs,
     wall_times: flexrock::writers::WallTimes,
 ) -> flexrock::Result<Output> {
     if is_row_model(path) {
-        return run_row(path, out, overrides, check, plot, shapes_at);
+        let figures = figure.checked(&flexrock::figures::row::FORMATS)?;
+        return run_row(path, out, overrides, (check, plot), shapes_at, &figures);
     }
     if let Some(times) = shapes_at {
         return Err(flexrock_core::Error::invalid(
@@ -474,6 +497,7 @@ fn run(
     let options = flexrock::commands::run::RunOptions {
         check,
         plots: plot,
+        figures: figure.checked(&[flexrock::figures::page::Format::Svg])?,
         wall_times,
     };
     let report = flexrock::commands::run::run_to_dir_checked(&model, &out, &options)?;
@@ -495,9 +519,9 @@ fn run_row(
     path: &std::path::Path,
     out: Option<PathBuf>,
     overrides: &Overrides,
-    check: bool,
-    plot: bool,
+    (check, plot): (bool, bool),
     shapes_at: Option<&str>,
+    figures: &flexrock::figures::page::FigureOptions,
 ) -> flexrock::Result<Output> {
     let refuse = |flag: &str, value: String| -> flexrock::Result<Output> {
         Err(flexrock_core::Error::invalid(
@@ -533,7 +557,8 @@ fn run_row(
     let shapes_at = shapes_at
         .map(|text| flexrock::figures::row::parse_shape_times(text, model.duration))
         .transpose()?;
-    let report = flexrock::commands::row::run_row_to_dir(&model, &out, plot, shapes_at.as_deref())?;
+    let report =
+        flexrock::commands::row::run_row_to_dir(&model, &out, plot, shapes_at.as_deref(), figures)?;
     Ok(Output {
         stdout: flexrock::commands::row::row_report_text(&model, &report).into_bytes(),
         warnings: flexrock_core::simulate::row_warnings(&model, &report.solution),
@@ -542,7 +567,6 @@ fn run_row(
 
 /// `flexrock plot`: the figures of a run or sweep directory.
 fn plot(args: PlotArgs) -> flexrock::Result<Output> {
-    use flexrock::figures::page::Format;
     let figure = args.figure.options(&[Format::Svg]);
     let written =
         if args.dir.join("sweep.json").is_file() && !args.dir.join("summary.json").exists() {
@@ -730,8 +754,9 @@ fn fem_pushover(
     setup: &FemSetup,
     out: PathBuf,
     wall_times: flexrock::writers::WallTimes,
+    figures: &flexrock::figures::page::FigureOptions,
 ) -> flexrock::Result<Output> {
-    let report = flexrock::commands::pushover::run(model, setup, &out, wall_times)?;
+    let report = flexrock::commands::pushover::run(model, setup, &out, wall_times, figures)?;
     Ok(Output::text(flexrock::commands::pushover::report_text(
         &report,
     )))
@@ -745,12 +770,13 @@ fn fem(
     out: PathBuf,
     compare: bool,
     wall_times: flexrock::writers::WallTimes,
+    figures: &flexrock::figures::page::FigureOptions,
 ) -> flexrock::Result<Output> {
     use flexrock::commands::fem;
     let report = if compare {
-        fem::compare(model, setup, &out, wall_times)?
+        fem::compare(model, setup, &out, wall_times, figures)?
     } else {
-        fem::fem(model, setup, &out, wall_times)?
+        fem::fem(model, setup, &out, wall_times, figures)?
     };
     Ok(Output {
         stdout: fem::report_text(&report).into_bytes(),

@@ -62,56 +62,6 @@ pub fn simulate_row(model: &crate::model::RowModel) -> Result<crate::bodies::row
     )?)
 }
 
-/// The state of every column of a row at time `t` (s, in [0, duration]): the last sample of
-/// each column of the row solved over [0, t], so the model's own state at that instant (the
-/// closed form of the flow under way evaluated at `t`, after any impact at `t`), not the
-/// nearest sample of a run's grid. The run over [0, t] takes the same flows as the full run up
-/// to `t`: the exact method's flows are anchored at events, never at grid points, so stopping
-/// earlier changes nothing before it. At `t = 0` it is the initial state.
-pub fn row_state_at(
-    model: &crate::model::RowModel,
-    t: f64,
-) -> Result<Vec<crate::integrate::solution::Sample>> {
-    if !(t.is_finite() && (0.0..=model.duration).contains(&t)) {
-        return Err(crate::Error::invalid(
-            "t",
-            t,
-            &format!("must be a time in [0, {}] s", model.duration),
-        ));
-    }
-    // The grid {0, t}: only the two ends (and the events on the way) are sampled. At t = 0
-    // the first sample of a short run is the initial state.
-    let end = if t > 0.0 {
-        t
-    } else {
-        model.duration.min(model.settings.output_dt)
-    };
-    let settings = exact::ExactSettings { output_dt: end };
-    let solution = crate::bodies::row::solve_row(
-        &model.row,
-        model.floor.as_ref(),
-        end,
-        &settings,
-        History::Sampled,
-    )?;
-    solution
-        .columns
-        .iter()
-        .enumerate()
-        .map(|(i, column)| {
-            column
-                .samples
-                .iter()
-                .rev()
-                .find(|s| s.t <= t)
-                .cloned()
-                .ok_or_else(|| {
-                    crate::Error::invalid(&format!("column[{i}]"), t, "has no state at this time")
-                })
-        })
-        .collect()
-}
-
 /// Solves a model with its own solver, keeping no history: events, peaks and statistics only
 /// (what a sweep needs of each of its points).
 pub fn simulate_peaks(model: &Model) -> Result<Solution> {

@@ -10,6 +10,7 @@ use serde::Serialize;
 
 use crate::commands::run::{simulate_with, VERSION};
 use crate::error::Result;
+use crate::figures::page::{FigureOptions, PAGE_MM};
 use crate::figures::plot::{self, Dash, Figure, Panel, Series};
 use crate::writers::{self, count, readable, Table};
 use flexrock_core::analysis::findings::{self, Findings};
@@ -41,6 +42,8 @@ pub struct CompareOptions {
     pub variant: Option<String>,
     /// Where the two solves' wall times go (compare.json, or timings.json).
     pub wall_times: writers::WallTimes,
+    /// The figures' formats and size.
+    pub figures: FigureOptions,
 }
 
 impl Default for CompareOptions {
@@ -50,6 +53,7 @@ impl Default for CompareOptions {
             dt: None,
             variant: None,
             wall_times: writers::WallTimes::Inline,
+            figures: FigureOptions::default(),
         }
     }
 }
@@ -191,8 +195,15 @@ pub fn run_compare(
         newmark: solution_summary(model, newmark_settings, &newmark),
         comparison: &comparison,
     };
-    let figure = compare_figure(model, &reference, &newmark, &newmark_settings.label())?;
-    let relations = relations_figure(&reference, &newmark, &newmark_settings.label())?;
+    let figure = compare_figure(model, &reference, &newmark, &newmark_settings.label());
+    let relations = relations_figure(&reference, &newmark, &newmark_settings.label());
+    let mut figure_files = plot::files("compare", &figure, &options.figures, PAGE_MM)?;
+    figure_files.extend(plot::files(
+        "compare_relations",
+        &relations,
+        &options.figures,
+        PAGE_MM,
+    )?);
     let mut files = vec![
         ("compare.csv", events_table(&comparison)),
         (
@@ -200,11 +211,13 @@ pub fn run_compare(
             history_table(&reference, &newmark, output_dt),
         ),
         ("compare.json", writers::json_bytes(&summary)),
-        ("compare.svg", figure.into_bytes()),
-        ("compare_relations.svg", relations.into_bytes()),
     ];
     files.extend(timings.file());
-    let files = writers::write_atomically(out_dir, &files)?;
+    let mut files: Vec<(String, Vec<u8>)> = (files.into_iter())
+        .map(|(name, bytes)| (name.to_string(), bytes))
+        .collect();
+    files.extend(figure_files);
+    let files = writers::write_named_atomically(out_dir, files)?;
     Ok(CompareReport {
         reference,
         newmark,
@@ -232,12 +245,7 @@ fn history_table(reference: &Solution, other: &Solution, output_dt: f64) -> Vec<
 }
 
 /// The paper's Fig. 6 panels (q, s, r, q') with both solutions overlaid.
-fn compare_figure(
-    model: &Model,
-    reference: &Solution,
-    other: &Solution,
-    label: &str,
-) -> Result<String> {
+fn compare_figure(model: &Model, reference: &Solution, other: &Solution, label: &str) -> Figure {
     let s_n = model.constants.uplift_displacement;
     let panel = |title: &str, y_label: &str, value: fn(&Sample) -> f64, s_n_lines: bool| {
         let series = vec![
@@ -273,14 +281,11 @@ fn compare_figure(
         panel("", "r (m)", |x| x.r, false),
         panel("", "q\u{307} (m/s)", |x| x.qdot, false),
     ];
-    plot::double_column_svg(
-        "compare.svg",
-        &Figure::new(panels.to_vec(), 1).shared_x().aspect(4.5, 24.0),
-    )
+    Figure::new(panels.to_vec(), 1).shared_x().aspect(4.5, 24.0)
 }
 
 /// The paper's Figs. 12-13: q against r and s against r, both solutions.
-fn relations_figure(reference: &Solution, other: &Solution, label: &str) -> Result<String> {
+fn relations_figure(reference: &Solution, other: &Solution, label: &str) -> Figure {
     let panel = |title: &str, x_label: &str, y_label: &str, xy: fn(&Sample) -> (f64, f64)| Panel {
         title: title.to_string(),
         x_label: x_label.to_string(),
@@ -299,10 +304,7 @@ fn relations_figure(reference: &Solution, other: &Solution, label: &str) -> Resu
         panel("", "r (m)", "q (m)", |x| (x.r, x.q)),
         panel("", "r (m)", "s (m)", |x| (x.r, x.s)),
     ];
-    plot::double_column_svg(
-        "compare_relations.svg",
-        &Figure::new(panels.to_vec(), 2).aspect(1.1, 40.0),
-    )
+    Figure::new(panels.to_vec(), 2).aspect(1.1, 40.0)
 }
 
 /// The printed table of `flexrock compare`.

@@ -10,6 +10,7 @@ use serde::Serialize;
 
 use crate::commands::run::VERSION;
 use crate::error::Result;
+use crate::figures::page::{FigureOptions, PAGE_MM};
 use crate::figures::plot::{self, Dash, Figure, Panel, Series};
 use crate::writers::{self, count, readable, scientific, Table};
 use flexrock_core::integrate::solution::SolverStats;
@@ -36,6 +37,8 @@ pub struct ConvergeOptions {
     pub reference_rtol: Option<f64>,
     /// Where the solves' wall times go (convergence.json and .csv, or timings.json).
     pub wall_times: writers::WallTimes,
+    /// The figures' formats and size.
+    pub figures: FigureOptions,
 }
 
 impl Default for ConvergeOptions {
@@ -45,6 +48,7 @@ impl Default for ConvergeOptions {
             rtols: DEFAULT_RTOLS.to_vec(),
             reference_rtol: None,
             wall_times: writers::WallTimes::Inline,
+            figures: FigureOptions::default(),
         }
     }
 }
@@ -168,15 +172,24 @@ pub fn run_converge(
         cases,
         slopes,
     };
-    let (by_dt, by_work) = figures(&summary)?;
+    let (by_dt, by_work) = figures(&summary);
+    let mut figure_files = plot::files("convergence_dt", &by_dt, &options.figures, PAGE_MM)?;
+    figure_files.extend(plot::files(
+        "convergence_work",
+        &by_work,
+        &options.figures,
+        PAGE_MM,
+    )?);
     let mut files = vec![
         ("convergence.csv", cases_table(&summary.cases)),
         ("convergence.json", writers::json_bytes(&summary)),
-        ("convergence_dt.svg", by_dt.into_bytes()),
-        ("convergence_work.svg", by_work.into_bytes()),
     ];
     files.extend(timings.file());
-    let files = writers::write_atomically(out_dir, &files)?;
+    let mut files: Vec<(String, Vec<u8>)> = (files.into_iter())
+        .map(|(name, bytes)| (name.to_string(), bytes))
+        .collect();
+    files.extend(figure_files);
+    let files = writers::write_named_atomically(out_dir, files)?;
     Ok(ConvergeReport { summary, files })
 }
 
@@ -189,33 +202,20 @@ fn cases_table(cases: &[Case]) -> Vec<u8> {
 }
 
 /// Error against dt (Newmark, with slope-1 and slope-2 guides) and error against work (all).
-fn figures(summary: &ConvergeSummary) -> Result<(String, String)> {
+/// The panels need no titles: each y label names its error (what it is measured against is
+/// convergence.json's reference_method).
+fn figures(summary: &ConvergeSummary) -> (Figure, Figure) {
     let ok = |c: &&Case| c.is_ok();
     let methods = methods(&summary.cases);
-    // (column, panel title, axis label with unit)
+    // (column, axis label with unit)
     let titles = [
-        (
-            "max_q_error",
-            "Error of q on the output grid",
-            "max |Δq| (m)",
-        ),
-        (
-            "max_event_time_error",
-            "Error of the event times",
-            "max |Δt_event| (s)",
-        ),
-        ("peak_error", "Error of the peak of |q|", "|Δq_peak| (m)"),
+        ("max_q_error", "max |Δq| on the grid (m)"),
+        ("max_event_time_error", "max |Δt_event| (s)"),
+        ("peak_error", "|Δq_peak| (m)"),
     ];
     let mut dt_panels = Vec::new();
     let mut work_panels = Vec::new();
-    // Say what the errors are measured against: the exact solution (true errors) or a tight run.
-    let against = match summary.reference_rtol {
-        None => " (against the exact solution)".to_string(),
-        Some(rtol) => format!(" (against {} at rtol {rtol:e})", summary.reference_method),
-    };
-    for (name, title, y_label) in titles {
-        let title = format!("{title}{against}");
-        let title = title.as_str();
+    for (name, y_label) in titles {
         let mut dt_series = Vec::new();
         let mut work_series = Vec::new();
         for (i, method) in methods.iter().enumerate() {
@@ -268,7 +268,6 @@ fn figures(summary: &ConvergeSummary) -> Result<(String, String)> {
             }
         }
         dt_panels.push(Panel {
-            title: format!("Newmark, {title}"),
             x_label: "Δt (s)".to_string(),
             y_label: y_label.to_string(),
             series: dt_series,
@@ -277,7 +276,6 @@ fn figures(summary: &ConvergeSummary) -> Result<(String, String)> {
             ..Panel::default()
         });
         work_panels.push(Panel {
-            title: title.to_string(),
             x_label: "right-hand-side evaluations".to_string(),
             y_label: y_label.to_string(),
             series: work_series,
@@ -286,16 +284,10 @@ fn figures(summary: &ConvergeSummary) -> Result<(String, String)> {
             ..Panel::default()
         });
     }
-    Ok((
-        plot::double_column_svg(
-            "convergence_dt.svg",
-            &Figure::new(dt_panels, 1).aspect(2.6, 35.0),
-        )?,
-        plot::double_column_svg(
-            "convergence_work.svg",
-            &Figure::new(work_panels, 1).aspect(2.6, 35.0),
-        )?,
-    ))
+    (
+        Figure::new(dt_panels, 1).aspect(2.6, 35.0),
+        Figure::new(work_panels, 1).aspect(2.6, 35.0),
+    )
 }
 
 /// How a reference is as accurate as it is, for the printed tables: "the closed form" or

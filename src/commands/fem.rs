@@ -11,6 +11,7 @@ use serde::Serialize;
 
 use crate::commands::run::VERSION;
 use crate::error::{Error, Result};
+use crate::figures::page::{FigureOptions, PAGE_MM};
 use crate::figures::plot::{self, Figure, Panel, Series};
 use crate::writers::{self, count, readable, Table};
 use flexrock_core::analysis::fem_check;
@@ -200,93 +201,102 @@ fn deformed_shapes(a: &FemAnalysis) -> Panel {
     chart
 }
 
-/// The figures of a run: (file name, chart).
+/// The figures of a run: (file stem, chart). A chart's axes and legend say what it shows.
 pub fn figures(model: &Model, a: &FemAnalysis) -> Vec<(&'static str, Panel)> {
     let steps = &a.result.steps;
     let s_n = model.constants.uplift_displacement;
-    let mut components = Panel::new(
-        "Top displacement and its parts (FEM)",
-        "t (s)",
-        "q and parts (m)",
-    )
-    .with(Series::line("q", time_series(steps, |s| s.q), 0))
-    .with(Series::line(
-        "flexural",
-        time_series(steps, |s| s.flexural),
-        2,
-    ))
-    .with(Series::line(
-        "rocking",
-        time_series(steps, |s| s.rocking),
-        1,
-    ))
-    .with(Series::line(
-        "slipping",
-        time_series(steps, |s| s.slipping),
-        3,
-    ))
-    .with(Series::line(
-        "shearing",
-        time_series(steps, |s| s.shearing),
-        4,
-    ));
+    let mut components = Panel::new("", "t (s)", "q and parts (m)")
+        .with(Series::line("q", time_series(steps, |s| s.q), 0))
+        .with(Series::line(
+            "flexural",
+            time_series(steps, |s| s.flexural),
+            2,
+        ))
+        .with(Series::line(
+            "rocking",
+            time_series(steps, |s| s.rocking),
+            1,
+        ))
+        .with(Series::line(
+            "slipping",
+            time_series(steps, |s| s.slipping),
+            3,
+        ))
+        .with(Series::line(
+            "shearing",
+            time_series(steps, |s| s.shearing),
+            4,
+        ));
     components.reference_lines = sn_lines(s_n);
-    let q_r = Panel::new(
-        "Top displacement against rocking part (FEM)",
-        "r (m)",
-        "q (m)",
-    )
-    .with(Series::line(
+    let q_r = Panel::new("", "r (m)", "q (m)").with(Series::line(
         "",
         steps.iter().map(|s| (s.rocking, s.q)).collect(),
         2,
     ));
-    let s_r = Panel::new("Flexural part against rocking part (FEM)", "r (m)", "s (m)").with(
-        Series::line(
-            "",
-            steps.iter().map(|s| (s.rocking, s.flexural)).collect(),
-            2,
-        ),
-    );
-    let velocity = Panel::new(
-        "Top velocity relative to the floor (FEM)",
-        "t (s)",
-        "q\u{307} (m/s)",
-    )
-    .with(Series::line("", time_series(steps, |s| s.top_velocity), 2));
-    let momentum = Panel::new(
-        "Angular momentum about the toes (FEM, clockwise positive)",
-        "t (s)",
-        "L (kg m²/s)",
-    )
-    .with(Series::line(
-        "about the left toe",
-        time_series(steps, |s| s.momentum_left_toe),
+    let s_r = Panel::new("", "r (m)", "s (m)").with(Series::line(
+        "",
+        steps.iter().map(|s| (s.rocking, s.flexural)).collect(),
         2,
-    ))
-    .with(Series::line(
-        "about the right toe",
-        time_series(steps, |s| s.momentum_right_toe),
-        1,
     ));
+    let velocity = Panel::new("", "t (s)", "q\u{307} (m/s)").with(Series::line(
+        "",
+        time_series(steps, |s| s.top_velocity),
+        2,
+    ));
+    let momentum = Panel::new("clockwise positive", "t (s)", "L (kg m²/s)")
+        .with(Series::line(
+            "about the left toe",
+            time_series(steps, |s| s.momentum_left_toe),
+            2,
+        ))
+        .with(Series::line(
+            "about the right toe",
+            time_series(steps, |s| s.momentum_right_toe),
+            1,
+        ));
     vec![
-        ("fem_deformed_shapes.svg", deformed_shapes(a)),
-        ("fem_components.svg", components),
-        ("fem_q_vs_r.svg", q_r),
-        ("fem_s_vs_r.svg", s_r),
-        ("fem_top_velocity.svg", velocity),
-        ("fem_angular_momentum.svg", momentum),
+        ("fem_deformed_shapes", deformed_shapes(a)),
+        ("fem_components", components),
+        ("fem_q_vs_r", q_r),
+        ("fem_s_vs_r", s_r),
+        ("fem_top_velocity", velocity),
+        ("fem_angular_momentum", momentum),
     ]
 }
 
-fn render(charts: Vec<(&'static str, Panel)>) -> Result<Vec<(&'static str, Vec<u8>)>> {
-    charts
-        .into_iter()
-        .map(|(name, chart)| {
-            let figure = Figure::new(vec![chart], 1).aspect(1.8, 40.0);
-            plot::double_column_svg(name, &figure).map(|svg| (name, svg.into_bytes()))
-        })
-        .collect()
+/// The width over the height of what `chart` draws, with the paddings of an equal-aspect panel
+/// (3 % each side across, 5 % up and down), from 0.5 to 8 (1.8 for a chart of no extent).
+fn drawing_aspect(chart: &Panel) -> f64 {
+    let (mut x0, mut x1, mut y0, mut y1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
+    for &(x, y) in chart.series.iter().flat_map(|s| &s.points) {
+        (x0, x1, y0, y1) = (x0.min(x), x1.max(x), y0.min(y), y1.max(y));
+    }
+    let aspect = (1.06 * (x1 - x0)) / (1.1 * (y1 - y0));
+    if aspect.is_finite() && aspect > 0.0 {
+        aspect.clamp(0.5, 8.0)
+    } else {
+        1.8
+    }
+}
+
+/// The files of `charts` (a figure of one panel each, named by its stem) in the formats and size
+/// of `options`.
+fn render(
+    charts: Vec<(&'static str, Panel)>,
+    options: &FigureOptions,
+) -> Result<Vec<(String, Vec<u8>)>> {
+    let mut files = Vec::new();
+    for (stem, chart) in charts {
+        // A drawing to scale takes a plotting area of its own proportions.
+        let (aspect, min_mm) = if chart.equal_aspect {
+            (drawing_aspect(&chart), 0.0)
+        } else {
+            (1.8, 40.0)
+        };
+        let figure = Figure::new(vec![chart], 1).aspect(aspect, min_mm);
+        files.extend(plot::files(stem, &figure, options, PAGE_MM)?);
+    }
+    Ok(files)
 }
 
 /// The files of a run: CSVs, summary and figures.
@@ -294,16 +304,33 @@ fn run_files(
     model: &Model,
     a: &FemAnalysis,
     timings: &mut writers::Timings,
-) -> Result<Vec<(&'static str, Vec<u8>)>> {
+    options: &FigureOptions,
+) -> Result<Vec<(String, Vec<u8>)>> {
     let mut fem_summary = summary(model, a);
     timings.take_commit("fem_summary.json", &mut fem_summary.provenance);
     let mut files = vec![
-        ("fem_history.csv", history_csv(model, &a.result.steps)),
-        ("fem_events.csv", events_csv(&a.result)),
-        ("fem_summary.json", writers::json_bytes(&fem_summary)),
+        (
+            "fem_history.csv".to_string(),
+            history_csv(model, &a.result.steps),
+        ),
+        ("fem_events.csv".to_string(), events_csv(&a.result)),
+        (
+            "fem_summary.json".to_string(),
+            writers::json_bytes(&fem_summary),
+        ),
     ];
-    files.extend(render(figures(model, a))?);
+    files.extend(render(figures(model, a), options)?);
     Ok(files)
+}
+
+/// Writes `files` and the timings into `out_dir`, all or none.
+fn write_all(
+    out_dir: &Path,
+    mut files: Vec<(String, Vec<u8>)>,
+    timings: &writers::Timings,
+) -> Result<Vec<PathBuf>> {
+    files.extend((timings.file()).map(|(name, bytes)| (name.to_string(), bytes)));
+    writers::write_named_atomically(out_dir, files)
 }
 
 /// Result of `flexrock fem`.
@@ -337,11 +364,11 @@ pub fn fem(
     setup: &FemSetup,
     out_dir: &Path,
     wall_times: writers::WallTimes,
+    options: &FigureOptions,
 ) -> Result<FemReport> {
     let (analysis, mut timings) = analyse_timed(model, setup, wall_times)?;
-    let mut files = run_files(model, &analysis, &mut timings)?;
-    files.extend(timings.file());
-    let files = writers::write_atomically(out_dir, &files)?;
+    let files = run_files(model, &analysis, &mut timings, options)?;
+    let files = write_all(out_dir, files, &timings)?;
     Ok(FemReport {
         warnings: analysis.warnings.iter().map(warning_text).collect(),
         analysis,
@@ -389,49 +416,41 @@ fn comparison_figures(
     let sdof_series = |f: fn(&flexrock_core::integrate::solution::Sample) -> (f64, f64)| {
         Series::line("SDOF", sdof.samples.iter().map(f).collect(), 1)
     };
-    let mut q = Panel::new("Top displacement: SDOF and FEM", "t (s)", "q (m)")
+    let mut q = Panel::new("", "t (s)", "q (m)")
         .with(sdof_series(|s| (s.t, s.q)))
         .with(Series::line("FEM", time_series(steps, |s| s.q), 2));
     q.reference_lines = sn_lines(model.constants.uplift_displacement);
-    let mut s = Panel::new("Flexural part: SDOF and FEM", "t (s)", "s (m)")
+    let mut s = Panel::new("", "t (s)", "s (m)")
         .with(sdof_series(|s| (s.t, s.s)))
         .with(Series::line("FEM", time_series(steps, |s| s.flexural), 2));
     s.reference_lines = sn_lines(model.constants.uplift_displacement);
-    let velocity = Panel::new("Top velocity: SDOF and FEM", "t (s)", "q\u{307} (m/s)")
+    let velocity = Panel::new("", "t (s)", "q\u{307} (m/s)")
         .with(sdof_series(|s| (s.t, s.qdot)))
         .with(Series::line(
             "FEM",
             time_series(steps, |s| s.top_velocity),
             2,
         ));
-    let q_r = Panel::new(
-        "Top displacement against rocking part: SDOF and FEM",
-        "r (m)",
-        "q (m)",
-    )
-    .with(sdof_series(|s| (s.r, s.q)))
-    .with(Series::line(
-        "FEM",
-        steps.iter().map(|s| (s.rocking, s.q)).collect(),
-        2,
-    ));
-    let s_r = Panel::new(
-        "Flexural part against rocking part: SDOF and FEM",
-        "r (m)",
-        "s (m)",
-    )
-    .with(sdof_series(|s| (s.r, s.s)))
-    .with(Series::line(
-        "FEM",
-        steps.iter().map(|s| (s.rocking, s.flexural)).collect(),
-        2,
-    ));
+    let q_r = Panel::new("", "r (m)", "q (m)")
+        .with(sdof_series(|s| (s.r, s.q)))
+        .with(Series::line(
+            "FEM",
+            steps.iter().map(|s| (s.rocking, s.q)).collect(),
+            2,
+        ));
+    let s_r = Panel::new("", "r (m)", "s (m)")
+        .with(sdof_series(|s| (s.r, s.s)))
+        .with(Series::line(
+            "FEM",
+            steps.iter().map(|s| (s.rocking, s.flexural)).collect(),
+            2,
+        ));
     vec![
-        ("compare_q.svg", q),
-        ("compare_flexural.svg", s),
-        ("compare_top_velocity.svg", velocity),
-        ("compare_q_vs_r.svg", q_r),
-        ("compare_s_vs_r.svg", s_r),
+        ("compare_q", q),
+        ("compare_flexural", s),
+        ("compare_top_velocity", velocity),
+        ("compare_q_vs_r", q_r),
+        ("compare_s_vs_r", s_r),
     ]
 }
 
@@ -443,17 +462,23 @@ pub fn compare(
     setup: &FemSetup,
     out_dir: &Path,
     wall_times: writers::WallTimes,
+    options: &FigureOptions,
 ) -> Result<FemReport> {
     let (analysis, mut timings) = analyse_timed(model, setup, wall_times)?;
     let sdof = crate::commands::run::simulate(model)?;
     let comparison = compare_solutions(model, &sdof, &analysis);
-    let mut files = run_files(model, &analysis, &mut timings)?;
-    files.push(("compare.csv", comparison_csv(&comparison)));
-    files.push(("compare.json", writers::json_bytes(&comparison)));
-    files.push(("sdof_history.csv", writers::history_csv(&sdof.samples)));
-    files.extend(render(comparison_figures(model, &sdof, &analysis))?);
-    files.extend(timings.file());
-    let files = writers::write_atomically(out_dir, &files)?;
+    let mut files = run_files(model, &analysis, &mut timings, options)?;
+    files.push(("compare.csv".to_string(), comparison_csv(&comparison)));
+    files.push(("compare.json".to_string(), writers::json_bytes(&comparison)));
+    files.push((
+        "sdof_history.csv".to_string(),
+        writers::history_csv(&sdof.samples),
+    ));
+    files.extend(render(
+        comparison_figures(model, &sdof, &analysis),
+        options,
+    )?);
+    let files = write_all(out_dir, files, &timings)?;
     Ok(FemReport {
         warnings: analysis.warnings.iter().map(warning_text).collect(),
         analysis,

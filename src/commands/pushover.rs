@@ -12,6 +12,7 @@ use serde::Serialize;
 use crate::commands::fem::ELEMENT;
 use crate::commands::run::VERSION;
 use crate::error::Result;
+use crate::figures::page::{FigureOptions, PAGE_MM};
 use crate::figures::plot::{self, Figure, Panel, Series};
 use crate::writers::{self, Table};
 use flexrock_core::analysis::pushover_check;
@@ -122,30 +123,37 @@ pub struct PushoverReport {
     pub files: Vec<PathBuf>,
 }
 
-/// Runs both sweeps and writes pushover.csv, pushover.json and pushover.svg (all or none); with
+/// Runs both sweeps and writes pushover.csv, pushover.json and the figure pushover in the
+/// formats and size of `options` (all or none); with
 /// [`writers::WallTimes::Apart`] the wall time goes to timings.json.
 pub fn run(
     model: &Model,
     setup: &FemSetup,
     out_dir: &Path,
     wall_times: writers::WallTimes,
+    options: &FigureOptions,
 ) -> Result<PushoverReport> {
     let mut analysis = analyse(model, setup)?;
     let mut timings = writers::Timings::new(wall_times);
     timings.take("pushover.json/wall_time_s", &mut analysis.wall_time_s);
-    let svg = plot::double_column_svg(
-        "pushover.svg",
+    let figure_files = plot::files(
+        "pushover",
         &Figure::new(vec![figure(model, &analysis)], 1).aspect(1.8, 40.0),
+        options,
+        PAGE_MM,
     )?;
     let mut pushover_summary = summary(model, &analysis);
     timings.take_commit("pushover.json", &mut pushover_summary.provenance);
     let mut files = vec![
         ("pushover.csv", curves_csv(model, &analysis)),
         ("pushover.json", writers::json_bytes(&pushover_summary)),
-        ("pushover.svg", svg.into_bytes()),
     ];
     files.extend(timings.file());
-    let files = writers::write_atomically(out_dir, &files)?;
+    let mut files: Vec<(String, Vec<u8>)> = (files.into_iter())
+        .map(|(name, bytes)| (name.to_string(), bytes))
+        .collect();
+    files.extend(figure_files);
+    let files = writers::write_named_atomically(out_dir, files)?;
     Ok(PushoverReport { analysis, files })
 }
 

@@ -5,6 +5,7 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use crate::error::Result;
+use crate::figures::page::FigureOptions;
 use crate::figures::row::ShapeTime;
 use crate::writers;
 use flexrock_core::bodies::row::{ContactLaw, RowSolution, METHOD};
@@ -28,9 +29,9 @@ pub struct RowReport {
 /// Solves a row and writes, for each column i (from 0, left to right), `history-i.csv`,
 /// `events-i.csv` and `episodes-i.csv` (the columns of a single body's files), and
 /// `impacts.csv`, `contacts.csv` (every contact at every sampled instant), `summary.json` and,
-/// with `plots`, `row_motion.svg` and `row_motion.png` and
-/// the strip of the row's shapes `row_shapes.svg` and `row_shapes.png` (at `shapes_at`, or at
-/// the times [`crate::figures::row::automatic_shape_times`] chooses), as one atomic set. Times
+/// with `plots`, `row_motion` and the strip of the row's shapes `row_shapes` in the formats and
+/// size of `figures` (at `shapes_at`, or at the times
+/// [`crate::figures::row::automatic_shape_times`] chooses), as one atomic set. Times
 /// given without `plots` draw the strip alone. Nothing in them depends on the machine: the
 /// same row gives the same bytes.
 pub fn run_row_to_dir(
@@ -38,6 +39,7 @@ pub fn run_row_to_dir(
     out_dir: &Path,
     plots: bool,
     shapes_at: Option<&[ShapeTime]>,
+    figures: &FigureOptions,
 ) -> Result<RowReport> {
     let solution = simulate_row(model)?;
     let mut files: Vec<(String, Vec<u8>)> = Vec::new();
@@ -70,22 +72,19 @@ pub fn run_row_to_dir(
         writers::json_bytes(&row_summary(model, &solution)),
     ));
     if plots {
-        files.extend(crate::figures::row::figures(model, &solution)?);
+        files.extend(crate::figures::row::figures(model, &solution, figures)?);
     }
     if plots || shapes_at.is_some() {
+        let instants = crate::figures::row::sampled_instants(&solution);
         let times = match shapes_at {
             Some(times) => times.to_vec(),
-            None => crate::figures::row::automatic_shape_times(model, &solution),
+            None => crate::figures::row::automatic_shape_times(model, &solution, &instants),
         };
         files.extend(crate::figures::row::shape_figures(
-            model, &solution, &times,
+            model, &solution, &instants, &times, figures,
         )?);
     }
-    let named: Vec<(&str, Vec<u8>)> = files
-        .iter()
-        .map(|(name, bytes)| (name.as_str(), bytes.clone()))
-        .collect();
-    let files = writers::write_atomically(out_dir, &named)?;
+    let files = writers::write_named_atomically(out_dir, files)?;
     Ok(RowReport { solution, files })
 }
 

@@ -157,12 +157,14 @@ pub struct RunReport {
 }
 
 /// What `flexrock run` writes besides its four files.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone)]
 pub struct RunOptions {
     /// check.json: the run against the exact solution.
     pub check: bool,
     /// The figures of `flexrock plot`.
     pub plots: bool,
+    /// Their formats and size.
+    pub figures: crate::figures::page::FigureOptions,
     /// Where the wall time goes.
     pub wall_times: writers::WallTimes,
 }
@@ -212,7 +214,14 @@ pub fn run_to_dir_checked(
         "summary.json",
         "check.json",
     ];
-    order.extend(crate::figures::run::FIGURES);
+    let figure_names: Vec<String> = crate::figures::run::FIGURES
+        .iter()
+        .flat_map(|name| {
+            let stem = name.trim_end_matches(".svg");
+            (options.figures.formats.iter()).map(move |f| format!("{stem}.{}", f.extension()))
+        })
+        .collect();
+    order.extend(figure_names.iter().map(String::as_str));
     order.push("timings.json");
     let set = writers::FileSet::begin(out_dir, &order)?;
     let history = std::thread::scope(|scope| {
@@ -235,7 +244,13 @@ pub fn run_to_dir_checked(
             &small[0].1,
             &small[2].1,
         )?;
-        set.stage_each(&crate::figures::run::figures(&data)?)?;
+        let plot_options = crate::figures::run::PlotOptions {
+            formats: options.figures.formats.clone(),
+            sizes: options.figures.sizes,
+            from: None,
+            to: None,
+        };
+        set.stage_each(&crate::figures::run::figures_with(&data, &plot_options)?)?;
     }
     let files = set.commit()?;
     let mut warnings = warnings(model, &solution);

@@ -1047,17 +1047,26 @@ impl Layout {
         DB::ErrorType: 'static,
     {
         root.fill(&WHITE)?;
+        let label_text = |i: usize, panel: &Panel| match panel.title.as_str() {
+            "" => panel_label(i),
+            title => format!("{} {title}", panel_label(i)),
+        };
+        // One size for every panel's label: set smaller (down to 6 pt) where one would run
+        // into the next panel's.
+        let label_size = (figure.panels.iter().zip(&self.panels).enumerate())
+            .map(|(i, (panel, layout))| {
+                let (left, _, w, _) = layout.area;
+                let room = left + w - layout.cell_left;
+                PANEL_PT * room / text_width(&label_text(i, panel), PANEL_PT)
+            })
+            .fold(PANEL_PT, f64::min)
+            .max(6.0);
         for (i, (panel, layout)) in figure.panels.iter().zip(&self.panels).enumerate() {
             draw_panel(root, panel, layout)?;
             if self.labelled {
-                let mut text = panel_label(i);
-                if !panel.title.is_empty() {
-                    text = format!("{text} {}", panel.title);
-                }
-                let (left, top, w, _) = layout.area;
-                // Set smaller (down to 6 pt) where it would run into the next panel's.
-                let room = left + w - layout.cell_left;
-                let size = (PANEL_PT * room / text_width(&text, PANEL_PT)).clamp(6.0, PANEL_PT);
+                let text = label_text(i, panel);
+                let (_, top, _, _) = layout.area;
+                let size = label_size;
                 root.draw(&Text::new(
                     text,
                     (
@@ -1068,10 +1077,12 @@ impl Layout {
                 ))?;
             } else if !panel.title.is_empty() {
                 let (left, top, w, _) = layout.area;
+                // Set smaller (down to 6 pt) where it is wider than the plotting area.
+                let size = (LABEL_PT * w / text_width(&panel.title, LABEL_PT)).clamp(6.0, LABEL_PT);
                 root.draw(&Text::new(
                     panel.title.clone(),
                     ((left + w / 2.0) as i32, (top - pt(TICK_PT) * 0.6) as i32),
-                    font(LABEL_PT, Pos::new(HPos::Center, VPos::Bottom)),
+                    font(size, Pos::new(HPos::Center, VPos::Bottom)),
                 ))?;
             }
         }
@@ -1270,6 +1281,91 @@ where
     Ok(())
 }
 
+/// A filled rectangle in dots: left, top, right, bottom, colour.
+type DotRectangle = (f64, f64, f64, f64, (u8, u8, u8));
+
+/// The cells of `panel` as they show at the figure's resolution, as few rectangles (left, top,
+/// right, bottom, colour; dots, the right and bottom edges outside): each dot of the plotting area takes the colour of the cell over
+/// its centre (the last drawn), and the dots are gathered into runs along each row, a run that
+/// continues one of the row above into the same rectangle. So a map of a million cells is no
+/// more rectangles than its plotting area has changes of colour along its rows, whatever the
+/// grid.
+fn cell_rectangles(panel: &Panel, layout: &PanelLayout) -> Vec<DotRectangle> {
+    if panel.cells.is_empty() {
+        return Vec::new();
+    }
+    let (left, top, w, h) = layout.area;
+    let (x0, x1, y0, y1) = layout.ranges;
+    let (nx, ny) = (w.round().max(1.0) as usize, h.round().max(1.0) as usize);
+    // The dots whose centres lie in [a, b), a and b in dots from the area's edge.
+    let dots_in = |a: f64, b: f64, n: usize| {
+        let first = (a - 0.5).ceil().clamp(0.0, n as f64) as usize;
+        let end = (b - 0.5).ceil().clamp(0.0, n as f64) as usize;
+        first..end.max(first)
+    };
+    let mut colours: Vec<(u8, u8, u8)> = Vec::new();
+    // 0: no cell; k: colours[k - 1].
+    let mut grid = vec![0usize; nx * ny];
+    for c in &panel.cells {
+        let (Some(ax), Some(ay), Some(bx), Some(by)) = (
+            panel.x_axis(c.from.0),
+            panel.y_axis(c.from.1),
+            panel.x_axis(c.to.0),
+            panel.y_axis(c.to.1),
+        ) else {
+            continue;
+        };
+        let (xa, xb) = ((ax - x0) / (x1 - x0) * w, (bx - x0) / (x1 - x0) * w);
+        let (ya, yb) = ((y1 - ay) / (y1 - y0) * h, (y1 - by) / (y1 - y0) * h);
+        let k = match colours.iter().position(|&rgb| rgb == c.rgb) {
+            Some(k) => k + 1,
+            None => {
+                colours.push(c.rgb);
+                colours.len()
+            }
+        };
+        let across = dots_in(xa.min(xb), xa.max(xb), nx);
+        for j in dots_in(ya.min(yb), ya.max(yb), ny) {
+            grid[j * nx..(j + 1) * nx][across.clone()].fill(k);
+        }
+    }
+    let mut done = Vec::new();
+    // Rectangles still growing down: (first dot, end dot, colour) -> their top row.
+    let mut open: std::collections::HashMap<(usize, usize, usize), usize> = Default::default();
+    for j in 0..=ny {
+        let mut runs = std::collections::HashMap::new();
+        if j < ny {
+            let row = &grid[j * nx..(j + 1) * nx];
+            let mut i = 0;
+            while i < nx {
+                let (k, start) = (row[i], i);
+                while i < nx && row[i] == k {
+                    i += 1;
+                }
+                if k != 0 {
+                    let top_row = open.remove(&(start, i, k)).unwrap_or(j);
+                    runs.insert((start, i, k), top_row);
+                }
+            }
+        }
+        done.extend(open.drain().map(|((a, b, k), t)| (t, a, b, j, k)));
+        open = runs;
+    }
+    // In a fixed order, so that the same figure gives the same bytes.
+    done.sort_unstable();
+    done.into_iter()
+        .map(|(t, a, b, end, k)| {
+            (
+                left + a as f64,
+                top + t as f64,
+                left + b as f64,
+                top + end as f64,
+                colours[k - 1],
+            )
+        })
+        .collect()
+}
+
 /// Draws one panel: cells, spans, grid, reference lines, series, rug, frame, ticks and labels.
 fn draw_panel<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
@@ -1291,23 +1387,13 @@ where
     let rect = |a: (f64, f64), b: (f64, f64), c: RGBColor| {
         Rectangle::new([(dot(a.0), dot(a.1)), (dot(b.0), dot(b.1))], c.filled())
     };
-    for c in &panel.cells {
-        let (Some(ax), Some(ay), Some(bx), Some(by)) = (
-            panel.x_axis(c.from.0),
-            panel.y_axis(c.from.1),
-            panel.x_axis(c.to.0),
-            panel.y_axis(c.to.1),
-        ) else {
-            continue;
-        };
+    for (l, t, r, b, rgb) in cell_rectangles(panel, layout) {
         // A dot wider and taller on the right and below, within the plotting area, so that
         // neighbours overlap and no seam of the background shows between them in any viewer.
-        let (l, r) = (sx(ax).min(sx(bx)), sx(ax).max(sx(bx)) + 1.0);
-        let (t, b) = (sy(by).min(sy(ay)), sy(by).max(sy(ay)) + 1.0);
         root.draw(&rect(
             (clip_x(l), clip_y(t)),
-            (clip_x(r), clip_y(b)),
-            RGBColor(c.rgb.0, c.rgb.1, c.rgb.2),
+            (clip_x(r + 1.0), clip_y(b + 1.0)),
+            RGBColor(rgb.0, rgb.1, rgb.2),
         ))?;
     }
     for span in &panel.spans {
@@ -1762,6 +1848,35 @@ mod tests {
         ];
         let svg = svg("big.svg", &Figure::new(panels, 1), &page(180.0)).unwrap();
         assert!(svg.len() < 2_000_000, "{} bytes", svg.len());
+    }
+
+    /// A map's file does not grow with its grid beyond what its dots show: the same field
+    /// (rings of five colours) over 600 x 600 and over 1200 x 1200 cells, both finer than the
+    /// dots of a 40 mm figure, draws about as many rectangles (a rectangle per run of a colour
+    /// up each column of cells drew twice as many).
+    #[test]
+    fn a_map_of_a_finer_grid_draws_no_more_rectangles() {
+        let rectangles = |n: usize| {
+            let mut panel = Panel::new("", "x", "y");
+            for i in 0..n {
+                for j in 0..n {
+                    let (x, y) = (i as f64 / n as f64, j as f64 / n as f64);
+                    let ring = ((x * x + y * y).sqrt() * 7.0) as usize % 5;
+                    panel.cells.push(Cell {
+                        from: (x, y),
+                        to: (x + 1.0 / n as f64, y + 1.0 / n as f64),
+                        rgb: palette(ring + 1),
+                    });
+                }
+            }
+            let svg = svg("map.svg", &Figure::new(vec![panel], 1), &page(40.0)).unwrap();
+            svg.matches("<rect").count()
+        };
+        let (coarse, fine) = (rectangles(600), rectangles(1200));
+        assert!(
+            (fine as f64) < 1.1 * coarse as f64,
+            "{coarse} rectangles for 600 x 600 cells, {fine} for 1200 x 1200"
+        );
     }
 
     #[test]

@@ -6,32 +6,32 @@
 //! stretch of contact, are shaded on the gap panel; stretches of faces stuck by friction in a
 //! stronger tint over them.
 //!
-//! And the strip `row_shapes.svg` (and `.png`): the row drawn to true scale at a few instants,
-//! each column in its deformed shape at the model's exact state there
-//! ([`flexrock_core::simulate::row_state_at`]).
+//! And the strip `row_shapes.svg` (and `.png`): the row drawn to true scale at a few instants
+//! of its history, each column in its deformed shape at its sample there. Both figures draw from
+//! the run's solution only: nothing is solved again.
 
 use crate::error::Result;
 use crate::figures::page::{FigureOptions, Format, PAGE_MM};
 use crate::figures::plot::{self, Figure, Marker, Panel, RugMark, Series, Span};
 use flexrock_core::bodies::row::RowSolution;
+use flexrock_core::integrate::solution::Sample;
 use flexrock_core::model::RowModel;
 
 /// The figure's file stem.
 pub const ROW_FIGURE: &str = "row_motion";
-/// The formats a row's figures are written in.
-const FORMATS: [Format; 2] = [Format::Svg, Format::Png];
+/// The formats a row's figures are written in unless asked otherwise.
+pub const FORMATS: [Format; 2] = [Format::Svg, Format::Png];
 
-/// The figure files: row_motion.svg and row_motion.png.
-pub fn figures(model: &RowModel, solution: &RowSolution) -> Result<Vec<(String, Vec<u8>)>> {
+/// The figure files, row_motion.svg, .png, ... in the formats and size of `options`.
+pub fn figures(
+    model: &RowModel,
+    solution: &RowSolution,
+    options: &FigureOptions,
+) -> Result<Vec<(String, Vec<u8>)>> {
     let figure = Figure::new(panels(model, solution), 1)
         .shared_x()
         .aspect(4.0, 28.0);
-    plot::files(
-        ROW_FIGURE,
-        &figure,
-        &FigureOptions::default().with_formats(&FORMATS),
-        PAGE_MM,
-    )
+    plot::files(ROW_FIGURE, &figure, options, PAGE_MM)
 }
 
 /// The three panels.
@@ -175,14 +175,63 @@ pub struct ShapeTime {
     pub why: String,
 }
 
+/// Every instant at which each column of the run has a sample (the output grid; an impact, where
+/// every column takes part in it), with each column's state there: its last sample at that
+/// instant, after the events there. The strip draws these states, so that it shows the run.
+pub fn sampled_instants(solution: &RowSolution) -> Vec<(f64, Vec<Sample>)> {
+    let mut next = vec![0; solution.columns.len()];
+    let mut instants: Vec<(f64, Vec<Sample>)> = Vec::new();
+    let Some(first) = solution.columns.first() else {
+        return instants;
+    };
+    for sample in &first.samples {
+        let t = sample.t;
+        if instants.last().is_some_and(|(last, _)| *last == t) {
+            continue;
+        }
+        let mut state = Vec::with_capacity(solution.columns.len());
+        for (column, at) in solution.columns.iter().zip(&mut next) {
+            while column.samples.get(*at).is_some_and(|s| s.t < t) {
+                *at += 1;
+            }
+            let mut last = None;
+            while let Some(s) = column.samples.get(*at).filter(|s| s.t == t) {
+                last = Some(s.clone());
+                *at += 1;
+            }
+            match last {
+                Some(s) => state.push(s),
+                None => break,
+            }
+        }
+        if state.len() == solution.columns.len() {
+            instants.push((t, state));
+        }
+    }
+    instants
+}
+
+/// True when the instant `at` is the time `t` (to rounding: a grid time k × dt may differ from
+/// the decimal typed by an ulp).
+fn same_instant(at: f64, t: f64) -> bool {
+    (at - t).abs() <= 1e-9 * t.abs().max(1.0)
+}
+
 /// The strip's times when none are given: in this order of preference, the first uplift of any
-/// column, the first impact, the largest lean of the row (the largest |q| of any column), the
-/// middle of the longest stretch of held contact, and the last impact; at most
-/// `AUTOMATIC_TIMES` (4) of them, a time within 1 % of the duration of one already taken left
-/// out, sorted. A row where none of these happens (a row at rest) is drawn at its end.
-pub fn automatic_shape_times(model: &RowModel, solution: &RowSolution) -> Vec<ShapeTime> {
+/// column, the first impact, the largest lean of the row (the largest |q| of any column at an
+/// instant of [`sampled_instants`]), the middle of the longest stretch of held contact, and the
+/// last impact; at most `AUTOMATIC_TIMES` (4) of them, a time within 1 % of the duration of one
+/// already taken left out, sorted. Each is the first instant of [`sampled_instants`] at or after
+/// it: one after an event says so ("after first impact"). A row where none of these happens (a
+/// row at rest) is drawn at its last instant.
+pub fn automatic_shape_times(
+    model: &RowModel,
+    solution: &RowSolution,
+    instants: &[(f64, Vec<Sample>)],
+) -> Vec<ShapeTime> {
     use flexrock_core::physics::automaton::EventKind;
-    let mut candidates: Vec<(f64, String)> = Vec::new();
+    // (time, why, an event's instant: drawn later says "after")
+    let mut candidates: Vec<(f64, String, bool)> = Vec::new();
     let first_uplift = solution
         .columns
         .iter()
@@ -195,25 +244,18 @@ pub fn automatic_shape_times(model: &RowModel, solution: &RowSolution) -> Vec<Sh
         })
         .min_by(|a, b| a.0.total_cmp(&b.0));
     if let Some((t, i)) = first_uplift {
-        candidates.push((t, format!("first uplift of {i}")));
+        candidates.push((t, format!("first uplift of {i}"), true));
     }
     if let Some(first) = solution.impacts.first() {
-        candidates.push((first.t, "first impact".to_string()));
+        candidates.push((first.t, "first impact".to_string(), true));
     }
-    let lean = solution
-        .columns
+    let lean = instants
         .iter()
-        .enumerate()
-        .flat_map(|(i, c)| {
-            [
-                (c.max_q.value.abs(), c.max_q.t, i),
-                (c.min_q.value.abs(), c.min_q.t, i),
-            ]
-        })
+        .flat_map(|(t, state)| (state.iter().enumerate()).map(move |(i, s)| (s.q.abs(), *t, i)))
         .filter(|(q, _, _)| *q > 0.0)
         .max_by(|a, b| a.0.total_cmp(&b.0));
     if let Some((_, t, i)) = lean {
-        candidates.push((t, format!("largest lean of {i}")));
+        candidates.push((t, format!("largest lean of {i}"), false));
     }
     let longest = solution
         .held
@@ -221,26 +263,39 @@ pub fn automatic_shape_times(model: &RowModel, solution: &RowSolution) -> Vec<Sh
         .map(|h| (h.t_start, h.t_end.unwrap_or(solution.final_time)))
         .max_by(|a, b| (a.1 - a.0).total_cmp(&(b.1 - b.0)));
     if let Some((from, to)) = longest {
-        candidates.push((0.5 * (from + to), "held contact".to_string()));
+        candidates.push((0.5 * (from + to), "held contact".to_string(), false));
     }
     if let Some(last) = solution.impacts.last() {
-        candidates.push((last.t, "last impact".to_string()));
+        candidates.push((last.t, "last impact".to_string(), true));
     }
     let apart = 0.01 * model.duration;
     let mut chosen: Vec<ShapeTime> = Vec::new();
-    for (t, why) in candidates {
+    for (t, why, event) in candidates {
         if chosen.len() == AUTOMATIC_TIMES {
             break;
         }
-        if chosen.iter().all(|c| (c.t - t).abs() > apart) {
-            chosen.push(ShapeTime { t, why });
+        let Some(&(at, _)) = instants
+            .iter()
+            .find(|(at, _)| *at >= t || same_instant(*at, t))
+        else {
+            continue;
+        };
+        let why = if event && !same_instant(at, t) {
+            format!("after {why}")
+        } else {
+            why
+        };
+        if chosen.iter().all(|c| (c.t - at).abs() > apart) {
+            chosen.push(ShapeTime { t: at, why });
         }
     }
     if chosen.is_empty() {
-        chosen.push(ShapeTime {
-            t: solution.final_time,
-            why: "end".to_string(),
-        });
+        if let Some(&(t, _)) = instants.last() {
+            chosen.push(ShapeTime {
+                t,
+                why: "end".to_string(),
+            });
+        }
     }
     chosen.sort_by(|a, b| a.t.total_cmp(&b.t));
     chosen
@@ -331,17 +386,33 @@ pub fn deformed_point(
     (flexed + theta * y, y - theta * (x - pivot))
 }
 
-/// The strip's figure files, row_shapes.svg and row_shapes.png: one panel per time of
-/// `times`, each the row at that instant (the state from [`flexrock_core::simulate::row_state_at`])
-/// drawn to true scale.
+/// The strip's figure files, row_shapes.svg, .png, ... in the formats and size of `options`:
+/// one panel per time of `times`, each the row at that instant of `instants` (see
+/// [`sampled_instants`]) drawn to true scale. A time that is no such instant is refused, naming
+/// `--shapes-at`: the strip shows the run, and the run has no state there.
 pub fn shape_figures(
     model: &RowModel,
     solution: &RowSolution,
+    instants: &[(f64, Vec<Sample>)],
     times: &[ShapeTime],
+    options: &FigureOptions,
 ) -> Result<Vec<(String, Vec<u8>)>> {
     let mut states = Vec::with_capacity(times.len());
     for time in times {
-        states.push(flexrock_core::simulate::row_state_at(model, time.t)?);
+        let Some((_, state)) = instants.iter().find(|(at, _)| same_instant(*at, time.t)) else {
+            return Err(flexrock_core::Error::invalid(
+                "--shapes-at",
+                crate::writers::shortest(time.t),
+                &format!(
+                    "every time must be an instant of the row's history, where every column has \
+                     a sample: a multiple of simulation.output_dt ({} s) up to the run's end ({} s)",
+                    crate::writers::shortest(model.settings.output_dt),
+                    crate::writers::shortest(solution.final_time)
+                ),
+            )
+            .into());
+        };
+        states.push(state.clone());
     }
     let panels = shape_panels(model, solution, times, &states);
     // Each panel as wide as the row drawn to scale needs, and room for its title and legend.
@@ -357,12 +428,7 @@ pub fn shape_figures(
     let aspect = ((1.06 * span.0) / (1.1 * span.1)).max(0.5);
     let columns = panels.len();
     let figure = Figure::new(panels, columns).aspect(aspect, SHAPE_PLOT_MM);
-    plot::files(
-        SHAPES_FIGURE,
-        &figure,
-        &FigureOptions::default().with_formats(&FORMATS),
-        PAGE_MM,
-    )
+    plot::files(SHAPES_FIGURE, &figure, options, PAGE_MM)
 }
 
 /// The left toe of each column at rest: the bases spaced by the widths and the gaps.
@@ -381,7 +447,7 @@ pub fn shape_panels(
     model: &RowModel,
     solution: &RowSolution,
     times: &[ShapeTime],
-    states: &[Vec<flexrock_core::integrate::solution::Sample>],
+    states: &[Vec<Sample>],
 ) -> Vec<Panel> {
     use flexrock_core::physics::constants::flexural_shape_at;
     let bases = base_positions(model);
@@ -588,37 +654,40 @@ mod tests {
         RowModel::load(&path, None).unwrap()
     }
 
-    /// The state at an instant is the model's own: at a time of the output grid it is the
-    /// sample of the full run there (after impacts on the way), and at an impact's time the two
-    /// columns touch.
+    /// The strip draws the run's own samples: at a grid time every column's state is its
+    /// sample there (the last, after the events there); at an impact of a pair both columns
+    /// have a sample, and the contact is closed (to rounding), which no grid sample shows.
     #[test]
-    fn the_state_at_a_time_is_the_runs_own() {
+    fn the_strip_draws_the_runs_own_samples() {
         let text = std::fs::read_to_string(
             std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("models/row-pair.toml"),
         )
         .unwrap();
         let model = row_model(&text);
         let solution = flexrock_core::simulate::simulate_row(&model).unwrap();
+        let instants = sampled_instants(&solution);
         let last = solution.impacts.last().expect("the pair strikes").t;
         // A grid time after the last impact (the grid is 0.005 s).
         let t = ((last + 0.3) / 0.005).round() * 0.005;
-        let state = flexrock_core::simulate::row_state_at(&model, t).unwrap();
+        let (_, state) = instants
+            .iter()
+            .find(|(at, _)| same_instant(*at, t))
+            .expect("a grid time is an instant of the strip");
         for (i, column) in solution.columns.iter().enumerate() {
             let sample = column
                 .samples
                 .iter()
+                .rev()
                 .find(|s| (s.t - t).abs() < 1e-12)
                 .expect("a grid sample");
-            assert_eq!(state[i].t, t);
-            assert_eq!(state[i].mode, sample.mode);
-            let scale = sample.q.abs().max(1e-3);
-            assert!((state[i].q - sample.q).abs() <= 1e-12 * scale, "column {i}");
-            assert!((state[i].s - sample.s).abs() <= 1e-12 * scale, "column {i}");
+            assert_eq!(state[i].q, sample.q, "column {i}");
+            assert_eq!(state[i].s, sample.s, "column {i}");
         }
-        // At the first impact the contact is closed (to rounding), which no sample of the
-        // grid shows.
-        let first = solution.impacts[0];
-        let state = flexrock_core::simulate::row_state_at(&model, first.t).unwrap();
+        let first = solution.impacts[0].t;
+        let (_, state) = instants
+            .iter()
+            .find(|(at, _)| *at == first)
+            .expect("the first impact is an instant of the strip");
         let contact = &model.row.contacts()[0];
         let automata = (
             &model.row.columns()[0].automaton,
@@ -630,5 +699,28 @@ mod tests {
             (state[1].mode, state[1].q),
         );
         assert!(gap.abs() < 1e-9, "gap {gap} at the first impact");
+        // The automatic strip shows it as it is, not after it.
+        let times = automatic_shape_times(&model, &solution, &instants);
+        assert!(
+            times
+                .iter()
+                .any(|s| s.t == first && s.why == "first impact"),
+            "{times:?}"
+        );
+        // A time between grid points is no instant of the run: refused, naming the flag.
+        let between = ShapeTime {
+            t: t + 0.0025,
+            why: String::new(),
+        };
+        let e = shape_figures(
+            &model,
+            &solution,
+            &instants,
+            &[between],
+            &FigureOptions::default(),
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(e.contains("--shapes-at") && e.contains("output_dt"), "{e}");
     }
 }

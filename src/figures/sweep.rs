@@ -558,32 +558,75 @@ fn map_panel(
     if !crosses.is_empty() {
         panel = panel.with(Series::line("", crosses, 7).with_width(0.4));
     }
-    // The boundary: every cell edge between an overturned and a standing cell.
-    let mut boundary = Vec::new();
+    // The boundary: every cell edge between an overturned and a standing cell, as edges between
+    // corners (i, j) of the grid, joined end to end into lines (one drawn path per line, not
+    // per edge: a map of a million cells has thousands of edges on its boundary).
+    let mut edges: Vec<(Corner, Corner)> = Vec::new();
     for i in 0..cells.len() {
         for j in 0..cells[i].len() {
             let here = cells[i][j].overturned;
             if i + 1 < cells.len() && cells[i + 1][j].overturned != here {
-                boundary.extend([
-                    (ex[i + 1], ey[j]),
-                    (ex[i + 1], ey[j + 1]),
-                    (f64::NAN, f64::NAN),
-                ]);
+                edges.push(((i + 1, j), (i + 1, j + 1)));
             }
             if j + 1 < cells[i].len() && cells[i][j + 1].overturned != here {
-                boundary.extend([
-                    (ex[i], ey[j + 1]),
-                    (ex[i + 1], ey[j + 1]),
-                    (f64::NAN, f64::NAN),
-                ]);
+                edges.push(((i, j + 1), (i + 1, j + 1)));
             }
         }
+    }
+    let mut boundary = Vec::new();
+    for line in join_edges(&edges) {
+        boundary.extend(line.into_iter().map(|(i, j)| (ex[i], ey[j])));
+        boundary.push((f64::NAN, f64::NAN));
     }
     if !boundary.is_empty() {
         panel =
             panel.with(Series::line("boundary of overturning", boundary, BOUNDARY).with_width(1.3));
     }
     panel
+}
+
+/// A corner of a map's grid: the indices of its cell edges across and up.
+type Corner = (usize, usize);
+
+/// The lines `edges` (pairs of corners) make, joined end to end: each edge once, in the order
+/// found (at a corner where four edges meet, a line goes on along any of the others).
+fn join_edges(edges: &[(Corner, Corner)]) -> Vec<Vec<Corner>> {
+    let mut at: std::collections::HashMap<Corner, Vec<usize>> = Default::default();
+    for (k, &(a, b)) in edges.iter().enumerate() {
+        at.entry(a).or_default().push(k);
+        at.entry(b).or_default().push(k);
+    }
+    let mut used = vec![false; edges.len()];
+    let mut lines = Vec::new();
+    for k in 0..edges.len() {
+        if used[k] {
+            continue;
+        }
+        used[k] = true;
+        let mut line = std::collections::VecDeque::from([edges[k].0, edges[k].1]);
+        // Grow the line at its end, then at its start.
+        for forward in [true, false] {
+            loop {
+                let end = if forward {
+                    line[line.len() - 1]
+                } else {
+                    line[0]
+                };
+                let next = at[&end].iter().copied().find(|&e| !used[e]);
+                let Some(e) = next else { break };
+                used[e] = true;
+                let (a, b) = edges[e];
+                let other = if a == end { b } else { a };
+                if forward {
+                    line.push_back(other);
+                } else {
+                    line.push_front(other);
+                }
+            }
+        }
+        lines.push(line.into_iter().collect());
+    }
+    lines
 }
 
 /// The spectrum of a minimum search over axis `x`.

@@ -264,6 +264,18 @@ pub fn write_atomically(dir: &Path, files: &[(&str, Vec<u8>)]) -> Result<Vec<Pat
     write_set(dir, files, &mut |from, to| std::fs::rename(from, to))
 }
 
+/// [`write_atomically`] for files whose names are made at run time (a figure in each format
+/// asked for).
+pub fn write_named_atomically(
+    dir: &Path,
+    mut files: Vec<(String, Vec<u8>)>,
+) -> Result<Vec<PathBuf>> {
+    let named: Vec<(&str, Vec<u8>)> = (files.iter_mut())
+        .map(|(name, bytes)| (name.as_str(), std::mem::take(bytes)))
+        .collect();
+    write_atomically(dir, &named)
+}
+
 /// [`write_atomically`] with the rename operation given, so that tests can make it fail.
 fn write_set(
     dir: &Path,
