@@ -28,8 +28,9 @@ use std::time::Instant;
 
 use diffsol::{NalgebraMat, OdeBuilder};
 
-use super::contact::OVERLAP_ERROR_SHARE;
-use super::{ContactLaw, ContactSample, ContactState, Row, RowSolution};
+use super::contact::{ContactSample, ContactState, GAP_ROUNDING_ULPS, OVERLAP_ERROR_SHARE};
+use super::description::{ContactLaw, Row};
+use super::solution::{ContactStretch, RowSolution, StickStretch};
 use crate::floor::FloorMotion;
 use crate::integrate::budget::RunBudget;
 use crate::integrate::event_loop::{self, DenseOutput, EventBody, Found, Outcome, Run, StepStart};
@@ -61,40 +62,6 @@ pub struct CompliantSettings {
     pub output_dt: f64,
 }
 
-/// A stretch of contact under the compliant law: from the gap's closing to the zero of the force.
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
-pub struct ContactStretch {
-    /// The contact: between columns `contact` and `contact + 1`.
-    pub contact: usize,
-    /// When the faces met, s.
-    pub t_start: f64,
-    /// When the force fell to zero, s; None if in contact at the end.
-    pub t_end: Option<f64>,
-    /// The reduced mass of the two contact points at the start, kg.
-    pub reduced_mass: f64,
-    /// The dashpot c over the stretch, N s/m.
-    pub damping: f64,
-    /// Closing velocity of the contact points at the start, m/s.
-    pub closing_velocity: f64,
-    /// Their separating velocity at the end, m/s.
-    pub separating_velocity: Option<f64>,
-    /// The largest contact force, N.
-    pub peak_force: f64,
-    /// When it was largest, s.
-    pub t_peak_force: f64,
-    /// The energy the contact took from the two bodies, J: the integral of P delta' (the
-    /// dashpot's dissipation and the spring's energy left at the release).
-    pub energy_dissipated: f64,
-    /// The energy friction between the faces took from the two bodies, J: the integral of
-    /// mu P |sigma| while they slid (0 without friction).
-    pub friction_dissipated: f64,
-    /// The largest friction force, N (its magnitude, up to mu times the contact force).
-    pub peak_friction_force: f64,
-    /// Changes between sticking and sliding over the stretch, after the faces met (each, and
-    /// how they met, is a `friction-stick` or `friction-slip` event of both columns).
-    pub friction_changes: usize,
-}
-
 /// Coulomb's friction at a contact in force (book/src/row.md §4b).
 #[derive(Debug, Clone, Copy, PartialEq)]
 enum Friction {
@@ -104,17 +71,6 @@ enum Friction {
     Slip(f64),
     /// The faces stick: the friction force is what keeps sigma' = 0, within mu P.
     Stick,
-}
-
-/// A stretch over which the faces of a contact stuck (book/src/row.md §4b).
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
-pub struct StickStretch {
-    /// The contact: between columns `contact` and `contact + 1`.
-    pub contact: usize,
-    /// When the faces stuck, s.
-    pub t_start: f64,
-    /// When they slid again or the contact ended, s; None if stuck at the end of the run.
-    pub t_end: Option<f64>,
 }
 
 /// What changes along the run and the right-hand side depends on.
@@ -191,7 +147,7 @@ impl Model<'_> {
 
     /// How far the faces of contact `c` may read as overlapping, m, at `x` and time `t`, with
     /// no contact in force and nothing pushing them apart: the gap's rounding
-    /// ([`super::solve::GAP_ROUNDING_ULPS`] of its size), the distance the points close over
+    /// ([`GAP_ROUNDING_ULPS`] of its size), the distance the points close over
     /// the width of a located crossing (a few ulps of `t`), and `share` of the gap's size.
     fn overlap_tolerance(&self, c: usize, modes: &[Mode], x: &[f64], t: f64, share: f64) -> f64 {
         let automata = (self.automaton(c), self.automaton(c + 1));
@@ -200,7 +156,7 @@ impl Model<'_> {
             (modes[c], x[2 * c]),
             (modes[c + 1], x[2 * c + 2]),
         );
-        super::solve::GAP_ROUNDING_ULPS * ulp(size)
+        GAP_ROUNDING_ULPS * ulp(size)
             + share * size
             + self.closing(c, modes, x).abs() * 8.0 * ulp(t)
     }

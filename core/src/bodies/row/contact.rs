@@ -20,6 +20,15 @@ use crate::physics::automaton::{Automaton, Mode};
 /// the run stops with an error: far above the rounding of the states (about 1e-16 of the size),
 /// far below anything physical (a nanometre for a gap summed from terms of a metre).
 pub const OVERLAP_ERROR_SHARE: f64 = 1e-9;
+/// After an impact, or where a held contact is let go, the two states leave the gap at zero up
+/// to rounding, and it may open very slowly: a pair separating at 1e-8 m/s after the last
+/// bounces of a series, or a held contact let go, which opens only at third order (its force is
+/// zero there, so the held motion is the free one). Read from a gap rounded below zero, its
+/// first instants look like a new closing. So a contact that has been struck or let go closes
+/// only when its gap falls this many ulps of the gap's size (the gap at rest plus both
+/// displacements) below zero, or below where the gap is if it is below zero already: 1e-16 m
+/// for a gap of 1 cm.
+pub const GAP_ROUNDING_ULPS: f64 = 64.0;
 
 /// A column's face at a contact: what moves it vertically.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -201,78 +210,4 @@ pub struct ContactSample {
     /// The friction force on the left column's face (up), N (the right one's takes its
     /// opposite); none under the impact law.
     pub friction_force: Option<f64>,
-}
-
-/// The contact history of an impact-law row from its columns' sampled histories: the gap, the
-/// closing and sliding velocities from each column's q, q' and mode at every instant both
-/// columns of the contact sampled (the output grid, and the instants of their shared impacts,
-/// before and after), held where a stretch of persistent contact covers the instant. Rows are
-/// in time order, contacts left to right within an instant. An open contact's gap may stand
-/// below zero by its rounding only: the widest `rounding` allowance it had over the run (m, per
-/// contact) and [`OVERLAP_ERROR_SHARE`] of its size; beyond that, an error.
-pub(crate) fn contact_history_from_samples(
-    row: &super::Row,
-    columns: &[crate::integrate::solution::Solution],
-    held: &[super::HeldContact],
-    rounding: &[f64],
-) -> Result<Vec<ContactSample>, crate::integrate::SolverError> {
-    let mut rows = Vec::new();
-    for contact in row.contacts() {
-        let c = contact.index;
-        let automata = (&row.columns()[c].automaton, &row.columns()[c + 1].automaton);
-        let (left, right) = (&columns[c].samples, &columns[c + 1].samples);
-        let (mut i, mut j) = (0, 0);
-        while i < left.len() && j < right.len() {
-            let (l, r) = (&left[i], &right[j]);
-            if l.t < r.t {
-                i += 1;
-                continue;
-            }
-            if r.t < l.t {
-                j += 1;
-                continue;
-            }
-            let t = l.t;
-            let (pl, pr) = contact.slopes(automata, (l.mode, r.mode));
-            let (vl, vr) = contact.sliding_slopes(automata, (l.mode, l.q), (r.mode, r.q));
-            let is_held = held
-                .iter()
-                .any(|h| h.contact == c && h.t_start <= t && h.t_end.is_none_or(|end| t < end));
-            let gap = contact.gap(automata, (l.mode, l.q), (r.mode, r.q));
-            let tolerance = rounding[c]
-                + OVERLAP_ERROR_SHARE * contact.gap_size(automata, (l.mode, l.q), (r.mode, r.q));
-            if !is_held && gap < -tolerance {
-                return Err(crate::integrate::SolverError::Failed {
-                    method: crate::integrate::exact::NAME.to_string(),
-                    t,
-                    message: format!(
-                        "the gap between columns {c} and {} is {gap:e} m with no impact, below \
-                         zero by more than its rounding ({tolerance:e} m): the columns would pass \
-                         through each other",
-                        c + 1
-                    ),
-                });
-            }
-            rows.push(ContactSample {
-                t,
-                contact: c,
-                state: if is_held {
-                    ContactState::Held
-                } else {
-                    ContactState::Open
-                },
-                gap,
-                closing_velocity: pl * l.qdot - pr * r.qdot,
-                sliding_velocity: vl * l.qdot - vr * r.qdot,
-                force: None,
-                friction_force: None,
-            });
-            i += 1;
-            j += 1;
-        }
-    }
-    // Stable: within an instant, contacts stay left to right, and the samples of one contact in
-    // the order taken.
-    rows.sort_by(|a, b| a.t.total_cmp(&b.t));
-    Ok(rows)
 }
