@@ -2,11 +2,10 @@
 //! the bootstrap band (fragility), and the records' capacities on the intensity axis with the
 //! median and the 16/84 % fractiles (capacities).
 
-use crate::commands::fragility::{Summary, PERCENTILES};
 use crate::error::Result;
 use crate::figures::page::{FigureOptions, PAGE_MM};
 use crate::figures::plot::{self, Dash, Figure, Marker, Panel, Series, VerticalLine};
-use flexrock_core::analysis::fragility::{bootstrap, Capacity, Lognormal};
+use flexrock_core::analysis::fragility::{bootstrap, Capacity, Lognormal, Summary, PERCENTILES};
 
 /// Points of a drawn curve.
 const CURVE_POINTS: usize = 200;

@@ -19,12 +19,14 @@ pub mod measure;
 pub mod normal;
 pub mod optimize;
 pub mod stripes;
+mod summary;
 
 use serde::Serialize;
 
 pub use lognormal::{fit_capacities, Capacity};
 pub use measure::Measure;
 pub use stripes::{fit_stripes, Stripe};
+pub use summary::{Interval90, RecordResult, StateFit, Summary, CAPACITY_RULE, PERCENTILES};
 
 /// A lognormal fragility function.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
