@@ -200,6 +200,16 @@ fn bad_input_is_refused_before_anything_is_written() {
     let stderr = refused(&mut fragility(&one, &out, &[]), "--records");
     assert!(stderr.contains("at least 2"), "{stderr}");
     assert!(!out.exists());
+    let missing = dir.join("no-such-suite");
+    let stderr = refused(&mut fragility(&missing, &out, &[]), "--records");
+    assert!(stderr.contains("no such file or directory"), "{stderr}");
+    let record = repo("validation/records/elCentro.AT2");
+    let stderr = refused(&mut fragility(&record, &out, &[]), "--records");
+    assert!(
+        stderr.contains("is a record file (peer-at2), not a suite"),
+        "{stderr}"
+    );
+    assert!(!out.exists());
     let list = repo("validation/records/records.list");
     let stderr = refused(&mut fragility(&list, &out, &["--im", "pgx"]), "--im");
     assert!(stderr.contains("pga, pgv, pgd, arias, cav, sa"), "{stderr}");

@@ -98,6 +98,13 @@ fn record_axis(records: &str) -> Result<Axis> {
             values.push(entry.path.to_string_lossy().into_owned());
         }
         Ok(Axis::new("excitation.path", values))
+    } else if !records.contains(['*', '?', '[']) {
+        Err(Error::invalid(
+            "--records",
+            records,
+            "no such file or directory: give a directory of record files, a list file (one path \
+             a line) or a quoted pattern such as 'suite/*.AT2'",
+        ))
     } else {
         Axis::parse(&format!("excitation.path={records}"), Path::new("."))
             .map_err(|e| Error::invalid("--records", records, &e.to_string()))

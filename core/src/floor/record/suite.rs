@@ -43,6 +43,26 @@ pub struct Suite {
     pub entries: Vec<SuiteEntry>,
 }
 
+/// Refuses a record file given where a suite is read: its extension or its first line says what
+/// it is (a list file may be .txt or .csv, so those extensions alone say nothing).
+fn refuse_a_record(path: &Path, text: &str, name: &str) -> Result<(), RecordError> {
+    let format = match RecordFormat::from_extension(path) {
+        Some(RecordFormat::Csv | RecordFormat::Text) | None => RecordFormat::from_content(text),
+        known => known,
+    };
+    match format {
+        Some(format) => Err(RecordError::HeaderRule {
+            at: Location::file(name),
+            rule: format!(
+                "is a record file ({}), not a suite: a suite is a directory of record files or a \
+                 list file of their paths, one a line",
+                format.name()
+            ),
+        }),
+        None => Ok(()),
+    }
+}
+
 /// Reads the suite at `path`: a directory, or a list file.
 pub fn read_suite(path: &Path) -> Result<Suite, RecordError> {
     let name = path.display().to_string();
@@ -54,6 +74,7 @@ pub fn read_suite(path: &Path) -> Result<Suite, RecordError> {
         directory_entries(path, &name)?
     } else {
         let text = decode_utf8(read_bounded(path, &name)?, &name)?;
+        refuse_a_record(path, &text, &name)?;
         parse_list(&text, &name, path.parent().unwrap_or(Path::new(".")))?
     };
     if entries.is_empty() {
