@@ -193,7 +193,7 @@ fn failed(method: &str, t: f64, message: impl std::fmt::Display) -> SolverError 
     }
 }
 
-/// Integrates `body` with `solver` over [0, run.duration].
+/// Integrates `body` with `solver` from the solver's time (0 for a whole run) to run.duration.
 pub(crate) fn run<'a, Eqn, S, B>(run: &Run<'_>, body: &mut B, mut solver: S) -> Result<Finish>
 where
     Eqn: OdeEquations<T = f64, V = Vector> + 'a,
@@ -213,37 +213,42 @@ where
         crossing_retries,
     };
 
-    // Stop times: the floor motion's breakpoints inside (0, end), then the end.
+    // The run starts where the solver starts (0, or where an earlier stretch of the body's
+    // motion handed over).
+    let begin = solver.state().t;
+    // Stop times: the floor motion's breakpoints inside (begin, end), then the end.
     let mut stops: Vec<f64> = run
         .floor
         .breakpoints()
         .iter()
         .copied()
-        .filter(|&b| b > 0.0 && !at_stop(b, end) && b < end)
+        .filter(|&b| b > begin && !at_stop(b, end) && b < end)
         .collect();
     stops.push(end);
     let mut stop_index = 0;
     // diffsol takes a stop time within 100 ulps of its first step for the current time (and
     // refuses it): a run far shorter than that first step (1e-20 s) starts with a step of its
     // whole length instead. Longer runs are unchanged: their first step is cut to the stop.
-    if solver.state().h > stops[0] {
-        *solver.state_mut().h = stops[0];
+    if solver.state().h > stops[0] - begin {
+        *solver.state_mut().h = stops[0] - begin;
     }
-    solver.set_stop_time(stops[0]).map_err(|e| error(0.0, &e))?;
+    solver
+        .set_stop_time(stops[0])
+        .map_err(|e| error(begin, &e))?;
 
     let mut grid = OutputGrid::for_history(run.history, end, run.output_dt);
     let mut sampler = Sampler {
         y: solver.state().y.clone(),
         g: solver.state().g.clone(),
     };
-    sampler.emit(run, body, &solver, &mut grid, 0.0, true)?;
+    sampler.emit(run, body, &solver, &mut grid, begin, true)?;
 
-    // A start on a guard, moving across it, is an event at t = 0.
+    // A start on a guard, moving across it, is an event at the start.
     let (y0, g0) = (values(solver.state().y), values(solver.state().g));
-    match body.apply(0.0, &y0, &g0, None)? {
-        Outcome::Stop => return Ok(finish(0.0, &solver, crossing_retries)),
+    match body.apply(begin, &y0, &g0, None)? {
+        Outcome::Stop => return Ok(finish(begin, &solver, crossing_retries)),
         Outcome::Continue => {}
-        Outcome::Restart(y) => set_state(body, &mut solver, 0.0, &y, 0.0),
+        Outcome::Restart(y) => set_state(body, &mut solver, begin, &y, begin),
     }
 
     loop {
