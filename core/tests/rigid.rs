@@ -305,7 +305,10 @@ fn halving_the_step_changes_nothing_that_matters() {
                     &pulse,
                     InitialState { q: 0.0, qdot: 0.0 },
                     8.0,
-                    &RigidSettings { max_step: h },
+                    &RigidSettings {
+                        max_step: h,
+                        ..RigidSettings::for_block(&block)
+                    },
                 )
                 .unwrap()
             };
@@ -371,10 +374,41 @@ fn meaningless_input_is_refused() {
             &Free,
             InitialState { q: 0.0, qdot: 0.0 },
             1.0,
-            &RigidSettings { max_step: h },
+            &RigidSettings {
+                max_step: h,
+                ..RigidSettings::for_block(&housner())
+            },
         )
         .unwrap_err();
         assert!(err.is_input_error(), "{err}");
+    }
+    // The full form's tolerances likewise.
+    let full = housner().with_form(RigidForm::Full);
+    for bad in [0.0, f64::NAN, -1e-10, f64::INFINITY] {
+        for settings in [
+            RigidSettings {
+                rtol: bad,
+                ..RigidSettings::for_block(&full)
+            },
+            RigidSettings {
+                atol: bad,
+                ..RigidSettings::for_block(&full)
+            },
+        ] {
+            let err = simulate_from(
+                &full,
+                &Free,
+                InitialState { q: 0.0, qdot: 0.0 },
+                1.0,
+                &settings,
+            )
+            .unwrap_err();
+            assert!(err.is_input_error(), "{err}");
+            assert!(
+                err.to_string().contains("rigid.rtol") || err.to_string().contains("rigid.atol"),
+                "{err}"
+            );
+        }
     }
     let err = simulate_block(&housner(), &Constant(1e6), 1.0).unwrap_err();
     assert!(err.to_string().contains("20 g"), "{err}");

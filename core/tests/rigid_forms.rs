@@ -1,5 +1,5 @@
-//! The two forms of the rigid block (src/rigid.rs): the small-angle equation and Housner's full
-//! equation, theta'' = -p^2 [sin(s alpha - theta) + (a/g) cos(s alpha - theta)], p^2 = 3 g/(4 R),
+//! The two forms of the rigid block (core/src/bodies/rigid/): the small-angle equation and
+//! Housner's full equation, theta'' = -p^2 [sin(s alpha - theta) + (a/g) cos(s alpha - theta)], p^2 = 3 g/(4 R),
 //! R = sqrt(H^2 + B^2)/2, alpha = atan(B/H) (Housner 1963, Bull. Seismol. Soc. Am. 53(2); Zhang
 //! and Makris 2001, J. Eng. Mech. 127(5); Dimitrakopoulos and DeJong 2012, Proc. R. Soc. A 468).
 //!
@@ -180,38 +180,146 @@ fn a_free_full_block_overturns_from_its_energy_threshold() {
     }
 }
 
-/// Halving the step changes the full form's event times and peaks by less than 1e-10 (as for
-/// the small-angle form) on one-sine pulses of 1 s that rock, chatter or overturn.
-#[test]
-fn halving_the_full_forms_step_changes_nothing_that_matters() {
-    let b = block(H, B, RigidForm::Full);
-    for amplitude in [2.0, 2.2, 2.5, 6.0] {
-        let floor = pulse(amplitude, 1.0);
-        let run = |h: f64| {
-            simulate_from(
-                &b,
-                &floor,
-                InitialState { q: 0.0, qdot: 0.0 },
-                8.0,
-                &RigidSettings { max_step: h },
-            )
-            .unwrap()
-        };
-        let (coarse, fine) = (run(1e-3), run(5e-4));
-        assert_eq!(coarse.events.len(), fine.events.len(), "A = {amplitude}");
-        let mut worst: f64 = 0.0;
-        for (x, y) in coarse.events.iter().zip(&fine.events) {
-            assert_eq!(x.kind, y.kind);
-            worst = worst.max((x.t - y.t).abs());
-            worst = worst.max((x.qdot_before - y.qdot_before).abs());
+/// The events of the full block under a one-sine pulse of `amplitude` (m/s^2) and period 1 s,
+/// followed independently in theta (rad) by the classical Runge-Kutta method at the fixed step
+/// `step` (s): rest until a(t) passes g tan alpha (its time in closed form), each crossing
+/// located by 100 bisections of a fresh Runge-Kutta step from the last full step, impacts
+/// theta' -> e theta', overturned at |theta| = alpha. Up to `count` events: (time, what, theta'
+/// just before, m/s in q = theta H units).
+fn full_reference_events(amplitude: f64, step: f64, count: usize) -> Vec<(f64, &'static str, f64)> {
+    let alpha = (B / H).atan();
+    let p2 = 3.0 * G / (2.0 * (H * H + B * B).sqrt());
+    let e = 1.0 - 1.5 * alpha.sin().powi(2);
+    let omega = 2.0 * std::f64::consts::PI;
+    let floor = |t: f64| {
+        if (0.0..1.0).contains(&t) {
+            amplitude * (omega * t).sin()
+        } else {
+            0.0
         }
-        worst = worst.max((coarse.max_abs_q - fine.max_abs_q).abs() / coarse.max_abs_q);
-        eprintln!(
-            "A {amplitude}: {} events, overturned {:?}, worst change {worst:e}",
-            coarse.events.len(),
-            coarse.t_overturn
+    };
+    let f = |t: f64, th: f64, s: f64| {
+        let angle = s * alpha - th;
+        -p2 * (angle.sin() + floor(t) / G * angle.cos())
+    };
+    let rk4 = |t: f64, th: f64, w: f64, s: f64, h: f64| {
+        let (k1, l1) = (w, f(t, th, s));
+        let (k2, l2) = (w + 0.5 * h * l1, f(t + 0.5 * h, th + 0.5 * h * k1, s));
+        let (k3, l3) = (w + 0.5 * h * l2, f(t + 0.5 * h, th + 0.5 * h * k2, s));
+        let (k4, l4) = (w + h * l3, f(t + h, th + h * k3, s));
+        (
+            th + h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4),
+            w + h / 6.0 * (l1 + 2.0 * l2 + 2.0 * l3 + l4),
+        )
+    };
+    let bisect = |mut lo: f64, mut hi: f64, holds: &dyn Fn(f64) -> bool| {
+        for _ in 0..100 {
+            let mid = 0.5 * (lo + hi);
+            if holds(mid) {
+                hi = mid;
+            } else {
+                lo = mid;
+            }
+        }
+        hi
+    };
+    // The sine passes g tan alpha in its first half: the block lifts onto its left toe.
+    let lift = (G * B / H / amplitude).asin() / omega;
+    let mut events = vec![(lift, "uplift", 0.0)];
+    let (mut t, mut th, mut w, mut s) = (lift, 0.0_f64, 0.0_f64, -1.0_f64);
+    while events.len() < count && t < 8.0 {
+        // Steps stop at the pulse's end, where the floor stops.
+        let h = if t < 1.0 && t + step > 1.0 {
+            1.0 - t
+        } else {
+            step
+        };
+        let (th1, w1) = rk4(t, th, w, s, h);
+        if s * th1 >= alpha || s * th1 <= 0.0 {
+            let (t0, th0, w0, s0) = (t, th, w, s);
+            let over = s * th1 >= alpha;
+            let u = bisect(0.0, h, &|u| {
+                let th = rk4(t0, th0, w0, s0, u).0;
+                if over {
+                    s0 * th >= alpha
+                } else {
+                    s0 * th <= 0.0
+                }
+            });
+            let (_, wu) = rk4(t0, th0, w0, s0, u);
+            t = t0 + u;
+            if over {
+                events.push((t, "overturn", wu * H));
+                break;
+            }
+            events.push((t, "impact", wu * H));
+            th = 0.0;
+            w = e * wu;
+            s = -s;
+            continue;
+        }
+        t += h;
+        th = th1;
+        w = w1;
+    }
+    events
+}
+
+/// The full form against an independent integration of Housner's full equation (above, at a
+/// step of 1e-5 s) on one-sine pulses whose events are well conditioned: one that rocks (2.2
+/// m/s^2; its first six events), one that overturns at once (6.0), and the first three events
+/// of one that chatters (2.0). Event times agree to 2e-11 s and speeds to 2e-11 m/s at the
+/// default tolerance.
+///
+/// Measured: 8.6e-12 (2.2), 8.8e-12 (6.0), 1.7e-11 (2.0). The reference itself is good to
+/// about that: at 5e-6 s it moves these events by up to 1.1e-11 s. (Events after a grazing
+/// return or a long chatter are far more sensitive: there the reference at 1e-5 s and at 5e-6 s
+/// differ by up to 4e-9 s, and no tighter comparison is meaningful.)
+#[test]
+fn the_full_form_matches_an_independent_integration_to_2e_11() {
+    let b = block(H, B, RigidForm::Full);
+    for (amplitude, count) in [(2.2, 6), (6.0, 6), (2.0, 3)] {
+        let reference = full_reference_events(amplitude, 1e-5, count);
+        let run = simulate_block(&b, &pulse(amplitude, 1.0), 8.0).unwrap();
+        let name = |kind: RigidEventKind| match kind {
+            RigidEventKind::Uplift => "uplift",
+            RigidEventKind::Impact => "impact",
+            RigidEventKind::Settle => "settle",
+            RigidEventKind::Overturn => "overturn",
+        };
+        assert!(run.events.len() >= reference.len(), "A = {amplitude}");
+        let mut worst: f64 = 0.0;
+        for (event, &(t, what, qdot)) in run.events.iter().zip(&reference) {
+            assert_eq!(name(event.kind), what, "A = {amplitude}");
+            worst = worst.max((event.t - t).abs());
+            worst = worst.max((event.qdot_before - qdot).abs());
+        }
+        eprintln!("A {amplitude}: worst difference {worst:e}");
+        assert!(worst < 2e-11, "A = {amplitude}: {worst:e}");
+        // The tolerance is what sets the accuracy: at rtol 1e-8 the events move further.
+        let loose = simulate_from(
+            &b,
+            &pulse(amplitude, 1.0),
+            InitialState { q: 0.0, qdot: 0.0 },
+            8.0,
+            &RigidSettings {
+                rtol: 1e-8,
+                atol: 1e-9 * H,
+                ..RigidSettings::for_block(&b)
+            },
+        )
+        .unwrap();
+        let loose_worst = loose
+            .events
+            .iter()
+            .zip(&reference)
+            .map(|(event, &(t, _, _))| (event.t - t).abs())
+            .fold(0.0, f64::max);
+        eprintln!("  at rtol 1e-8: {loose_worst:e}");
+        assert!(
+            loose_worst > 10.0 * worst,
+            "A = {amplitude}: {loose_worst:e}"
         );
-        assert!(worst < 1e-10, "A = {amplitude}: {worst:e}");
     }
 }
 

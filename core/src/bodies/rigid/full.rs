@@ -1,0 +1,276 @@
+//! Housner's full equation of a rocking block, integrated adaptively: each stretch of rocking is
+//! a run of diffsol's Tsit45 method in the event loop every diffsol run shares
+//! ([`crate::integrate::event_loop`]), to the tolerance of [`RigidSettings`](super::RigidSettings).
+//!
+//! A stretch starts where the block lifts off (or where a run starts it rocking) and ends when
+//! the block comes to rest after its chatter, when it overturns, or at the stretch's end. Its
+//! impacts are events of the loop: located on the step's dense output, applied (q' -> e q', the
+//! other toe), and the method restarted from there.
+
+use std::cell::Cell;
+
+use diffsol::{NalgebraMat, OdeBuilder};
+
+use super::{RigidPhase, RigidState, Run};
+use crate::integrate::event_loop::{self, DenseOutput, EventBody, Found, Outcome, StepStart};
+use crate::integrate::{History, OutputGrid, SolverError};
+
+type Result<T> = std::result::Result<T, SolverError>;
+type Matrix = NalgebraMat<f64>;
+
+/// The method's name in messages.
+const METHOD: &str = "rigid full equation (tsit45)";
+
+/// The full equation in q = theta H units: q'' = -H p^2 [sin(s alpha - q/H) + (a/g) cos(s alpha
+/// - q/H)], s the side the block rocks on.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct FullEquation {
+    /// H, m.
+    pub height: f64,
+    /// alpha = atan(B/H), rad.
+    pub alpha: f64,
+    /// g, m/s^2.
+    pub gravity: f64,
+    /// H p^2, m/s^2.
+    pub scale: f64,
+    /// Relative and absolute (m) tolerances of the integration.
+    pub rtol: f64,
+    /// Absolute tolerance, m.
+    pub atol: f64,
+}
+
+impl FullEquation {
+    /// q'' rocking on `side` at q under the floor acceleration `a`.
+    fn acceleration(&self, side: f64, q: f64, a: f64) -> f64 {
+        let angle = side * self.alpha - q / self.height;
+        -self.scale * (angle.sin() + a / self.gravity * angle.cos())
+    }
+
+    /// d q''/dq rocking on `side` at q under the floor acceleration `a`.
+    fn stiffness(&self, side: f64, q: f64, a: f64) -> f64 {
+        let angle = side * self.alpha - q / self.height;
+        self.scale / self.height * (angle.cos() - a / self.gravity * angle.sin())
+    }
+}
+
+/// What ends a piece of rocking.
+#[derive(Debug, Clone, Copy)]
+enum Crossing {
+    /// q reaches 0 moving towards the floor.
+    Impact,
+    /// |q| reaches the overturning displacement moving away from it.
+    Overturn,
+}
+
+/// Rocks the block of `run` from its state until it comes to rest, overturns, or `until`.
+pub(super) fn rock(run: &mut Run<'_>, full: &FullEquation, until: f64) -> Result<()> {
+    let side = Cell::new(run.state.phase.side());
+    let floor = run.floor;
+    let (t0, q0, v0) = (run.state.t, run.state.q, run.state.qdot);
+    let failed = |t: f64, e: &dyn std::fmt::Display| SolverError::Failed {
+        method: METHOD.to_string(),
+        t,
+        message: e.to_string(),
+    };
+    let mut problem = OdeBuilder::<Matrix>::new()
+        .t0(t0)
+        .rtol(full.rtol)
+        .atol([full.atol; 2])
+        .rhs_implicit(
+            |x, _p, t, y| {
+                y[0] = x[1];
+                y[1] = full.acceleration(side.get(), x[0], floor.acceleration(t));
+            },
+            |x, _p, t, v, y| {
+                y[0] = v[1];
+                y[1] = full.stiffness(side.get(), x[0], floor.acceleration(t)) * v[0];
+            },
+        )
+        .init(
+            |_p, _t, y| {
+                y[0] = q0;
+                y[1] = v0;
+            },
+            2,
+        )
+        .build()
+        .map_err(|e| failed(t0, &e))?;
+    problem.ode_options.min_timestep = problem.ode_options.min_timestep.min(1e-3 * (until - t0));
+    let solver = problem.tsit45().map_err(|e| failed(t0, &e))?;
+    let stretch = event_loop::Run {
+        method: METHOD,
+        floor,
+        duration: until,
+        history: History::PeaksOnly,
+        output_dt: until - t0,
+    };
+    let mut body = Rocking {
+        run,
+        full,
+        side: &side,
+        peak: None,
+        end: None,
+    };
+    let finish = event_loop::run(&stretch, &mut body, solver)?;
+    let end = body.end;
+    run.outcome.steps += finish.statistics.number_of_steps;
+    if let Some((t, q, qdot)) = end {
+        run.state = RigidState {
+            t,
+            q,
+            qdot,
+            phase: run.state.phase,
+        };
+    }
+    Ok(())
+}
+
+/// The rocking block, as the event loop drives it.
+struct Rocking<'r, 'a> {
+    run: &'r mut Run<'a>,
+    full: &'r FullEquation,
+    /// The side it rocks on, +1 or -1, shared with the solver's right-hand side.
+    side: &'r Cell<f64>,
+    /// The root of q' (a peak of |q|: time and q) the last step found before its first event.
+    peak: Option<(f64, f64)>,
+    /// The state where the stretch ended without an event.
+    end: Option<(f64, f64, f64)>,
+}
+
+impl Rocking<'_, '_> {
+    /// How far q is past the crossing (negative before it), for a block rocking on `side`.
+    fn overshoot(&self, crossing: Crossing, side: f64, q: f64) -> f64 {
+        match crossing {
+            Crossing::Impact => -side * q,
+            Crossing::Overturn => side * q - self.run.away_limit(),
+        }
+    }
+}
+
+impl EventBody for Rocking<'_, '_> {
+    type Event = Crossing;
+
+    fn derivatives(&self, t: f64, y: &[f64], dy: &mut [f64], _dg: &mut [f64]) {
+        dy[0] = y[1];
+        dy[1] = self
+            .full
+            .acceleration(self.side.get(), y[0], self.run.floor.acceleration(t));
+    }
+
+    /// Looks for the first crossing of the step [start, t1]. The step is split where q' changes
+    /// sign, so that q is monotone on each piece; moving towards the floor only an impact can
+    /// be met, moving away only the overturning displacement.
+    fn find_event(
+        &mut self,
+        dense: &dyn DenseOutput,
+        start: &StepStart,
+        t1: f64,
+        _grid: &OutputGrid,
+    ) -> Result<Found<Crossing>> {
+        let side = self.side.get();
+        let state_at = |t: f64| -> Result<[f64; 2]> {
+            let y = dense.state_at(t)?;
+            Ok([y[0], y[1]])
+        };
+        let end_state = state_at(t1)?;
+        let (qdot0, qdot1) = (start.y[1], end_state[1]);
+        self.peak = None;
+        // Pieces of monotone q: (from, q at from, to, q at to, direction of motion).
+        let mut pieces = [(start.t, start.y[0], t1, end_state[0], 0.0); 2];
+        let count = if qdot0 * qdot1 < 0.0 {
+            let t_peak = crate::integrate::sign_change::locate(start.t, t1, |t| -> Result<f64> {
+                Ok(state_at(t)?[1])
+            })?;
+            let q_peak = state_at(t_peak)?[0];
+            self.peak = Some((t_peak, q_peak));
+            pieces[0] = (start.t, start.y[0], t_peak, q_peak, qdot0.signum());
+            pieces[1] = (t_peak, q_peak, t1, end_state[0], qdot1.signum());
+            2
+        } else {
+            let direction = if qdot1 != 0.0 { qdot1 } else { qdot0 };
+            pieces[0].4 = if direction == 0.0 {
+                0.0
+            } else {
+                direction.signum()
+            };
+            1
+        };
+        for &(from, q_from, to, q_to, direction) in &pieces[..count] {
+            let crossing = if direction == -side {
+                Crossing::Impact
+            } else if direction == side {
+                Crossing::Overturn
+            } else {
+                continue;
+            };
+            if self.overshoot(crossing, side, q_to) <= 0.0 {
+                continue;
+            }
+            if self.overshoot(crossing, side, q_from) >= 0.0 {
+                return Ok(Found::Unresolved);
+            }
+            let t = crate::integrate::sign_change::locate(from, to, |t| -> Result<f64> {
+                Ok(self.overshoot(crossing, side, state_at(t)?[0]))
+            })?;
+            if direction * state_at(t)?[1] <= 0.0 {
+                return Ok(Found::Unresolved);
+            }
+            self.peak = self.peak.filter(|&(t_peak, _)| t_peak < t);
+            return Ok(Found::At(t, crossing));
+        }
+        // The state must end between the floor and the overturning displacement; if not, q
+        // turned more than once in the step.
+        if [Crossing::Impact, Crossing::Overturn]
+            .iter()
+            .any(|&c| self.overshoot(c, side, end_state[0]) > 0.0)
+        {
+            return Ok(Found::Unresolved);
+        }
+        Ok(Found::None)
+    }
+
+    fn book_step(
+        &mut self,
+        _dense: &dyn DenseOutput,
+        _start: &StepStart,
+        _until: f64,
+    ) -> Result<()> {
+        if let Some((t, q)) = self.peak.take() {
+            self.run.peak(t, q);
+        }
+        Ok(())
+    }
+
+    /// An impact turns the block onto its other toe (or puts it at rest after its chatter); an
+    /// overturn ends the stretch. The start of the stretch is no event.
+    fn apply(&mut self, t: f64, y: &[f64], _g: &[f64], event: Option<Crossing>) -> Result<Outcome> {
+        let side = self.side.get();
+        match event {
+            None => Ok(Outcome::Continue),
+            Some(Crossing::Overturn) => {
+                let limit = self.run.away_limit();
+                self.run.overturn(t, side * limit, y[1])?;
+                Ok(Outcome::Stop)
+            }
+            Some(Crossing::Impact) => {
+                self.run.state.t = t;
+                self.run.impact(t, y[1])?;
+                let state = self.run.state;
+                if state.phase == RigidPhase::Rest {
+                    return Ok(Outcome::Stop);
+                }
+                self.side.set(state.phase.side());
+                Ok(Outcome::Restart(vec![0.0, state.qdot]))
+            }
+        }
+    }
+
+    fn sample(&mut self, _t: f64, _y: &[f64], _g: &[f64]) -> Result<()> {
+        Ok(())
+    }
+
+    fn finish(&mut self, t: f64, y: &[f64], _g: &[f64]) {
+        self.run.peak(t, y[0]);
+        self.end = Some((t, y[0], y[1]));
+    }
+}
