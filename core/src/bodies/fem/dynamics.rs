@@ -34,7 +34,7 @@ pub fn simulate_fem(
     validate_settings(settings)?;
     let model = Assembly::build(body, settings.nx, settings.ny)?;
     let omega_max = highest_frequency_of(&model)?;
-    let mut run = Run::new(&model, body, settings, floor_acc)?;
+    let mut run = FemRun::new(&model, body, settings, floor_acc)?;
     let mut result = FemResult {
         steps: Vec::new(),
         events: Vec::new(),
@@ -98,7 +98,7 @@ impl StepRule {
     }
 }
 
-struct Run<'a> {
+struct FemRun<'a> {
     model: &'a Assembly,
     settings: &'a FemSettings,
     floor_acc: &'a dyn Fn(f64) -> f64,
@@ -126,7 +126,7 @@ struct Run<'a> {
     reactions: Vec<[f64; 2]>,
 }
 
-impl<'a> Run<'a> {
+impl<'a> FemRun<'a> {
     fn new(
         model: &'a Assembly,
         body: &FemBody,

@@ -11,7 +11,8 @@ use std::cell::Cell;
 
 use diffsol::{NalgebraMat, OdeBuilder};
 
-use super::{RigidPhase, RigidState, Run};
+use super::{RigidPhase, RigidState};
+use crate::floor::FloorMotion;
 use crate::integrate::event_loop::{self, DenseOutput, EventBody, Found, Outcome, StepStart};
 use crate::integrate::{History, OutputGrid, SolverError};
 
@@ -62,11 +63,36 @@ enum Crossing {
     Overturn,
 }
 
-/// Rocks the block of `run` from its state until it comes to rest, overturns, or `until`.
-pub(super) fn rock(run: &mut Run<'_>, full: &FullEquation, until: f64) -> Result<()> {
-    let side = Cell::new(run.state.phase.side());
-    let floor = run.floor;
-    let (t0, q0, v0) = (run.state.t, run.state.q, run.state.qdot);
+/// What a stretch of rocking needs of the run it is part of.
+pub(super) trait Stretch {
+    /// The block's state.
+    fn state(&self) -> RigidState;
+    /// Puts the block in `state`.
+    fn set_state(&mut self, state: RigidState);
+    /// Counts `steps` more steps.
+    fn add_steps(&mut self, steps: usize);
+    /// Books q at t as a candidate for the largest |q|.
+    fn peak(&mut self, t: f64, q: f64);
+    /// The block, at q = 0 at t, hits the floor at q' = `qdot_before`: it rocks on about the
+    /// other toe, or comes to rest.
+    fn impact(&mut self, t: f64, qdot_before: f64) -> Result<()>;
+    /// The block has overturned at q, q'.
+    fn overturn(&mut self, t: f64, q: f64, qdot: f64) -> Result<()>;
+    /// |q| at which a block moving away from the floor has overturned.
+    fn away_limit(&self) -> f64;
+}
+
+/// Rocks the block of `run` on `floor` from its state until it comes to rest, overturns, or
+/// `until`.
+pub(super) fn rock(
+    run: &mut dyn Stretch,
+    floor: &dyn FloorMotion,
+    full: &FullEquation,
+    until: f64,
+) -> Result<()> {
+    let start = run.state();
+    let side = Cell::new(start.phase.side());
+    let (t0, q0, v0) = (start.t, start.q, start.qdot);
     let failed = |t: f64, e: &dyn std::fmt::Display| SolverError::Failed {
         method: METHOD.to_string(),
         t,
@@ -106,6 +132,7 @@ pub(super) fn rock(run: &mut Run<'_>, full: &FullEquation, until: f64) -> Result
     };
     let mut body = Rocking {
         run,
+        floor,
         full,
         side: &side,
         peak: None,
@@ -113,21 +140,18 @@ pub(super) fn rock(run: &mut Run<'_>, full: &FullEquation, until: f64) -> Result
     };
     let finish = event_loop::run(&stretch, &mut body, solver)?;
     let end = body.end;
-    run.outcome.steps += finish.statistics.number_of_steps;
+    run.add_steps(finish.statistics.number_of_steps);
     if let Some((t, q, qdot)) = end {
-        run.state = RigidState {
-            t,
-            q,
-            qdot,
-            phase: run.state.phase,
-        };
+        let phase = run.state().phase;
+        run.set_state(RigidState { t, q, qdot, phase });
     }
     Ok(())
 }
 
 /// The rocking block, as the event loop drives it.
-struct Rocking<'r, 'a> {
-    run: &'r mut Run<'a>,
+struct Rocking<'r> {
+    run: &'r mut dyn Stretch,
+    floor: &'r dyn FloorMotion,
     full: &'r FullEquation,
     /// The side it rocks on, +1 or -1, shared with the solver's right-hand side.
     side: &'r Cell<f64>,
@@ -137,7 +161,7 @@ struct Rocking<'r, 'a> {
     end: Option<(f64, f64, f64)>,
 }
 
-impl Rocking<'_, '_> {
+impl Rocking<'_> {
     /// How far q is past the crossing (negative before it), for a block rocking on `side`.
     fn overshoot(&self, crossing: Crossing, side: f64, q: f64) -> f64 {
         match crossing {
@@ -147,14 +171,14 @@ impl Rocking<'_, '_> {
     }
 }
 
-impl EventBody for Rocking<'_, '_> {
+impl EventBody for Rocking<'_> {
     type Event = Crossing;
 
     fn derivatives(&self, t: f64, y: &[f64], dy: &mut [f64], _dg: &mut [f64]) {
         dy[0] = y[1];
         dy[1] = self
             .full
-            .acceleration(self.side.get(), y[0], self.run.floor.acceleration(t));
+            .acceleration(self.side.get(), y[0], self.floor.acceleration(t));
     }
 
     /// Looks for the first crossing of the step [start, t1]. The step is split where q' changes
@@ -253,9 +277,8 @@ impl EventBody for Rocking<'_, '_> {
                 Ok(Outcome::Stop)
             }
             Some(Crossing::Impact) => {
-                self.run.state.t = t;
                 self.run.impact(t, y[1])?;
-                let state = self.run.state;
+                let state = self.run.state();
                 if state.phase == RigidPhase::Rest {
                     return Ok(Outcome::Stop);
                 }
