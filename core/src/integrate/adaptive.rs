@@ -30,7 +30,7 @@ use diffsol::{NalgebraLU, NalgebraMat, OdeBuilder};
 use serde::Serialize;
 
 use super::budget::RunBudget;
-use super::event_loop::{self, DenseOutput, EventBody, Found, Outcome, Run, StepStart};
+use super::event_loop::{self, DenseOutput, EventBody, Found, LoopSetup, Outcome, StepStart};
 use crate::floor::FloorMotion;
 use crate::integrate::solution::{Recorder, Solution, SolverStats};
 use crate::integrate::SolverError;
@@ -177,7 +177,7 @@ pub fn solve(
     // input: the state barely moves); such a run may take steps down to 1e-3 of its length.
     problem.ode_options.min_timestep = problem.ode_options.min_timestep.min(1e-3 * duration);
 
-    let run = Run {
+    let run = LoopSetup {
         method: settings.method.name(),
         floor,
         duration,

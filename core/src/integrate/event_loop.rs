@@ -115,7 +115,7 @@ pub(crate) struct Finish {
 }
 
 /// What the loop needs to know of the run.
-pub(crate) struct Run<'r> {
+pub(crate) struct LoopSetup<'r> {
     /// The method's name, for the messages.
     pub method: &'r str,
     /// The floor motion: its breakpoints are stop times.
@@ -194,7 +194,7 @@ fn failed(method: &str, t: f64, message: impl std::fmt::Display) -> SolverError 
 }
 
 /// Integrates `body` with `solver` from the solver's time (0 for a whole run) to run.duration.
-pub(crate) fn run<'a, Eqn, S, B>(run: &Run<'_>, body: &mut B, mut solver: S) -> Result<Finish>
+pub(crate) fn run<'a, Eqn, S, B>(run: &LoopSetup<'_>, body: &mut B, mut solver: S) -> Result<Finish>
 where
     Eqn: OdeEquations<T = f64, V = Vector> + 'a,
     S: OdeSolverMethod<'a, Eqn>,
@@ -391,7 +391,7 @@ impl Sampler {
     /// Samples the history at every grid time up to `until` (inclusive when `inclusive`).
     fn emit<'a, Eqn, S, B>(
         &mut self,
-        run: &Run<'_>,
+        run: &LoopSetup<'_>,
         body: &mut B,
         solver: &S,
         grid: &mut OutputGrid,

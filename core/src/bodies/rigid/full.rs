@@ -123,7 +123,7 @@ pub(super) fn rock(
         .map_err(|e| failed(t0, &e))?;
     problem.ode_options.min_timestep = problem.ode_options.min_timestep.min(1e-3 * (until - t0));
     let solver = problem.tsit45().map_err(|e| failed(t0, &e))?;
-    let stretch = event_loop::Run {
+    let stretch = event_loop::LoopSetup {
         method: METHOD,
         floor,
         duration: until,

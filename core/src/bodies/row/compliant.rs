@@ -33,7 +33,9 @@ use super::description::{ContactLaw, Row};
 use super::solution::{ContactStretch, RowSolution, StickStretch};
 use crate::floor::FloorMotion;
 use crate::integrate::budget::RunBudget;
-use crate::integrate::event_loop::{self, DenseOutput, EventBody, Found, Outcome, Run, StepStart};
+use crate::integrate::event_loop::{
+    self, DenseOutput, EventBody, Found, LoopSetup, Outcome, StepStart,
+};
 use crate::integrate::exact::rounding::ulp;
 use crate::integrate::solution::{Recorder, SolverStats};
 use crate::integrate::{History, OutputGrid, SolverError};
@@ -85,7 +87,7 @@ struct Config {
 }
 
 /// The row's fixed data.
-struct Model<'r> {
+struct RowEquations<'r> {
     row: &'r Row,
     stiffness: f64,
     zeta: f64,
@@ -102,7 +104,7 @@ struct Forces {
     friction: Vec<f64>,
 }
 
-impl Model<'_> {
+impl RowEquations<'_> {
     fn n(&self) -> usize {
         self.row.columns().len()
     }
@@ -163,7 +165,7 @@ impl Model<'_> {
 
     /// What contact `c`, not in force, is doing at `x` (time `t`): open, or parting (its faces,
     /// let go at zero force, still overlap and nothing presses them together); an error where
-    /// its faces overlap by more than [`Model::overlap_tolerance`] with `share` and would
+    /// its faces overlap by more than [`RowEquations::overlap_tolerance`] with `share` and would
     /// press, which the run never leaves standing.
     fn idle_state(
         &self,
@@ -349,7 +351,7 @@ impl Model<'_> {
         self.accelerations_with(cfg, x, floor_acc, &forces.normal, &forces.friction, y);
     }
 
-    /// The Jacobian of [`Model::rhs`] times `v`.
+    /// The Jacobian of [`RowEquations::rhs`] times `v`.
     fn jacobian(&self, cfg: &Config, v: &[f64], y: &mut [f64]) {
         let n = self.n();
         for i in 0..n {
@@ -451,7 +453,7 @@ pub fn solve_row_compliant(
     else {
         return Err(failed(0.0, "the row's contact law is not compliant"));
     };
-    let model = Model {
+    let model = RowEquations {
         row,
         stiffness,
         zeta: damping_ratio,
@@ -548,7 +550,7 @@ pub fn solve_row_compliant(
         .map_err(|e| failed(0.0, e))?;
     problem.ode_options.min_timestep = problem.ode_options.min_timestep.min(1e-3 * duration);
     let solver = problem.tsit45().map_err(|e| failed(0.0, e))?;
-    let run = Run {
+    let run = LoopSetup {
         method: METHOD,
         floor,
         duration,
@@ -636,7 +638,7 @@ enum What {
 
 /// The row, as the event loop drives it.
 struct Columns<'d> {
-    model: &'d Model<'d>,
+    model: &'d RowEquations<'d>,
     cfg: &'d RefCell<Config>,
     floor: &'d dyn FloorMotion,
     history: History,
@@ -1196,7 +1198,7 @@ impl<'d> Columns<'d> {
     }
 
     /// Books every contact at the sampled instant `t`, state `y`; an error where a contact out
-    /// of force is left overlapping and pressing ([`Model::idle_state`]).
+    /// of force is left overlapping and pressing ([`RowEquations::idle_state`]).
     fn sample_contacts(&mut self, t: f64, y: &[f64], floor_acc: f64) -> Result<()> {
         let cfg = self.cfg.borrow();
         let forces = self.model.forces(&cfg, y, floor_acc);

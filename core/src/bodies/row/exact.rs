@@ -38,7 +38,7 @@ use super::solution::{HeldContact, ImpactRecord, RowSolution};
 use crate::integrate::exact::flow::{Flow, Point, STEADY_BOUND_GAIN};
 use crate::integrate::exact::rounding;
 use crate::integrate::exact::scan::{self, first_crossing, ScanError, Smooth, Watch};
-use crate::integrate::exact::{ExactSettings, Planned, Run, NAME};
+use crate::integrate::exact::{ExactRun, ExactSettings, Planned, NAME};
 use crate::physics::automaton::{Automaton, EventKind, Guard, LinearForm, Mode};
 
 use crate::base::double_double::DoubleDouble as Dd;
@@ -175,11 +175,11 @@ pub(super) fn solve_row_exact(
     let started = Instant::now();
     let energy = history == History::Sampled;
     let n = row.columns().len();
-    let runs: Vec<Run> = row
+    let runs: Vec<ExactRun> = row
         .columns()
         .iter()
         .map(|c| {
-            Run::new(
+            ExactRun::new(
                 &c.automaton,
                 floor,
                 c.initial,
@@ -239,7 +239,7 @@ pub(super) fn solve_row_exact(
 struct RowRun<'a> {
     row: &'a Row,
     duration: f64,
-    runs: Vec<Run<'a>>,
+    runs: Vec<ExactRun<'a>>,
     budgets: Vec<RunBudget>,
     plans: Vec<Option<Planned>>,
     /// Per contact: held closed (persistent contact).
@@ -858,7 +858,7 @@ impl<'a> RowRun<'a> {
         t: f64,
     ) -> Result<(), SolverError> {
         let n = self.runs.len();
-        let states: Vec<(f64, Mode, f64, Dd)> = self.runs.iter().map(Run::state).collect();
+        let states: Vec<(f64, Mode, f64, Dd)> = self.runs.iter().map(ExactRun::state).collect();
         let k = contacts.len();
         let mut slopes = Vec::with_capacity(k);
         let mut masses = Vec::with_capacity(k);

@@ -63,6 +63,6 @@ mod settings;
 mod solve;
 
 pub use graze::SHADOW_RUNS;
-pub(crate) use run::{Planned, Run};
+pub(crate) use run::{ExactRun, Planned};
 pub use settings::{ExactSettings, NAME};
 pub use solve::solve;

@@ -26,7 +26,7 @@ use crate::physics::automaton::{Automaton, EventKind, Guard, LinearForm, Mode};
 const OFFSETS_KEPT: usize = 3;
 
 /// A run of the automaton by the exact method, from one flow to the next.
-pub(crate) struct Run<'a> {
+pub(crate) struct ExactRun<'a> {
     automaton: &'a Automaton,
     floor: &'a dyn FloorMotion,
     mode: Mode,
@@ -133,7 +133,7 @@ impl Planned {
     }
 }
 
-impl<'a> Run<'a> {
+impl<'a> ExactRun<'a> {
     /// A run of `automaton` from `initial` at t = 0 over [0, duration]; with `energy`, the
     /// energy books are kept.
     pub(crate) fn new(
@@ -162,7 +162,7 @@ impl<'a> Run<'a> {
         // Room for the grid and for the two samples of each event (a guess: an eighth of the
         // grid, or 64 events).
         recorder.reserve(grid.remaining() + grid.remaining() / 8 + 128);
-        Run {
+        ExactRun {
             automaton,
             floor,
             mode: automaton.initial_mode(initial.q),

@@ -4,7 +4,7 @@
 use std::time::Instant;
 
 use super::graze::{self, Kick, ESTIMATE_SAFETY};
-use super::run::{Books, Run};
+use super::run::{Books, ExactRun};
 use super::settings::ExactSettings;
 use crate::floor::FloorMotion;
 use crate::integrate::solution::{RoundingEstimate, Solution};
@@ -201,7 +201,7 @@ fn solve_once(
     kicks: Vec<Kick>,
 ) -> Result<(Solution, Books), SolverError> {
     let started = Instant::now();
-    let mut run = Run::new(
+    let mut run = ExactRun::new(
         automaton, floor, initial, duration, settings, history, energy,
     );
     run.kicks = kicks;
