@@ -18,7 +18,7 @@ use serde::Serialize;
 use crate::base::invalid::InvalidParameter;
 use crate::floor::intensity::{ground_measures, GroundMeasures};
 use crate::floor::RecordedMotion;
-use crate::integrate::exact::oscillator::oscillator_peak;
+use crate::integrate::exact::kernel::oscillator_peak;
 use crate::integrate::SolverError;
 
 /// The damping ratio of a response spectrum unless another is given: 5 %.

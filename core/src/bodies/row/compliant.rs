@@ -36,7 +36,7 @@ use crate::integrate::budget::RunBudget;
 use crate::integrate::event_loop::{
     self, DenseOutput, EventBody, Found, LoopSetup, Outcome, StepStart,
 };
-use crate::integrate::exact::rounding::ulp;
+use crate::integrate::exact::kernel::ulp;
 use crate::integrate::solution::{Recorder, SolverStats};
 use crate::integrate::{History, OutputGrid, SolverError};
 use crate::physics::automaton::{Automaton, EventKind, Guard, Mode};

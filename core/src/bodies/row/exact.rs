@@ -35,10 +35,11 @@ use super::contact::{
 use super::description::Row;
 use super::impact::impulses;
 use super::solution::{HeldContact, ImpactRecord, RowSolution};
-use crate::integrate::exact::flow::{Flow, Point, STEADY_BOUND_GAIN};
-use crate::integrate::exact::rounding;
-use crate::integrate::exact::scan::{self, first_crossing, ScanError, Smooth, Watch};
-use crate::integrate::exact::{ExactRun, ExactSettings, Planned, NAME};
+use crate::integrate::exact::kernel::{
+    evaluate, first_crossing, ulp, ExactRun, Flow, Planned, Point, ScanError, Smooth, Watch,
+    MAX_EVALUATIONS, STEADY_BOUND_GAIN,
+};
+use crate::integrate::exact::{ExactSettings, NAME};
 use crate::physics::automaton::{Automaton, EventKind, Guard, LinearForm, Mode};
 
 use crate::base::double_double::DoubleDouble as Dd;
@@ -541,7 +542,7 @@ impl<'a> RowRun<'a> {
             if std::mem::take(&mut self.fresh_rounding[c]) {
                 // As many ulps of the terms the two flows sum, where those are larger.
                 let (ulps, below) = self.gap_rounding(c);
-                let flows = GAP_ROUNDING_ULPS * rounding::ulp(terms);
+                let flows = GAP_ROUNDING_ULPS * ulp(terms);
                 if flows > ulps {
                     self.rounding[c] = Some(flows + below);
                     self.fall[c] = flows;
@@ -573,9 +574,9 @@ impl<'a> RowRun<'a> {
                     ),
                 ));
             }
-            let rounding = gap.allowance + below + GAP_ROUNDING_ULPS * rounding::ulp(size);
+            let rounding = gap.allowance + below + GAP_ROUNDING_ULPS * ulp(size);
             self.rounding[c] = Some(rounding);
-            self.fall[c] = GAP_ROUNDING_ULPS * rounding::ulp(size);
+            self.fall[c] = GAP_ROUNDING_ULPS * ulp(size);
             self.widest_rounding[c] = self.widest_rounding[c].max(rounding);
         }
         Ok(())
@@ -780,7 +781,7 @@ impl<'a> RowRun<'a> {
         let (left, right) = (self.runs[c].state(), self.runs[c + 1].state());
         let (left, right) = ((left.1, left.2), (right.1, right.2));
         let contact = &self.row.contacts()[c];
-        let rounding = GAP_ROUNDING_ULPS * rounding::ulp(contact.gap_size(automata, left, right));
+        let rounding = GAP_ROUNDING_ULPS * ulp(contact.gap_size(automata, left, right));
         (rounding, (-contact.gap(automata, left, right)).max(0.0))
     }
 
@@ -935,7 +936,7 @@ impl<'a> RowRun<'a> {
             let automaton = self.runs[i].automaton();
             loss += automaton.body_kinetic_energy(mode, v.value())
                 - automaton.body_kinetic_energy(mode, after.value());
-            let error = 2.0 * rounding::ulp(t) + SIMULTANEOUS * t.max(1.0);
+            let error = 2.0 * ulp(t) + SIMULTANEOUS * t.max(1.0);
             self.runs[i]
                 .impact(after, error, &mut self.budgets[i])
                 .map_err(|e| in_column(i, e))?;
@@ -999,18 +1000,15 @@ fn first_fall<F: Smooth>(f: &F, from: f64, to: f64) -> Result<Option<f64>, ScanE
         evaluations: 0,
         unresolved: 0,
     };
-    let a = scan::evaluate(f, from, &mut watch)?;
-    let b = scan::evaluate(f, to, &mut watch)?;
+    let a = evaluate(f, from, &mut watch)?;
+    let b = evaluate(f, to, &mut watch)?;
     Ok(first_crossing(f, a, b, &[zero], &mut watch)?.map(|(p, _)| p.t))
 }
 
 fn scan_failed(e: ScanError, contact: usize) -> SolverError {
     let (t, what) = match e {
         ScanError::NotFinite(t) => (t, "is not finite".to_string()),
-        ScanError::TooMuchWork(t) => (
-            t,
-            format!("took more than {} evaluations", scan::MAX_EVALUATIONS),
-        ),
+        ScanError::TooMuchWork(t) => (t, format!("took more than {} evaluations", MAX_EVALUATIONS)),
     };
     SolverError::Failed {
         method: NAME.to_string(),

@@ -46,23 +46,23 @@
 //! sample, its pieces take those forms and the factors that turn them into work without
 //! searching for them again (`SampleBooks`), to the same bits.
 
-pub(crate) mod equation;
-pub(crate) mod flow;
-pub(crate) mod graze;
-pub(crate) mod kept;
-pub(crate) mod oscillator;
-pub(crate) mod rounding;
-pub(crate) mod scan;
-pub(crate) mod step;
-pub(crate) mod work;
+pub(crate) mod kernel;
 
 mod energy_books;
+mod equation;
 mod extremes;
+mod flow;
+mod graze;
+mod kept;
+mod oscillator;
+mod rounding;
 mod run;
+mod scan;
 mod settings;
 mod solve;
+mod step;
+mod work;
 
 pub use graze::SHADOW_RUNS;
-pub(crate) use run::{ExactRun, Planned};
 pub use settings::{ExactSettings, NAME};
 pub use solve::solve;
