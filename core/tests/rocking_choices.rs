@@ -133,7 +133,8 @@ fn the_energy_books_close_with_e_and_no_damping_while_rocking() {
 }
 
 /// Under the paper's sine, with both keys set, tsit45 and sub-stepping Newmark find the exact
-/// method's events, at the times their tolerances allow.
+/// method's events, at the times their tolerances allow: tsit45 at rtol 1e-10 came within
+/// 4e-11 s of them, second-order Newmark at dt = 0.5 ms within 2e-6 s.
 #[test]
 fn the_methods_agree_with_both_keys_set() {
     let text = |solver: &str| {
@@ -146,10 +147,10 @@ fn the_methods_agree_with_both_keys_set() {
     let exact = common::solve(&text("method = \"exact\"\n"));
     assert!(exact.events.len() >= 6, "{:#?}", exact.events);
     for (solver, tolerance) in [
-        ("method = \"tsit45\"\nrtol = 1e-10\natol = 1e-12\n", 1e-6),
+        ("method = \"tsit45\"\nrtol = 1e-10\natol = 1e-12\n", 1e-8),
         (
             "method = \"newmark\"\ndt = 0.0005\nnewmark_variant = \"substep\"\n",
-            2e-3,
+            1e-4,
         ),
     ] {
         let other = common::solve(&text(solver));
