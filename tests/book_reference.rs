@@ -233,6 +233,8 @@ fn the_model_file_tables_list_every_key_of_the_schema() {
             constants: Some("x".into()),
             self_weight: Some("x".into()),
             poisson_ratio: Some(1.0),
+            landing_restitution: Some(1.0),
+            damping_while_rocking: Some(true),
         },
         excitation: ExcitationSection {
             kind: "x".into(),

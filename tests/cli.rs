@@ -171,6 +171,132 @@ fn damping_outside_the_unit_interval() {
 }
 
 #[test]
+fn landing_restitution_outside_zero_to_one() {
+    for value in ["0.0", "-0.5", "1.5", "nan", "inf"] {
+        let stderr = refused(
+            &format!("restitution{value}"),
+            &GOOD.replace(
+                "damping_ratio = 0.05",
+                &format!("damping_ratio = 0.05\nlanding_restitution = {value}"),
+            ),
+        );
+        assert_mentions(&stderr, &["body.landing_restitution", "(0, 1]"]);
+    }
+    // The same rule for a value set from the command line, which the message names as such.
+    let stderr = common::refused_with(
+        "run",
+        "restitution-set",
+        GOOD,
+        &["--set", "body.landing_restitution=1.25"],
+    );
+    assert_mentions(
+        &stderr,
+        &["--set body.landing_restitution = 1.25", "(0, 1]"],
+    );
+}
+
+#[test]
+fn damping_while_rocking_not_a_boolean() {
+    for value in ["1", "\"no\"", "0.0"] {
+        let stderr = refused(
+            &format!("damping-while-rocking{value}"),
+            &GOOD.replace(
+                "damping_ratio = 0.05",
+                &format!("damping_ratio = 0.05\ndamping_while_rocking = {value}"),
+            ),
+        );
+        // The file's line, which names the key, and the rule.
+        assert_mentions(
+            &stderr,
+            &[&format!("damping_while_rocking = {value}"), "boolean"],
+        );
+    }
+    let stderr = common::refused_with(
+        "run",
+        "damping-while-rocking-set",
+        GOOD,
+        &["--set", "body.damping_while_rocking=yes"],
+    );
+    assert_mentions(&stderr, &["body.damping_while_rocking", "boolean"]);
+}
+
+/// `--set` and a sweep's `--vary` reach the landing restitution: at e = 1 the run is the one
+/// without the key, byte for byte, and below 1 the landings take more of q'.
+#[test]
+fn landing_restitution_is_set_and_swept() {
+    let dir = common::scratch_dir("cli-landing-restitution");
+    let plain = dir.join("plain");
+    let output = common::run_reference(&plain, &[]);
+    assert!(output.status.success(), "{output:?}");
+    let one = dir.join("one");
+    let output = common::run_reference(&one, &["--set", "body.landing_restitution=1"]);
+    assert!(output.status.success(), "{output:?}");
+    for file in ["history.csv", "events.csv", "episodes.csv"] {
+        assert_eq!(
+            std::fs::read(plain.join(file)).unwrap(),
+            std::fs::read(one.join(file)).unwrap(),
+            "{file}"
+        );
+    }
+    let lossy = dir.join("lossy");
+    let output = common::run_reference(
+        &lossy,
+        &[
+            "--set",
+            "body.landing_restitution=0.5",
+            "--set",
+            "body.damping_while_rocking=false",
+        ],
+    );
+    assert!(output.status.success(), "{output:?}");
+    let summary: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(lossy.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["body"]["landing_restitution"], 0.5);
+    assert_eq!(summary["body"]["damping_while_rocking"], false);
+    assert_eq!(summary["inputs"]["body"]["landing_restitution"], 0.5);
+    let plain_summary: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(plain.join("summary.json")).unwrap()).unwrap();
+    assert!(plain_summary["body"].get("landing_restitution").is_none());
+    assert!(plain_summary["inputs"]["body"]
+        .get("landing_restitution")
+        .is_none());
+
+    let swept = dir.join("sweep");
+    let output = common::flexrock(&[
+        "sweep",
+        common::reference_model().to_str().unwrap(),
+        "--vary",
+        "body.landing_restitution=0.5:1:0.25",
+        "--quiet",
+        "--out",
+        swept.to_str().unwrap(),
+    ]);
+    assert!(output.status.success(), "{output:?}");
+    let rows = common::sweep_rows(&swept);
+    let values: Vec<&str> = rows
+        .iter()
+        .map(|r| r["body.landing_restitution"].as_str())
+        .collect();
+    assert_eq!(values, ["0.5", "0.75", "1"]);
+    assert!(rows.iter().all(|r| r["status"] == "ok"), "{rows:?}");
+    let peak = |r: &std::collections::HashMap<String, String>| -> f64 {
+        r["max_abs_q_over_B"].parse().unwrap()
+    };
+    let width = summary["body"]["width"].as_f64().unwrap();
+    let plain_peak = plain_summary["max_q"]
+        .as_f64()
+        .unwrap()
+        .max(-plain_summary["min_q"].as_f64().unwrap())
+        / width;
+    assert_eq!(
+        peak(&rows[2]),
+        plain_peak,
+        "e = 1 is the run without the key"
+    );
+    assert_ne!(peak(&rows[0]), plain_peak, "e = 0.5 changes the run");
+}
+
+#[test]
 fn width_not_less_than_height() {
     let stderr = refused("squat-width", &GOOD.replace("width = 0.7", "width = 4.0"));
     assert_mentions(&stderr, &["body.width", "4", "less than the height"]);

@@ -45,6 +45,8 @@ pub(crate) fn body(height: f64, width: f64, density: f64, youngs: f64, damping: 
         gravity: 9.81,
         constant_set: ConstantSet::Exact,
         self_weight: SelfWeight::Paper,
+        landing_restitution: 1.0,
+        damping_while_rocking: true,
     }
 }
 

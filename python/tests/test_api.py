@@ -567,3 +567,36 @@ def test_a_model_text_beyond_the_size_of_a_model_file_is_refused_before_it_is_re
     with pytest.raises(flexrock.FlexrockError, match=r"^Model.from_toml: the text has \d+ bytes, "
                                                      r"beyond the 1048576 bytes a model file"):
         flexrock.Model.from_toml(text)
+
+
+def test_the_landing_restitution_and_the_damping_while_rocking_are_keys():
+    model = flexrock.Model.from_file(MODEL)
+    # The paper's model when left out.
+    assert model.get("body.landing_restitution") == 1.0
+    assert model.get("body.damping_while_rocking") is True
+    model.set("body.landing_restitution", 0.8)
+    model.set("body.damping_while_rocking", False)
+    result = flexrock.simulate(model, method="exact")
+    body, constants = result.summary["body"], result.summary["constants"]
+    assert body["landing_restitution"] == 0.8
+    assert body["damping_while_rocking"] is False
+    landings = [e for e in result.events if e["kind"] == "landing"]
+    assert landings
+    # Every landing: q' -> e q'/zetaL.
+    for e in landings:
+        ratio = e["qdot_after"] / e["qdot_before"]
+        assert abs(ratio - 0.8 / constants["zeta_landing"]) <= 1e-15 * ratio
+    # No damping work while rocking: work_damping is flat between samples within a rocking mode.
+    rocking = [i for i in range(1, len(result.t))
+               if result.mode[i] == result.mode[i - 1] and result.mode[i].startswith("rock")]
+    assert rocking
+    assert all(result.work_damping[i] == result.work_damping[i - 1] for i in rocking)
+    for value, rule in [(0.0, r"\(0, 1\]"), (1.5, r"\(0, 1\]")]:
+        bad = flexrock.Model.from_file(MODEL)
+        with pytest.raises(flexrock.FlexrockError, match=rf"body\.landing_restitution.*{rule}"):
+            bad.set("body.landing_restitution", value)
+            flexrock.simulate(bad)
+    with pytest.raises(flexrock.FlexrockError, match=r"body\.damping_while_rocking.*boolean"):
+        bad = flexrock.Model.from_file(MODEL)
+        bad.set("body.damping_while_rocking", "no")
+        flexrock.simulate(bad)

@@ -86,6 +86,23 @@ pub fn properties_table(model: &Model) -> String {
         "",
         "q' -> q'/zetaL at landing",
     );
+    // The body's own model choices, listed where they are not the paper's.
+    if c.landing_restitution != 1.0 {
+        row(
+            "landing restitution e",
+            fmt(c.landing_restitution),
+            "",
+            "q' -> e q'/zetaL at landing",
+        );
+    }
+    if !c.damping_while_rocking {
+        row(
+            "damping while rocking",
+            "false".to_string(),
+            "",
+            "no damping term while rocking",
+        );
+    }
     row(
         "rocking stiffness F'",
         fmt(c.rocking_stiffness),

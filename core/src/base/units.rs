@@ -6,7 +6,7 @@ pub const STANDARD_GRAVITY: f64 = 9.80665;
 
 /// Units of the model file's numeric keys (for the message about a unit suffix, and for the
 /// run header's excitation parameters).
-const UNITS: [(&str, Unit); 30] = [
+const UNITS: [(&str, Unit); 31] = [
     ("body.height", Unit::Si("m")),
     ("body.width", Unit::Si("m")),
     ("body.depth", Unit::Si("m")),
@@ -18,6 +18,7 @@ const UNITS: [(&str, Unit); 30] = [
     ("body.damping_ratio", Unit::Dimensionless("a ratio")),
     ("body.gravity", Unit::Si("m/s^2")),
     ("body.poisson_ratio", Unit::Dimensionless("a ratio")),
+    ("body.landing_restitution", Unit::Dimensionless("a ratio")),
     ("excitation.amplitude", Unit::Si("m/s^2")),
     ("excitation.period", Unit::Si("s")),
     ("excitation.ramp", Unit::Si("s")),

@@ -3,7 +3,7 @@
 
 use super::schema::{BodySection, DEFAULT_DAMPING_RATIO, DEFAULT_DEPTH, DEFAULT_GRAVITY};
 use crate::error::{Error, Result};
-use crate::physics::body::{positive, Body, ConstantSet, SelfWeight};
+use crate::physics::body::{positive, Body, ConstantSet, SelfWeight, DEFAULT_LANDING_RESTITUTION};
 use crate::physics::constants::Constants;
 
 /// Exactly one of a set of alternative keys must be given.
@@ -109,6 +109,8 @@ pub(super) fn body_from_section(s: &BodySection) -> Result<Body> {
         gravity: s.gravity.unwrap_or(DEFAULT_GRAVITY),
         constant_set,
         self_weight,
+        landing_restitution: s.landing_restitution.unwrap_or(DEFAULT_LANDING_RESTITUTION),
+        damping_while_rocking: s.damping_while_rocking.unwrap_or(true),
     };
     body.flexural_rigidity = match exactly_one(
         "body",

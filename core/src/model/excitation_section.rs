@@ -33,7 +33,7 @@ pub struct RecordCache {
 }
 
 /// A body known by the bits of its numbers and its variants.
-type BodyKey = ([u64; 7], ConstantSet, SelfWeight);
+type BodyKey = ([u64; 8], ConstantSet, SelfWeight, bool);
 
 /// Bodies whose constants a cache keeps at most (a sweep over the body itself would otherwise
 /// keep one per point).
@@ -70,10 +70,12 @@ impl RecordCache {
                 body.flexural_rigidity,
                 body.damping_ratio,
                 body.gravity,
+                body.landing_restitution,
             ]
             .map(f64::to_bits),
             body.constant_set,
             body.self_weight,
+            body.damping_while_rocking,
         );
         let lock = || self.constants.lock().unwrap_or_else(|e| e.into_inner());
         if let Some(constants) = lock().get(&key) {

@@ -54,6 +54,14 @@ pub struct BodySection {
     pub self_weight: Option<String>,
     /// Poisson's ratio, used only by the finite element analysis.
     pub poisson_ratio: Option<f64>,
+    /// e, the factor on q' at every landing on top of the reset q' -> q'/zetaL, in (0, 1]
+    /// (default 1, the paper's landing). Left out of a written file when absent.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub landing_restitution: Option<f64>,
+    /// Whether the strain-rate damping term acts while rocking (default true, as the paper).
+    /// Left out of a written file when absent.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub damping_while_rocking: Option<bool>,
 }
 
 impl BodySection {
@@ -75,6 +83,8 @@ impl BodySection {
             constants,
             self_weight,
             poisson_ratio,
+            landing_restitution,
+            damping_while_rocking,
         } = self;
         let bits = |x: &Option<f64>| x.map(f64::to_bits);
         height.to_bits() == other.height.to_bits()
@@ -89,11 +99,13 @@ impl BodySection {
                 (damping_ratio, &other.damping_ratio),
                 (gravity, &other.gravity),
                 (poisson_ratio, &other.poisson_ratio),
+                (landing_restitution, &other.landing_restitution),
             ]
             .iter()
             .all(|(a, b)| bits(a) == bits(b))
             && *constants == other.constants
             && *self_weight == other.self_weight
+            && *damping_while_rocking == other.damping_while_rocking
     }
 }
 

@@ -21,6 +21,7 @@ use super::solver_section::{
     default_method, DEFAULT_NEWMARK_BETA, DEFAULT_NEWMARK_DT, DEFAULT_NEWMARK_GAMMA,
 };
 use crate::error::{Error, Result};
+use crate::physics::body::DEFAULT_LANDING_RESTITUTION;
 
 /// The model file's table with `settings` applied in order, read into the schema on the way
 /// (so that an unknown key or a value of the wrong type is refused as the file would be) but
@@ -57,6 +58,9 @@ pub fn schema_keys() -> Vec<String> {
             constants: None,
             self_weight: None,
             poisson_ratio: None,
+            // Left out of a written file when None: given here so that they are listed.
+            landing_restitution: Some(DEFAULT_LANDING_RESTITUTION),
+            damping_while_rocking: Some(true),
         },
         excitation: ExcitationSection {
             kind: String::new(),
@@ -104,6 +108,8 @@ pub fn default_value(key: &str) -> Option<toml::Value> {
         "body.constants" => text("exact"),
         "body.self_weight" => text("paper"),
         "body.poisson_ratio" => Some(Float(DEFAULT_POISSON_RATIO)),
+        "body.landing_restitution" => Some(Float(DEFAULT_LANDING_RESTITUTION)),
+        "body.damping_while_rocking" => Some(Boolean(true)),
         "excitation.cycles" => Some(Float(1.0)),
         "excitation.shape" => text("antisymmetric"),
         "excitation.scale" => Some(Float(1.0)),
@@ -191,8 +197,8 @@ mod tests {
         ] {
             assert!(keys.iter().any(|k| k == key), "{key} in {keys:?}");
         }
-        // 13 body, 15 excitation, 3 simulation, 8 solver, 11 fem fields.
-        assert_eq!(keys.len(), 13 + 15 + 3 + 8 + 11, "{keys:?}");
+        // 15 body, 15 excitation, 3 simulation, 8 solver, 11 fem fields.
+        assert_eq!(keys.len(), 15 + 15 + 3 + 8 + 11, "{keys:?}");
         // Every default belongs to a key of the schema.
         for key in &keys {
             let _ = default_value(key);

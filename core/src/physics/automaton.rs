@@ -129,6 +129,11 @@ pub struct Automaton {
     beta2: f64,
     zeta_uplift: f64,
     zeta_landing: f64,
+    /// e, the factor on q' at a landing on top of q' -> q'/zetaL: the body's
+    /// `landing_restitution` as written (0.8 is eight tenths).
+    landing_restitution: DoubleDouble,
+    /// Whether the damping term acts while rocking.
+    damping_while_rocking: bool,
     /// k and c of eq. 16 in each mode, rounded once from the constants to twice the precision.
     rates: LinearRates,
     /// M int U^2 and M int V^2, kg: the body's kinetic energy is these times q'^2/2.
@@ -165,6 +170,8 @@ impl Automaton {
             beta2: constants.beta2,
             zeta_uplift: constants.zeta_uplift,
             zeta_landing: constants.zeta_landing,
+            landing_restitution: DoubleDouble::decimal(constants.landing_restitution),
+            damping_while_rocking: constants.damping_while_rocking,
             rates: constants.linear_rates,
             kinetic_mass_pre_uplift: constants.kinetic_mass(false),
             kinetic_mass_rocking: constants.kinetic_mass(true),
@@ -183,6 +190,8 @@ impl Automaton {
     /// A copy whose constants of the dynamics (Me, Ke, the damping, s_n, F' while rocking,
     /// q_topple, beta, nu and the resets) are each moved by `size` relative, in a pseudo-random
     /// direction fixed by `pattern`: the exact solver runs such copies to estimate its error.
+    /// The landing restitution e is the body's own number, not a derived one, and stays (as does
+    /// a damping of 0 while rocking, which a relative move keeps 0).
     pub(crate) fn nudged(&self, pattern: u64, size: f64) -> Automaton {
         let nudge = |value: f64, item: u64| value * (1.0 + size * nudge_sign(pattern, item));
         Automaton {
@@ -290,7 +299,8 @@ impl Automaton {
             })
     }
 
-    /// The reset of q' at an event (eqs. 21-22): uplift q' -> zetaU q', landing q' -> q'/zetaL.
+    /// The reset of q' at an event (eqs. 21-22): uplift q' -> zetaU q', landing
+    /// q' -> e q'/zetaL, with e the body's landing restitution (1 in the paper's model).
     pub fn reset_velocity(&self, kind: EventKind, qdot: f64) -> f64 {
         self.reset_velocity_twice(kind, DoubleDouble::exact(qdot))
             .value()
@@ -301,7 +311,7 @@ impl Automaton {
     pub(crate) fn reset_velocity_twice(&self, kind: EventKind, qdot: DoubleDouble) -> DoubleDouble {
         match kind {
             EventKind::Uplift => qdot * self.zeta_uplift,
-            EventKind::Landing => qdot / self.zeta_landing,
+            EventKind::Landing => qdot / self.zeta_landing * self.landing_restitution,
             // No reset of the body's own: a row's impact law gives the jump.
             EventKind::Overturn
             | EventKind::Impact
@@ -350,9 +360,15 @@ impl Automaton {
     }
 
     /// Coefficient of q' in eq. 16, (gamma/E) nu F'(q). Negative while rocking: as in the paper,
-    /// the strain-rate damping then feeds energy into q.
+    /// the strain-rate damping then feeds energy into q. 0 while rocking when the body's
+    /// `damping_while_rocking` is false.
     pub fn damping(&self, mode: Mode) -> f64 {
-        self.damping_coefficient * self.effectiveness(mode) * self.restoring_stiffness(mode)
+        match mode {
+            Mode::RockRight | Mode::RockLeft if !self.damping_while_rocking => 0.0,
+            _ => {
+                self.damping_coefficient * self.effectiveness(mode) * self.restoring_stiffness(mode)
+            }
+        }
     }
 
     /// q'' from eq. 16: Me q'' + (gamma/E) nu F' q' + nu F(q) = -beta Me a.

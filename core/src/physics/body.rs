@@ -79,6 +79,25 @@ pub struct Body {
     pub constant_set: ConstantSet,
     /// Which variant of the model: the paper's, or self-weight-consistent.
     pub self_weight: SelfWeight,
+    /// e, the factor on q' at every landing on top of the reset q' -> q'/zetaL, in (0, 1]:
+    /// 1 is the paper's model (written out only when it is not 1).
+    #[serde(skip_serializing_if = "is_one")]
+    pub landing_restitution: f64,
+    /// Whether the strain-rate damping term acts while rocking, as in the paper (written out only
+    /// when it does not).
+    #[serde(skip_serializing_if = "is_true")]
+    pub damping_while_rocking: bool,
+}
+
+/// The paper's landing: no loss beyond the angular-momentum reset.
+pub const DEFAULT_LANDING_RESTITUTION: f64 = 1.0;
+
+fn is_one(x: &f64) -> bool {
+    *x == DEFAULT_LANDING_RESTITUTION
+}
+
+fn is_true(x: &bool) -> bool {
+    *x
 }
 
 /// Mass of a prism of `density` (kg/m^3) and size H x B x D (m), kg: the double nearest the
@@ -107,6 +126,7 @@ impl Body {
             flexural_rigidity,
             damping_ratio,
             gravity,
+            landing_restitution,
             ..
         } = self;
         positive("body.height", height)?;
@@ -120,6 +140,15 @@ impl Body {
                 "body.damping_ratio",
                 damping_ratio,
                 "the damping ratio must lie in [0, 1)",
+            ));
+        }
+        if !(landing_restitution > 0.0 && landing_restitution <= 1.0) {
+            return Err(InvalidParameter::new(
+                "body.landing_restitution",
+                landing_restitution,
+                "the coefficient of restitution at landing must lie in (0, 1]: 1 is the paper's \
+                 landing, smaller values take more of q' at each landing, and 0 would leave the \
+                 body at rest on the uplift threshold",
             ));
         }
         if width >= height {

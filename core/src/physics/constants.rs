@@ -4,7 +4,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::base::double_double::DoubleDouble as Dd;
 use crate::base::invalid::InvalidParameter;
-use crate::physics::body::{Body, ConstantSet, SelfWeight};
+use crate::physics::body::{Body, ConstantSet, SelfWeight, DEFAULT_LANDING_RESTITUTION};
 
 type Result<T> = std::result::Result<T, InvalidParameter>;
 use crate::physics::flexural_shape::SelfWeightedShape;
@@ -291,7 +291,7 @@ pub struct LinearRates {
     pub pre_uplift_damping: f64,
     /// k while rocking, 1/s^2 (negative).
     pub rocking_stiffness: f64,
-    /// c while rocking, 1/s (negative).
+    /// c while rocking, 1/s (negative; 0 when the damping does not act while rocking).
     pub rocking_damping: f64,
 }
 
@@ -343,9 +343,36 @@ pub struct Constants {
     pub gravity_parameter_ratio: f64,
     /// Width B, m.
     pub width: f64,
+    /// e, the factor on q' at every landing on top of q' -> q'/zetaL (the body's
+    /// `landing_restitution`; written out only when it is not 1).
+    #[serde(
+        default = "default_landing_restitution",
+        skip_serializing_if = "is_default_landing_restitution"
+    )]
+    pub landing_restitution: f64,
+    /// Whether the strain-rate damping term acts while rocking (written out only when it does
+    /// not).
+    #[serde(default = "acts", skip_serializing_if = "acts_given")]
+    pub damping_while_rocking: bool,
     /// k and c of each mode, rounded once (not written out: they follow from the rest).
     #[serde(skip)]
     pub linear_rates: LinearRates,
+}
+
+fn default_landing_restitution() -> f64 {
+    DEFAULT_LANDING_RESTITUTION
+}
+
+fn is_default_landing_restitution(e: &f64) -> bool {
+    *e == DEFAULT_LANDING_RESTITUTION
+}
+
+fn acts() -> bool {
+    true
+}
+
+fn acts_given(acts: &bool) -> bool {
+    *acts
 }
 
 impl Constants {
@@ -449,14 +476,18 @@ impl Constants {
         }
 
         // gamma/E = 2 h/omega; k = nu F'/Me and c = (gamma/E) k in each mode (nu = 1, F' = Ke
-        // before uplift).
+        // before uplift), c = 0 while rocking when the damping does not act then.
         let damping_coefficient = 2.0 * written(body.damping_ratio) / omega;
         let rocking_rate = nu2 * rocking.stiffness / me;
         let linear_rates = LinearRates {
             pre_uplift_stiffness: omega_squared.value(),
             pre_uplift_damping: (damping_coefficient * omega_squared).value(),
             rocking_stiffness: rocking_rate.value(),
-            rocking_damping: (damping_coefficient * rocking_rate).value(),
+            rocking_damping: if body.damping_while_rocking {
+                (damping_coefficient * rocking_rate).value()
+            } else {
+                0.0
+            },
         };
 
         Ok(Constants {
@@ -482,6 +513,8 @@ impl Constants {
             gravity_parameter,
             gravity_parameter_ratio: gravity_parameter / SELF_WEIGHT_BUCKLING_PARAMETER,
             width: b.value(),
+            landing_restitution: body.landing_restitution,
+            damping_while_rocking: body.damping_while_rocking,
             linear_rates,
         })
     }

@@ -31,6 +31,8 @@
 //!         gravity: 9.81,
 //!         constant_set: ConstantSet::Exact,
 //!         self_weight: SelfWeight::Paper,
+//!         landing_restitution: 1.0,
+//!         damping_while_rocking: true,
 //!     },
 //!     initial: InitialState { q: 0.0, qdot: 0.0 },
 //! };
