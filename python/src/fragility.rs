@@ -55,10 +55,10 @@ pub(crate) fn fragility(
         hi: scale.1,
     };
     let mut settings = Study {
-        model_file: state
-            .path
-            .as_ref()
-            .map_or_else(|| "(model given as text)".into(), |p| p.display().to_string()),
+        model_file: state.path.as_ref().map_or_else(
+            || "(model given as text)".into(),
+            |p| p.display().to_string(),
+        ),
         measure,
         period,
         scale,
@@ -177,8 +177,7 @@ pub(crate) fn fragility(
             },
         });
     }
-    let summary =
-        study::summarize(&settings, results).map_err(|e| fit_error("records", e))?;
+    let summary = study::summarize(&settings, results).map_err(|e| fit_error("records", e))?;
     serde_json::to_string(&summary).map_err(|e| FlexrockError::new_err(e.to_string()))
 }
 
