@@ -186,7 +186,7 @@ pub struct Panel {
     /// Coloured rectangles in data coordinates (the cells of a map), drawn first.
     pub cells: Vec<Cell>,
     /// Names at places of the y axis (one per row of a chart of records), in place of its
-    /// numbers; see [`named_ticks`] for how they are thinned and shortened to fit.
+    /// numbers, thinned and shortened to fit (see `named_ticks`).
     pub y_names: Vec<(f64, String)>,
 }
 
