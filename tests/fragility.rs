@@ -125,6 +125,28 @@ fn the_fit_is_the_moments_of_the_capacities_the_sweep_rows_give() {
             "lognormal"
         ]
     );
+    // Each record is named by its PEER AT2 title line (event, station, component), else by
+    // its file's name (elCentro.AT2 has a title of another form), in fragility.json and on the
+    // y axis of capacities.svg.
+    let summary = json(&out.join("fragility.json"));
+    let labels: Vec<&str> = (summary["records"].as_array().unwrap().iter())
+        .map(|r| r["label"].as_str().unwrap())
+        .collect();
+    assert_eq!(
+        labels,
+        [
+            "elCentro.AT2",
+            "BORREGO MOUNTAIN, EL CENTRO ARRAY #9, 180",
+            "CHI-CHI, HEN, E"
+        ]
+    );
+    let svg = std::fs::read_to_string(out.join("capacities.svg")).unwrap();
+    for label in ["elCentro.AT2", "CHI-CHI, HEN, E", "BORREGO MOUNTAIN"] {
+        assert!(
+            svg.lines().any(|l| l.trim().starts_with(label)),
+            "{label} not in capacities.svg"
+        );
+    }
 }
 
 #[test]

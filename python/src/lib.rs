@@ -1,10 +1,12 @@
 //! `flexrock._native`, the compiled half of the Python package `flexrock` (python/python/flexrock
 //! re-exports it with its documentation): `Model`, `GroundMotion`, `read_record`, `props`,
 //! `simulate` (a `Result` of numpy arrays), `simulate_row` (a row of columns), `sweep` (sweep.csv's columns, typed) and `compare`,
-//! `converge`, `fem_check`. Every number comes from flexrock-core exactly as the command line
+//! `converge`, `fem_check`, `fragility` (a study over a suite) and the fragility fits
+//! `fit_capacities`, `fit_stripes`. Every number comes from flexrock-core exactly as the command line
 //! computes it; nothing is written to disk.
 
 mod analysis;
+mod fragility;
 mod intensity;
 mod interrupt;
 mod model;
@@ -50,5 +52,8 @@ fn flexrock_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(analysis::fem_check, m)?)?;
     m.add_function(wrap_pyfunction!(intensity::intensity_measures, m)?)?;
     m.add_function(wrap_pyfunction!(intensity::response_spectrum, m)?)?;
+    m.add_function(wrap_pyfunction!(fragility::fragility, m)?)?;
+    m.add_function(wrap_pyfunction!(fragility::fit_capacities, m)?)?;
+    m.add_function(wrap_pyfunction!(fragility::fit_stripes, m)?)?;
     Ok(())
 }

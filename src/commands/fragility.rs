@@ -14,12 +14,9 @@ use std::path::{Path, PathBuf};
 
 use crate::error::{Error, Result};
 use crate::figures::page::FigureOptions;
-use flexrock_core::analysis::fragility::{
-    bootstrap, fit_capacities, lognormal::CapacityFit, Capacity, Interval90, Lognormal, Measure,
-    RecordResult, StateFit, Summary, CAPACITY_RULE, PERCENTILES,
-};
-use flexrock_core::analysis::sweep::{axis::Interval, Axis, Request, Sweep};
-use flexrock_core::floor::RecordedMotion;
+use flexrock_core::analysis::fragility::study::{self, Study, SuiteMeasures};
+use flexrock_core::analysis::fragility::{Measure, RecordResult, Summary, PERCENTILES};
+use flexrock_core::analysis::sweep::{axis::Interval, Request, Sweep};
 use flexrock_core::model::Setting;
 
 /// The sweep's directory under the output directory.
@@ -76,78 +73,31 @@ pub struct Report {
     pub files: Vec<PathBuf>,
 }
 
-/// The records of a suite: a directory or list file read as a suite, else a file pattern.
-fn record_axis(records: &str) -> Result<Axis> {
-    let path = Path::new(records);
-    if path.exists() {
-        let suite = flexrock_core::floor::record::suite::read_suite(path)
-            .map_err(|e| Error::invalid("--records", records, &e.to_string()))?;
-        let mut values = Vec::new();
-        for entry in &suite.entries {
-            if entry.scale != 1.0 || entry.vertical.is_some() {
-                return Err(Error::invalid(
-                    "--records",
-                    records,
-                    &format!(
-                        "line {} gives scale= or vertical=: fragility scales every record \
-                         itself and reads horizontal records only; remove them",
-                        entry.line.unwrap_or(0)
-                    ),
-                ));
-            }
-            values.push(entry.path.to_string_lossy().into_owned());
-        }
-        Ok(Axis::new("excitation.path", values))
-    } else if !records.contains(['*', '?', '[']) {
-        Err(Error::invalid(
-            "--records",
-            records,
-            "no such file or directory: give a directory of record files, a list file (one path \
-             a line) or a quoted pattern such as 'suite/*.AT2'",
-        ))
-    } else {
-        Axis::parse(&format!("excitation.path={records}"), Path::new("."))
-            .map_err(|e| Error::invalid("--records", records, &e.to_string()))
+/// The study's settings, as the core takes them.
+fn study(options: &Options) -> Study {
+    Study {
+        model_file: options.model.display().to_string(),
+        measure: options.measure,
+        period: options.period,
+        scale: options.scale,
+        bootstrap: options.bootstrap,
+        seed: options.seed,
     }
 }
 
+/// A core error about the study named by its flag.
+fn flagged(e: flexrock_core::Error) -> Error {
+    e.renamed("records", "--records")
+        .renamed("scale", "--scale")
+        .renamed("bootstrap", "--bootstrap")
+        .renamed("period", "--period")
+        .into()
+}
+
 /// Checks what can be checked before anything runs, and builds the sweep.
-pub fn prepare(options: &Options) -> Result<(Sweep, Vec<f64>, Option<f64>)> {
-    let axis = record_axis(&options.records)?;
-    if axis.len() < 2 {
-        return Err(Error::invalid(
-            "--records",
-            options.records.as_str(),
-            &format!(
-                "names {} record: a fragility fit needs at least 2 (and a real study a suite of \
-                 tens, e.g. the FEMA P695 far-field set)",
-                axis.len()
-            ),
-        ));
-    }
-    if options.scale.lo <= 0.0 {
-        return Err(Error::invalid(
-            "--scale",
-            format!("{}:{}", options.scale.lo, options.scale.hi),
-            "LO must be above 0 (a capacity is a positive intensity)",
-        ));
-    }
-    if options.bootstrap == 1 {
-        return Err(Error::invalid(
-            "--bootstrap",
-            options.bootstrap,
-            "must be 0 (no intervals) or at least 2",
-        ));
-    }
-    if let Some(t) = options.period {
-        if options.measure != Measure::Sa {
-            return Err(Error::invalid(
-                "--period",
-                t,
-                "is the period of Sa: give it with --im sa",
-            ));
-        }
-    }
+pub fn prepare(options: &Options) -> Result<(Sweep, SuiteMeasures)> {
+    let axis = study::record_axis(&options.records).map_err(flagged)?;
+    study(options).check().map_err(flagged)?;
     let request = Request {
         settings: options.settings.clone(),
         axes: vec![axis],
@@ -164,56 +114,14 @@ pub fn prepare(options: &Options) -> Result<(Sweep, Vec<f64>, Option<f64>)> {
             .renamed("tol", "--tol")
     })?;
     // Each record's measure at scale 1, before anything runs.
-    let mut unscaled = Vec::new();
-    let mut period = None;
-    let paths = &sweep.plan.axes[0].values;
-    for (i, name) in paths.iter().enumerate() {
-        let model = sweep.model_at(i, &[Setting::number("excitation.scale", 1.0)])?;
-        let Some(record) = RecordedMotion::of(model.floor.as_ref()) else {
-            return Err(Error::invalid(
-                "--records",
-                name.as_str(),
-                "is not a record",
-            ));
-        };
-        let g = flexrock_core::STANDARD_GRAVITY;
-        let ground = flexrock_core::floor::intensity::ground_measures(record);
-        let value = match options.measure {
-            Measure::Pga => ground.pga / g,
-            Measure::Pgv => ground.pgv,
-            Measure::Pgd => ground.pgd,
-            Measure::Arias => ground.arias,
-            Measure::Cav => ground.cav,
-            Measure::Sa => {
-                let t = options.period.unwrap_or(model.constants.period);
-                period = Some(t);
-                flexrock_core::bodies::oscillator::spectral_acceleration(
-                    record,
-                    t,
-                    flexrock_core::bodies::oscillator::DEFAULT_DAMPING,
-                )
-                .map_err(|e| Error::invalid("--period", t, &e.to_string()))?
-                .sa / g
-            }
-        };
-        if !(value > 0.0 && value.is_finite()) {
-            return Err(Error::invalid(
-                "--records",
-                name.as_str(),
-                &format!(
-                    "has {} = {value}: a record scaled to an intensity needs a positive one",
-                    options.measure.name()
-                ),
-            ));
-        }
-        unscaled.push(value);
-    }
-    Ok((sweep, unscaled, period))
+    let measures =
+        study::suite_measures(&sweep, options.measure, options.period).map_err(flagged)?;
+    Ok((sweep, measures))
 }
 
 /// Runs the sweep (or resumes it) and fits.
 pub fn run(options: &Options, progress: &dyn super::sweep::store::Progress) -> Result<Report> {
-    let (sweep, unscaled, period) = prepare(options)?;
+    let (sweep, measures) = prepare(options)?;
     let target = super::sweep::store::Target {
         out: options.out.join(SWEEP_DIR),
         shard: options.shard,
@@ -227,8 +135,15 @@ pub fn run(options: &Options, progress: &dyn super::sweep::store::Progress) -> R
             files: Vec::new(),
         });
     }
-    let records = read_records(&report.dir.join("sweep.csv"), &sweep, &unscaled, options)?;
-    let summary = fit(options, &records, period)?;
+    let records = read_records(&report.dir.join("sweep.csv"), &sweep, &measures, options)?;
+    let summary = study::summarize(
+        &Study {
+            period: measures.period,
+            ..study(options)
+        },
+        records,
+    )
+    .map_err(|e| Error::invalid("--records", options.records.as_str(), &e.to_string()))?;
     let mut files: Vec<(String, Vec<u8>)> = vec![
         (JSON_FILE.to_string(), crate::writers::json_bytes(&summary)),
         (CSV_FILE.to_string(), fragility_csv(&summary)),
@@ -251,7 +166,7 @@ pub fn run(options: &Options, progress: &dyn super::sweep::store::Progress) -> R
 fn read_records(
     table: &Path,
     sweep: &Sweep,
-    unscaled: &[f64],
+    measures: &SuiteMeasures,
     options: &Options,
 ) -> Result<Vec<RecordResult>> {
     let read_error = |message: String| Error::ReadResult {
@@ -294,15 +209,13 @@ fn read_records(
             ));
         }
         let scale: Option<f64> = row[min].parse().ok();
-        let capacity = match scale {
-            Some(s) => Capacity::Observed(options.measure.scaled(unscaled[i], s)),
-            None => Capacity::Censored(options.measure.scaled(unscaled[i], options.scale.hi)),
-        };
+        let unscaled = measures.unscaled[i];
         out.push(RecordResult {
             path,
-            im_unscaled: unscaled[i],
+            label: measures.labels[i].clone(),
+            im_unscaled: unscaled,
+            capacity: study::capacity(options.measure, unscaled, scale, options.scale.hi),
             min_overturning_scale: scale,
-            capacity,
             overturning_bands: row[bands].to_string(),
             n_bands: row[n_bands].parse().unwrap_or(0),
         });
@@ -315,92 +228,6 @@ fn read_records(
         )));
     }
     Ok(out)
-}
-
-/// The fit, its bootstrap and the summary.
-fn fit(options: &Options, records: &[RecordResult], period: Option<f64>) -> Result<Summary> {
-    let capacities: Vec<Capacity> = records.iter().map(|r| r.capacity).collect();
-    let fit: CapacityFit = fit_capacities(&capacities)
-        .map_err(|e| Error::invalid("--records", options.records.as_str(), &e.to_string()))?;
-    let (fits, failed) =
-        bootstrap::resample(capacities.len(), options.bootstrap, options.seed, |drawn| {
-            let sample: Vec<Capacity> = drawn.iter().map(|&i| capacities[i]).collect();
-            fit_capacities(&sample).map(|f| f.fit)
-        });
-    let interval = |of: fn(&Lognormal) -> f64| {
-        let values: Vec<f64> = fits.iter().map(of).collect();
-        Some(Interval90 {
-            lo: bootstrap::quantile(&values, PERCENTILES[0] / 100.0)?,
-            hi: bootstrap::quantile(&values, PERCENTILES[1] / 100.0)?,
-        })
-    };
-    let mut warnings = Vec::new();
-    if records.len() < 10 {
-        warnings.push(format!(
-            "{} records are far too few for a fragility function: a real study needs a suite \
-             of tens of records (e.g. the FEMA P695 far-field set)",
-            records.len()
-        ));
-    }
-    for r in records.iter().filter(|r| r.n_bands > 1) {
-        warnings.push(format!(
-            "{}: overturning is not monotonic in the scale (overturning bands {}); its capacity \
-             is the first overturning intensity",
-            r.path, r.overturning_bands
-        ));
-    }
-    if fit.censored > 0 {
-        warnings.push(format!(
-            "{} of {} records did not overturn up to scale {}: their capacities are censored \
-             (above the top of the range) and enter the fit by their likelihood",
-            fit.censored,
-            records.len(),
-            options.scale.hi
-        ));
-    }
-    if failed > 0 {
-        warnings.push(format!(
-            "{failed} of {} bootstrap resamples gave no fit (too few distinct observed \
-             capacities) and are left out of the intervals",
-            options.bootstrap
-        ));
-    }
-    let Lognormal { theta, beta } = fit.fit;
-    Ok(Summary {
-        flexrock_version: flexrock_core::simulate::VERSION.to_string(),
-        flexrock_commit: flexrock_core::simulate::COMMIT.to_string(),
-        model_file: options.model.display().to_string(),
-        analysis: "ida".into(),
-        im: options.measure,
-        im_unit: options.measure.unit().into(),
-        im_scale_power: options.measure.scale_power(),
-        sa_period_s: period,
-        scale_range: [options.scale.lo, options.scale.hi],
-        capacity_rule: CAPACITY_RULE.into(),
-        censoring: "a record that does not overturn up to the top of the range has a capacity \
-                    above the top's intensity: it enters the maximum likelihood fit as \
-                    1 - Phi(z) at that intensity"
-            .into(),
-        fits: vec![StateFit {
-            state: "overturning".into(),
-            theta,
-            beta,
-            beta_unbiased: fit.beta_unbiased,
-            method: fit.method.into(),
-            fractile_16: theta * (-beta).exp(),
-            fractile_84: theta * beta.exp(),
-            theta_interval: interval(|f| f.theta),
-            beta_interval: interval(|f| f.beta),
-            observed: fit.observed,
-            censored: fit.censored,
-        }],
-        bootstrap: options.bootstrap,
-        bootstrap_failed: failed,
-        seed: options.seed,
-        percentiles: PERCENTILES,
-        records: records.to_vec(),
-        warnings,
-    })
 }
 
 /// fragility.csv: one row per damage state.

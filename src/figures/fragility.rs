@@ -106,12 +106,17 @@ fn bootstrap_fits(summary: &Summary) -> Vec<Lognormal> {
     .0
 }
 
-/// The capacities on the intensity axis, one row per record, with the median and fractiles.
+/// The capacities on the intensity axis, one row per record named on the y axis, with the
+/// median and fractiles.
 fn capacities(summary: &Summary) -> Figure {
     let fit = &summary.fits[0];
     let mut panel = Panel::new("", &im_label(summary), "record");
     let n = summary.records.len();
     panel.y_range = Some((0.0, n as f64 + 1.0));
+    // Each row named by its record (event, station and component, else the file's name).
+    panel.y_names = (summary.records.iter().enumerate())
+        .map(|(i, r)| ((i + 1) as f64, r.label.clone()))
+        .collect();
     // From 0, and wide enough for the 84 % fractile, which may lie beyond every capacity.
     let right = summary
         .records

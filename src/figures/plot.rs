@@ -185,6 +185,9 @@ pub struct Panel {
     pub spans: Vec<Span>,
     /// Coloured rectangles in data coordinates (the cells of a map), drawn first.
     pub cells: Vec<Cell>,
+    /// Names at places of the y axis (one per row of a chart of records), in place of its
+    /// numbers, thinned and shortened to fit (see `named_ticks`).
+    pub y_names: Vec<(f64, String)>,
 }
 
 /// A stretch of the x axis shaded across a panel, in a pale palette colour; the first span of
@@ -864,6 +867,51 @@ fn fit_ticks(log: bool, lo: f64, hi: f64, length: f64, per_label: impl Fn(&str) 
     }
 }
 
+/// The ticks of a y axis of names at places (equally spaced, in order): where a name a line
+/// apart would overprint the next, every k-th is labelled (from the first) and the others get a
+/// minor tick; a name wider than `widest` dots is shortened at its end with an ellipsis.
+fn named_ticks(names: &[(f64, String)], range: (f64, f64), length: f64, widest: f64) -> Ticks {
+    let inside: Vec<&(f64, String)> = names
+        .iter()
+        .filter(|(y, _)| *y >= range.0 && *y <= range.1)
+        .collect();
+    let spacing = inside
+        .windows(2)
+        .map(|w| (w[1].0 - w[0].0).abs())
+        .fold(f64::INFINITY, f64::min);
+    let per_name = spacing * length / (range.1 - range.0);
+    let line = pt(TICK_PT) * 1.2;
+    let every = if per_name.is_finite() && per_name > 0.0 {
+        (line / per_name).ceil().max(1.0) as usize
+    } else {
+        1
+    };
+    let mut ticks = Ticks::default();
+    for (i, (y, name)) in inside.into_iter().enumerate() {
+        if i % every == 0 {
+            ticks.major.push((*y, shortened(name, widest)));
+        } else {
+            ticks.minor.push(*y);
+        }
+    }
+    ticks
+}
+
+/// `text`, or as much of its start as fits in `widest` dots at the tick size with an ellipsis.
+fn shortened(text: &str, widest: f64) -> String {
+    if text_width(text, TICK_PT) <= widest {
+        return text.to_string();
+    }
+    let chars: Vec<char> = text.chars().collect();
+    for keep in (1..chars.len()).rev() {
+        let short = format!("{}…", chars[..keep].iter().collect::<String>().trim_end());
+        if text_width(&short, TICK_PT) <= widest {
+            return short;
+        }
+    }
+    "…".to_string()
+}
+
 impl Layout {
     fn of(name: &str, figure: &Figure, page: &Page) -> Result<Layout> {
         let bad_size = |message: String| {
@@ -974,7 +1022,14 @@ impl Layout {
             .panels
             .iter()
             .zip(&ranges)
-            .map(|(p, r)| fit_ticks(p.log_y, r.2, r.3, plot_h, |_| pt(TICK_PT) * 2.2))
+            .map(|(p, r)| {
+                if p.y_names.is_empty() {
+                    fit_ticks(p.log_y, r.2, r.3, plot_h, |_| pt(TICK_PT) * 2.2)
+                } else {
+                    // Names take at most 40 % of the panel's cell across.
+                    named_ticks(&p.y_names, (r.2, r.3), plot_h, 0.4 * cell_w)
+                }
+            })
             .collect();
         let widest = y_ticks
             .iter()
@@ -1679,6 +1734,31 @@ mod tests {
 
     /// On log axes the lines are given in the data's units, as the series are: a line at
     /// y = 1000 over data from 1 to 10 widens the axis to 10^3, not to 1000 decades.
+    #[test]
+    fn names_on_a_y_axis_are_thinned_and_shortened_to_fit() {
+        // 60 rows over 40 mm: a row is 40/61 mm apart, a line of 7 pt names 1.2 * 7 pt =
+        // 2.96 mm, so every ceil(2.96 / 0.656) = 5th row is named, from the first.
+        let names: Vec<(f64, String)> = (1..=60).map(|i| (i as f64, format!("r{i}"))).collect();
+        let ticks = named_ticks(&names, (0.0, 61.0), dots(40.0), dots(30.0));
+        let labelled: Vec<f64> = ticks.major.iter().map(|(y, _)| *y).collect();
+        let every_fifth: Vec<f64> = (0..12).map(|k| (1 + 5 * k) as f64).collect();
+        assert_eq!(labelled, every_fifth);
+        assert_eq!(ticks.minor.len(), 48);
+        assert_eq!(ticks.major[1].1, "r6");
+        // Room for every name: all named.
+        let ticks = named_ticks(&names[..5], (0.0, 6.0), dots(40.0), dots(30.0));
+        assert_eq!(ticks.major.len(), 5);
+        assert!(ticks.minor.is_empty());
+        // A name wider than the room is cut at its end with an ellipsis, within the room.
+        let long = "IMPERIAL VALLEY-06, EL CENTRO ARRAY #7, 230 DEGREES".to_string();
+        let room = dots(20.0);
+        let short = shortened(&long, room);
+        assert!(short.ends_with('…') && short.len() < long.len(), "{short}");
+        assert!(long.starts_with(short.trim_end_matches('…')));
+        assert!(text_width(&short, TICK_PT) <= room);
+        assert_eq!(shortened("PBF", room), "PBF");
+    }
+
     #[test]
     fn lines_on_log_axes_are_placed_at_their_logarithm() {
         let mut panel =

@@ -17,6 +17,7 @@ Examples
 >>> grid = flexrock.sweep(model, {"excitation.period": [0.5, 1.0], "excitation.amplitude": [2, 4]})
 >>> frame = grid.to_pandas()                                        # one row per point
 >>> data = grid.to_xarray()                                         # one dimension per axis
+>>> study = flexrock.fragility(model, "records/")                   # fragility over a suite
 
 Errors are `FlexrockError` (a ValueError) whose message names the model key or the Python
 argument, the value and the rule.
@@ -28,6 +29,7 @@ from typing import Mapping, Optional, Sequence, Tuple, Union
 
 from . import _native
 from ._native import FlexrockError, GroundMotion, Model, Result, RowResult, __version__
+from ._fragility import FragilityResult
 from ._records import Records
 from ._sweep import SweepResult
 
@@ -42,6 +44,7 @@ def __getattr__(name: str):
 
 __all__ = [
     "FlexrockError",
+    "FragilityResult",
     "GroundMotion",
     "Model",
     "Records",
@@ -52,6 +55,9 @@ __all__ = [
     "compare",
     "converge",
     "fem_check",
+    "fit_capacities",
+    "fit_stripes",
+    "fragility",
     "intensity_measures",
     "props",
     "read_record",
@@ -471,6 +477,156 @@ def sweep(
             rigid_overturning=rigid_overturning,
             rigid_restitution=rigid_restitution,
         )
+    )
+
+
+def fragility(
+    model: Model,
+    records,
+    im: str = "pga",
+    period: Optional[float] = None,
+    scale: Tuple[float, float] = (0.1, 5.0),
+    scan: Optional[int] = None,
+    tol: Optional[float] = None,
+    bootstrap: int = 1000,
+    seed: int = 1,
+) -> FragilityResult:
+    """A fragility function of overturning over a suite of records, as ``flexrock fragility``.
+
+    Incremental dynamic analysis: for each record, the smallest ``excitation.scale`` in
+    ``scale`` that overturns the body (the sweep's minimum search), expressed in the intensity
+    measure ``im``; a lognormal fit of these capacities (a record that does not overturn up to
+    the top of the range is censored there and enters by its likelihood) and bootstrap
+    intervals over records. The numbers equal the command's with the same arguments; nothing
+    is written to disk.
+
+    Parameters
+    ----------
+    model : Model
+        A model with a record excitation (``kind = "record"``); its settings apply to every
+        record.
+    records : str or path
+        The suite: a directory of record files, a list file (one path a line) or a file
+        pattern such as ``"suite/*.AT2"`` (relative to the current directory).
+    im : {"pga", "pgv", "pgd", "arias", "cav", "sa"}
+        The intensity measure: pga (g), pgv (m/s), pgd (m), arias (m/s), cav (m/s), sa
+        (Sa(T, 5 %), g).
+    period : float, optional
+        The period T of Sa, s (``im="sa"`` only) [default: the body's pre-uplift period].
+    scale : (lo, hi)
+        The range of ``excitation.scale`` searched, lo above 0.
+    scan : int, optional
+        Scales scanned before the bisection [default: 100].
+    tol : float, optional
+        Width of the final bracket, in scale [default: (hi - lo)/1e4].
+    bootstrap : int
+        Resamples over records for the 5-95 % intervals (0: none; 1 is refused).
+    seed : int
+        Seed of the bootstrap's generator (SplitMix64).
+
+    Returns
+    -------
+    FragilityResult
+        ``theta``, ``beta``, their intervals, each record's capacity (``result["capacity"]``,
+        ``result["censored"]``, ``result["label"]``), ``to_pandas()``, and the whole summary.
+
+    Raises
+    ------
+    FlexrockError
+        A bad argument (named), a record that is not a record, a record whose search failed,
+        or capacities that fix no fit (fewer than 2 observed, or all equal).
+    KeyboardInterrupt
+        On Ctrl-C, at once: no further record is started.
+
+    Examples
+    --------
+    >>> model = flexrock.Model.from_file("models/elcentro1940.toml")
+    >>> study = flexrock.fragility(model, "validation/records/records.list", scale=(0.1, 20))
+    >>> study.theta, study.beta, study.to_pandas()[["label", "capacity", "censored"]]
+    """
+    import os
+
+    return FragilityResult.from_json(
+        _native.fragility(
+            model, os.fspath(records), im, period, (float(scale[0]), float(scale[1])), scan,
+            tol, bootstrap, seed,
+        )
+    )
+
+
+def fit_capacities(capacity, censored=None) -> dict:
+    """The lognormal fit of capacities, by the code ``flexrock fragility`` uses.
+
+    Without a censored capacity, ln theta is the mean of ln c and beta the standard deviation
+    of ln c with the divisor n (the maximum likelihood estimate; ``beta_unbiased`` has the
+    divisor n - 1). With any, theta and beta maximise the likelihood with censoring: a censored
+    capacity lies above its value and enters as 1 - Phi(z).
+
+    Parameters
+    ----------
+    capacity : sequence of float
+        Each record's capacity (the intensity at which it reached the damage state), > 0.
+    censored : sequence of bool, optional
+        True where the record did not reach it up to ``capacity`` [default: none censored].
+
+    Returns
+    -------
+    dict
+        ``{"theta", "beta", "beta_unbiased" (None with censoring), "method" ("moments" or
+        "censored-mle"), "observed", "censored"}``.
+
+    Raises
+    ------
+    FlexrockError
+        A capacity that is not a positive number, fewer than 2 observed capacities, or
+        observed capacities all equal.
+
+    Examples
+    --------
+    >>> flexrock.fit_capacities([0.3, 0.5, 0.8, 1.2], censored=[False, False, False, True])
+    """
+    import numpy as np
+
+    values = np.asarray(capacity, dtype=np.float64).ravel()
+    flags = (np.zeros(values.shape, dtype=bool) if censored is None
+             else np.asarray(censored, dtype=bool).ravel())
+    return _native.fit_capacities(values.tolist(), flags.tolist())
+
+
+def fit_stripes(levels, records, damaged) -> dict:
+    """The lognormal fit of counts at intensity levels (multiple-stripe analysis), by the
+    maximum of the binomial likelihood (Baker 2015), the core's code.
+
+    Parameters
+    ----------
+    levels : sequence of float
+        The intensity levels, > 0.
+    records : sequence of int
+        Records run at each level.
+    damaged : sequence of int
+        Of them, those that reached the damage state.
+
+    Returns
+    -------
+    dict
+        ``{"theta", "beta", "method": "stripes-mle"}``.
+
+    Raises
+    ------
+    FlexrockError
+        Counts that fix no finite maximum: no record damaged, all damaged, or the damaged
+        levels all above the undamaged ones with nothing between.
+
+    Examples
+    --------
+    >>> flexrock.fit_stripes([0.1, 0.2, 0.4], records=[20, 20, 20], damaged=[2, 9, 17])
+    """
+    import numpy as np
+
+    return _native.fit_stripes(
+        np.asarray(levels, dtype=np.float64).ravel().tolist(),
+        np.asarray(records).ravel().tolist(),
+        np.asarray(damaged).ravel().tolist(),
     )
 
 

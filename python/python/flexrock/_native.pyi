@@ -147,3 +147,18 @@ def response_spectrum(
     periods: Optional[Sequence[float]] = None,
     damping: float = 0.05,
 ) -> dict[str, npt.NDArray[np.float64]]: ...
+def fragility(
+    model: Model,
+    records: str,
+    im: str,
+    period: Optional[float],
+    scale: Tuple[float, float],
+    scan: Optional[int],
+    tol: Optional[float],
+    bootstrap: int,
+    seed: int,
+) -> str: ...
+def fit_capacities(capacity: Sequence[float], censored: Sequence[bool]) -> dict[str, Any]: ...
+def fit_stripes(
+    levels: Sequence[float], records: Sequence[int], damaged: Sequence[int]
+) -> dict[str, Any]: ...

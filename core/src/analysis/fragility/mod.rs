@@ -9,7 +9,9 @@
 //! - [`stripes`]: the fit of counts at intensity levels (multiple-stripe analysis) by maximum
 //!   likelihood of the binomial likelihood (Baker 2015);
 //! - [`optimize`]: the Nelder-Mead search both maximum likelihood fits use;
-//! - [`bootstrap`]: resampling over records, with its own seeded generator.
+//! - [`bootstrap`]: resampling over records, with its own seeded generator;
+//! - [`study`]: the study over a suite the command line and the Python bindings share: the
+//!   suite's axis, the records' measures and names, their capacities and the summary.
 //!
 //! A fit is P(DS | IM = x) = Phi(ln(x / theta) / beta): theta the median, beta the dispersion.
 
@@ -19,6 +21,7 @@ pub mod measure;
 pub mod normal;
 pub mod optimize;
 pub mod stripes;
+pub mod study;
 mod summary;
 
 use serde::Serialize;

@@ -17,6 +17,8 @@ pub const CAPACITY_RULE: &str = "the first (smallest) overturning intensity: the
 pub struct RecordResult {
     /// The record file, as the sweep names it.
     pub path: String,
+    /// Its name: event, station and component where the file gives them, else the file's name.
+    pub label: String,
     /// Its intensity measure at scale 1.
     pub im_unscaled: f64,
     /// The smallest overturning scale found, or none (censored).
