@@ -230,12 +230,12 @@ pub fn run(sweep: &Sweep, target: &Target, progress: &dyn Progress) -> Result<Sw
             path: chunk_path(&chunks, c),
             message: format!("the rows to be written: {problem}"),
         })?;
-        let mut table = writers::Table::without_header();
+        let mut rows = Vec::with_capacity(256 * records.len());
         for record in &records {
-            table.row(record);
+            writers::push_row(&mut rows, record.iter());
         }
         Ok(Piece {
-            rows: table.into_bytes(),
+            rows,
             records: Some(records),
         })
     };
