@@ -368,6 +368,24 @@ pub fn significant(x: f64, digits: usize) -> String {
     shortest(rounded)
 }
 
+/// Appends the decimal digits of `n`, as `{}` writes them, without the formatting machinery
+/// (a sweep writes several counts a row).
+pub fn push_decimal(text: &mut String, mut n: usize) {
+    let mut digits = [0u8; 20];
+    let mut start = digits.len();
+    loop {
+        start -= 1;
+        digits[start] = b'0' + (n % 10) as u8;
+        n /= 10;
+        if n == 0 {
+            break;
+        }
+    }
+    for &d in &digits[start..] {
+        text.push(char::from(d));
+    }
+}
+
 /// A count with its noun: "1 uplift", "2 uplifts", "0 uplifts".
 pub fn count(n: usize, singular: &str, plural: &str) -> String {
     format!("{n} {}", if n == 1 { singular } else { plural })
@@ -421,6 +439,25 @@ mod tests {
             state ^= state >> 7;
             state ^= state << 17;
             state
+        }
+    }
+
+    /// push_decimal writes what `{}` writes: the ends, each power of ten and the number below
+    /// it, and a stream of others.
+    #[test]
+    fn push_decimal_writes_what_display_writes() {
+        let mut next = xorshift(7);
+        let mut numbers = vec![0, usize::MAX];
+        let mut power = 1usize;
+        while let Some(p) = power.checked_mul(10) {
+            numbers.extend([power - 1, power, power + 1]);
+            power = p;
+        }
+        numbers.extend((0..10_000).map(|_| (next() >> (next() % 64)) as usize));
+        for n in numbers {
+            let mut text = String::from("x");
+            push_decimal(&mut text, n);
+            assert_eq!(text, format!("x{n}"));
         }
     }
 

@@ -161,15 +161,32 @@ impl PreparedSchema {
                 continue;
             }
             done.push(section);
+            let of_section = || {
+                further
+                    .iter()
+                    .filter(move |s| s.key.split_once('.').is_some_and(|(of, _)| of == section))
+            };
+            // Numbers of the section's number fields are set in place, in order: reading the
+            // section again (below) would give the same, at several times the cost.
+            let number = |s: &Setting| match s.value {
+                toml::Value::Float(x) => Some(x),
+                _ => None,
+            };
+            if of_section().all(|s| number(s).is_some() && file.number_mut(&s.key).is_some()) {
+                for s in of_section() {
+                    if let (Some(x), Some(field)) = (number(s), file.number_mut(&s.key)) {
+                        *field = Some(x);
+                    }
+                }
+                continue;
+            }
             // The section as the table has it, with every further setting of it, in order.
             let mut one = toml::Table::new();
             if let Some(value) = table.get(section) {
                 one.insert(section.to_string(), value.clone());
             }
-            for s in further {
-                if s.key.split_once('.').is_some_and(|(of, _)| of == section)
-                    && s.apply(&mut one).is_err()
-                {
+            for s in of_section() {
+                if s.apply(&mut one).is_err() {
                     return whole();
                 }
             }
@@ -329,6 +346,74 @@ mod prepared_schema_tests {
             }
         }
         assert_eq!(compared, 2 * commons.len() * furthers.len());
+    }
+
+    /// The names of the fields serde reads for the struct `T`.
+    fn fields_of<'de, T: serde::Deserialize<'de>>() -> &'static [&'static str] {
+        use serde::de::{Error as _, Visitor};
+        type Answer<V> = std::result::Result<V, serde::de::value::Error>;
+        struct Fields(std::cell::Cell<&'static [&'static str]>);
+        impl<'de> serde::Deserializer<'de> for &Fields {
+            type Error = serde::de::value::Error;
+            fn deserialize_any<V: Visitor<'de>>(self, _: V) -> Answer<V::Value> {
+                Err(Self::Error::custom("only the fields' names"))
+            }
+            fn deserialize_struct<V: Visitor<'de>>(
+                self,
+                _: &'static str,
+                fields: &'static [&'static str],
+                _: V,
+            ) -> Answer<V::Value> {
+                self.0.set(fields);
+                Err(Self::Error::custom("only the fields' names"))
+            }
+            serde::forward_to_deserialize_any! {
+                bool i8 i16 i32 i64 i128 u8 u16 u32 u64 u128 f32 f64 char str string bytes
+                byte_buf option unit unit_struct newtype_struct seq tuple tuple_struct map enum
+                identifier ignored_any
+            }
+        }
+        let fields = Fields(std::cell::Cell::new(&[]));
+        let _ = T::deserialize(&fields);
+        fields.0.get()
+    }
+
+    /// Every field of the body, excitation, simulation and solver sections set to a number
+    /// (with another key of the excitation) reads as the whole read reads it: the 28 optional
+    /// numbers set in place, the other fields by reading their section again (or refused).
+    #[test]
+    fn every_number_field_set_in_place_is_the_whole_read() {
+        use crate::model::schema::{
+            BodySection, ExcitationSection, SimulationSection, SolverSection,
+        };
+        let sections = [
+            ("body", fields_of::<BodySection>()),
+            ("excitation", fields_of::<ExcitationSection>()),
+            ("simulation", fields_of::<SimulationSection>()),
+            ("solver", fields_of::<SolverSection>()),
+        ];
+        let source = Path::new("model.toml");
+        let mut in_place = 0;
+        for model in ["models/pulse-map.toml", "models/ichinose1986.toml"] {
+            let table = table(model);
+            let prepared = PreparedSchema::new(table.clone(), &[], source);
+            let mut base = prepared.read(&[], source).expect("the model reads");
+            for (section, fields) in sections {
+                assert!(fields.len() >= 3, "{section}: {fields:?}");
+                for field in fields {
+                    let key = format!("{section}.{field}");
+                    let further = [
+                        Setting::number(&key, 0.375),
+                        Setting::number("excitation.amplitude", 2.5),
+                    ];
+                    let whole = outcome(read_schema(&table, &further, source));
+                    let part = outcome(prepared.read(&further, source));
+                    assert_eq!(part, whole, "{model}: {key}");
+                    in_place += usize::from(base.number_mut(&key).is_some());
+                }
+            }
+        }
+        assert_eq!(in_place, 2 * (9 + 10 + 3 + 6));
     }
 
     /// A table that does not read with the common settings reads every time as a whole, with

@@ -24,6 +24,52 @@ pub struct ModelFile {
     pub fem: Option<FemSection>,
 }
 
+impl ModelFile {
+    /// The field of `key` (`section.name`) where it is an optional number of the body,
+    /// excitation, simulation or solver section; None for any other key. A number set here is
+    /// what reading the section again with the key set to it gives.
+    pub(crate) fn number_mut(&mut self, key: &str) -> Option<&mut Option<f64>> {
+        let (section, name) = key.split_once('.')?;
+        let (b, e, s, v) = (
+            &mut self.body,
+            &mut self.excitation,
+            &mut self.simulation,
+            &mut self.solver,
+        );
+        Some(match (section, name) {
+            ("body", "depth") => &mut b.depth,
+            ("body", "density") => &mut b.density,
+            ("body", "mass") => &mut b.mass,
+            ("body", "youngs_modulus") => &mut b.youngs_modulus,
+            ("body", "flexural_rigidity") => &mut b.flexural_rigidity,
+            ("body", "period") => &mut b.period,
+            ("body", "damping_ratio") => &mut b.damping_ratio,
+            ("body", "gravity") => &mut b.gravity,
+            ("body", "poisson_ratio") => &mut b.poisson_ratio,
+            ("excitation", "amplitude") => &mut e.amplitude,
+            ("excitation", "period") => &mut e.period,
+            ("excitation", "ramp") => &mut e.ramp,
+            ("excitation", "cycles") => &mut e.cycles,
+            ("excitation", "center") => &mut e.center,
+            ("excitation", "scale") => &mut e.scale,
+            ("excitation", "start") => &mut e.start,
+            ("excitation", "end") => &mut e.end,
+            ("excitation", "tail") => &mut e.tail,
+            ("excitation", "dt") => &mut e.dt,
+            ("simulation", "duration") => &mut s.duration,
+            ("simulation", "q0") => &mut s.q0,
+            ("simulation", "qdot0") => &mut s.qdot0,
+            ("solver", "rtol") => &mut v.rtol,
+            ("solver", "atol") => &mut v.atol,
+            ("solver", "output_dt") => &mut v.output_dt,
+            ("solver", "dt") => &mut v.dt,
+            ("solver", "newmark_beta") => &mut v.newmark_beta,
+            ("solver", "newmark_gamma") => &mut v.newmark_gamma,
+            _ => return None,
+        })
+    }
+}
+
 #[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 /// The `[body]` table: the body's size, material and damping.

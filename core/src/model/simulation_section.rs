@@ -13,15 +13,18 @@ pub(super) fn run_duration(
     natural: Option<f64>,
     excitation: &ExcitationSection,
 ) -> Result<f64> {
-    let rule = format!(
-        "must be at most {MAX_DURATION:e} s: no earthquake or shaking-table test lasts nearly \
-         that long"
-    );
+    // Formatted only for a message: this is read at every point of a sweep.
+    let rule = || {
+        format!(
+            "must be at most {MAX_DURATION:e} s: no earthquake or shaking-table test lasts \
+             nearly that long"
+        )
+    };
     match (given, natural) {
         (Some(d), _) => {
             positive("simulation.duration", d)?;
             if d > MAX_DURATION {
-                return Err(Error::invalid("simulation.duration", d, &rule));
+                return Err(Error::invalid("simulation.duration", d, &rule()));
             }
             Ok(d)
         }
@@ -49,7 +52,8 @@ pub(super) fn run_duration(
                                 "the record lasts {} s: with no simulation.duration the run lasts \
                              the record and the tail, which {rule} (give simulation.duration \
                              or excitation.end)",
-                                crate::base::format::shortest(d - tail)
+                                crate::base::format::shortest(d - tail),
+                                rule = rule()
                             ),
                         ))
                     }
@@ -62,7 +66,8 @@ pub(super) fn run_duration(
                          {} s in all, which {rule}",
                         excitation.kind,
                         crate::base::format::shortest(d - tail),
-                        crate::base::format::shortest(d)
+                        crate::base::format::shortest(d),
+                        rule = rule()
                     ),
                 ));
             }

@@ -5,7 +5,7 @@
 //!
 //! No wall-clock time appears in a row, so that a sweep writes the same file every time.
 
-use crate::base::format::push_shortest;
+use crate::base::format::{push_decimal, push_shortest};
 use crate::base::units::STANDARD_GRAVITY;
 use crate::bodies::oscillator;
 use crate::floor::intensity::{self, GroundMeasures};
@@ -92,12 +92,9 @@ impl Cell {
 
     /// Appends [`Cell::field`] to `text`.
     pub fn push_field(&self, text: &mut String) {
-        use std::fmt::Write as _;
         match self {
             Cell::Bool(Some(b)) => text.push_str(if *b { "true" } else { "false" }),
-            Cell::Int(Some(n)) => {
-                let _ = write!(text, "{n}");
-            }
+            Cell::Int(Some(n)) => push_decimal(text, *n),
             Cell::Float(Some(x)) => push_shortest(text, *x),
             Cell::Text(Some(t)) => text.push_str(t),
             Cell::Bool(None) | Cell::Int(None) | Cell::Float(None) | Cell::Text(None) => {}

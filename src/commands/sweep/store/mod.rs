@@ -230,12 +230,12 @@ pub fn run(sweep: &Sweep, target: &Target, progress: &dyn Progress) -> Result<Sw
             path: chunk_path(&chunks, c),
             message: format!("the rows to be written: {problem}"),
         })?;
-        let mut table = writers::Table::without_header();
+        let mut rows = Vec::with_capacity(256 * records.len());
         for record in &records {
-            table.row(record);
+            writers::push_row(&mut rows, record.iter());
         }
         Ok(Piece {
-            rows: table.into_bytes(),
+            rows,
             records: Some(records),
         })
     };
@@ -463,11 +463,10 @@ fn row_record(
     index: usize,
     row: &flexrock_core::analysis::sweep::Row,
 ) -> csv::StringRecord {
-    use std::fmt::Write as _;
     let cells = row.cells(plan.layout());
     let mut record = csv::StringRecord::with_capacity(256, 1 + plan.axes.len() + cells.len());
     let mut text = String::with_capacity(32);
-    let _ = write!(text, "{index}");
+    flexrock_core::base::format::push_decimal(&mut text, index);
     record.push_field(&text);
     for (axis, &i) in plan.axes.iter().zip(&plan.coordinates(index)) {
         record.push_field(&axis.values[i]);
