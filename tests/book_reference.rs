@@ -88,9 +88,8 @@ fn strings(list: &[&str]) -> Vec<String> {
 
 #[test]
 fn the_output_tables_list_exactly_the_columns_the_writers_write() {
-    use flexrock_core::analysis::sweep::row::{
-        MinimumOutcome, RigidMinima, Row, RunOutcome, Scales,
-    };
+    use flexrock_core::analysis::sweep::find_min::MinimumOutcome;
+    use flexrock_core::analysis::sweep::row::{RigidMinima, Row, RunOutcome, Scales};
     let text = page("outputs.md");
     let tables: [(&str, &[&str]); 10] = [
         (

@@ -10,7 +10,7 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyFloat, PyList, PyString};
 
 use flexrock_core::analysis::sweep::axis::MAX_AXIS_VALUES;
-use flexrock_core::analysis::sweep::row::Kind;
+use flexrock_core::analysis::sweep::cell::Kind;
 use flexrock_core::analysis::sweep::{Axis, Cell, Interval, Layout, Plan, Request, Row, Sweep};
 
 use crate::interrupt;

@@ -10,7 +10,7 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyString};
 use serde::Serialize;
 
-use flexrock_core::analysis::sweep::row::Kind;
+use flexrock_core::analysis::sweep::cell::Kind;
 use flexrock_core::analysis::sweep::Cell;
 
 use crate::FlexrockError;

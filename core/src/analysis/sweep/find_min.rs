@@ -9,7 +9,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::row::MinimumOutcome;
+use super::cell::Cell;
 use crate::base::format::shortest;
 use crate::bodies::rigid::{RigidBlock, RigidForm, RigidOverturning};
 
@@ -117,7 +117,7 @@ pub fn search<E: Send>(
     let values: Vec<f64> = (0..find.scan).map(|i| find.scanned(i)).collect();
     // Collected in order, so that the error reported is the lowest value's, whatever the
     // threads did.
-    let results: Vec<Result<Trial, (f64, E)>> = super::in_order(0..values.len(), |i| {
+    let results: Vec<Result<Trial, (f64, E)>> = super::in_order::in_order(0..values.len(), |i| {
         run(values[i]).map_err(|e| (values[i], e))
     });
     let trials = results.into_iter().collect::<Result<Vec<Trial>, _>>()?;
@@ -253,5 +253,45 @@ mod tests {
             }
         });
         assert_eq!(err.unwrap_err(), (5.0, "bad"));
+    }
+}
+
+/// What the search for the smallest overturning value of a point found.
+#[derive(Debug, Clone, Default)]
+pub struct MinimumOutcome {
+    /// The smallest value found to overturn: the upper end of the final bracket. None when no
+    /// scanned value overturned.
+    pub min_overturning: Option<f64>,
+    /// The largest value below it found not to overturn (the lower end of the bracket). None
+    /// when the lowest value of the interval already overturned.
+    pub safe_below: Option<f64>,
+    /// The bands of scanned values that overturned, as `lo-hi` (`lo` alone for one value),
+    /// separated by `;`.
+    pub bands: String,
+    /// Number of bands.
+    pub n_bands: usize,
+    /// Time of overturning at `min_overturning`.
+    pub t_overturn: Option<f64>,
+    /// Simulations run for the search, and their steps and right-hand-side evaluations.
+    pub simulations: usize,
+    /// Accepted steps of all the search's runs.
+    pub steps: usize,
+    /// Right-hand-side evaluations of all the search's runs.
+    pub rhs_evaluations: usize,
+}
+
+impl MinimumOutcome {
+    /// The cells, by column name.
+    pub fn named(&self) -> [(&'static str, Cell); 8] {
+        [
+            ("min_overturning", Cell::Float(self.min_overturning)),
+            ("safe_below", Cell::Float(self.safe_below)),
+            ("overturning_bands", Cell::text(&self.bands)),
+            ("n_bands", Cell::Int(Some(self.n_bands))),
+            ("t_overturn", Cell::Float(self.t_overturn)),
+            ("simulations", Cell::Int(Some(self.simulations))),
+            ("steps", Cell::Int(Some(self.steps))),
+            ("rhs_evaluations", Cell::Int(Some(self.rhs_evaluations))),
+        ]
     }
 }

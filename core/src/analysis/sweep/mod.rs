@@ -17,7 +17,9 @@
 //! `find_min KEY`, `scan`, `tol`, `chunk_size`); the command line names them by its flags.
 
 pub mod axis;
+pub mod cell;
 pub mod find_min;
+mod in_order;
 pub mod row;
 pub mod rows;
 
@@ -26,8 +28,10 @@ use std::path::{Path, PathBuf};
 use serde::{Deserialize, Serialize};
 
 pub use axis::{Axis, Interval};
+pub use cell::Cell;
 pub use find_min::{FindMin, HousnerOptions};
-pub use row::{Cell, Layout, Outcome, RecordCells, Row, Status};
+pub(crate) use in_order::in_order;
+pub use row::{Layout, Outcome, RecordCells, Row, Status};
 use row::{RigidMinima, RunOutcome, Scales};
 
 use crate::bodies::rigid::{RigidBlock, RigidForm, RigidOverturning};
@@ -938,25 +942,6 @@ impl Sweep {
             ),
         }
     }
-}
-
-/// `f` of every index of `indices`, in order; computed in parallel with the `parallel` feature.
-#[cfg(feature = "parallel")]
-pub(crate) fn in_order<R: Send>(
-    indices: std::ops::Range<usize>,
-    f: impl Fn(usize) -> R + Sync + Send,
-) -> Vec<R> {
-    use rayon::prelude::*;
-    indices.into_par_iter().map(f).collect()
-}
-
-/// `f` of every index of `indices`, in order.
-#[cfg(not(feature = "parallel"))]
-pub(crate) fn in_order<R: Send>(
-    indices: std::ops::Range<usize>,
-    f: impl Fn(usize) -> R + Sync + Send,
-) -> Vec<R> {
-    indices.map(f).collect()
 }
 
 /// SHA-256 of `bytes`, as 64 lower-case hex digits: the digest of a record file a sweep reads,

@@ -5,7 +5,6 @@
 //!
 //! No wall-clock time appears in a row, so that a sweep writes the same file every time.
 
-use crate::base::format::{push_decimal, push_shortest};
 use crate::base::units::STANDARD_GRAVITY;
 use crate::bodies::oscillator;
 use crate::floor::intensity::{self, GroundMeasures};
@@ -15,110 +14,9 @@ use crate::integrate::solution::Solution;
 use crate::model::Model;
 use crate::physics::automaton::EventKind;
 
-use super::find_min::HousnerOptions;
+use super::cell::{emptied, names, values, Cell};
+use super::find_min::{HousnerOptions, MinimumOutcome};
 use super::rows::RowOutcome;
-
-/// One field of a row, typed; `None` where the field is empty (no value is known).
-#[derive(Debug, Clone, PartialEq)]
-pub enum Cell {
-    /// true or false.
-    Bool(Option<bool>),
-    /// A count.
-    Int(Option<usize>),
-    /// A number.
-    Float(Option<f64>),
-    /// Text (a status, a reason, a list of bands, a record file).
-    Text(Option<String>),
-}
-
-/// The type of a column: that of its cells.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Kind {
-    /// [`Cell::Bool`].
-    Bool,
-    /// [`Cell::Int`].
-    Int,
-    /// [`Cell::Float`].
-    Float,
-    /// [`Cell::Text`].
-    Text,
-}
-
-impl Kind {
-    /// The kind's name: `bool`, `int`, `float` or `str`.
-    pub fn name(self) -> &'static str {
-        match self {
-            Kind::Bool => "bool",
-            Kind::Int => "int",
-            Kind::Float => "float",
-            Kind::Text => "str",
-        }
-    }
-}
-
-impl Cell {
-    /// The cell's kind.
-    pub fn kind(&self) -> Kind {
-        match self {
-            Cell::Bool(_) => Kind::Bool,
-            Cell::Int(_) => Kind::Int,
-            Cell::Float(_) => Kind::Float,
-            Cell::Text(_) => Kind::Text,
-        }
-    }
-
-    /// An empty cell of kind `kind`.
-    pub fn empty(kind: Kind) -> Cell {
-        match kind {
-            Kind::Bool => Cell::Bool(None),
-            Kind::Int => Cell::Int(None),
-            Kind::Float => Cell::Float(None),
-            Kind::Text => Cell::Text(None),
-        }
-    }
-
-    /// Text as a cell: empty text is an empty cell.
-    pub fn text(text: &str) -> Cell {
-        Cell::Text((!text.is_empty()).then(|| text.to_string()))
-    }
-
-    /// The field as sweep.csv holds it: `true`/`false`, a decimal count, a number in its
-    /// shortest form that reads back to the same bits, the text; empty for `None`.
-    pub fn field(&self) -> String {
-        let mut text = String::new();
-        self.push_field(&mut text);
-        text
-    }
-
-    /// Appends [`Cell::field`] to `text`.
-    pub fn push_field(&self, text: &mut String) {
-        match self {
-            Cell::Bool(Some(b)) => text.push_str(if *b { "true" } else { "false" }),
-            Cell::Int(Some(n)) => push_decimal(text, *n),
-            Cell::Float(Some(x)) => push_shortest(text, *x),
-            Cell::Text(Some(t)) => text.push_str(t),
-            Cell::Bool(None) | Cell::Int(None) | Cell::Float(None) | Cell::Text(None) => {}
-        }
-    }
-}
-
-/// The names of `cells`.
-fn names(cells: impl IntoIterator<Item = (&'static str, Cell)>) -> Vec<&'static str> {
-    cells.into_iter().map(|(name, _)| name).collect()
-}
-
-/// Empty cells of the kinds of `cells`.
-fn emptied(cells: impl IntoIterator<Item = (&'static str, Cell)>) -> Vec<Cell> {
-    cells
-        .into_iter()
-        .map(|(_, c)| Cell::empty(c.kind()))
-        .collect()
-}
-
-/// The cells of `cells`, without their names.
-fn values(cells: impl IntoIterator<Item = (&'static str, Cell)>) -> Vec<Cell> {
-    cells.into_iter().map(|(_, c)| c).collect()
-}
 
 /// How a point ended.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -376,46 +274,6 @@ impl RunOutcome {
                 // Empty where the run kept no energy books (the exact method's).
                 Cell::Float(Some(self.energy_residual_share).filter(|x| !x.is_nan())),
             ),
-            ("steps", Cell::Int(Some(self.steps))),
-            ("rhs_evaluations", Cell::Int(Some(self.rhs_evaluations))),
-        ]
-    }
-}
-
-/// What the search for the smallest overturning value of a point found.
-#[derive(Debug, Clone, Default)]
-pub struct MinimumOutcome {
-    /// The smallest value found to overturn: the upper end of the final bracket. None when no
-    /// scanned value overturned.
-    pub min_overturning: Option<f64>,
-    /// The largest value below it found not to overturn (the lower end of the bracket). None
-    /// when the lowest value of the interval already overturned.
-    pub safe_below: Option<f64>,
-    /// The bands of scanned values that overturned, as `lo-hi` (`lo` alone for one value),
-    /// separated by `;`.
-    pub bands: String,
-    /// Number of bands.
-    pub n_bands: usize,
-    /// Time of overturning at `min_overturning`.
-    pub t_overturn: Option<f64>,
-    /// Simulations run for the search, and their steps and right-hand-side evaluations.
-    pub simulations: usize,
-    /// Accepted steps of all the search's runs.
-    pub steps: usize,
-    /// Right-hand-side evaluations of all the search's runs.
-    pub rhs_evaluations: usize,
-}
-
-impl MinimumOutcome {
-    /// The cells, by column name.
-    pub fn named(&self) -> [(&'static str, Cell); 8] {
-        [
-            ("min_overturning", Cell::Float(self.min_overturning)),
-            ("safe_below", Cell::Float(self.safe_below)),
-            ("overturning_bands", Cell::text(&self.bands)),
-            ("n_bands", Cell::Int(Some(self.n_bands))),
-            ("t_overturn", Cell::Float(self.t_overturn)),
-            ("simulations", Cell::Int(Some(self.simulations))),
             ("steps", Cell::Int(Some(self.steps))),
             ("rhs_evaluations", Cell::Int(Some(self.rhs_evaluations))),
         ]

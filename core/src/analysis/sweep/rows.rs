@@ -19,7 +19,7 @@ use crate::model::{
     read_schema, Model, RecordCache, RowModel, RowSection, RowSimulationSection, Setting,
 };
 
-use super::row::Cell;
+use super::cell::Cell;
 
 /// What a neighbour did to a column: the column's outcome in the row against its outcome alone.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
