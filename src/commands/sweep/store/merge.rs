@@ -7,9 +7,11 @@
 
 use std::path::{Path, PathBuf};
 
-use super::{
-    dir, point_range, read_summary, read_table, PointRange, SweepReport, SweepSummary, SUMMARY_FILE,
+use super::run::finish;
+use super::summary::{
+    read_summary, read_table, SweepReport, SweepSummary, SUMMARY_FILE, TABLE_FILE,
 };
+use super::{dir, point_range, PointRange};
 use crate::error::{Error, Result};
 
 /// Joins the results of shards into `out`: each of `dirs` is a shard's directory, or a
@@ -75,7 +77,7 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<SweepReport> {
                 ),
             });
         }
-        let table = dir.join(super::TABLE_FILE);
+        let table = dir.join(TABLE_FILE);
         let rows = read_table(&table, summary).map_err(|problem| Error::SweepStore {
             path: table.clone(),
             message: problem,
@@ -99,7 +101,7 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<SweepReport> {
     // Locked (and made) only now, so that a refused merge leaves no directory behind.
     let mut warnings = Vec::new();
     let _lock = dir::lock(out, &mut warnings)?;
-    let (summary, files) = super::finish(out, &plan, None, range, pieces)?;
+    let (summary, files) = finish(out, &plan, None, range, pieces)?;
     Ok(SweepReport {
         dir: out.to_path_buf(),
         summary,
