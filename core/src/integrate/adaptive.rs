@@ -31,6 +31,7 @@ use serde::Serialize;
 
 use super::budget::RunBudget;
 use super::event_loop::{self, DenseOutput, EventBody, Found, LoopSetup, Outcome, StepStart};
+use super::monotone::MonotonePieces;
 use crate::floor::FloorMotion;
 use crate::integrate::solution::{Recorder, Solution, SolverStats};
 use crate::integrate::SolverError;
@@ -304,47 +305,22 @@ impl EventBody for Column<'_> {
                 Ok(f(state_at(t)?))
             })
         };
-        let end_state = state_at(t1)?;
-        let (qdot0, qdot1) = (start.y[1], end_state[1]);
-
-        self.peak = None;
-        // Pieces of monotone q: (from, q at from, to, direction of motion).
-        let mut pieces = [(start.t, start.y[0], t1, 0.0); 2];
-        let count = if qdot0 * qdot1 < 0.0 {
-            let t_peak = locate(start.t, t1, &|y| y[1])?;
-            let q_peak = state_at(t_peak)?[0];
-            self.peak = Some((t_peak, q_peak));
-            pieces[0] = (start.t, start.y[0], t_peak, qdot0.signum());
-            pieces[1] = (t_peak, q_peak, t1, qdot1.signum());
-            2
-        } else {
-            let direction = if qdot1 != 0.0 { qdot1 } else { qdot0 };
-            pieces[0].3 = if direction == 0.0 {
-                0.0
-            } else {
-                direction.signum()
-            };
-            1
-        };
-
-        for &(from, q_from, to, direction) in &pieces[..count] {
+        let split = MonotonePieces::of(dense, start, t1)?;
+        let end_state = split.end;
+        self.peak = split.turn;
+        for piece in split.pieces() {
             for &slot in automaton.guards(mode) {
                 let guard = automaton.guard(mode, slot);
-                if guard.direction != direction {
+                if guard.direction != piece.direction {
                     continue;
                 }
-                let q_to = if to == t1 {
-                    end_state[0]
-                } else {
-                    state_at(to)?[0]
-                };
-                if guard.overshoot(q_to) <= 0.0 {
+                if guard.overshoot(piece.q_to) <= 0.0 {
                     continue;
                 }
-                if guard.overshoot(q_from) >= 0.0 {
+                if guard.overshoot(piece.q_from) >= 0.0 {
                     return Ok(Found::Unresolved);
                 }
-                let t = locate(from, to, &|y| guard.overshoot(y[0]))?;
+                let t = locate(piece.from, piece.to, &|y| guard.overshoot(y[0]))?;
                 let qdot = state_at(t)?[1];
                 if guard.direction * qdot <= 0.0 {
                     return Ok(Found::Unresolved);

@@ -7,6 +7,7 @@ mod error;
 pub(crate) mod event_loop;
 pub mod exact;
 mod initial_state;
+pub(crate) mod monotone;
 pub mod newmark;
 mod output_grid;
 mod settings;

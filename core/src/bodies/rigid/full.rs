@@ -14,6 +14,7 @@ use diffsol::{NalgebraMat, OdeBuilder};
 use super::{RigidPhase, RigidState};
 use crate::floor::FloorMotion;
 use crate::integrate::event_loop::{self, DenseOutput, EventBody, Found, Outcome, StepStart};
+use crate::integrate::monotone::MonotonePieces;
 use crate::integrate::{History, OutputGrid, SolverError};
 
 type Result<T> = std::result::Result<T, SolverError>;
@@ -196,47 +197,28 @@ impl EventBody for Rocking<'_> {
             let y = dense.state_at(t)?;
             Ok([y[0], y[1]])
         };
-        let end_state = state_at(t1)?;
-        let (qdot0, qdot1) = (start.y[1], end_state[1]);
-        self.peak = None;
-        // Pieces of monotone q: (from, q at from, to, q at to, direction of motion).
-        let mut pieces = [(start.t, start.y[0], t1, end_state[0], 0.0); 2];
-        let count = if qdot0 * qdot1 < 0.0 {
-            let t_peak = crate::integrate::sign_change::locate(start.t, t1, |t| -> Result<f64> {
-                Ok(state_at(t)?[1])
-            })?;
-            let q_peak = state_at(t_peak)?[0];
-            self.peak = Some((t_peak, q_peak));
-            pieces[0] = (start.t, start.y[0], t_peak, q_peak, qdot0.signum());
-            pieces[1] = (t_peak, q_peak, t1, end_state[0], qdot1.signum());
-            2
-        } else {
-            let direction = if qdot1 != 0.0 { qdot1 } else { qdot0 };
-            pieces[0].4 = if direction == 0.0 {
-                0.0
-            } else {
-                direction.signum()
-            };
-            1
-        };
-        for &(from, q_from, to, q_to, direction) in &pieces[..count] {
-            let crossing = if direction == -side {
+        let split = MonotonePieces::of(dense, start, t1)?;
+        let end_state = split.end;
+        self.peak = split.turn;
+        for piece in split.pieces() {
+            let crossing = if piece.direction == -side {
                 Crossing::Impact
-            } else if direction == side {
+            } else if piece.direction == side {
                 Crossing::Overturn
             } else {
                 continue;
             };
-            if self.overshoot(crossing, side, q_to) <= 0.0 {
+            if self.overshoot(crossing, side, piece.q_to) <= 0.0 {
                 continue;
             }
-            if self.overshoot(crossing, side, q_from) >= 0.0 {
+            if self.overshoot(crossing, side, piece.q_from) >= 0.0 {
                 return Ok(Found::Unresolved);
             }
-            let t = crate::integrate::sign_change::locate(from, to, |t| -> Result<f64> {
-                Ok(self.overshoot(crossing, side, state_at(t)?[0]))
-            })?;
-            if direction * state_at(t)?[1] <= 0.0 {
+            let t =
+                crate::integrate::sign_change::locate(piece.from, piece.to, |t| -> Result<f64> {
+                    Ok(self.overshoot(crossing, side, state_at(t)?[0]))
+                })?;
+            if piece.direction * state_at(t)?[1] <= 0.0 {
                 return Ok(Found::Unresolved);
             }
             self.peak = self.peak.filter(|&(t_peak, _)| t_peak < t);
