@@ -5,6 +5,7 @@ use serde::{Deserialize, Serialize};
 
 use super::Result;
 use crate::base::invalid::InvalidParameter;
+use crate::physics::body::positive;
 use crate::physics::constants::ModeShapeIntegrals;
 
 /// Which rocking equation a block obeys (see the module documentation).
@@ -327,14 +328,7 @@ fn check_geometry(height: f64, width: f64, gravity: f64) -> Result<()> {
         ("rigid.width", width),
         ("rigid.gravity", gravity),
     ] {
-        if !(value.is_finite() && value > 0.0) {
-            return Err(InvalidParameter::new(
-                key,
-                value,
-                "must be a finite number greater than 0",
-            )
-            .into());
-        }
+        positive(key, value)?;
     }
     if width >= height {
         return Err(InvalidParameter::new(

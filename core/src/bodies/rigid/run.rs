@@ -12,6 +12,7 @@ use crate::base::limits::MAX_DURATION;
 use crate::floor::{floor_limit_rule, within_floor_limit, FloorMotion};
 use crate::integrate::budget::RunBudget;
 use crate::integrate::{InitialState, SolverError};
+use crate::physics::body::positive;
 
 /// Points per step at which a resting block checks the floor acceleration against a_up.
 const REST_SAMPLES: usize = 8;
@@ -48,23 +49,12 @@ pub fn simulate_from(
         )
         .into());
     }
-    if !(settings.max_step.is_finite() && settings.max_step > 0.0) {
-        return Err(InvalidParameter::new(
-            "rigid.max_step",
-            settings.max_step,
-            "must be a finite number greater than 0",
-        )
-        .into());
-    }
-    for (key, value) in [("rigid.rtol", settings.rtol), ("rigid.atol", settings.atol)] {
-        if !(value.is_finite() && value > 0.0) {
-            return Err(InvalidParameter::new(
-                key,
-                value,
-                "must be a finite number greater than 0",
-            )
-            .into());
-        }
+    for (key, value) in [
+        ("rigid.max_step", settings.max_step),
+        ("rigid.rtol", settings.rtol),
+        ("rigid.atol", settings.atol),
+    ] {
+        positive(key, value)?;
     }
     let limit = block.overturning_displacement();
     if !(initial.q.is_finite() && initial.q.abs() < limit) {
