@@ -91,7 +91,11 @@ fn the_output_tables_list_exactly_the_columns_the_writers_write() {
     use flexrock_core::analysis::sweep::find_min::MinimumOutcome;
     use flexrock_core::analysis::sweep::row::{RigidMinima, Row, RunOutcome, Scales};
     let text = page("outputs.md");
-    let tables: [(&str, &[&str]); 10] = [
+    let tables: [(&str, &[&str]); 11] = [
+        (
+            "columns: rigid events.csv",
+            &flexrock_core::tables::rigid_results::RIGID_EVENT_COLUMNS,
+        ),
         (
             "columns: criteria.csv",
             &flexrock::commands::criteria::CRITERIA_COLUMNS,
@@ -251,6 +255,8 @@ fn the_model_file_tables_list_every_key_of_the_schema() {
             end: Some(1.0),
             tail: Some(1.0),
             dt: Some(1.0),
+            ratio: Some(1.0),
+            vertical: None,
         },
         simulation: SimulationSection {
             duration: Some(1.0),

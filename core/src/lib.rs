@@ -126,4 +126,6 @@ pub use model::{Model, Overrides};
 pub use physics::automaton::Automaton;
 pub use physics::body::Body;
 pub use physics::constants::Constants;
-pub use simulate::{properties, simulate, simulate_peaks, simulate_with, Properties, Provenance};
+pub use simulate::{
+    properties, simulate, simulate_peaks, simulate_rigid, simulate_with, Properties, Provenance,
+};

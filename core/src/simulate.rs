@@ -69,6 +69,7 @@ pub fn simulate_peaks(model: &Model) -> Result<Solution> {
 }
 
 fn solve(model: &Model, settings: &SolverSettings, history: History) -> Result<Solution> {
+    refuse_vertical(model, "the elastic body's solvers")?;
     let automaton = Automaton::new(&model.constants);
     let (floor, initial, duration) = (model.floor.as_ref(), model.initial, model.duration);
     let solution = match settings {
@@ -81,6 +82,38 @@ fn solve(model: &Model, settings: &SolverSettings, history: History) -> Result<S
         SolverSettings::Exact(s) => exact::solve(&automaton, floor, initial, duration, s, history),
     };
     Ok(solution?)
+}
+
+/// Runs the rigid block `block` alone on the floor of `model` (both its motions), from rest,
+/// over the model's duration, with the block's default settings.
+pub fn simulate_rigid(
+    model: &Model,
+    block: &crate::bodies::rigid::RigidBlock,
+) -> Result<crate::bodies::rigid::RigidOutcome> {
+    Ok(crate::bodies::rigid::simulate_shaken(
+        block,
+        &model.shaking(),
+        crate::integrate::InitialState { q: 0.0, qdot: 0.0 },
+        model.duration,
+        &crate::bodies::rigid::RigidSettings::for_block(block),
+    )?)
+}
+
+/// Refuses a model with vertical floor motion for `what`, which does not take it: the rigid
+/// block alone does so far.
+pub fn refuse_vertical(model: &Model, what: &str) -> Result<()> {
+    match &model.vertical {
+        None => Ok(()),
+        Some(v) => Err(crate::error::Error::invalid(
+            "excitation.vertical",
+            format!("kind = \"{}\"", v.kind()),
+            &format!(
+                "{what} do not take vertical floor motion yet; Housner's rigid block does \
+                 (`flexrock rigid`, flexrock.rigid_block in Python): leave [excitation.vertical] \
+                 out for the elastic body"
+            ),
+        )),
+    }
 }
 
 /// The head of every summary flexrock writes (summary.json, compare.json, convergence.json,

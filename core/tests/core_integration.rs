@@ -22,6 +22,7 @@ mod random_models;
 mod recorded_motion;
 mod rigid;
 mod rigid_forms;
+mod rigid_vertical;
 mod rocking_choices;
 mod row;
 mod row_compliant;

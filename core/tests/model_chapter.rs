@@ -77,7 +77,7 @@ fn every_cited_section_and_anchor_exists_and_nothing_cites_a_missing_model_descr
     let sections = sections();
     let expected: BTreeSet<String> = (1..=10)
         .map(|n| n.to_string())
-        .chain(["7a", "7b", "7c"].map(String::from))
+        .chain(["7a", "7b", "7c", "7d"].map(String::from))
         .collect();
     assert_eq!(sections, expected, "the chapter's numbered sections");
     let anchors = anchors();

@@ -103,6 +103,10 @@ pub struct FemAnalysis {
 /// `simulation.q0` is applied as a rigid tilt about the toe (q = q0, all of it rocking), and
 /// `simulation.qdot0` must be 0.
 pub fn analyse(model: &Model, setup: &FemSetup) -> Result<FemAnalysis> {
+    crate::simulate::refuse_vertical(
+        model,
+        "the finite element analysis and the SDOF runs beside it",
+    )?;
     if model.initial.qdot != 0.0 {
         return Err(Error::invalid(
             "simulation.qdot0",

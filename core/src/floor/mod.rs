@@ -11,6 +11,8 @@ mod paper_sine;
 mod pulse;
 pub mod record;
 mod recorded;
+mod scaled;
+mod shaking;
 
 pub use closed_form::{ClosedForm, Shape, MAX_DEGREE};
 pub use free::Free;
@@ -23,3 +25,5 @@ pub use motion::FloorMotion;
 pub use paper_sine::PaperSine;
 pub use pulse::{PulseShape, Ricker, SinePulse};
 pub use recorded::RecordedMotion;
+pub use scaled::Scaled;
+pub use shaking::{LiftOff, Shaking};

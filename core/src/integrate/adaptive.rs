@@ -181,6 +181,7 @@ pub fn solve(
     let run = LoopSetup {
         method: settings.method.name(),
         floor,
+        vertical: None,
         duration,
         history,
         output_dt: settings.output_dt,

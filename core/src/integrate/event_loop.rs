@@ -120,6 +120,8 @@ pub(crate) struct LoopSetup<'r> {
     pub method: &'r str,
     /// The floor motion: its breakpoints are stop times.
     pub floor: &'r dyn FloorMotion,
+    /// The floor's vertical motion, if any: its breakpoints are stop times too.
+    pub vertical: Option<&'r dyn FloorMotion>,
     /// The run is over [0, duration].
     pub duration: f64,
     /// Which history is kept.
@@ -216,14 +218,20 @@ where
     // The run starts where the solver starts (0, or where an earlier stretch of the body's
     // motion handed over).
     let begin = solver.state().t;
-    // Stop times: the floor motion's breakpoints inside (begin, end), then the end.
+    // Stop times: the floor motions' breakpoints inside (begin, end), then the end.
+    let vertical = run.vertical.map_or(&[][..], |v| v.breakpoints());
     let mut stops: Vec<f64> = run
         .floor
         .breakpoints()
         .iter()
+        .chain(vertical)
         .copied()
         .filter(|&b| b > begin && !at_stop(b, end) && b < end)
         .collect();
+    if !vertical.is_empty() {
+        stops.sort_by(f64::total_cmp);
+        stops.dedup();
+    }
     stops.push(end);
     let mut stop_index = 0;
     // diffsol takes a stop time within 100 ulps of its first step for the current time (and
@@ -333,7 +341,7 @@ where
                 if matches!(reason, OdeSolverStopReason::TstopReached) || at_stop(step_end, stop) {
                     snap_to_stop(&mut solver, stop, step_end - start.t);
                     let now = solver.state().t;
-                    if run.floor.jumps_at(stop) {
+                    if run.floor.jumps_at(stop) || run.vertical.is_some_and(|v| v.jumps_at(stop)) {
                         // The floor jumps here: restart the method from the state, with the
                         // derivative of the new floor value, as at an event. BDF's history
                         // across the jump would otherwise ask for steps below the minimum at

@@ -5,7 +5,7 @@
 use std::path::{Path, PathBuf};
 
 use super::body_section::{body_from_section, check_stands_up};
-use super::excitation_section::floor_from_section;
+use super::excitation_section::{floor_from_section, vertical_from_section};
 use super::fem_section::{self, FemSetup};
 use super::overrides::{Overrides, DT_WITHOUT_NEWMARK};
 use super::read::{parse_model_text, read_model_text, MODEL_TEXT};
@@ -15,7 +15,7 @@ use super::simulation_section::{initial_from_section, run_duration};
 use super::solver_section::{self, check_rtol, newmark_from_section, solver_from_section};
 use super::RecordCache;
 use crate::error::{Error, Result};
-use crate::floor::FloorMotion;
+use crate::floor::{FloorMotion, Shaking};
 use crate::integrate::adaptive::{AdaptiveMethod, AdaptiveSettings};
 use crate::integrate::newmark::NewmarkSettings;
 use crate::integrate::{History, InitialState, SolverSettings};
@@ -32,8 +32,10 @@ pub struct Model {
     pub body: Body,
     /// The constants derived from the body.
     pub constants: Constants,
-    /// The floor motion.
+    /// The floor motion (horizontal).
     pub floor: Box<dyn FloorMotion>,
+    /// The floor's vertical acceleration, upwards positive, if `[excitation.vertical]` gives one.
+    pub vertical: Option<Box<dyn FloorMotion>>,
     /// The initial state.
     pub initial: InitialState,
     /// Simulated time, s.
@@ -185,7 +187,17 @@ impl Model {
         let constants = records.constants(&body)?;
         check_stands_up(&file.body, &body, &constants)?;
         let (floor, natural_duration) = floor_from_section(&file.excitation, base_dir, records)?;
+        let (vertical, natural_duration) =
+            match vertical_from_section(&file.excitation, base_dir, records)? {
+                None => (None, natural_duration),
+                // A record pair runs for the longer of its two records.
+                Some((v, length)) => (
+                    Some(v),
+                    natural_duration.map(|h| h.max(length.unwrap_or(h))),
+                ),
+            };
         let duration = run_duration(file.simulation.duration, natural_duration, &file.excitation)?;
+        Shaking::new(floor.as_ref(), vertical.as_deref()).check_contact(body.gravity, duration)?;
         let initial = initial_from_section(&file.simulation, &body)?;
         let solver =
             solver_from_section(&file.solver, duration, constants.omega, body.width, history)?;
@@ -195,10 +207,16 @@ impl Model {
             body,
             constants,
             floor,
+            vertical,
             initial,
             duration,
             solver,
         })
+    }
+
+    /// The floor's horizontal and vertical motions together.
+    pub fn shaking(&self) -> Shaking<'_> {
+        Shaking::new(self.floor.as_ref(), self.vertical.as_deref())
     }
 
     /// The finite element setup of the `[fem]` section (or its defaults) with command-line

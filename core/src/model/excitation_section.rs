@@ -203,10 +203,11 @@ enum Key {
     End,
     Tail,
     Dt,
+    Ratio,
 }
 
 impl Key {
-    const ALL: [Key; 14] = [
+    const ALL: [Key; 15] = [
         Key::Amplitude,
         Key::Period,
         Key::Ramp,
@@ -221,6 +222,7 @@ impl Key {
         Key::End,
         Key::Tail,
         Key::Dt,
+        Key::Ratio,
     ];
 
     fn name(self) -> &'static str {
@@ -239,6 +241,7 @@ impl Key {
             Key::End => "end",
             Key::Tail => "tail",
             Key::Dt => "dt",
+            Key::Ratio => "ratio",
         }
     }
 
@@ -261,6 +264,8 @@ impl Key {
             end,
             tail,
             dt,
+            ratio,
+            vertical: _,
         } = s;
         let number = |x: &Option<f64>| x.map(Given::Number);
         fn text(x: &Option<String>) -> Option<Given<'_>> {
@@ -281,6 +286,7 @@ impl Key {
             Key::End => number(end),
             Key::Tail => number(tail),
             Key::Dt => number(dt),
+            Key::Ratio => number(ratio),
         }
     }
 }
@@ -314,20 +320,27 @@ pub(super) fn floor_from_section(
     base_dir: &Path,
     records: &RecordCache,
 ) -> Result<(Box<dyn FloorMotion>, Option<f64>)> {
+    let kinds = || {
+        let kinds: Vec<String> = Kind::ALL
+            .iter()
+            .map(|k| format!("\"{}\"", k.name()))
+            .collect();
+        format!("must be one of {}", kinds.join(", "))
+    };
+    if s.kind.is_empty() {
+        return Err(Error::invalid("excitation.kind", "(missing)", &kinds()));
+    }
+    if s.kind == RATIO {
+        return Err(Error::invalid(
+            "excitation.kind",
+            format!("\"{RATIO}\""),
+            "only the vertical motion, [excitation.vertical], can be a ratio of the horizontal one",
+        ));
+    }
     let kind = Kind::ALL
         .into_iter()
         .find(|k| k.name() == s.kind)
-        .ok_or_else(|| {
-            let kinds: Vec<String> = Kind::ALL
-                .iter()
-                .map(|k| format!("\"{}\"", k.name()))
-                .collect();
-            Error::invalid(
-                "excitation.kind",
-                format!("\"{}\"", s.kind),
-                &format!("must be one of {}", kinds.join(", ")),
-            )
-        })?;
+        .ok_or_else(|| Error::invalid("excitation.kind", format!("\"{}\"", s.kind), &kinds()))?;
     for key in Key::ALL {
         let wanted = kind.keys().contains(&key);
         match key.given(s) {
@@ -474,6 +487,88 @@ pub(super) fn floor_from_section(
         Kind::Free => Box::new(Free),
     };
     finish_analytic(floor, amplitude, s, None)
+}
+
+/// A floor motion and its natural length, s, if it has one.
+type Motion = (Box<dyn FloorMotion>, Option<f64>);
+
+/// The kind of a vertical motion given as a ratio of the horizontal one.
+const RATIO: &str = "ratio";
+
+/// The floor's vertical motion of `[excitation.vertical]` in the excitation section `s`, if it
+/// has one, and its natural length. A ratio of 0 is no vertical motion at all. The vertical
+/// table takes the horizontal one's kinds and keys (its messages name them
+/// `excitation.vertical.KEY`), or `ratio` alone: a_v(t) = ratio x a(t).
+pub(super) fn vertical_from_section(
+    s: &ExcitationSection,
+    base_dir: &Path,
+    records: &RecordCache,
+) -> Result<Option<Motion>> {
+    let Some(v) = s.vertical.as_deref() else {
+        return Ok(None);
+    };
+    if v.vertical.is_some() {
+        return Err(Error::invalid(
+            "excitation.vertical.vertical",
+            "(a table)",
+            "the vertical motion has no vertical motion of its own",
+        ));
+    }
+    if v.kind == RATIO || (v.kind.is_empty() && v.ratio.is_some()) {
+        if let Some(key) = Key::ALL
+            .into_iter()
+            .find(|&k| k != Key::Ratio && k.given(v).is_some())
+        {
+            return Err(Error::invalid(
+                &format!("excitation.vertical.{}", key.name()),
+                key.given(v).map(Given::text).unwrap_or_default(),
+                &format!("not a parameter of kind = \"{RATIO}\" (which takes ratio alone)"),
+            ));
+        }
+        let Some(ratio) = v.ratio else {
+            return Err(Error::invalid(
+                "excitation.vertical.ratio",
+                "(missing)",
+                &format!("required for kind = \"{RATIO}\""),
+            ));
+        };
+        if !ratio.is_finite() {
+            return Err(Error::invalid(
+                "excitation.vertical.ratio",
+                ratio,
+                "must be a finite number (a_v = ratio x a, upwards positive)",
+            ));
+        }
+        if ratio == 0.0 {
+            return Ok(None);
+        }
+        // The horizontal motion built again, to be scaled.
+        let (horizontal, _) = floor_from_section(s, base_dir, records)?;
+        let peak = ratio.abs() * horizontal.peak_acceleration();
+        if !within_floor_limit(peak) {
+            return Err(Error::invalid(
+                "excitation.vertical.ratio",
+                ratio,
+                &floor_limit_rule(peak),
+            ));
+        }
+        let scaled = crate::floor::Scaled {
+            motion: horizontal,
+            factor: ratio,
+        };
+        return Ok(Some((Box::new(scaled), None)));
+    }
+    let named = |e: Error| match e {
+        Error::InvalidParameter { key, value, rule } => Error::InvalidParameter {
+            key: key.replacen("excitation.", "excitation.vertical.", 1),
+            value,
+            rule,
+        },
+        other => other,
+    };
+    floor_from_section(v, base_dir, records)
+        .map(Some)
+        .map_err(named)
 }
 
 /// An analytic floor motion, checked against the floor limit, with its natural length.

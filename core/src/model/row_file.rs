@@ -263,6 +263,14 @@ impl RowModel {
             Some(mu) => row.with_friction(mu)?,
             None => row,
         };
+        if excitation.vertical.is_some() {
+            return Err(Error::invalid(
+                "excitation.vertical",
+                "(a table)",
+                "a row of columns does not take vertical floor motion yet: leave \
+                 [excitation.vertical] out of a row model",
+            ));
+        }
         let (floor, natural_duration) = floor_from_section(&excitation, base_dir, records)?;
         let duration = run_duration(
             duration.or(simulation.duration),

@@ -159,7 +159,9 @@ impl BodySection {
 #[serde(deny_unknown_fields)]
 /// The `[excitation]` table: the floor motion.
 pub struct ExcitationSection {
-    /// Which floor motion, e.g. "paper-sine", "sine-pulse", "ricker" or "record".
+    /// Which floor motion, e.g. "paper-sine", "sine-pulse", "ricker" or "record"; in
+    /// `[excitation.vertical]` also "ratio", the kind when only `ratio` is given.
+    #[serde(default, skip_serializing_if = "String::is_empty")]
     pub kind: String,
     /// A, amplitude of the floor acceleration, m/s^2.
     pub amplitude: Option<f64>,
@@ -190,6 +192,11 @@ pub struct ExcitationSection {
     pub tail: Option<f64>,
     /// record: sampling interval of a one-column CSV file, s.
     pub dt: Option<f64>,
+    /// ratio (`[excitation.vertical]` only): a_v(t) = ratio x the horizontal a(t).
+    pub ratio: Option<f64>,
+    /// The floor's vertical acceleration (upwards positive), a table of the same keys.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub vertical: Option<Box<ExcitationSection>>,
 }
 
 #[derive(Debug, Clone, Default, Deserialize, Serialize)]

@@ -95,23 +95,40 @@ impl Setting {
     /// Puts the value into a model file's table, creating the section if the file has none.
     /// Whether the key exists is left to the schema, when the table is read.
     pub fn apply(&self, table: &mut toml::Table) -> Result<()> {
-        let (section, name) = self.key.split_once('.').unwrap_or(("", &self.key));
-        let entry = table
-            .entry(section.to_string())
-            .or_insert_with(|| toml::Value::Table(toml::Table::new()));
-        match entry {
-            toml::Value::Table(section_table) => {
-                section_table.insert(name.to_string(), self.value.clone());
-                Ok(())
+        // `excitation.vertical.NAME` is a key of the excitation's own table `vertical`.
+        let (tables, name): (Vec<&str>, &str) = match self.key.strip_prefix(VERTICAL_PREFIX) {
+            Some(name) => (vec!["excitation", "vertical"], name),
+            None => {
+                let (section, name) = self.key.split_once('.').unwrap_or(("", &self.key));
+                (vec![section], name)
             }
-            _ => Err(Error::invalid(
-                &self.key,
-                self.value_text(),
-                &format!("[{section}] is not a table in the model file"),
-            )),
+        };
+        let mut current = table;
+        for (depth, part) in tables.iter().enumerate() {
+            let entry = current
+                .entry(part.to_string())
+                .or_insert_with(|| toml::Value::Table(toml::Table::new()));
+            current = match entry {
+                toml::Value::Table(inner) => inner,
+                _ => {
+                    return Err(Error::invalid(
+                        &self.key,
+                        self.value_text(),
+                        &format!(
+                            "[{}] is not a table in the model file",
+                            tables[..=depth].join(".")
+                        ),
+                    ))
+                }
+            };
         }
+        current.insert(name.to_string(), self.value.clone());
+        Ok(())
     }
 }
+
+/// The start of a key of the floor's vertical motion, `[excitation.vertical]`.
+pub const VERTICAL_PREFIX: &str = "excitation.vertical.";
 
 /// `path` with `.` dropped and each `..` undoing the directory before it.
 /// The directory the model file `model` (relative to `here`) reads its record paths from:
@@ -190,11 +207,13 @@ pub fn check_key(key: &str) -> std::result::Result<(), String> {
     let parts: Vec<&str> = key.split('.').collect();
     match parts.as_slice() {
         [section, name] if word(section) && word(name) => Ok(()),
+        ["excitation", "vertical", name] if word(name) => Ok(()),
         ["row", name, i] if word(name) && index(i) => Ok(()),
         ["column", i, name] if index(i) && word(name) => Ok(()),
         _ => Err(format!(
             "the key \"{key}\" must be section.name, e.g. excitation.amplitude or \
-             body.youngs_modulus (in a row model also row.gaps.I or column.I.name, I from 0)"
+             body.youngs_modulus, or excitation.vertical.name (in a row model also row.gaps.I \
+             or column.I.name, I from 0)"
         )),
     }
 }

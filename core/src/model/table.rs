@@ -16,7 +16,7 @@ use super::schema::{
     DEFAULT_ATOL, DEFAULT_DAMPING_RATIO, DEFAULT_DEPTH, DEFAULT_GRAVITY, DEFAULT_OUTPUT_DT,
     DEFAULT_RTOL,
 };
-use super::setting::{check_key, Setting};
+use super::setting::{check_key, Setting, VERTICAL_PREFIX};
 use super::solver_section::{
     default_method, DEFAULT_NEWMARK_BETA, DEFAULT_NEWMARK_DT, DEFAULT_NEWMARK_GAMMA,
 };
@@ -63,7 +63,7 @@ pub fn schema_keys() -> Vec<String> {
             damping_while_rocking: Some(true),
         },
         excitation: ExcitationSection {
-            kind: String::new(),
+            kind: "listed".into(),
             amplitude: None,
             period: None,
             ramp: None,
@@ -78,6 +78,8 @@ pub fn schema_keys() -> Vec<String> {
             end: None,
             tail: None,
             dt: None,
+            ratio: None,
+            vertical: None,
         },
         simulation: SimulationSection::default(),
         solver: SolverSection::default(),
@@ -93,6 +95,14 @@ pub fn schema_keys() -> Vec<String> {
             }
         }
     }
+    // The vertical motion's table takes the excitation's keys.
+    let vertical: Vec<String> = keys
+        .iter()
+        .filter_map(|k| k.strip_prefix("excitation."))
+        .map(|name| format!("{VERTICAL_PREFIX}{name}"))
+        .collect();
+    keys.extend(vertical);
+    keys.sort();
     keys
 }
 
@@ -154,10 +164,18 @@ pub fn value_in_effect(table: &toml::Table, key: &str) -> Result<Option<toml::Va
             &format!("not a key of the model file{hint}"),
         ));
     }
-    let (section, name) = key.split_once('.').unwrap_or(("", key));
-    let given = table
-        .get(section)
-        .and_then(toml::Value::as_table)
+    let (tables, name) = match key.strip_prefix(VERTICAL_PREFIX) {
+        Some(name) => (vec!["excitation", "vertical"], name),
+        None => {
+            let (section, name) = key.split_once('.').unwrap_or(("", key));
+            (vec![section], name)
+        }
+    };
+    let given = tables
+        .iter()
+        .try_fold(table, |t, part| {
+            t.get(*part).and_then(toml::Value::as_table)
+        })
         .and_then(|t| t.get(name))
         .cloned();
     if key == "solver.method" && given.is_none() {
@@ -197,8 +215,9 @@ mod tests {
         ] {
             assert!(keys.iter().any(|k| k == key), "{key} in {keys:?}");
         }
-        // 15 body, 15 excitation, 3 simulation, 8 solver, 11 fem fields.
-        assert_eq!(keys.len(), 15 + 15 + 3 + 8 + 11, "{keys:?}");
+        // 15 body, 16 excitation and its vertical table's 16, 3 simulation, 8 solver, 11 fem
+        // fields.
+        assert_eq!(keys.len(), 15 + 2 * 16 + 3 + 8 + 11, "{keys:?}");
         // Every default belongs to a key of the schema.
         for key in &keys {
             let _ = default_value(key);

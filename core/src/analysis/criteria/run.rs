@@ -224,8 +224,7 @@ fn rigid_minimum(
         let model = at(value)?;
         let b = &model.body;
         let block = RigidBlock::housner(b.height, b.width, b.gravity)?.with_form(form);
-        let out =
-            crate::bodies::rigid::simulate_block(&block, model.floor.as_ref(), model.duration)?;
+        let out = crate::simulate::simulate_rigid(&model, &block)?;
         Ok(find_min::Trial {
             overturned: out.overturned,
             t_overturn: out.t_overturn,

@@ -873,11 +873,7 @@ impl Sweep {
                         let model = self.model(&at(value))?;
                         let b = &model.body;
                         let block = options.apply(block(b.height, b.width, b.gravity)?)?;
-                        let out = crate::bodies::rigid::simulate_block(
-                            &block,
-                            model.floor.as_ref(),
-                            model.duration,
-                        )?;
+                        let out = crate::simulate::simulate_rigid(&model, &block)?;
                         Ok(find_min::Trial {
                             overturned: out.overturned,
                             t_overturn: out.t_overturn,
@@ -1059,7 +1055,11 @@ fn check_kinds_take(
             )
         }));
     for (name, key, values) in keys {
-        let Some(field) = key.strip_prefix("excitation.").filter(|f| *f != "kind") else {
+        // The vertical motion's keys are its own table's business.
+        let Some(field) = key
+            .strip_prefix("excitation.")
+            .filter(|f| *f != "kind" && !f.starts_with("vertical."))
+        else {
             continue;
         };
         let taken: Vec<(&str, Vec<&str>)> = kinds

@@ -1,5 +1,6 @@
-//! Housner's full equation of a rocking block, integrated adaptively: each stretch of rocking is
-//! a run of diffsol's Tsit45 method in the event loop every diffsol run shares
+//! The rocking block's equation integrated adaptively (Housner's full equation, and the
+//! small-angle one under vertical floor motion): each stretch of rocking is a run of diffsol's
+//! Tsit45 method in the event loop every diffsol run shares
 //! ([`crate::integrate::event_loop`]), to the tolerance of [`RigidSettings`](super::RigidSettings).
 //!
 //! A stretch starts where the block lifts off (or where a run starts it rocking) and ends when
@@ -20,38 +21,90 @@ use crate::integrate::{History, OutputGrid, SolverError};
 type Result<T> = std::result::Result<T, SolverError>;
 type Matrix = NalgebraMat<f64>;
 
-/// The method's name in messages.
-const METHOD: &str = "rigid full equation (tsit45)";
-
-/// The full equation in q = theta H units: q'' = -H p^2 [sin(s alpha - q/H) + (a/g) cos(s alpha
-/// - q/H)], s the side the block rocks on.
-#[derive(Debug, Clone, Copy)]
-pub(super) struct FullEquation {
-    /// H, m.
-    pub height: f64,
-    /// alpha = atan(B/H), rad.
-    pub alpha: f64,
+/// The rocking equation in q = theta H units, integrated adaptively: Housner's full equation,
+/// or the small-angle one where the floor also moves vertically (its propagator is exact only
+/// for constant gravity). The vertical acceleration a_v multiplies gravity by 1 + a_v/g.
+#[derive(Clone, Copy)]
+pub(super) struct RockingEquation<'a> {
+    /// Which form, with its numbers.
+    pub restoring: Restoring,
     /// g, m/s^2.
     pub gravity: f64,
-    /// H p^2, m/s^2.
-    pub scale: f64,
-    /// Relative and absolute (m) tolerances of the integration.
+    /// The floor's vertical acceleration, upwards positive, if any.
+    pub vertical: Option<&'a dyn FloorMotion>,
+    /// Relative tolerance of the integration.
     pub rtol: f64,
     /// Absolute tolerance, m.
     pub atol: f64,
 }
 
-impl FullEquation {
-    /// q'' rocking on `side` at q under the floor acceleration `a`.
-    fn acceleration(&self, side: f64, q: f64, a: f64) -> f64 {
-        let angle = side * self.alpha - q / self.height;
-        -self.scale * (angle.sin() + a / self.gravity * angle.cos())
+/// The restoring term of a form of the equation.
+#[derive(Debug, Clone, Copy)]
+pub(super) enum Restoring {
+    /// q'' = -H p^2 [f sin(s alpha - q/H) + (a/g) cos(s alpha - q/H)], s the side the block
+    /// rocks on and f = 1 + a_v/g.
+    Full {
+        /// H, m.
+        height: f64,
+        /// alpha = atan(B/H), rad.
+        alpha: f64,
+        /// H p^2, m/s^2.
+        scale: f64,
+    },
+    /// q'' = f k^2 (q - s B) - (3/2) a.
+    SmallAngle {
+        /// k^2 = 3 g/(2 H), 1/s^2.
+        k2: f64,
+        /// B, m.
+        width: f64,
+    },
+}
+
+impl RockingEquation<'_> {
+    /// The method's name in messages.
+    fn method(&self) -> &'static str {
+        match self.restoring {
+            Restoring::Full { .. } => "rigid full equation (tsit45)",
+            Restoring::SmallAngle { .. } => "rigid small-angle equation (tsit45)",
+        }
     }
 
-    /// d q''/dq rocking on `side` at q under the floor acceleration `a`.
-    fn stiffness(&self, side: f64, q: f64, a: f64) -> f64 {
-        let angle = side * self.alpha - q / self.height;
-        self.scale / self.height * (angle.cos() - a / self.gravity * angle.sin())
+    /// 1 + a_v(t)/g.
+    fn gravity_factor(&self, t: f64) -> f64 {
+        self.vertical
+            .map_or(1.0, |v| 1.0 + v.acceleration(t) / self.gravity)
+    }
+
+    /// q'' rocking on `side` at q at time t under the horizontal floor acceleration `a`.
+    fn acceleration(&self, side: f64, q: f64, t: f64, a: f64) -> f64 {
+        let f = self.gravity_factor(t);
+        match self.restoring {
+            Restoring::Full {
+                height,
+                alpha,
+                scale,
+            } => {
+                let angle = side * alpha - q / height;
+                -scale * (f * angle.sin() + a / self.gravity * angle.cos())
+            }
+            Restoring::SmallAngle { k2, width } => f * k2 * (q - side * width) - 1.5 * a,
+        }
+    }
+
+    /// d q''/dq rocking on `side` at q at time t under the horizontal floor acceleration `a`.
+    fn stiffness(&self, side: f64, q: f64, t: f64, a: f64) -> f64 {
+        let f = self.gravity_factor(t);
+        match self.restoring {
+            Restoring::Full {
+                height,
+                alpha,
+                scale,
+            } => {
+                let angle = side * alpha - q / height;
+                scale / height * (f * angle.cos() - a / self.gravity * angle.sin())
+            }
+            Restoring::SmallAngle { k2, .. } => f * k2,
+        }
     }
 }
 
@@ -88,14 +141,15 @@ pub(super) trait Stretch {
 pub(super) fn rock(
     run: &mut dyn Stretch,
     floor: &dyn FloorMotion,
-    full: &FullEquation,
+    full: &RockingEquation<'_>,
     until: f64,
 ) -> Result<()> {
+    let method = full.method();
     let start = run.state();
     let side = Cell::new(start.phase.side());
     let (t0, q0, v0) = (start.t, start.q, start.qdot);
     let failed = |t: f64, e: &dyn std::fmt::Display| SolverError::Failed {
-        method: METHOD.to_string(),
+        method: method.to_string(),
         t,
         message: e.to_string(),
     };
@@ -106,11 +160,11 @@ pub(super) fn rock(
         .rhs_implicit(
             |x, _p, t, y| {
                 y[0] = x[1];
-                y[1] = full.acceleration(side.get(), x[0], floor.acceleration(t));
+                y[1] = full.acceleration(side.get(), x[0], t, floor.acceleration(t));
             },
             |x, _p, t, v, y| {
                 y[0] = v[1];
-                y[1] = full.stiffness(side.get(), x[0], floor.acceleration(t)) * v[0];
+                y[1] = full.stiffness(side.get(), x[0], t, floor.acceleration(t)) * v[0];
             },
         )
         .init(
@@ -125,8 +179,9 @@ pub(super) fn rock(
     problem.ode_options.min_timestep = problem.ode_options.min_timestep.min(1e-3 * (until - t0));
     let solver = problem.tsit45().map_err(|e| failed(t0, &e))?;
     let stretch = event_loop::LoopSetup {
-        method: METHOD,
+        method,
         floor,
+        vertical: full.vertical,
         duration: until,
         history: History::PeaksOnly,
         output_dt: until - t0,
@@ -153,7 +208,7 @@ pub(super) fn rock(
 struct Rocking<'r> {
     run: &'r mut dyn Stretch,
     floor: &'r dyn FloorMotion,
-    full: &'r FullEquation,
+    full: &'r RockingEquation<'r>,
     /// The side it rocks on, +1 or -1, shared with the solver's right-hand side.
     side: &'r Cell<f64>,
     /// The root of q' (a peak of |q|: time and q) the last step found before its first event.
@@ -179,7 +234,7 @@ impl EventBody for Rocking<'_> {
         dy[0] = y[1];
         dy[1] = self
             .full
-            .acceleration(self.side.get(), y[0], self.floor.acceleration(t));
+            .acceleration(self.side.get(), y[0], t, self.floor.acceleration(t));
     }
 
     /// Looks for the first crossing of the step [start, t1]. The step is split where q' changes

@@ -124,7 +124,7 @@ mod small_angle;
 
 pub use block::{check_restitution, RigidBlock, RigidForm, RigidOverturning};
 pub use outcome::{RigidEvent, RigidEventKind, RigidOutcome, RigidPhase, RigidState};
-pub use run::{simulate_block, simulate_from};
+pub use run::{simulate_block, simulate_from, simulate_shaken};
 pub use settings::{
     RigidSettings, DEFAULT_FULL_ATOL_FRACTION, DEFAULT_FULL_RTOL, DEFAULT_MAX_STEP,
     DEFAULT_STEP_FRACTION, ZENO_TIME,

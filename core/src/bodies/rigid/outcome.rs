@@ -17,6 +17,16 @@ pub enum RigidPhase {
 }
 
 impl RigidPhase {
+    /// The phase's name in tables, e.g. "rock-right".
+    pub fn name(self) -> &'static str {
+        match self {
+            RigidPhase::Rest => "rest",
+            RigidPhase::RockRight => "rock-right",
+            RigidPhase::RockLeft => "rock-left",
+            RigidPhase::Overturned => "overturned",
+        }
+    }
+
     /// +1 rocking right, -1 rocking left, 0 otherwise.
     pub(super) fn side(self) -> f64 {
         match self {
@@ -49,6 +59,18 @@ pub enum RigidEventKind {
     /// The block overturned: |q| reached the overturning displacement, or, by
     /// [`RigidOverturning::CannotReturn`](super::RigidOverturning::CannotReturn), it can no longer come back.
     Overturn,
+}
+
+impl RigidEventKind {
+    /// The event's name in tables, e.g. "impact".
+    pub fn name(self) -> &'static str {
+        match self {
+            RigidEventKind::Uplift => "uplift",
+            RigidEventKind::Impact => "impact",
+            RigidEventKind::Settle => "settle",
+            RigidEventKind::Overturn => "overturn",
+        }
+    }
 }
 
 /// One event.

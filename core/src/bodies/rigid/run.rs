@@ -1,7 +1,7 @@
 //! A rigid-block run: the block at rest until the floor lifts it, its stretches of rocking,
 //! impacts, chatter and overturning.
 
-use super::full::{self, FullEquation, Stretch};
+use super::full::{self, Restoring, RockingEquation, Stretch};
 use super::small_angle::Propagator;
 use super::{
     Result, RigidBlock, RigidEvent, RigidEventKind, RigidForm, RigidOutcome, RigidOverturning,
@@ -9,7 +9,7 @@ use super::{
 };
 use crate::base::invalid::InvalidParameter;
 use crate::base::limits::MAX_DURATION;
-use crate::floor::{floor_limit_rule, within_floor_limit, FloorMotion};
+use crate::floor::{floor_limit_rule, within_floor_limit, FloorMotion, Shaking};
 use crate::integrate::budget::RunBudget;
 use crate::integrate::{InitialState, SolverError};
 use crate::physics::body::positive;
@@ -37,6 +37,26 @@ pub fn simulate_block(
 pub fn simulate_from(
     block: &RigidBlock,
     floor: &dyn FloorMotion,
+    initial: InitialState,
+    duration: f64,
+    settings: &RigidSettings,
+) -> Result<RigidOutcome> {
+    simulate_shaken(
+        block,
+        &Shaking::new(floor, None),
+        initial,
+        duration,
+        settings,
+    )
+}
+
+/// [`simulate_from`] on a floor that may also move vertically: gravity is then g + a_v(t) in
+/// the block's equation, in its uplift acceleration and in its pull towards the floor, and the
+/// small-angle form is integrated adaptively as the full one is. A vertical motion that
+/// reaches -g is refused.
+pub fn simulate_shaken(
+    block: &RigidBlock,
+    shaking: &Shaking<'_>,
     initial: InitialState,
     duration: f64,
     settings: &RigidSettings,
@@ -72,24 +92,31 @@ pub fn simulate_from(
             InvalidParameter::new("rigid.qdot0", initial.qdot, "must be a finite number").into(),
         );
     }
-    let peak = floor.peak_acceleration();
+    let peak = shaking.horizontal().peak_acceleration();
     if !within_floor_limit(peak) {
         return Err(InvalidParameter::new(
             "rigid floor motion",
-            floor.kind(),
+            shaking.horizontal().kind(),
             &floor_limit_rule(peak),
         )
         .into());
     }
-    BlockRun::new(block, floor, initial, duration, settings).run()
+    shaking.check_contact(block.gravity(), duration)?;
+    BlockRun::new(block, shaking, initial, duration, settings).run()
 }
 
 /// A run in progress.
 struct BlockRun<'a> {
+    /// The horizontal floor motion.
     floor: &'a dyn FloorMotion,
+    /// Both motions: the factor on gravity, the breakpoints of both.
+    shaking: &'a Shaking<'a>,
+    /// g, m/s^2.
+    gravity: f64,
     propagator: Propagator<'a>,
-    /// The full equation's numbers, or None for the small-angle form.
-    full: Option<FullEquation>,
+    /// The equation integrated adaptively: the full form, or the small-angle one under vertical
+    /// floor motion; None for the small-angle form's exact propagator.
+    full: Option<RockingEquation<'a>>,
     /// |q| at which the block has overturned ([`RigidOverturning::ReachesLimit`]).
     limit: f64,
     /// |q| at which a block rocking on past the limit lies on its side, H pi/2
@@ -112,7 +139,7 @@ struct BlockRun<'a> {
 impl<'a> BlockRun<'a> {
     fn new(
         block: &RigidBlock,
-        floor: &'a dyn FloorMotion,
+        shaking: &'a Shaking<'a>,
         initial: InitialState,
         duration: f64,
         settings: &RigidSettings,
@@ -135,25 +162,36 @@ impl<'a> BlockRun<'a> {
             qdot: initial.qdot,
             phase,
         };
+        let floor = shaking.horizontal();
+        let restoring = match block.form() {
+            RigidForm::SmallAngle => Restoring::SmallAngle {
+                k2: block.frequency().powi(2),
+                width: block.width(),
+            },
+            RigidForm::Full => Restoring::Full {
+                height: block.height(),
+                alpha: block.slenderness(),
+                scale: block.height() * block.frequency().powi(2),
+            },
+        };
+        let adaptive = block.form() == RigidForm::Full || shaking.vertical().is_some();
         BlockRun {
             floor,
+            shaking,
+            gravity: block.gravity(),
             propagator: Propagator {
                 floor,
                 quiet_after: floor.quiet_after(),
                 k: block.frequency(),
                 width: block.width(),
             },
-            full: match block.form() {
-                RigidForm::SmallAngle => None,
-                RigidForm::Full => Some(FullEquation {
-                    height: block.height(),
-                    alpha: block.slenderness(),
-                    gravity: block.gravity(),
-                    scale: block.height() * block.frequency().powi(2),
-                    rtol: settings.rtol,
-                    atol: settings.atol,
-                }),
-            },
+            full: adaptive.then_some(RockingEquation {
+                restoring,
+                gravity: block.gravity(),
+                vertical: shaking.vertical(),
+                rtol: settings.rtol,
+                atol: settings.atol,
+            }),
             limit: block.overturning_displacement(),
             on_side: block.height() * std::f64::consts::FRAC_PI_2,
             overturning: block.overturning(),
@@ -183,7 +221,7 @@ impl<'a> BlockRun<'a> {
     }
 
     fn run(mut self) -> Result<RigidOutcome> {
-        let quiet_after = self.floor.quiet_after();
+        let quiet_after = self.shaking.quiet_after();
         while self.state.t < self.duration && self.state.phase != RigidPhase::Overturned {
             let quiet = quiet_after.is_some_and(|quiet| self.state.t >= quiet);
             // At rest on a floor at rest for good: nothing more can happen.
@@ -235,7 +273,7 @@ impl<'a> BlockRun<'a> {
     /// motion is judged; both rules end the stretch there, so that they take the same steps), or
     /// the end of the run.
     fn stretch_end(&self) -> f64 {
-        match self.floor.quiet_after() {
+        match self.shaking.quiet_after() {
             Some(quiet) if quiet > self.state.t => quiet.min(self.duration),
             _ => self.duration,
         }
@@ -244,7 +282,7 @@ impl<'a> BlockRun<'a> {
     /// The end of the next step: a step later, the next breakpoint, or the end of the run.
     fn next_stop(&mut self) -> f64 {
         let t = self.state.t;
-        let breakpoints = self.floor.breakpoints();
+        let breakpoints = self.shaking.breakpoints();
         while self.breakpoint < breakpoints.len() && breakpoints[self.breakpoint] <= t {
             self.breakpoint += 1;
         }
@@ -259,10 +297,13 @@ impl<'a> BlockRun<'a> {
     /// acceleration `a`, or None if it stays. A floor at the uplift acceleration itself does not
     /// lift it: for Housner's block the moments about the toe then balance, and the block has no
     /// pull away from the floor.
-    fn uplift_side(&self, a: f64) -> Option<f64> {
-        if a < -self.uplift {
+    fn uplift_side(&self, t: f64) -> Option<f64> {
+        let a = self.floor.acceleration(t);
+        // Vertical floor motion scales gravity, and the uplift acceleration with it.
+        let uplift = self.uplift * self.shaking.gravity_factor(t, self.gravity);
+        if a < -uplift {
             Some(1.0)
-        } else if a > self.uplift {
+        } else if a > uplift {
             Some(-1.0)
         } else {
             None
@@ -271,7 +312,7 @@ impl<'a> BlockRun<'a> {
 
     fn rest_step(&mut self, t_end: f64) -> Result<()> {
         let t0 = self.state.t;
-        let lifts = |t: f64| self.uplift_side(self.floor.acceleration(t)).is_some();
+        let lifts = |t: f64| self.uplift_side(t).is_some();
         let mut found = None;
         if lifts(t0) {
             found = Some(t0);
@@ -293,7 +334,7 @@ impl<'a> BlockRun<'a> {
         match found {
             None => self.state.t = t_end,
             Some(t) => {
-                let side = self.uplift_side(self.floor.acceleration(t)).unwrap_or(1.0);
+                let side = self.uplift_side(t).unwrap_or(1.0);
                 self.state = RigidState {
                     t,
                     q: 0.0,
@@ -389,7 +430,8 @@ impl<'a> BlockRun<'a> {
         // Chatter (see the module documentation): the impacts still to come would end within
         // 2 |q'| / (c (g B/H - |a|)(1 - e)).
         let a = self.floor.acceleration(t).abs();
-        let pull = self.pull_factor * (self.tipping - a);
+        let tipping = self.tipping * self.shaking.gravity_factor(t, self.gravity);
+        let pull = self.pull_factor * (tipping - a);
         if pull > 0.0 && 2.0 * qdot.abs() <= ZENO_TIME * pull * (1.0 - self.restitution) {
             self.state = RigidState {
                 t,
@@ -421,13 +463,15 @@ impl<'a> BlockRun<'a> {
             return Ok(false);
         }
         let side = phase.side();
-        let gone = match self.full {
+        // Judged once both floor motions are at rest for good, under gravity alone.
+        let restoring = self.full.map(|f| f.restoring);
+        let gone = match restoring {
             // q - s B = c1 e^(k t) + c2 e^(-k t), 2 s c1 = s (q - s B) + s q'/k.
-            None => {
+            None | Some(Restoring::SmallAngle { .. }) => {
                 let k = self.propagator.k;
                 side * q - self.propagator.width + side * qdot / k >= 0.0
             }
-            Some(FullEquation { height, alpha, .. }) => {
+            Some(Restoring::Full { height, alpha, .. }) => {
                 let p = self.propagator.k;
                 // u = s theta, w = s theta'; the energy above that of the barrier u = alpha.
                 let (u, w) = (side * q / height, side * qdot / height);

@@ -553,6 +553,7 @@ pub fn solve_row_compliant(
     let run = LoopSetup {
         method: METHOD,
         floor,
+        vertical: None,
         duration,
         history,
         output_dt: settings.output_dt,
