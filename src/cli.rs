@@ -109,6 +109,46 @@ pub(crate) enum Command {
         #[arg(long)]
         episodes: bool,
     },
+    /// Run Housner's rigid block of the body's height, width and gravity alone on the model's
+    /// floor, its horizontal and vertical motions ([excitation.vertical]); write events.csv and
+    /// summary.json.
+    Rigid {
+        /// Model file (TOML) of one body: its geometry, gravity and floor motion are used.
+        model: PathBuf,
+        /// Output directory [default: out/<model file stem>-rigid].
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// The block's equation: small-angle (q'' = k^2 (1 + a_v/g)(q - s B) - (3/2) a) or full
+        /// (Housner's, theta'' = -p^2 [(1 + a_v/g) sin(s alpha - theta) + (a/g) cos(s alpha -
+        /// theta)]) [default: small-angle].
+        #[arg(long)]
+        form: Option<String>,
+        /// When it counts as overturned: reaches-limit (|theta| reaches the equation's unstable
+        /// equilibrium) or cannot-return (it never comes back to the floor) [default:
+        /// reaches-limit].
+        #[arg(long)]
+        overturning: Option<String>,
+        /// Its own coefficient of restitution, strictly between 0 and 1 [default: Housner's,
+        /// 1 - (3/2) sin^2 alpha].
+        #[arg(long, allow_negative_numbers = true)]
+        restitution: Option<f64>,
+        /// Simulated time, s (overrides simulation.duration).
+        #[arg(long, allow_negative_numbers = true)]
+        duration: Option<f64>,
+        /// Also search the smallest value of a model-file key in [LO, HI] that overturns the
+        /// block, e.g. excitation.amplitude=0.5:15 (a scan, then bisection of the first
+        /// transition, as `flexrock sweep --find-min`); written to summary.json's find_min.
+        #[arg(long, value_name = "KEY=LO:HI")]
+        find_min: Option<String>,
+        /// Values scanned by --find-min [default: 100].
+        #[arg(long)]
+        scan: Option<usize>,
+        /// Width of --find-min's final bracket, in the key's units [default: 1e-4 of HI - LO].
+        #[arg(long, allow_negative_numbers = true)]
+        tol: Option<f64>,
+        #[command(flatten)]
+        set: SetArgs,
+    },
     /// Parametric study: run the model at every point of a grid of model-file keys (or search
     /// the smallest overturning value at each), one row per point in sweep.csv, with sweep.json
     /// and a figure (SVG): a map over two numeric axes, a spectrum of a minimum search, or for

@@ -271,6 +271,85 @@ fn execute(command: Command) -> flexrock::Result<Output> {
             })
         }
         Command::Props { model, json, set } => props(&model, json, set),
+        Command::Rigid {
+            model: path,
+            out,
+            form,
+            overturning,
+            restitution,
+            duration,
+            find_min,
+            scan,
+            tol,
+            set,
+        } => {
+            use flexrock_core::bodies::rigid::{check_restitution, RigidForm, RigidOverturning};
+            if find_min.is_none() {
+                for (flag, given) in [("--scan", scan.is_some()), ("--tol", tol.is_some())] {
+                    if given {
+                        return Err(flexrock_core::Error::invalid(
+                            flag,
+                            "(given)",
+                            "sets the search of --find-min, which was not asked for",
+                        )
+                        .into());
+                    }
+                }
+            }
+            let search = find_min
+                .as_deref()
+                .map(flexrock_core::analysis::sweep::axis::parse_interval)
+                .transpose()?;
+            let options = flexrock_core::analysis::sweep::HousnerOptions {
+                form: form
+                    .as_deref()
+                    .map(|f| RigidForm::parse("--form", f))
+                    .transpose()?
+                    .unwrap_or_default(),
+                overturning: overturning
+                    .as_deref()
+                    .map(|o| RigidOverturning::parse("--overturning", o))
+                    .transpose()?
+                    .unwrap_or_default(),
+                restitution: match restitution {
+                    Some(e) => {
+                        check_restitution("--restitution", e)?;
+                        Some(e)
+                    }
+                    None => None,
+                },
+            };
+            let overrides = Overrides {
+                duration,
+                settings: set.settings_for(&path),
+                ..Overrides::default()
+            };
+            let model = load(&path, &overrides)?;
+            let out = out.unwrap_or_else(|| default_out_dir(&path, "-rigid"));
+            flexrock::writers::check_creatable(&out)?;
+            let search = match search {
+                None => None,
+                Some((key, interval)) => {
+                    let model_at = |value: f64| {
+                        let mut at = overrides.clone();
+                        at.settings
+                            .push(flexrock_core::model::Setting::number(&key, value));
+                        Model::load(&path, &at)
+                    };
+                    Some(flexrock_core::analysis::rigid_search::search_rigid(
+                        &key,
+                        interval,
+                        (scan, tol),
+                        options,
+                        model_at,
+                    )?)
+                }
+            };
+            let report = flexrock::commands::rigid::run(&model, &options, search, &out)?;
+            Ok(Output::text(flexrock::commands::rigid::report_text(
+                &report,
+            )))
+        }
         Command::Run {
             model: path,
             out,

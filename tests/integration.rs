@@ -25,6 +25,7 @@ mod figures;
 mod fragility;
 mod plot_cli;
 mod report;
+mod rigid_cli;
 mod row_sweep;
 mod rows;
 mod sweep;

@@ -8,6 +8,7 @@
 //! - [`fem`], [`pushover`]: the finite element check (`flexrock fem`, `flexrock fem --pushover`);
 //! - [`record`]: `flexrock record info` and `flexrock record csv`;
 //! - [`report`]: validation/REPORT.md from the files of `compare`, `converge` and `run`;
+//! - [`rigid`]: `flexrock rigid`, Housner's block alone on the model's floor;
 //! - [`sweep`]: `flexrock sweep`, the core's sweeps on disk (chunks, resuming, shards, merge).
 
 pub mod compare;
@@ -18,6 +19,7 @@ pub mod fragility;
 pub mod pushover;
 pub mod record;
 pub mod report;
+pub mod rigid;
 pub mod row;
 pub mod run;
 pub mod sweep;

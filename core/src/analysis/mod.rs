@@ -8,4 +8,5 @@ pub mod fem_check;
 pub mod findings;
 pub mod fragility;
 pub mod pushover_check;
+pub mod rigid_search;
 pub mod sweep;
