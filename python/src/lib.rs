@@ -46,6 +46,7 @@ fn flexrock_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(simulate::simulate, m)?)?;
     m.add_class::<simulate::RowResult>()?;
     m.add_function(wrap_pyfunction!(simulate::simulate_row, m)?)?;
+    m.add_function(wrap_pyfunction!(simulate::rigid_block, m)?)?;
     m.add_function(wrap_pyfunction!(sweep::sweep, m)?)?;
     m.add_function(wrap_pyfunction!(analysis::compare, m)?)?;
     m.add_function(wrap_pyfunction!(analysis::converge, m)?)?;

@@ -321,15 +321,28 @@ fn toml_table(d: &Bound<'_, PyDict>) -> PyResult<toml::Table> {
                 short_repr(values.as_any())
             ))
         })?;
-        let mut inner = toml::Table::new();
-        for (key, value) in values.iter() {
-            let key = key_text(&key, &at)?;
-            let name = format!("{at}{}", dict_path(&key));
-            inner.insert(key, toml_value(&value, &name)?);
-        }
-        table.insert(section, toml::Value::Table(inner));
+        let nested = section == "excitation";
+        table.insert(section, toml::Value::Table(dict_values(values, &at, nested)?));
     }
     Ok(table)
+}
+
+/// The values of one table's dict (`at` names it); with `nested`, its `vertical` key may be a
+/// dict of its own: the floor's vertical motion, `[excitation.vertical]`.
+fn dict_values(values: &Bound<'_, PyDict>, at: &str, nested: bool) -> PyResult<toml::Table> {
+    let mut inner = toml::Table::new();
+    for (key, value) in values.iter() {
+        let key = key_text(&key, at)?;
+        let name = format!("{at}{}", dict_path(&key));
+        let item = match value.cast::<PyDict>() {
+            Ok(vertical) if nested && key == "vertical" => {
+                toml::Value::Table(dict_values(vertical, &name, false)?)
+            }
+            _ => toml_value(&value, &name)?,
+        };
+        inner.insert(key, item);
+    }
+    Ok(inner)
 }
 
 /// A key of a dict, which must be a str (`at` names the dict).

@@ -306,3 +306,71 @@ pub(crate) fn simulate_row(
         summary: summary.unbind(),
     })
 }
+
+/// Housner's rigid block of the model's body (its height, width and gravity) alone on the
+/// model's floor, horizontal and vertical: the command line's rigid summary.json as a dict,
+/// with its events under "events".
+#[pyfunction]
+#[pyo3(signature = (model, form=None, overturning=None, restitution=None))]
+pub(crate) fn rigid_block<'py>(
+    py: Python<'py>,
+    model: &Model,
+    form: Option<String>,
+    overturning: Option<String>,
+    restitution: Option<f64>,
+) -> PyResult<Bound<'py, PyAny>> {
+    use flexrock_core::bodies::rigid::{
+        check_restitution, RigidBlock, RigidForm, RigidOverturning,
+    };
+    let invalid = |e: flexrock_core::InvalidParameter| err(e.into());
+    let options = flexrock_core::analysis::sweep::HousnerOptions {
+        form: form
+            .as_deref()
+            .map(|f| RigidForm::parse("form", f))
+            .transpose()
+            .map_err(invalid)?
+            .unwrap_or_default(),
+        overturning: overturning
+            .as_deref()
+            .map(|o| RigidOverturning::parse("overturning", o))
+            .transpose()
+            .map_err(invalid)?
+            .unwrap_or_default(),
+        restitution: match restitution {
+            Some(e) => {
+                check_restitution("restitution", e).map_err(invalid)?;
+                Some(e)
+            }
+            None => None,
+        },
+    };
+    let state = model.state();
+    let m = &state.model;
+    let b = &m.body;
+    let block = RigidBlock::housner(b.height, b.width, b.gravity)
+        .and_then(|block| options.apply(block))
+        .map_err(|e| err(e.into()))?;
+    let outcome = py
+        .detach(|| flexrock_core::simulate_rigid(m, &block))
+        .map_err(err)?;
+    let summary = flexrock_core::tables::rigid_results::RigidSummary::of(m, &block, &outcome);
+    let mut value =
+        serde_json::to_value(&summary).map_err(|e| FlexrockError::new_err(e.to_string()))?;
+    let columns = flexrock_core::tables::rigid_results::RIGID_EVENT_COLUMNS;
+    let events: Vec<serde_json::Value> = outcome
+        .events
+        .iter()
+        .map(|e| {
+            serde_json::json!({
+                columns[0]: e.t,
+                columns[1]: e.kind.name(),
+                columns[2]: e.q,
+                columns[3]: e.qdot_before,
+                columns[4]: e.qdot_after,
+                columns[5]: e.to.name(),
+            })
+        })
+        .collect();
+    value["events"] = serde_json::Value::Array(events);
+    json(py, &value)
+}

@@ -62,6 +62,7 @@ __all__ = [
     "props",
     "read_record",
     "response_spectrum",
+    "rigid_block",
     "simulate",
     "simulate_row",
     "sweep",
@@ -280,6 +281,48 @@ def simulate_row(path, duration: Optional[float] = None) -> RowResult:
     >>> [c.summary["n_impact"] for c in row.columns]
     """
     return _native.simulate_row(path, duration)
+
+
+def rigid_block(
+    model: Model,
+    form: Optional[str] = None,
+    overturning: Optional[str] = None,
+    restitution: Optional[float] = None,
+) -> dict:
+    """Housner's rigid block of the model's body, alone on the model's floor.
+
+    The block has the body's height, width and gravity; the floor moves as the model's
+    ``[excitation]`` says, horizontally and, with ``[excitation.vertical]``, vertically (gravity
+    is then g + a_v(t) in the block's equation, its uplift acceleration and its pull towards the
+    floor). A vertical motion that reaches -g is refused.
+
+    Parameters
+    ----------
+    model : Model
+        The model: its body's geometry and gravity, its floor motions and duration.
+    form : str, optional
+        ``"small-angle"`` (the default) or ``"full"`` (Housner's equation).
+    overturning : str, optional
+        ``"reaches-limit"`` (the default) or ``"cannot-return"``.
+    restitution : float, optional
+        The block's own coefficient of restitution, in (0, 1); Housner's by default.
+
+    Returns
+    -------
+    dict
+        The command line's rigid summary.json (``first_uplift_s``, ``overturned``,
+        ``t_overturn_s``, ``max_abs_q_m``, the block's numbers under ``block``...), with the events
+        (``t_s``, ``event``, ``q_m``, ``qdot_before_m_s``, ``qdot_after_m_s``, ``to``) under
+        ``events``.
+
+    Examples
+    --------
+    >>> m = flexrock.Model.from_file("models/pulse-map.toml")
+    >>> m.set("excitation.vertical.ratio", 0.5)
+    >>> flexrock.rigid_block(m, form="full")["overturned"]
+    False
+    """
+    return _native.rigid_block(model, form, overturning, restitution)
 
 
 def props(model: Model) -> dict:

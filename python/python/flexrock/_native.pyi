@@ -85,6 +85,12 @@ class Result:
     def to_pandas(self) -> Any: ...
 
 def props(model: Model) -> dict[str, Any]: ...
+def rigid_block(
+    model: Model,
+    form: Optional[str] = None,
+    overturning: Optional[str] = None,
+    restitution: Optional[float] = None,
+) -> dict[str, Any]: ...
 def simulate(
     model: Model,
     method: Optional[str] = None,
