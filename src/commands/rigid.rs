@@ -78,12 +78,13 @@ pub fn report_text(report: &RigidReport) -> String {
     let n = flexrock_core::base::format::shortest;
     let time = |t: Option<f64>| t.map_or_else(|| "none".to_string(), |t| format!("{} s", n(t)));
     let mut text = format!(
-        "rigid block ({} equation, e = {}): first uplift {}, {} impacts, {}\n\
+        "rigid block ({} equation, e = {}): first uplift {}, {} impact{}, {}\n\
          largest |theta|/alpha = {} at t = {} s\n",
         s.block.equation,
         n(s.block.restitution),
         time(s.first_uplift_s),
         s.n_impact,
+        if s.n_impact == 1 { "" } else { "s" },
         match s.t_overturn_s {
             Some(t) => format!("overturned at t = {} s", n(t)),
             None => "did not overturn".to_string(),
@@ -94,10 +95,11 @@ pub fn report_text(report: &RigidReport) -> String {
     if let Some(found) = &report.search {
         text.push_str(&match found.min_overturning {
             Some(value) => format!(
-                "smallest overturning {} = {} ({} band(s) of overturning; stands at {})\n",
+                "smallest overturning {} = {} ({} band{} of overturning values; stands at {})\n",
                 found.key,
                 n(value),
                 found.n_bands,
+                if found.n_bands == 1 { "" } else { "s" },
                 found.safe_below.map_or_else(|| "none".to_string(), n)
             ),
             None => format!(
