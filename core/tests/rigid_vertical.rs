@@ -329,3 +329,33 @@ fn the_vertical_table_names_its_own_keys() {
         "{text}"
     );
 }
+
+#[test]
+fn a_record_pair_runs_for_the_longer_record_with_each_its_own_scale() {
+    let h = crate::common::workspace_file("validation/records/elCentro.AT2");
+    let v = crate::common::workspace_file("validation/records/A-ELC180.AT2");
+    let text = format!(
+        "[body]\nheight = 2.0\nwidth = 0.3\nmass = 1000.0\nperiod = 0.05\n\n\
+         [excitation]\nkind = \"record\"\npath = {h:?}\n\n\
+         [excitation.vertical]\nkind = \"record\"\npath = {v:?}\nscale = 0.5\n"
+    );
+    let m = Model::from_toml_str(&text, &Overrides::default()).unwrap();
+    // 1559 samples at 0.02 s and 4000 at 0.01 s (their headers).
+    assert_eq!(m.duration, 39.99);
+    let vertical = m.vertical.as_ref().unwrap();
+    // The vertical record is the same record read as a horizontal one, at half its scale.
+    let horizontal_reading = Model::from_toml_str(
+        &format!(
+            "[body]\nheight = 2.0\nwidth = 0.3\nmass = 1000.0\nperiod = 0.05\n\n\
+             [excitation]\nkind = \"record\"\npath = {v:?}\n"
+        ),
+        &Overrides::default(),
+    )
+    .unwrap();
+    for t in [1.0, 8.59, 20.005] {
+        assert_eq!(
+            vertical.acceleration(t),
+            0.5 * horizontal_reading.floor.acceleration(t)
+        );
+    }
+}
