@@ -192,7 +192,9 @@ pub struct ExcitationSection {
     pub tail: Option<f64>,
     /// record: sampling interval of a one-column CSV file, s.
     pub dt: Option<f64>,
-    /// ratio (`[excitation.vertical]` only): a_v(t) = ratio x the horizontal a(t).
+    /// ratio (`[excitation.vertical]` only): a_v(t) = ratio x the horizontal a(t). Not
+    /// written when None, so that the files that echo the section are unchanged.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub ratio: Option<f64>,
     /// The floor's vertical acceleration (upwards positive), a table of the same keys.
     #[serde(skip_serializing_if = "Option::is_none")]

@@ -78,7 +78,8 @@ pub fn schema_keys() -> Vec<String> {
             end: None,
             tail: None,
             dt: None,
-            ratio: None,
+            // Left out of a written file when None: given here so that it is listed.
+            ratio: Some(0.0),
             vertical: None,
         },
         simulation: SimulationSection::default(),
