@@ -559,7 +559,10 @@ mod tests {
         let dir = scratch("one-sync");
         SYNCED_DIRS.with(|synced| synced.borrow_mut().clear());
         write_atomically(&dir, &[("a", b"1".to_vec()), ("b", b"2".to_vec())]).unwrap();
-        assert_eq!(SYNCED_DIRS.with(|synced| synced.take()), [dir.clone()]);
+        assert_eq!(
+            SYNCED_DIRS.with(|synced| synced.take()),
+            std::slice::from_ref(&dir)
+        );
         let _ = std::fs::remove_dir_all(&dir);
     }
 
