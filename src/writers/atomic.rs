@@ -28,9 +28,11 @@ const STALE_AGE: std::time::Duration = std::time::Duration::from_secs(3600);
 ///    of this set) whose process is no longer running (checked in `/proc`), or older than an
 ///    hour.
 /// 3. Every new file is written and synced into a fresh directory
-///    `dir/.flexrock-tmp-<pid>-<nonce>/` as `new-<name>`.
+///    `dir/.flexrock-tmp-<pid>-<nonce>/` as `new-<name>`. That directory itself is not synced:
+///    its entries are temporary, and the names that matter are made durable in step 4.
 /// 4. The previous files of the set are renamed into that directory as `old-<name>`, then the
-///    new files are renamed into place, and `dir` is synced (where the system allows).
+///    new files are renamed into place, the set's last name last, and `dir` is synced (where
+///    the system allows): one directory sync a set.
 /// 5. On any failure in 3 or 4 the new files are taken out and the previous ones renamed back,
 ///    so that `dir` holds exactly what it held before; if even that fails, the error says
 ///    where the previous files are ([`Error::Rollback`]). On success the temporary directory,
@@ -198,7 +200,6 @@ impl FileSet {
         mut self,
         rename: &mut dyn FnMut(&Path, &Path) -> std::io::Result<()>,
     ) -> Result<Vec<PathBuf>> {
-        sync_dir(&self.staging);
         let staged = std::mem::take(self.staged.get_mut().unwrap_or_else(|e| e.into_inner()));
         let names: Vec<&str> = self
             .order
@@ -300,6 +301,8 @@ fn swap_in(
 /// Syncs a directory's entries to disk where the system allows it (best effort: some systems
 /// cannot open or sync a directory).
 fn sync_dir(dir: &Path) {
+    #[cfg(test)]
+    tests::SYNCED_DIRS.with(|synced| synced.borrow_mut().push(dir.to_path_buf()));
     if let Ok(d) = std::fs::File::open(dir) {
         let _ = d.sync_all();
     }
@@ -542,6 +545,26 @@ pub fn check_creatable(dir: &Path) -> Result<()> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    thread_local! {
+        /// The directories [`sync_dir`] synced on this thread, in order.
+        pub(super) static SYNCED_DIRS: std::cell::RefCell<Vec<PathBuf>> =
+            const { std::cell::RefCell::new(Vec::new()) };
+    }
+
+    /// A set's files are synced one by one, its temporary directory not at all: only the
+    /// output directory is synced, once, after its names are in place.
+    #[test]
+    fn a_set_syncs_only_its_output_directory() {
+        let dir = scratch("one-sync");
+        SYNCED_DIRS.with(|synced| synced.borrow_mut().clear());
+        write_atomically(&dir, &[("a", b"1".to_vec()), ("b", b"2".to_vec())]).unwrap();
+        assert_eq!(
+            SYNCED_DIRS.with(|synced| synced.take()),
+            std::slice::from_ref(&dir)
+        );
+        let _ = std::fs::remove_dir_all(&dir);
+    }
 
     fn scratch(name: &str) -> PathBuf {
         let dir =

@@ -219,6 +219,12 @@ struct Oscillator {
     /// Forcing f = fs sin(phi) + fc cos(phi).
     fs: f64,
     fc: f64,
+    /// The steady state's amplitude A_p times Omega^2, Omega^3 and Omega^4: bounds on its
+    /// derivatives ([`Flow::derivative_bounds`]).
+    steady_bounds: [f64; 3],
+    /// The free motion's amplitude (h0^2 + ((g0 - sigma h0)/omega)^2)^(1/2) and A_p, where
+    /// [`Flow::envelope`] holds (omega^2 > 0, sigma <= 0).
+    envelope: Option<(f64, f64)>,
 }
 
 /// x_h = a e^(growth u) + b e^(decay u), growth = sigma + |omega|, decay = sigma - |omega|.
@@ -331,6 +337,10 @@ pub(crate) struct Flow {
     pub force_curvature_bound: f64,
     /// Bound on |f - (the closed form's f)|, m/s^2 (a truncated series of the motion).
     pub force_error: f64,
+    /// |k|^(1/2) and |k|^(1/2) + |c|, 1/s, for [`Flow::derivative_bounds`] (called many times
+    /// a flow).
+    w: f64,
+    growth_rate: f64,
     form: Form,
 }
 
@@ -505,6 +515,13 @@ impl Flow {
             end
         };
         let amplitude = fs.hypot(fc);
+        let steady = (xs * xs + xc * xc).sqrt();
+        let steady_bounds = [2, 3, 4].map(|n| steady * big_omega.powi(n));
+        let envelope = (omega2 > 0.0 && sigma <= 0.0).then(|| {
+            let b = (g0 - sigma * h0) / omega;
+            ((h0 * h0 + b * b).sqrt(), steady)
+        });
+        let w = k.abs().sqrt();
         Flow {
             anchor,
             anchor_lo,
@@ -517,6 +534,8 @@ impl Flow {
             force_rate_bound: amplitude * big_omega,
             force_curvature_bound: amplitude * big_omega * big_omega,
             force_error,
+            w,
+            growth_rate: w + c.abs(),
             form: Form::Oscillator(Oscillator {
                 sigma,
                 omega2,
@@ -531,6 +550,8 @@ impl Flow {
                 frequency_twice,
                 fs,
                 fc,
+                steady_bounds,
+                envelope,
             }),
         }
     }
@@ -590,6 +611,8 @@ impl Flow {
             force_rate_bound,
             force_curvature_bound,
             force_error,
+            w: k.abs().sqrt(),
+            growth_rate: k.abs().sqrt() + c.abs(),
             form: Form::Series(Series {
                 x,
                 v,
@@ -976,12 +999,12 @@ impl Flow {
     /// search (and the last bits of the event times it finds) stays as it was.
     /// `p` must be a point of this flow ([`Flow::point`], or one with only q changed).
     pub fn derivative_bounds(&self, p: &Point, h: f64) -> (f64, f64, f64) {
-        let (k, c) = (self.k, self.c);
-        let w = k.abs().sqrt();
+        let (c, w, rate) = (self.c, self.w, self.growth_rate);
+        let growth = (rate * h).exp();
         let x0 = p.q - self.q_eq;
         let z0 = (w * w * x0 * x0 + p.v * p.v).sqrt();
-        let z = ((w + c.abs()) * h).exp() * (z0 + h * self.force_bound);
-        let m2 = (w + c.abs()) * z + self.force_bound;
+        let z = growth * (z0 + h * self.force_bound);
+        let m2 = rate * z + self.force_bound;
         let m3 = w * w * z + c.abs() * m2 + self.force_rate_bound;
         // The fourth derivative is f'' - k x'' - c x''' by the equation.
         let m4 = w * w * m2 + c.abs() * m3 + self.force_curvature_bound;
@@ -991,25 +1014,19 @@ impl Flow {
             debug_assert_eq!(
                 [xh, vh].map(f64::to_bits),
                 {
-                    let [xh, vh, _, _] = o.free(k, self.local(p.t));
+                    let [xh, vh, _, _] = o.free(self.k, self.local(p.t));
                     [xh, vh].map(f64::to_bits)
                 },
                 "a point of another flow"
             );
-            let zh = ((w + c.abs()) * h).exp() * (w * w * xh * xh + vh * vh).sqrt();
-            let amplitude = (o.xs * o.xs + o.xc * o.xc).sqrt();
-            let big_omega = o.big_omega;
-            let steady = |n: i32| amplitude * big_omega.powi(n);
-            let h2 = (w + c.abs()) * zh;
+            let zh = growth * (w * w * xh * xh + vh * vh).sqrt();
+            let h2 = rate * zh;
             let h3 = w * w * zh + c.abs() * h2;
             let h4 = w * w * h2 + c.abs() * h3;
             // Plus the rounding of the sum of the two parts: a few ulps of each.
             let split = |free: f64, steady: f64| (free + steady) * (1.0 + 16.0 * f64::EPSILON);
-            let (s2, s3, s4) = (
-                split(h2, steady(2)),
-                split(h3, steady(3)),
-                split(h4, steady(4)),
-            );
+            let [p2, p3, p4] = o.steady_bounds;
+            let (s2, s3, s4) = (split(h2, p2), split(h3, p3), split(h4, p4));
             if s2 * STEADY_BOUND_GAIN <= m2 && s2.is_finite() && s3.is_finite() && s4.is_finite() {
                 return (s2 * safe, s3 * safe, s4 * safe);
             }
@@ -1069,12 +1086,13 @@ impl Flow {
     /// amplitude never grows: |x_h| <= e^(sigma u) (h0^2 + ((g0 - sigma h0)/omega)^2)^(1/2).
     pub fn envelope(&self, t0: f64) -> Option<f64> {
         match &self.form {
-            Form::Oscillator(o) if o.omega2 > 0.0 && o.sigma <= 0.0 => {
+            Form::Oscillator(Oscillator {
+                envelope: Some((r, steady)),
+                sigma,
+                ..
+            }) => {
                 let u = self.local(t0).max(0.0);
-                let b = (o.g0 - o.sigma * o.h0) / o.omega;
-                let r = (o.h0 * o.h0 + b * b).sqrt();
-                let steady = (o.xs * o.xs + o.xc * o.xc).sqrt();
-                Some((o.sigma * u).exp() * r * (1.0 + 1e-12) + steady)
+                Some((sigma * u).exp() * r * (1.0 + 1e-12) + steady)
             }
             _ => None,
         }
