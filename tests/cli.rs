@@ -1437,8 +1437,5 @@ fn the_program_is_linked_position_dependent() {
     let binary = std::fs::read(env!("CARGO_BIN_EXE_flexrock")).unwrap();
     assert_eq!(&binary[..4], b"\x7fELF");
     let kind = u16::from_le_bytes([binary[16], binary[17]]);
-    assert_eq!(
-        kind, 2,
-        "ELF type {kind}: not a position-dependent executable"
-    );
+    assert_eq!(kind, 2, "ELF type {kind}: not a position-dependent executable");
 }
