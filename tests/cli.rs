@@ -1428,14 +1428,3 @@ fn a_comparison_without_events_prints_no_nan() {
     assert!(stdout.contains("event times: no event matched"), "{stdout}");
     assert!(!stdout.contains("NaN"), "{stdout}");
 }
-
-/// On Linux the program is linked position-dependent (build.rs): an ELF executable of type
-/// ET_EXEC (2), which its start does not relocate, not ET_DYN (3).
-#[cfg(all(target_os = "linux", target_env = "gnu"))]
-#[test]
-fn the_program_is_linked_position_dependent() {
-    let binary = std::fs::read(env!("CARGO_BIN_EXE_flexrock")).unwrap();
-    assert_eq!(&binary[..4], b"\x7fELF");
-    let kind = u16::from_le_bytes([binary[16], binary[17]]);
-    assert_eq!(kind, 2, "ELF type {kind}: not a position-dependent executable");
-}
