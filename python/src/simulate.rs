@@ -311,13 +311,17 @@ pub(crate) fn simulate_row(
 /// model's floor, horizontal and vertical: the command line's rigid summary.json as a dict,
 /// with its events under "events".
 #[pyfunction]
-#[pyo3(signature = (model, form=None, overturning=None, restitution=None))]
+#[pyo3(signature = (model, form=None, overturning=None, restitution=None, find_min=None, scan=None, tol=None))]
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn rigid_block<'py>(
     py: Python<'py>,
     model: &Model,
     form: Option<String>,
     overturning: Option<String>,
     restitution: Option<f64>,
+    find_min: Option<(String, f64, f64)>,
+    scan: Option<usize>,
+    tol: Option<f64>,
 ) -> PyResult<Bound<'py, PyAny>> {
     use flexrock_core::bodies::rigid::{
         check_restitution, RigidBlock, RigidForm, RigidOverturning,
@@ -353,9 +357,39 @@ pub(crate) fn rigid_block<'py>(
     let outcome = py
         .detach(|| flexrock_core::simulate_rigid(m, &block))
         .map_err(err)?;
+    if find_min.is_none() && (scan.is_some() || tol.is_some()) {
+        return Err(FlexrockError::new_err(
+            "scan and tol set the search of find_min, which was not asked for",
+        ));
+    }
+    let search = match find_min {
+        None => None,
+        Some((key, lo, hi)) => {
+            let model_at = |value: f64| {
+                let mut overrides = state.overrides();
+                overrides.settings.push(Setting::number(&key, value));
+                state.build(&overrides)
+            };
+            let interval = flexrock_core::analysis::sweep::Interval { lo, hi };
+            Some(
+                py.detach(|| {
+                    flexrock_core::analysis::rigid_search::search_rigid(
+                        &key,
+                        interval,
+                        (scan, tol),
+                        options,
+                        model_at,
+                    )
+                })
+                .map_err(err)?,
+            )
+        }
+    };
     let summary = flexrock_core::tables::rigid_results::RigidSummary::of(m, &block, &outcome);
     let mut value =
         serde_json::to_value(&summary).map_err(|e| FlexrockError::new_err(e.to_string()))?;
+    value["find_min"] =
+        serde_json::to_value(&search).map_err(|e| FlexrockError::new_err(e.to_string()))?;
     let columns = flexrock_core::tables::rigid_results::RIGID_EVENT_COLUMNS;
     let events: Vec<serde_json::Value> = outcome
         .events

@@ -44,3 +44,22 @@ def test_the_elastic_body_and_bad_arguments_are_refused_by_name():
         flexrock.rigid_block(m, form="ful")
     with pytest.raises(flexrock.FlexrockError, match="restitution"):
         flexrock.rigid_block(m, restitution=1.5)
+
+
+def test_the_smallest_overturning_pulse_of_the_reference_block():
+    # The reference block's smallest overturning 0.8 s one-sine pulse: 2.998 (small angle) and
+    # 3.033 m/s^2 (full), computed independently (core/tests/rigid_forms.rs).
+    m = flexrock.Model.from_dict({
+        "body": {"height": 4.0, "width": 0.7, "mass": 1000.0, "period": 0.05},
+        "excitation": {"kind": "sine-pulse", "amplitude": 3.0, "period": 0.8, "tail": 5.0},
+    })
+    for form, expected in [("small-angle", 2.998), ("full", 3.033)]:
+        found = flexrock.rigid_block(
+            m, form=form, find_min=("excitation.amplitude", 2.0, 4.0), tol=1e-4)["find_min"]
+        assert found["min_overturning"] == pytest.approx(expected, abs=1e-3)
+        assert found["n_bands"] == 1 and found["key"] == "excitation.amplitude"
+    assert flexrock.rigid_block(m)["find_min"] is None
+    with pytest.raises(flexrock.FlexrockError, match="find_min"):
+        flexrock.rigid_block(m, find_min=("excitation.amplitude", 4.0, 2.0))
+    with pytest.raises(flexrock.FlexrockError, match="scan and tol"):
+        flexrock.rigid_block(m, scan=10)

@@ -288,6 +288,9 @@ def rigid_block(
     form: Optional[str] = None,
     overturning: Optional[str] = None,
     restitution: Optional[float] = None,
+    find_min: Optional[Tuple[str, float, float]] = None,
+    scan: Optional[int] = None,
+    tol: Optional[float] = None,
 ) -> dict:
     """Housner's rigid block of the model's body, alone on the model's floor.
 
@@ -306,6 +309,15 @@ def rigid_block(
         ``"reaches-limit"`` (the default) or ``"cannot-return"``.
     restitution : float, optional
         The block's own coefficient of restitution, in (0, 1); Housner's by default.
+    find_min : (key, lo, hi), optional
+        Also search the smallest value of a model-file key in [lo, hi] that overturns the block
+        (a scan, then bisection of the first transition, as `sweep`'s ``find_min``); each value
+        a fresh model. The result goes under ``find_min`` (``min_overturning``, ``safe_below``,
+        ``bands``...).
+    scan : int, optional
+        Values scanned before the bisection (100).
+    tol : float, optional
+        Width of the final bracket, in the key's unit (1e-4 of hi - lo).
 
     Returns
     -------
@@ -322,7 +334,7 @@ def rigid_block(
     >>> flexrock.rigid_block(m, form="full")["overturned"]
     False
     """
-    return _native.rigid_block(model, form, overturning, restitution)
+    return _native.rigid_block(model, form, overturning, restitution, find_min, scan, tol)
 
 
 def props(model: Model) -> dict:

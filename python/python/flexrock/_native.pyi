@@ -90,6 +90,9 @@ def rigid_block(
     form: Optional[str] = None,
     overturning: Optional[str] = None,
     restitution: Optional[float] = None,
+    find_min: Optional[Tuple[str, float, float]] = None,
+    scan: Optional[int] = None,
+    tol: Optional[float] = None,
 ) -> dict[str, Any]: ...
 def simulate(
     model: Model,
