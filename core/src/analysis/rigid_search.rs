@@ -84,7 +84,14 @@ pub fn search_rigid(
             rhs_evaluations: 0,
         })
     };
-    let outcome = find_min::search(&find, trial).map_err(|(_, e)| e)?;
+    // A value the model refuses is named as the search's, not as a setting of the user's.
+    let outcome = find_min::search(&find, trial).map_err(|(value, e)| {
+        Error::invalid(
+            &format!("find_min {key}"),
+            value,
+            &format!("the model or its run fails there: {e}"),
+        )
+    })?;
     Ok(RigidSearch {
         key: find.key,
         lo: find.lo,
