@@ -43,30 +43,7 @@ fn block_quantities() {
     assert!((b.overturning_velocity() - k() * B).abs() < 1e-15);
 }
 
-/// A floor acceleration that is `value` from t = 0 on.
-struct Constant(f64);
-
-impl FloorMotion for Constant {
-    fn acceleration(&self, t: f64) -> f64 {
-        if t >= 0.0 {
-            self.0
-        } else {
-            0.0
-        }
-    }
-    fn peak_acceleration(&self) -> f64 {
-        self.0.abs()
-    }
-    fn kind(&self) -> &'static str {
-        "constant"
-    }
-    fn parameters(&self) -> serde_json::Value {
-        serde_json::json!({ "kind": "constant", "value": self.0 })
-    }
-    fn closed_form(&self, _t: f64) -> ClosedForm {
-        ClosedForm::polynomial(0.0, &[self.0], f64::INFINITY)
-    }
-}
+use crate::common::Constant;
 
 fn from(block: &RigidBlock, floor: &dyn FloorMotion, q: f64, qdot: f64, t: f64) -> RigidOutcome {
     simulate_from(

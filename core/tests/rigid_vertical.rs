@@ -11,9 +11,11 @@
 use flexrock_core::bodies::rigid::{
     simulate_shaken, RigidBlock, RigidEventKind, RigidForm, RigidOutcome, RigidSettings,
 };
-use flexrock_core::floor::{ClosedForm, FloorMotion, PulseShape, Shaking, Shape, SinePulse};
+use flexrock_core::floor::{FloorMotion, PulseShape, Shaking, Shape, SinePulse};
 use flexrock_core::integrate::InitialState;
 use flexrock_core::model::{Model, Overrides};
+
+use crate::common::Constant;
 
 const H: f64 = 2.0;
 const B: f64 = 0.4;
@@ -181,27 +183,6 @@ fn the_small_angle_block_under_vertical_shaking_matches_an_independent_integrati
         1e-5,
     );
     assert_close(&impacts(&outcome), &expected, 1e-9);
-}
-
-/// a_v = c for good.
-struct Constant(f64);
-
-impl FloorMotion for Constant {
-    fn acceleration(&self, _t: f64) -> f64 {
-        self.0
-    }
-    fn peak_acceleration(&self) -> f64 {
-        self.0.abs()
-    }
-    fn kind(&self) -> &'static str {
-        "constant"
-    }
-    fn parameters(&self) -> serde_json::Value {
-        serde_json::json!({ "kind": "constant", "value": self.0 })
-    }
-    fn closed_form(&self, _t: f64) -> ClosedForm {
-        ClosedForm::polynomial(0.0, &[self.0], f64::INFINITY)
-    }
 }
 
 #[test]

@@ -218,3 +218,28 @@ pub fn proptest_seed(fixed: u64) -> proptest::test_runner::RngSeed {
             proptest::test_runner::RngSeed::Fixed,
         )
 }
+
+/// A floor acceleration that is `value` from t = 0 on.
+pub struct Constant(pub f64);
+
+impl flexrock_core::floor::FloorMotion for Constant {
+    fn acceleration(&self, t: f64) -> f64 {
+        if t >= 0.0 {
+            self.0
+        } else {
+            0.0
+        }
+    }
+    fn peak_acceleration(&self) -> f64 {
+        self.0.abs()
+    }
+    fn kind(&self) -> &'static str {
+        "constant"
+    }
+    fn parameters(&self) -> serde_json::Value {
+        serde_json::json!({ "kind": "constant", "value": self.0 })
+    }
+    fn closed_form(&self, _t: f64) -> flexrock_core::floor::ClosedForm {
+        flexrock_core::floor::ClosedForm::polynomial(0.0, &[self.0], f64::INFINITY)
+    }
+}
