@@ -223,10 +223,17 @@ fn model(vertical: &str) -> Result<Model, flexrock_core::Error> {
 }
 
 #[test]
-fn a_ratio_of_zero_is_no_vertical_motion_and_changes_nothing() {
+fn a_vertical_motion_of_zero_is_none_and_changes_nothing() {
     let plain = model("").unwrap();
     let zero = model("\n[excitation.vertical]\nratio = 0.0\n").unwrap();
     assert!(zero.vertical.is_none());
+    for still in [
+        "kind = \"free\"",
+        "kind = \"harmonic\"\namplitude = 0.0\nperiod = 0.3",
+    ] {
+        let m = model(&format!("\n[excitation.vertical]\n{still}\n")).unwrap();
+        assert!(m.vertical.is_none(), "{still}");
+    }
     let block = RigidBlock::housner(H, B, G)
         .unwrap()
         .with_form(RigidForm::Full);

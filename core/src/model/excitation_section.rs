@@ -496,7 +496,8 @@ type Motion = (Box<dyn FloorMotion>, Option<f64>);
 const RATIO: &str = "ratio";
 
 /// The floor's vertical motion of `[excitation.vertical]` in the excitation section `s`, if it
-/// has one, and its natural length. A ratio of 0 is no vertical motion at all. The vertical
+/// has one, and its natural length. A motion that is zero throughout (a ratio or an amplitude of
+/// 0, kind "free") is no vertical motion at all. The vertical
 /// table takes the horizontal one's kinds and keys (its messages name them
 /// `excitation.vertical.KEY`), or `ratio` alone: a_v(t) = ratio x a(t).
 pub(super) fn vertical_from_section(
@@ -566,9 +567,9 @@ pub(super) fn vertical_from_section(
         },
         other => other,
     };
-    floor_from_section(v, base_dir, records)
-        .map(Some)
-        .map_err(named)
+    let (motion, length) = floor_from_section(v, base_dir, records).map_err(named)?;
+    // A vertical motion that is zero throughout is none: the run is the horizontal one's.
+    Ok((motion.peak_acceleration() > 0.0).then_some((motion, length)))
 }
 
 /// An analytic floor motion, checked against the floor limit, with its natural length.
