@@ -247,3 +247,12 @@ def test_every_plot_is_listed_by_the_kind_of_result_it_draws():
     assert ff.PLOTS["row"] == (ff.plot_row,)
     listed = {f for plots in ff.PLOTS.values() for f in plots}
     assert {getattr(ff, n) for n in ff.__all__ if n.startswith("plot_")} == listed
+
+
+def test_a_figure_made_here_saves_its_pdf_fonts_as_truetype_outside_the_style(tmp_path):
+    # As the book shows it: savefig on the figure, with matplotlib's own settings in effect.
+    ax = ff.plot_fragility(_study(STUDY, 0.36, 0.35))
+    path = tmp_path / "fragility.pdf"
+    ax.figure.savefig(path)
+    pdf = path.read_bytes()
+    assert b"FontFile2" in pdf and b"/Type3" not in pdf

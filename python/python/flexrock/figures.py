@@ -34,6 +34,7 @@ import numpy as np
 
 try:
     import matplotlib
+    import matplotlib.figure
     import matplotlib.pyplot as plt
     from matplotlib.lines import Line2D
 except ImportError as e:  # pragma: no cover - exercised only without the extra
@@ -132,6 +133,15 @@ def _mm(value: Union[str, float]) -> float:
     return float(value)
 
 
+class _Figure(matplotlib.figure.Figure):
+    """A figure that saves with `STYLE` in effect, whatever the settings at the time: its PDF
+    keeps TrueType fonts and its PNG 300 dpi (matplotlib reads both when it saves)."""
+
+    def savefig(self, *args: Any, **kwargs: Any) -> None:
+        with style():
+            super().savefig(*args, **kwargs)
+
+
 def figure(
     nrows: int = 1,
     ncols: int = 1,
@@ -143,7 +153,8 @@ def figure(
     """A figure of ``nrows`` by ``ncols`` axes, ``width`` mm wide ("column", "page" or mm).
 
     Its height is ``height`` mm, or ``panel_height`` mm per row and room for the legend and the
-    x axis. Returns ``(fig, axes)``, axes a 1-D array.
+    x axis. Returns ``(fig, axes)``, axes a 1-D array. ``fig.savefig`` saves with `STYLE`
+    (fonts embedded as TrueType in a PDF); a figure of your own saves so inside `style()`.
     """
     w = _mm(width)
     h = height if height is not None else nrows * panel_height + 22.0
@@ -155,6 +166,7 @@ def figure(
             sharex=sharex,
             squeeze=False,
             layout="constrained",
+            FigureClass=_Figure,
         )
     return fig, axes.ravel()
 
@@ -690,7 +702,7 @@ def plot_fragility(
             ax.plot(levels, damaged / records, ls="none", marker="s", mfc="white",
                     color=PALETTE[0], label="observed fraction damaged")
         unit = getattr(result, "im_unit", None) or ""
-        top = max([t * math.exp(2.5 * b) for _, t, b in fits] + values)
+        top = max([t * math.exp(2.0 * b) for _, t, b in fits] + values)
         low = min([t * math.exp(-2.5 * b) for _, t, b in fits] + values)
         x = np.geomspace(low / 1.1, top * 1.1, 300) if log else np.linspace(0.0, top * 1.05, 300)
         for k, (state, theta, beta) in enumerate(fits):
