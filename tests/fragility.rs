@@ -156,7 +156,9 @@ fn the_fit_is_the_moments_of_the_capacities_the_sweep_rows_give() {
         let text = std::fs::read_to_string(out.join(file)).unwrap();
         let at = (text.find(needle)).unwrap_or_else(|| panic!("{needle} not in {file}"));
         let rest = &text[at + needle.len()..];
-        rest[..rest.find([' ', ',', '<']).unwrap()].parse().unwrap()
+        rest[..rest.find([' ', ',', '<', '\n']).unwrap()]
+            .parse()
+            .unwrap()
     };
     let (theta, beta) = last_fit;
     let drawn = number_after("fragility.svg", "lognormal fit: θ = ");
