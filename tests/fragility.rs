@@ -61,6 +61,7 @@ fn the_fit_is_the_moments_of_the_capacities_the_sweep_rows_give() {
     let list = suite(&dir, &OVERTURNING);
     let out = dir.join("out");
     let args = ["--scale", "0.1:20", "--scan", "40", "--bootstrap", "0"];
+    let mut last_fit = (0.0, 0.0);
     // The sweep's rows give the measures of each record scaled to its smallest overturning
     // scale, computed on the scaled samples: the capacities, by another road than the
     // command's (measure at scale 1 times scale^p).
@@ -98,6 +99,7 @@ fn the_fit_is_the_moments_of_the_capacities_the_sweep_rows_give() {
         );
         assert_eq!(fit["method"], "moments");
         assert_eq!(summary["im"], im);
+        last_fit = (mean.exp(), (squares / 3.0).sqrt());
     }
     // The last (CAV, m/s): the tables name the unit, pelicun's columns are its own.
     let csv = std::fs::read_to_string(out.join("fragility.csv")).unwrap();
@@ -147,6 +149,24 @@ fn the_fit_is_the_moments_of_the_capacities_the_sweep_rows_give() {
             "{label} not in capacities.svg"
         );
     }
+    // The legends give the fit's median and dispersion with the unit, as the moments above
+    // give them (to the 3 and 2 digits they print): fragility.svg by the curve, capacities.svg
+    // by the median's line.
+    let number_after = |file: &str, needle: &str| -> f64 {
+        let text = std::fs::read_to_string(out.join(file)).unwrap();
+        let at = (text.find(needle)).unwrap_or_else(|| panic!("{needle} not in {file}"));
+        let rest = &text[at + needle.len()..];
+        rest[..rest.find([' ', ',', '<', '\n']).unwrap()]
+            .parse()
+            .unwrap()
+    };
+    let (theta, beta) = last_fit;
+    let drawn = number_after("fragility.svg", "lognormal fit: θ = ");
+    assert!((drawn / theta - 1.0).abs() < 5e-3, "{drawn} for {theta}");
+    let drawn = number_after("fragility.svg", " m/s, β = ");
+    assert!((drawn / beta - 1.0).abs() < 5e-2, "{drawn} for {beta}");
+    let drawn = number_after("capacities.svg", "median θ = ");
+    assert!((drawn / theta - 1.0).abs() < 5e-3, "{drawn} for {theta}");
 }
 
 #[test]

@@ -6,6 +6,7 @@ use crate::error::Result;
 use crate::figures::page::{FigureOptions, PAGE_MM};
 use crate::figures::plot::{self, Dash, Figure, Marker, Panel, Series, VerticalLine};
 use flexrock_core::analysis::fragility::{bootstrap, Capacity, Lognormal, Summary, PERCENTILES};
+use flexrock_core::base::format::significant;
 
 /// Points of a drawn curve.
 const CURVE_POINTS: usize = 200;
@@ -31,6 +32,17 @@ fn im_label(summary: &Summary) -> String {
         ),
         None => format!("{}, {}", summary.im.name().to_uppercase(), summary.im_unit),
     }
+}
+
+/// The legend's name of the fitted curve, with its median and dispersion.
+fn fit_name(summary: &Summary) -> String {
+    let fit = &summary.fits[0];
+    format!(
+        "lognormal fit: θ = {} {}, β = {}",
+        significant(fit.theta, 3),
+        summary.im_unit,
+        significant(fit.beta, 2)
+    )
 }
 
 /// The fitted curve, the bootstrap band and the empirical fractions.
@@ -74,7 +86,7 @@ fn curves(summary: &Summary) -> Figure {
         }
     }
     let line: Vec<(f64, f64)> = xs.iter().map(|&x| (x, curve.probability(x))).collect();
-    panel = panel.with(Series::line("lognormal fit", line, 1));
+    panel = panel.with(Series::line(&fit_name(summary), line, 1));
     // The empirical fractions: the i-th smallest observed capacity at i/n (censored records
     // lie above every observed one and never reach the plot).
     let mut observed: Vec<f64> = summary
@@ -92,7 +104,7 @@ fn curves(summary: &Summary) -> Figure {
         .enumerate()
         .map(|(i, &x)| (x, (i + 1) as f64 / n))
         .collect();
-    panel = panel.with(Series::markers("records", points, 0, Marker::Circle));
+    panel = panel.with(Series::markers("records, i/n", points, 0, Marker::Circle));
     Figure::new(vec![panel], 1)
 }
 
@@ -145,12 +157,16 @@ fn capacities(summary: &Summary) -> Figure {
         VerticalLine {
             x: fit.theta,
             color: 0,
-            label: "median".into(),
+            label: format!(
+                "median θ = {} {}",
+                significant(fit.theta, 3),
+                summary.im_unit
+            ),
         },
         VerticalLine {
             x: fit.fractile_16,
             color: 2,
-            label: "16 and 84 % fractiles".into(),
+            label: format!("16 and 84 % fractiles, β = {}", significant(fit.beta, 2)),
         },
         VerticalLine {
             x: fit.fractile_84,

@@ -19,9 +19,7 @@ Examples
 >>> axes = ff.plot_motion(result)                 # four panels, one column wide
 >>> axes[0].figure.savefig("motion.pdf")          # vector PDF, fonts embedded by matplotlib
 
-Every plot is listed in `PLOTS` by the kind of result it draws; a fragility plot (of a
-fragility study's result) is meant to join them as ``plot_fragility`` with the same
-conventions, when the study exists.
+Every plot is listed in `PLOTS` by the kind of result it draws.
 """
 
 from __future__ import annotations
@@ -29,10 +27,14 @@ from __future__ import annotations
 import contextlib
 from typing import Any, Dict, Iterator, List, Optional, Sequence, Tuple, Union
 
+import math
+import textwrap
+
 import numpy as np
 
 try:
     import matplotlib
+    import matplotlib.figure
     import matplotlib.pyplot as plt
     from matplotlib.lines import Line2D
 except ImportError as e:  # pragma: no cover - exercised only without the extra
@@ -49,11 +51,14 @@ __all__ = [
     "IdaCurve",
     "figure",
     "panel_labels",
+    "plot_capacities",
     "plot_energy",
+    "plot_fragility",
     "plot_ida",
     "plot_map",
     "plot_motion",
     "plot_relations",
+    "plot_row",
     "plot_spectrum",
     "style",
 ]
@@ -128,6 +133,15 @@ def _mm(value: Union[str, float]) -> float:
     return float(value)
 
 
+class _Figure(matplotlib.figure.Figure):
+    """A figure that saves with `STYLE` in effect, whatever the settings at the time: its PDF
+    keeps TrueType fonts and its PNG 300 dpi (matplotlib reads both when it saves)."""
+
+    def savefig(self, *args: Any, **kwargs: Any) -> None:
+        with style():
+            super().savefig(*args, **kwargs)
+
+
 def figure(
     nrows: int = 1,
     ncols: int = 1,
@@ -139,7 +153,8 @@ def figure(
     """A figure of ``nrows`` by ``ncols`` axes, ``width`` mm wide ("column", "page" or mm).
 
     Its height is ``height`` mm, or ``panel_height`` mm per row and room for the legend and the
-    x axis. Returns ``(fig, axes)``, axes a 1-D array.
+    x axis. Returns ``(fig, axes)``, axes a 1-D array. ``fig.savefig`` saves with `STYLE`
+    (fonts embedded as TrueType in a PDF); a figure of your own saves so inside `style()`.
     """
     w = _mm(width)
     h = height if height is not None else nrows * panel_height + 22.0
@@ -151,6 +166,7 @@ def figure(
             sharex=sharex,
             squeeze=False,
             layout="constrained",
+            FigureClass=_Figure,
         )
     return fig, axes.ravel()
 
@@ -170,11 +186,15 @@ def _legend(axes: Sequence[Any], handles: List[Any], labels: List[str]) -> None:
     if not seen:
         return
     fig = axes[0].figure
+    # As many columns as fit across the figure: an entry is its text (about 0.55 em a
+    # character at 7 pt) and its handle and gap (about 5 em).
+    width_pt = fig.get_size_inches()[0] * 72.0
+    entry_pt = 7.0 * (0.55 * max(len(lab) for lab in seen) + 5.0)
     fig.legend(
         list(seen.values()),
         list(seen.keys()),
         loc="outside upper center",
-        ncols=min(3, len(seen)),
+        ncols=max(1, min(3, len(seen), int(width_pt // entry_pt))),
         fontsize=7,
         frameon=False,
     )
@@ -545,10 +565,277 @@ def plot_ida(
     return ax
 
 
-#: The plots by the kind of result they draw (a fragility study's would join as "fragility").
+def _single_legend(ax: Any, new: bool) -> None:
+    """The legend of a one-panel figure outside its data: above it in a figure of its own,
+    to the right of the user's axes (which may share a figure with others)."""
+    handles, labels = ax.get_legend_handles_labels()
+    if new:
+        _legend([ax], handles, labels)
+        return
+    seen: Dict[str, Any] = {}
+    for h, lab in zip(handles, labels):
+        if lab and not lab.startswith("_") and lab not in seen:
+            seen[lab] = h
+    if seen:
+        ax.legend(list(seen.values()), list(seen.keys()), loc="upper left",
+                  bbox_to_anchor=(1.02, 1.0), fontsize=7, frameon=False)
+
+
+def _fits(result: Any, caller: str) -> List[Tuple[str, float, float]]:
+    """The fits of `result` as (damage state, theta, beta), each checked to draw a curve."""
+    summary = getattr(result, "summary", None)
+    if isinstance(summary, dict) and "fits" in summary:
+        raw = [(f.get("state", "damage state"), f.get("theta"), f.get("beta"))
+               for f in summary["fits"]]
+    elif isinstance(result, dict) and "fits" in result:
+        raw = [(f.get("state", "damage state"), f.get("theta"), f.get("beta"))
+               for f in result["fits"]]
+    elif isinstance(result, dict) and "theta" in result and "beta" in result:
+        raw = [(result.get("state", "damage state"), result["theta"], result["beta"])]
+    else:
+        raw = []
+    if not raw:
+        raise ValueError(
+            f"{caller}: {type(result).__name__} holds no fit (theta and beta): give a "
+            "FragilityResult of flexrock.fragility, or the dict of flexrock.fit_capacities "
+            "or flexrock.fit_stripes"
+        )
+    fits = []
+    for state, theta, beta in raw:
+        for name, value in (("theta", theta), ("beta", beta)):
+            if value is None or not math.isfinite(float(value)) or float(value) <= 0:
+                raise ValueError(
+                    f"{caller}: the fit of {state!r} has {name} = {value}: "
+                    "a lognormal curve needs a finite theta > 0 and beta > 0"
+                )
+        fits.append((str(state), float(theta), float(beta)))
+    return fits
+
+
+def _im_label(result: Any) -> Optional[str]:
+    """The intensity measure of a fragility study with its unit, e.g. "PGA (g)"."""
+    summary = getattr(result, "summary", None)
+    if not isinstance(summary, dict) or "im" not in summary:
+        return None
+    unit = summary.get("im_unit", "")
+    period = summary.get("sa_period_s")
+    name = f"Sa({period:g} s, 5 %)" if period is not None else str(summary["im"]).upper()
+    return f"{name} ({unit})" if unit else name
+
+
+def _lognormal_cdf(x: Any, theta: float, beta: float) -> np.ndarray:
+    """Φ(ln(x/θ)/β), 0 at x ≤ 0: the core's lognormal fragility curve, evaluated for drawing."""
+    x = np.asarray(x, dtype=float)
+    with np.errstate(divide="ignore"):
+        z = np.log(np.where(x > 0, x, np.nan) / theta) / beta
+    p = 0.5 * np.array([math.erfc(-v / math.sqrt(2.0)) if np.isfinite(v) else np.nan
+                        for v in np.ravel(z)]).reshape(np.shape(z))
+    return np.where(x > 0, p, 0.0)
+
+
+def plot_fragility(
+    result: Any,
+    ax: Optional[Any] = None,
+    *,
+    capacity: Optional[Sequence[float]] = None,
+    censored: Optional[Sequence[bool]] = None,
+    stripes: Optional[Tuple[Sequence[float], Sequence[int], Sequence[int]]] = None,
+    x_label: Optional[str] = None,
+    log: bool = False,
+    width: Union[str, float] = "column",
+) -> Any:
+    """Fragility curves: the fitted lognormal CDF Φ(ln(IM/θ)/β) of each damage state, with
+    its median θ and dispersion β in the legend, and what was observed as markers.
+
+    Parameters
+    ----------
+    result : FragilityResult or dict
+        A study of `flexrock.fragility` (a curve per damage state of its ``fits``, the
+        records' capacities as the observed fractions: the i-th smallest capacity at i/n,
+        censored records as a rug along the top, their capacity above its mark), or the dict
+        of `flexrock.fit_capacities` or `flexrock.fit_stripes` (its ``"state"`` names the
+        curve if given).
+    capacity, censored : sequences, optional
+        With a dict of `fit_capacities`: the capacities it was fitted to, drawn as a study's.
+    stripes : (levels, records, damaged), optional
+        With a dict of `fit_stripes`: the counts it was fitted to, drawn as the fraction
+        damaged/records at each level.
+    x_label : str, optional
+        The intensity axis's label [default: a study's measure and unit, else "IM"].
+    log : bool
+        A log intensity axis [default: linear from 0, as the command line draws it].
+
+    Raises
+    ------
+    ValueError
+        A result without a fit (theta and beta), or a fit whose theta or beta is not a
+        positive number.
+    """
+    fits = _fits(result, "plot_fragility")
+    new = ax is None
+    if ax is None:
+        _, made = figure(width=width, panel_height=50.0)
+        ax = made[0]
+    values: List[float] = []
+    with style():
+        observed: Optional[np.ndarray] = None
+        above = np.zeros(0)
+        if hasattr(result, "summary") and "records" in result.summary and capacity is None:
+            capacity, censored = result["capacity"], result["censored"]
+        if capacity is not None:
+            c = np.asarray(capacity, dtype=float)
+            flags = (np.zeros(c.shape, dtype=bool) if censored is None
+                     else np.asarray(censored, dtype=bool))
+            observed, above = np.sort(c[~flags]), c[flags]
+            values += list(c)
+            n = len(c)
+            ax.plot(observed, np.arange(1, len(observed) + 1) / n, ls="none", marker="o",
+                    mfc="white", color=PALETTE[0], label=f"records, i/n (n = {n})")
+            for x in above:
+                ax.axvline(x, ymin=0.97, ymax=1.0, color=PALETTE[7], lw=0.8)
+            if len(above):
+                ax.plot([], [], color=PALETTE[7], lw=0.8,
+                        label=f"censored ({len(above)}), capacity above")
+        if stripes is not None:
+            levels, records, damaged = (np.asarray(v, dtype=float) for v in stripes)
+            values += list(levels)
+            ax.plot(levels, damaged / records, ls="none", marker="s", mfc="white",
+                    color=PALETTE[0], label="observed fraction damaged")
+        unit = getattr(result, "im_unit", None) or ""
+        top = max([t * math.exp(2.0 * b) for _, t, b in fits] + values)
+        low = min([t * math.exp(-2.5 * b) for _, t, b in fits] + values)
+        x = np.geomspace(low / 1.1, top * 1.1, 300) if log else np.linspace(0.0, top * 1.05, 300)
+        for k, (state, theta, beta) in enumerate(fits):
+            ax.plot(x, _lognormal_cdf(x, theta, beta), color=PALETTE[1 + k % 7],
+                    ls=["-", "--", "-.", ":"][k % 4], lw=1.2,
+                    label=f"{state}: θ = {theta:.3g}{' ' + unit if unit else ''}, β = {beta:.2f}")
+        if log:
+            ax.set_xscale("log")
+        else:
+            ax.set_xlim(left=0.0)
+        ax.set_ylim(0.0, 1.0)
+        ax.set_xlabel(x_label or _im_label(result) or "IM")
+        states = [s for s, _, _ in fits]
+        ax.set_ylabel(f"P({states[0]} | IM)" if len(states) == 1 else "P(state reached | IM)")
+        _single_legend(ax, new)
+    return ax
+
+
+def plot_capacities(result: Any, ax: Optional[Any] = None, width: Union[str, float] = "column") -> Any:
+    """The records' capacities on the intensity axis, one row per record named by its label,
+    censored records as open circles (the capacity lies above), with the fit's median θ and
+    its 16 % and 84 % fractiles θ exp(∓β).
+
+    Parameters
+    ----------
+    result : FragilityResult
+        A study of `flexrock.fragility` (its first damage state's fit).
+
+    Raises
+    ------
+    ValueError
+        A result without the records' capacities, or without a fit.
+    """
+    if not hasattr(result, "summary") or "records" not in getattr(result, "summary", {}):
+        raise ValueError(
+            f"plot_capacities: {type(result).__name__} holds no records' capacities: give a "
+            "FragilityResult of flexrock.fragility"
+        )
+    state, theta, beta = _fits(result, "plot_capacities")[0]
+    c = np.asarray(result["capacity"], dtype=float)
+    flags = np.asarray(result["censored"], dtype=bool)
+    # Long names (event, station, component) wrapped to keep the panel wide.
+    labels = [textwrap.fill(str(v), 24) for v in result["label"]]
+    lines = max([lab.count("\n") + 1 for lab in labels] + [1])
+    n = len(c)
+    new = ax is None
+    if ax is None:
+        _, made = figure(width=width, height=max(45.0, n * (3.0 * lines + 1.5) + 32.0))
+        ax = made[0]
+    rows = np.arange(n, 0, -1, dtype=float)
+    with style():
+        ax.plot(c[~flags], rows[~flags], ls="none", marker="o", color=PALETTE[2],
+                label=f"capacity ({state})")
+        if flags.any():
+            ax.plot(c[flags], rows[flags], ls="none", marker="o", mfc="white", color=PALETTE[2],
+                    label="censored (capacity above)")
+        unit = f" {result.im_unit}" if getattr(result, "im_unit", "") else ""
+        ax.axvline(theta, color=PALETTE[0], lw=1.0, label=f"median θ = {theta:.3g}{unit}")
+        for k, f in enumerate((theta * math.exp(-beta), theta * math.exp(beta))):
+            ax.axvline(f, color=PALETTE[0], lw=0.7, ls="--",
+                       label=f"16 % and 84 % fractiles, β = {beta:.2f}" if k == 0 else None)
+        ax.set_yticks(rows, labels)
+        ax.set_ylim(0.4, n + 0.6)
+        ax.tick_params(axis="y", length=0)
+        ax.grid(axis="y", visible=False)
+        ax.set_xlim(0.0, 1.05 * max(float(np.max(c)), theta * math.exp(beta)))
+        ax.set_xlabel(_im_label(result) or "IM")
+        _single_legend(ax, new)
+    return ax
+
+
+def plot_row(row: Any, axes: Optional[Sequence[Any]] = None, width: Union[str, float] = "column") -> np.ndarray:
+    """The motion of a row of columns (``flexrock.simulate_row``), as ``flexrock row`` draws
+    it: the floor acceleration a, each column's top displacement q, and each contact's clear
+    gap, which falls to zero at an impact; the impacts as a rug along every panel's bottom.
+
+    Parameters
+    ----------
+    row : flexrock.RowResult
+        The row's run.
+    axes : three matplotlib axes, optional
+        Drawn onto; otherwise a new figure ``width`` wide with a shared time axis.
+    """
+    ax, new = _axes(axes, 3, nrows=3, width=width, sharex=True, panel_height=26.0)
+    dashes = ["-", "--", "-.", ":"]
+    with style():
+        first = row.columns[0]
+        ax[0].plot(first.t, first.floor_acc, color=PALETTE[0])
+        ax[0].set_ylabel("a (m/s²)")
+        for i, column in enumerate(row.columns):
+            body = (column.summary or {}).get("body") or {}
+            size = (f": H × B = {body['height']:.4g} × {body['width']:.4g} m"
+                    if "height" in body and "width" in body else "")
+            ax[1].plot(column.t, column.q, color=PALETTE[1 + i % 7], ls=dashes[i % 4],
+                       label=f"column {i}{size}")
+        ax[1].set_ylabel("q (m)")
+        contacts = row.contacts
+        if len(contacts):
+            t, which = np.asarray(contacts["t"], float), np.asarray(contacts["contact"], int)
+            gap = np.asarray(contacts["gap"], float) * 1e3
+            for k in sorted(set(which.tolist())):
+                chosen = which == k
+                ax[2].plot(t[chosen], gap[chosen], color=PALETTE[0], ls=dashes[k % 4],
+                           label=f"contact {k}: columns {k} and {k + 1}")
+        ax[2].axhline(0.0, color="#464646", lw=0.5)
+        ax[2].set_ylabel("clear gap (mm)")
+        ax[2].set_xlabel("t (s)")
+        times = [i["t"] for i in row.impacts]
+        for a in ax:
+            for ti in times:
+                a.axvline(ti, ymin=0.0, ymax=0.04, color=PALETTE[0], lw=0.6)
+        if times:
+            ax[2].plot([], [], ls="none", marker="|", markersize=5, color=PALETTE[0],
+                       label=f"impact ({len(times)})")
+        for a in ax[:2]:
+            a.label_outer()
+        panel_labels(ax)
+        if new:
+            handles, labels = [], []
+            for a in ax:
+                h, lab = a.get_legend_handles_labels()
+                handles += h
+                labels += lab
+            _legend(ax, handles, labels)
+    return ax
+
+
+#: The plots by the kind of result they draw.
 PLOTS = {
     "run": (plot_motion, plot_relations, plot_energy),
     "spectrum": (plot_spectrum,),
     "map": (plot_map,),
     "ida": (plot_ida,),
+    "fragility": (plot_fragility, plot_capacities),
+    "row": (plot_row,),
 }
