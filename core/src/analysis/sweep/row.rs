@@ -7,6 +7,7 @@
 
 use crate::base::units::STANDARD_GRAVITY;
 use crate::bodies::oscillator;
+use crate::error::Error;
 use crate::floor::intensity::{self, GroundMeasures};
 use crate::floor::record::RecordMeta;
 use crate::floor::RecordedMotion;
@@ -480,6 +481,11 @@ impl Row {
     pub fn fields(&self, layout: impl Into<Layout>) -> Vec<String> {
         self.cells(layout).iter().map(Cell::field).collect()
     }
+}
+
+/// An error as one line of a CSV field.
+pub(super) fn reason(e: &Error) -> String {
+    e.to_string().replace(['\n', '\r'], " ")
 }
 
 #[cfg(test)]
