@@ -5,7 +5,6 @@ use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
-use super::super::{Plan, Sweep};
 use super::dir;
 use super::progress::Progress;
 use super::shard::{chunk_points, point_range, PointRange, Shard};
@@ -17,6 +16,7 @@ use super::Piece;
 use crate::error::{Error, Result};
 use crate::figures::sweep as figure;
 use crate::writers;
+use flexrock_core::analysis::sweep::{Plan, Sweep};
 
 /// The plan as stored while running (with the shard, so that shards never share chunks).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
