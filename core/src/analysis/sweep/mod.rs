@@ -1,9 +1,9 @@
 //! Parametric studies: one model, axes over any of its numeric keys (and over record files),
-//! one [`Row`] per point.
+//! one [`PointResult`] per point.
 //!
 //! - [`axis`]: the axes and their values (`KEY=LO:HI:STEP`, `log:LO:HI:N`, lists, file patterns);
 //! - [`find_min`]: the smallest overturning value of a key at every point (scan, then bisect);
-//! - [`row`]: what a point gives, typed, and the column names of sweep.csv;
+//! - [`point_result`]: what a point gives, typed, and the column names of sweep.csv;
 //! - [`rows`]: sweeps of a row of columns (a model file with a `[row]` table): the keys of a
 //!   row, and each column's outcome in the row against its outcome alone.
 //!
@@ -26,9 +26,9 @@ mod digest;
 pub mod find_min;
 mod in_order;
 mod plan;
+pub mod point_result;
 mod points;
 mod request;
-pub mod row;
 pub mod rows;
 mod setup;
 
@@ -37,6 +37,6 @@ pub use cell::Cell;
 pub use digest::{sha256_hex, sha256_hex_of};
 pub use find_min::{FindMin, HousnerOptions};
 pub use plan::{Plan, RecordInput, SIMULATIONS_PER_CHUNK};
+pub use point_result::{Layout, Outcome, PointResult, RecordCells, Status};
 pub use request::{Request, SweepFile};
-pub use row::{Layout, Outcome, RecordCells, Row, Status};
 pub use setup::Sweep;

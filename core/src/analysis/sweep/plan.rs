@@ -7,7 +7,7 @@ use super::axis::Axis;
 use super::cell::Cell;
 use super::digest::sha256_hex;
 use super::find_min::FindMin;
-use super::row::{Layout, RecordCells, Row, Status};
+use super::point_result::{Layout, PointResult, RecordCells, Status};
 
 /// Simulations per chunk, roughly: a chunk is the most a kill can lose.
 pub const SIMULATIONS_PER_CHUNK: usize = 1024;
@@ -66,11 +66,11 @@ impl Plan {
     }
 
     /// The result columns of sweep.csv (after the point number and the axes): a row's
-    /// ([`Row::columns`]), then in a sweep over records the record's ([`Row::record_columns`]).
+    /// ([`PointResult::columns`]), then in a sweep over records the record's ([`PointResult::record_columns`]).
     pub fn result_columns(&self) -> Vec<String> {
-        let mut columns = Row::columns(self.layout());
+        let mut columns = PointResult::columns(self.layout());
         if self.reads_records() {
-            columns.extend(Row::record_columns());
+            columns.extend(PointResult::record_columns());
         }
         columns
     }
@@ -78,7 +78,7 @@ impl Plan {
     /// The cells of a row without values, in the order of [`Plan::result_columns`] (their
     /// kinds are the columns').
     pub fn empty_cells(&self) -> Vec<Cell> {
-        let mut row = Row::failure(Status::Invalid, String::new());
+        let mut row = PointResult::failure(Status::Invalid, String::new());
         if self.reads_records() {
             row.record = Some(RecordCells::default());
         }

@@ -8,7 +8,9 @@ use crate::model::{Model, Setting};
 
 use super::find_min::{self, FindMin, HousnerOptions};
 use super::in_order::in_order;
-use super::row::{reason, Outcome, RecordCells, RigidMinima, Row, RunOutcome, Scales, Status};
+use super::point_result::{
+    reason, Outcome, PointResult, RecordCells, RigidMinima, RunOutcome, Scales, Status,
+};
 use super::rows;
 use super::setup::Sweep;
 
@@ -52,8 +54,8 @@ impl Sweep {
     }
 
     /// The row of a point of a row sweep: the row's run, and each column's alone.
-    fn row_point(&self, settings: &[Setting]) -> Row {
-        let invalid = |e: &Error| Row::failure(Status::Invalid, reason(e));
+    fn row_point(&self, settings: &[Setting]) -> PointResult {
+        let invalid = |e: &Error| PointResult::failure(Status::Invalid, reason(e));
         let table = match self.row_table(settings) {
             Ok(table) => table,
             Err(e) => return invalid(&e),
@@ -74,7 +76,7 @@ impl Sweep {
             let in_column = |e: &Error| format!("column {i} alone: {}", reason(e));
             let single = match single {
                 Ok(single) => single,
-                Err(e) => return Row::failure(Status::Invalid, in_column(&e)),
+                Err(e) => return PointResult::failure(Status::Invalid, in_column(&e)),
             };
             match crate::simulate::simulate_peaks(&single) {
                 Ok(s) => alone.push((
@@ -82,18 +84,18 @@ impl Sweep {
                     s.t_overturn,
                     s.max_q.value.abs().max(s.min_q.value.abs()),
                 )),
-                Err(e) => return Row::failure(Status::Failed, in_column(&e)),
+                Err(e) => return PointResult::failure(Status::Failed, in_column(&e)),
             }
         }
         match rows::solve_peaks(&model) {
-            Ok(solution) => Row {
+            Ok(solution) => PointResult {
                 status: Status::Ok,
                 reason: String::new(),
                 outcome: Some(Outcome::Row(rows::RowOutcome::of(&solution, &alone))),
                 scales: None,
                 record: None,
             },
-            Err(e) => Row::failure(Status::Failed, reason(&e)),
+            Err(e) => PointResult::failure(Status::Failed, reason(&e)),
         }
     }
 
@@ -108,7 +110,11 @@ impl Sweep {
 
     /// The rows of the points `points`, in point order (in parallel with the `parallel`
     /// feature); `done` is called as each point finishes, from the thread that computed it.
-    pub fn rows(&self, points: std::ops::Range<usize>, done: &(dyn Fn() + Sync)) -> Vec<Row> {
+    pub fn rows(
+        &self,
+        points: std::ops::Range<usize>,
+        done: &(dyn Fn() + Sync),
+    ) -> Vec<PointResult> {
         self.rows_as(points, done, |_, row| row)
     }
 
@@ -119,7 +125,7 @@ impl Sweep {
         &self,
         points: std::ops::Range<usize>,
         stop: &(dyn Fn() -> bool + Sync),
-    ) -> Option<Vec<Row>> {
+    ) -> Option<Vec<PointResult>> {
         in_order(points, |i| (!stop()).then(|| self.evaluate(i)))
             .into_iter()
             .collect()
@@ -132,7 +138,7 @@ impl Sweep {
         &self,
         points: std::ops::Range<usize>,
         done: &(dyn Fn() + Sync),
-        with: impl Fn(usize, Row) -> T + Sync + Send,
+        with: impl Fn(usize, PointResult) -> T + Sync + Send,
     ) -> Vec<T> {
         in_order(points, |i| {
             let row = self.evaluate(i);
@@ -142,7 +148,7 @@ impl Sweep {
     }
 
     /// The row of point `index`.
-    pub fn evaluate(&self, index: usize) -> Row {
+    pub fn evaluate(&self, index: usize) -> PointResult {
         let settings = self.settings_at(index);
         if self.plan.row_columns.is_some() {
             return self.row_point(&settings);
@@ -161,30 +167,30 @@ impl Sweep {
         row
     }
 
-    fn run_point(&self, settings: &[Setting]) -> Row {
+    fn run_point(&self, settings: &[Setting]) -> PointResult {
         let model = match self.model(settings) {
             Ok(model) => model,
-            Err(e) => return Row::failure(Status::Invalid, reason(&e)),
+            Err(e) => return PointResult::failure(Status::Invalid, reason(&e)),
         };
         let record = self.plan.reads_records().then(|| RecordCells::of(&model));
         let scales = Some(Scales::of(&model));
         match crate::simulate::simulate_peaks(&model) {
-            Ok(solution) => Row {
+            Ok(solution) => PointResult {
                 status: Status::Ok,
                 reason: String::new(),
                 outcome: Some(Outcome::Run(RunOutcome::of(&model, &solution))),
                 scales,
                 record,
             },
-            Err(e) => Row {
+            Err(e) => PointResult {
                 scales,
                 record,
-                ..Row::failure(Status::Failed, reason(&e))
+                ..PointResult::failure(Status::Failed, reason(&e))
             },
         }
     }
 
-    fn search_point(&self, settings: &[Setting], find: &FindMin) -> Row {
+    fn search_point(&self, settings: &[Setting], find: &FindMin) -> PointResult {
         let at = |value: f64| {
             let mut settings = settings.to_vec();
             settings.push(Setting::number(&find.key, value));
@@ -260,7 +266,7 @@ impl Sweep {
                 // A rigid block's search that fails fails the point: its cells are not left
                 // empty as if nothing had overturned.
                 let rigid_failure = |block: &str, (value, e): (f64, Error)| {
-                    Row::failure(
+                    PointResult::failure(
                         Status::Failed,
                         format!(
                             "{block} at {} = {}: {}",
@@ -289,7 +295,7 @@ impl Sweep {
                     elastic_limit,
                     elastic_limit_over_g_tan_alpha,
                 };
-                Row {
+                PointResult {
                     status: Status::Ok,
                     reason: String::new(),
                     outcome: Some(Outcome::Minimum(outcome, rigid)),
@@ -297,7 +303,7 @@ impl Sweep {
                     record,
                 }
             }
-            Err((value, (status, e))) => Row::failure(
+            Err((value, (status, e))) => PointResult::failure(
                 status,
                 format!(
                     "at {} = {}: {}",

@@ -11,8 +11,8 @@ use super::axis::{self, Axis};
 use super::digest::{read_record_bytes, record_digest, sha256_hex};
 use super::find_min::{self, FindMin};
 use super::plan::{Plan, RecordInput, SIMULATIONS_PER_CHUNK};
+use super::point_result::reason;
 use super::request::Request;
-use super::row::reason;
 use super::rows;
 
 /// A sweep ready to run: the plan, and the base model's table.

@@ -340,7 +340,7 @@ fn chunk_path(dir: &Path, chunk: usize) -> PathBuf {
 fn row_record(
     plan: &Plan,
     index: usize,
-    row: &flexrock_core::analysis::sweep::Row,
+    row: &flexrock_core::analysis::sweep::PointResult,
 ) -> csv::StringRecord {
     let cells = row.cells(plan.layout());
     let mut record = csv::StringRecord::with_capacity(256, 1 + plan.axes.len() + cells.len());
