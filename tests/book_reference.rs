@@ -89,7 +89,9 @@ fn strings(list: &[&str]) -> Vec<String> {
 #[test]
 fn the_output_tables_list_exactly_the_columns_the_writers_write() {
     use flexrock_core::analysis::sweep::find_min::MinimumOutcome;
-    use flexrock_core::analysis::sweep::row::{RigidMinima, Row, RunOutcome, Scales};
+    use flexrock_core::analysis::sweep::point_result::{
+        PointResult, RigidMinima, RunOutcome, Scales,
+    };
     let text = page("outputs.md");
     let tables: [(&str, &[&str]); 11] = [
         (
@@ -158,7 +160,7 @@ fn the_output_tables_list_exactly_the_columns_the_writers_write() {
     // A sweep over records: its record columns; `record intensity` and `record spectrum`.
     assert_eq!(
         listed(&text, "columns: sweep.csv record"),
-        Row::record_columns()
+        PointResult::record_columns()
     );
     assert_eq!(
         listed(&text, "columns: record intensity"),
@@ -177,7 +179,7 @@ fn the_output_tables_list_exactly_the_columns_the_writers_write() {
         .collect();
     assert_eq!(listed(&text, "columns: sweep.csv row column"), column);
     assert_eq!(
-        Row::columns(flexrock_core::analysis::sweep::Layout::Row(1)),
+        PointResult::columns(flexrock_core::analysis::sweep::Layout::Row(1)),
         strings(&["status", "reason"])
             .into_iter()
             .chain(row)
@@ -187,7 +189,7 @@ fn the_output_tables_list_exactly_the_columns_the_writers_write() {
         let mut documented = strings(&["status", "reason"]);
         documented.extend(group.iter().cloned());
         documented.extend(scales.iter().cloned());
-        assert_eq!(Row::columns(find), documented, "find_min = {find}");
+        assert_eq!(PointResult::columns(find), documented, "find_min = {find}");
     }
 }
 

@@ -2,10 +2,9 @@
 //! resumed to the same bytes, and bad input refused before anything is written.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output, Stdio};
-use std::time::{Duration, Instant};
+use std::process::Command;
 
-use crate::common::{self, repo, scratch_dir};
+use crate::common::{self, ok, repo, scratch_dir};
 
 /// A list file in `dir` naming the shipped records `names` by absolute path.
 fn suite(dir: &Path, names: &[&str]) -> PathBuf {
@@ -31,12 +30,6 @@ fn fragility(records: &Path, out: &Path, extra: &[&str]) -> Command {
     ]);
     command.args(extra);
     command
-}
-
-fn ok(command: &mut Command) -> Output {
-    let o = command.output().unwrap();
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    o
 }
 
 fn refused(command: &mut Command, needle: &str) -> String {
@@ -189,21 +182,7 @@ fn a_killed_fragility_run_resumes_to_the_same_bytes() {
     ok(&mut fragility(&list, &reference, &args));
 
     let out = dir.join("killed");
-    let mut child = fragility(&list, &out, &args)
-        .stdout(Stdio::null())
-        .stderr(Stdio::null())
-        .spawn()
-        .unwrap();
-    let started = Instant::now();
-    while common::chunk_files(&out.join("sweep")).len() < 2 {
-        if let Some(status) = child.try_wait().unwrap() {
-            panic!("the run ended ({status}) before 2 chunks were written");
-        }
-        assert!(started.elapsed() < Duration::from_secs(120), "no chunks");
-        std::thread::sleep(Duration::from_millis(2));
-    }
-    child.kill().unwrap();
-    child.wait().unwrap();
+    common::kill_after_chunks(&mut fragility(&list, &out, &args), &out.join("sweep"), 2);
     assert!(!out.join("fragility.json").exists());
     let resumed = ok(&mut fragility(&list, &out, &args));
     let stdout = String::from_utf8_lossy(&resumed.stdout);

@@ -1156,7 +1156,7 @@ fn rows_until_stops_starting_points_once_told() {
     };
     let sweep = Sweep::new(&pulse_model(), request, Path::new(".")).unwrap();
     let layout = sweep.plan.layout();
-    let fields = |rows: Vec<flexrock_core::analysis::sweep::Row>| -> Vec<Vec<String>> {
+    let fields = |rows: Vec<flexrock_core::analysis::sweep::PointResult>| -> Vec<Vec<String>> {
         rows.iter().map(|r| r.fields(layout)).collect()
     };
     let all = fields(sweep.rows(0..sweep.points(), &|| {}));
@@ -1209,7 +1209,7 @@ fn a_record_held_in_memory_sweeps_as_its_file() {
     let layout = from_file.plan.layout();
     let rows = in_memory.rows(0..2, &|| {});
     assert!(rows.iter().all(|r| r.reason.is_empty()), "{rows:?}");
-    let fields = |rows: &[flexrock_core::analysis::sweep::Row]| -> Vec<Vec<String>> {
+    let fields = |rows: &[flexrock_core::analysis::sweep::PointResult]| -> Vec<Vec<String>> {
         rows.iter().map(|r| r.fields(layout)).collect()
     };
     assert_eq!(fields(&rows), fields(&from_file.rows(0..2, &|| {})));

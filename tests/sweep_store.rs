@@ -9,7 +9,7 @@ use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
-use crate::common::{flexrock, repo, scratch_dir};
+use crate::common::{flexrock, kill_after_chunks, ok, repo, scratch_dir};
 
 fn files_of(dir: &Path) -> Vec<(String, Vec<u8>)> {
     let mut files: Vec<(String, Vec<u8>)> = std::fs::read_dir(dir)
@@ -58,12 +58,6 @@ fn grid(out: &Path, extra: &[&str]) -> Command {
     command
 }
 
-fn ok(command: &mut Command) -> Output {
-    let o = command.output().unwrap();
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    o
-}
-
 /// Exit code 2, a message naming `needle`, no panic. Returns standard error.
 fn refused(o: &Output, needle: &str) -> String {
     let stderr = String::from_utf8_lossy(&o.stderr).into_owned();
@@ -71,26 +65,6 @@ fn refused(o: &Output, needle: &str) -> String {
     assert!(stderr.contains(needle), "expected {needle:?} in: {stderr}");
     assert!(!stderr.contains("panicked"), "{stderr}");
     stderr
-}
-
-/// Starts `command` and kills it (SIGKILL) once `dir/chunks` holds at least `chunks` chunk
-/// files. Fails the test if the command ends first.
-fn kill_after_chunks(command: &mut Command, dir: &Path, chunks: usize) {
-    let mut child: Child = command
-        .stdout(Stdio::null())
-        .stderr(Stdio::null())
-        .spawn()
-        .unwrap();
-    let started = Instant::now();
-    while crate::common::chunk_files(dir).len() < chunks {
-        if let Some(status) = child.try_wait().unwrap() {
-            panic!("the sweep ended ({status}) before {chunks} chunks were written");
-        }
-        assert!(started.elapsed() < Duration::from_secs(120), "no chunks");
-        std::thread::sleep(Duration::from_millis(2));
-    }
-    child.kill().unwrap();
-    child.wait().unwrap();
 }
 
 /// The uninterrupted run, made once per test that needs it.

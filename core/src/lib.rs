@@ -14,13 +14,13 @@
 //!    [`tables::summary::summary`] is the run's summary.json.
 //! 3. **A study**: a [`analysis::sweep::Request`] (axes over any keys, settings, a minimum overturning
 //!    search) on a model file makes a [`Sweep`]; [`Sweep::rows`] computes every point (in
-//!    parallel with the `parallel` feature) into typed [`analysis::sweep::Row`]s whose cells
+//!    parallel with the `parallel` feature) into typed [`analysis::sweep::PointResult`]s whose cells
 //!    ([`analysis::sweep::Cell`]) are the columns of sweep.csv.
 //!
 //! ```
 //! use std::path::Path;
 //!
-//! use flexrock_core::analysis::sweep::{Axis, Cell, Request, Row};
+//! use flexrock_core::analysis::sweep::{Axis, Cell, Request, PointResult};
 //! use flexrock_core::{Model, Overrides, Sweep};
 //!
 //! # let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
@@ -38,8 +38,8 @@
 //! let here = std::env::current_dir().unwrap();
 //! let sweep = Sweep::new(Path::new("models/sine-pulse.toml"), request, &here)?;
 //! let rows = sweep.rows(0..sweep.points(), &|| {});
-//! // A row's cells follow Row::columns (sweep.csv's columns after the point and the axes).
-//! let at = Row::columns(false).iter().position(|c| c == "overturned").unwrap();
+//! // A row's cells follow PointResult::columns (sweep.csv's columns after the point and the axes).
+//! let at = PointResult::columns(false).iter().position(|c| c == "overturned").unwrap();
 //! let overturned: Vec<Cell> = rows.iter().map(|row| row.cells(false)[at].clone()).collect();
 //! assert_eq!(overturned, [false, true, true].map(|b| Cell::Bool(Some(b))));
 //! # Ok::<(), flexrock_core::Error>(())

@@ -6,7 +6,7 @@
 
 use std::path::Path;
 
-use flexrock_core::analysis::sweep::{Axis, Cell, Plan, Request, Row, Sweep};
+use flexrock_core::analysis::sweep::{Axis, Cell, Plan, PointResult, Request, Sweep};
 
 /// Two columns of 4 m x 0.7 m (E = 5 MPa and 50 MPa) under the paper's sine of amplitude
 /// `amplitude`, for 6 s, `gap` m apart: models/row-pair.toml written out.
@@ -47,7 +47,7 @@ fn sweep(text: &str, axes: &[&str]) -> (Plan, Vec<Vec<(String, Cell)>>) {
         ..Request::default()
     };
     let sweep = Sweep::from_text(text, &here, request, &here).unwrap();
-    let names = Row::columns(sweep.plan.layout());
+    let names = PointResult::columns(sweep.plan.layout());
     let rows = sweep.rows(0..sweep.points(), &|| {});
     let named = rows
         .iter()

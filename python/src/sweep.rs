@@ -11,7 +11,7 @@ use pyo3::types::{PyDict, PyFloat, PyList, PyString};
 
 use flexrock_core::analysis::sweep::axis::MAX_AXIS_VALUES;
 use flexrock_core::analysis::sweep::cell::Kind;
-use flexrock_core::analysis::sweep::{Axis, Cell, Interval, Layout, Plan, Request, Row, Sweep};
+use flexrock_core::analysis::sweep::{Axis, Cell, Interval, Layout, Plan, Request, PointResult, Sweep};
 
 use crate::interrupt;
 use crate::model::{short_repr, toml_value, Model};
@@ -198,7 +198,7 @@ impl Table {
     }
 
     /// Appends the rows of the next points.
-    fn append(&mut self, py: Python<'_>, plan: &Plan, rows: Vec<Row>) -> PyResult<()> {
+    fn append(&mut self, py: Python<'_>, plan: &Plan, rows: Vec<PointResult>) -> PyResult<()> {
         let first = 1 + plan.axes.len();
         for row in rows {
             let index = self.len;

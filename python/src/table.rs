@@ -108,7 +108,7 @@ impl Column {
                 None => v.push(py.None()),
                 Some(t) => return texts.push(py, v, t),
             },
-            // The core gives every row of a sweep the kinds of Row::columns.
+            // The core gives every row of a sweep the kinds of PointResult::columns.
             (column, cell) => unreachable!(
                 "a {} cell in a {} column",
                 cell.kind().name(),

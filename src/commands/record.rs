@@ -251,7 +251,7 @@ pub fn expand_inputs(inputs: &[PathBuf]) -> Result<Vec<(PathBuf, f64)>> {
 /// units), the times of the peaks, the format, units, sampling and Sa's oscillator.
 pub fn intensity_columns() -> Vec<String> {
     let mut columns = vec!["file".to_string(), "scale".to_string()];
-    columns.extend(flexrock_core::analysis::sweep::Row::record_columns());
+    columns.extend(flexrock_core::analysis::sweep::PointResult::record_columns());
     columns.extend(
         [
             "t_pga_s",

@@ -28,6 +28,13 @@ pub fn flexrock_in(cwd: &std::path::Path, args: &[&str]) -> std::process::Output
         .expect("the binary runs")
 }
 
+/// The output of `command`, which must succeed (its standard error is the message if not).
+pub fn ok(command: &mut std::process::Command) -> std::process::Output {
+    let o = command.output().unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    o
+}
+
 /// A path inside the repository.
 pub fn repo(path: &str) -> std::path::PathBuf {
     std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(path)
@@ -139,4 +146,31 @@ pub fn built_commit() -> String {
         .filter(|o| o.status.success())
         .map(|o| String::from_utf8_lossy(&o.stdout).trim().to_string())
         .unwrap_or_else(|| "unknown".to_string())
+}
+
+/// Starts `command` and kills it (SIGKILL) once `dir/chunks` holds at least `chunks` chunk
+/// files. Fails the test if the command ends first.
+pub fn kill_after_chunks(
+    command: &mut std::process::Command,
+    dir: &std::path::Path,
+    chunks: usize,
+) {
+    let mut child = command
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    let started = std::time::Instant::now();
+    while chunk_files(dir).len() < chunks {
+        if let Some(status) = child.try_wait().unwrap() {
+            panic!("the command ended ({status}) before {chunks} chunks were written");
+        }
+        assert!(
+            started.elapsed() < std::time::Duration::from_secs(120),
+            "no chunks"
+        );
+        std::thread::sleep(std::time::Duration::from_millis(2));
+    }
+    child.kill().unwrap();
+    child.wait().unwrap();
 }

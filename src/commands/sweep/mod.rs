@@ -2,118 +2,16 @@
 //! `flexrock sweep`: the core's parametric studies ([`flexrock_core::analysis::sweep`]) on disk.
 //!
 //! - [`store`]: chunks on disk, resuming, shards and their merge;
+//! - `threads`: the threads the points are computed on (`--threads`, [`start_threads`]);
+//! - `report`: the lines `flexrock sweep` prints ([`report_text`]), and its [`warnings`];
 //! - the map and the spectrum, drawn from sweep.csv alone, are in [`crate::figures::sweep`].
 //!
 //! Rows are written in point order, so that the output is the same whatever the number of
 //! threads.
 
+mod report;
 pub mod store;
+mod threads;
 
-use crate::error::{Error, Result};
-use flexrock_core::analysis::sweep::{Plan, Sweep};
-
-/// The most threads `--threads` takes: more than the cores of any machine a sweep runs on.
-/// Each thread reserves its stack, and a system limits how many a process may start: far
-/// above this, starting them takes minutes and then fails.
-pub const MAX_THREADS: usize = 1024;
-
-/// Starts the threads a sweep computes its points on: `threads` of them (checked against
-/// [`MAX_THREADS`], an input error naming `--threads`), or one per core. A system that cannot
-/// start them is an error (exit code 1), before anything is written.
-pub fn start_threads(threads: Option<usize>) -> Result<()> {
-    if let Some(threads) = threads {
-        if !(1..=MAX_THREADS).contains(&threads) {
-            return Err(Error::invalid(
-                "--threads",
-                threads,
-                &format!("must be from 1 to {MAX_THREADS}"),
-            ));
-        }
-    }
-    let mut builder = rayon::ThreadPoolBuilder::new();
-    if let Some(threads) = threads {
-        builder = builder.num_threads(threads);
-    }
-    builder.build_global().map_err(|e| Error::Threads {
-        threads: threads.map_or_else(|| "one per core".to_string(), |n| n.to_string()),
-        message: e.to_string(),
-    })
-}
-
-/// What a reader of a sweep must know (printed on standard error): what the store met (chunks
-/// computed again, a directory it could not lock), and points whose runs are no more accurate
-/// than their energy residual says.
-pub fn warnings(report: &store::SweepReport) -> Vec<String> {
-    let mut warnings = report.warnings.clone();
-    let inaccurate = report.summary.counts.inaccurate;
-    if inaccurate == 0 {
-        return warnings;
-    }
-    warnings.push(format!(
-        "{inaccurate} of {} points have an energy residual above {} % of their energy scale \
-         (column energy_residual_share): their results are no more accurate than that; tighten \
-         solver.rtol (--set solver.rtol=...)",
-        report.summary.points.end - report.summary.points.first,
-        100.0 * crate::commands::run::ENERGY_RESIDUAL_WARNING_SHARE
-    ));
-    warnings
-}
-
-/// The few lines `flexrock sweep` prints; `seconds` is the wall time of this process, if it
-/// computed anything.
-pub fn report_text(report: &store::SweepReport, seconds: Option<f64>) -> String {
-    use std::fmt::Write as _;
-    let s = &report.summary;
-    let mut t = String::new();
-    let slice = match s.shard {
-        Some(shard) => format!(
-            " (shard {} of {}: points {}..{})",
-            shard.index, shard.count, s.points.first, s.points.end
-        ),
-        None => String::new(),
-    };
-    let _ = writeln!(
-        t,
-        "flexrock {}: sweep of {}{slice} in {}",
-        crate::commands::run::VERSION,
-        crate::writers::count(s.points.total, "point", "points"),
-        report.dir.display()
-    );
-    let c = s.counts;
-    let _ = writeln!(
-        t,
-        "  {} ok, {} invalid, {} failed; {} overturned{}",
-        c.ok,
-        c.invalid,
-        c.failed,
-        c.overturned,
-        if s.plan.find_min.is_some() {
-            " within the searched interval"
-        } else if s.plan.row_columns.is_some() {
-            " (a column of the row overturned and ended the run)"
-        } else {
-            ""
-        }
-    );
-    let _ = write!(
-        t,
-        "  {} computed now, {} found done",
-        report.computed, report.resumed
-    );
-    match seconds {
-        Some(secs) if report.computed > 0 => {
-            let _ = writeln!(
-                t,
-                " ({:.3} s, {:.0} points/s)",
-                secs,
-                report.computed as f64 / secs.max(1e-9)
-            );
-        }
-        _ => t.push('\n'),
-    }
-    for f in &report.files {
-        let verb = if report.written { "wrote" } else { "found" };
-        let _ = writeln!(t, "  {verb} {}", f.display());
-    }
-    t
-}
+pub use report::{report_text, warnings};
+pub use threads::{start_threads, MAX_THREADS};

@@ -48,7 +48,7 @@ pub struct FindMin {
 
 /// How Housner's block of a minimum search is made: its equation, its rule of overturning and
 /// its coefficient of restitution. Each one other than the default adds a column to sweep.csv
-/// (see [`super::row::RigidMinima`]).
+/// (see [`super::point_result::RigidMinima`]).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct HousnerOptions {
     /// The equation.

@@ -5,7 +5,6 @@ use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
-use super::super::{Plan, Sweep};
 use super::dir;
 use super::progress::Progress;
 use super::shard::{chunk_points, point_range, PointRange, Shard};
@@ -17,6 +16,7 @@ use super::Piece;
 use crate::error::{Error, Result};
 use crate::figures::sweep as figure;
 use crate::writers;
+use flexrock_core::analysis::sweep::{Plan, Sweep};
 
 /// The plan as stored while running (with the shard, so that shards never share chunks).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -340,7 +340,7 @@ fn chunk_path(dir: &Path, chunk: usize) -> PathBuf {
 fn row_record(
     plan: &Plan,
     index: usize,
-    row: &flexrock_core::analysis::sweep::Row,
+    row: &flexrock_core::analysis::sweep::PointResult,
 ) -> csv::StringRecord {
     let cells = row.cells(plan.layout());
     let mut record = csv::StringRecord::with_capacity(256, 1 + plan.axes.len() + cells.len());

@@ -4,12 +4,12 @@ use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
-use super::super::Plan;
 use super::shard::{PointRange, Shard};
 use super::verify;
 use super::Counts;
 use crate::error::{Error, Result};
 use crate::figures::sweep as figure;
+use flexrock_core::analysis::sweep::Plan;
 
 /// sweep.json.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

@@ -7,6 +7,7 @@
 
 use crate::base::units::STANDARD_GRAVITY;
 use crate::bodies::oscillator;
+use crate::error::Error;
 use crate::floor::intensity::{self, GroundMeasures};
 use crate::floor::record::RecordMeta;
 use crate::floor::RecordedMotion;
@@ -380,9 +381,9 @@ pub enum Outcome {
     Row(RowOutcome),
 }
 
-/// One point's row, before formatting.
+/// What one point gave (its line of sweep.csv), before formatting.
 #[derive(Debug, Clone)]
-pub struct Row {
+pub struct PointResult {
     /// How the point ended.
     pub status: Status,
     /// Why it is invalid or failed (empty when ok).
@@ -396,10 +397,10 @@ pub struct Row {
     pub record: Option<RecordCells>,
 }
 
-impl Row {
+impl PointResult {
     /// A row of a point that is invalid or failed.
-    pub fn failure(status: Status, reason: String) -> Row {
-        Row {
+    pub fn failure(status: Status, reason: String) -> PointResult {
+        PointResult {
             status,
             reason,
             outcome: None,
@@ -429,7 +430,7 @@ impl Row {
         columns.into_iter().map(String::from).collect()
     }
 
-    /// The result cells, in the order of [`Row::columns`]; empty where there is no value.
+    /// The result cells, in the order of [`PointResult::columns`]; empty where there is no value.
     pub fn cells(&self, layout: impl Into<Layout>) -> Vec<Cell> {
         let layout = layout.into();
         let mut cells = vec![
@@ -468,7 +469,7 @@ impl Row {
         cells
     }
 
-    /// The names of the record columns, after [`Row::columns`] in a sweep over records.
+    /// The names of the record columns, after [`PointResult::columns`] in a sweep over records.
     pub fn record_columns() -> Vec<String> {
         names(RecordCells::default().named())
             .into_iter()
@@ -476,10 +477,15 @@ impl Row {
             .collect()
     }
 
-    /// The result fields as sweep.csv holds them, in the order of [`Row::columns`].
+    /// The result fields as sweep.csv holds them, in the order of [`PointResult::columns`].
     pub fn fields(&self, layout: impl Into<Layout>) -> Vec<String> {
         self.cells(layout).iter().map(Cell::field).collect()
     }
+}
+
+/// An error as one line of a CSV field.
+pub(super) fn reason(e: &Error) -> String {
+    e.to_string().replace(['\n', '\r'], " ")
 }
 
 #[cfg(test)]
@@ -488,7 +494,7 @@ mod tests {
 
     #[test]
     fn every_row_has_a_cell_for_every_column_and_a_column_keeps_its_kind() {
-        let run = Row {
+        let run = PointResult {
             status: Status::Ok,
             reason: String::new(),
             outcome: Some(Outcome::Run(RunOutcome {
@@ -500,7 +506,7 @@ mod tests {
             scales: Some(Scales::default()),
             record: None,
         };
-        let failed = Row::failure(Status::Failed, "a reason".into());
+        let failed = PointResult::failure(Status::Failed, "a reason".into());
         for layout in [
             Layout::Runs,
             Layout::Minimum(HousnerOptions::default()),
@@ -509,7 +515,7 @@ mod tests {
             Layout::Row(3),
         ] {
             let find_min = layout != Layout::Runs;
-            let columns = Row::columns(layout);
+            let columns = PointResult::columns(layout);
             let mut seen = std::collections::BTreeSet::new();
             assert!(
                 columns.iter().all(|c| seen.insert(c.clone())),
@@ -557,17 +563,17 @@ mod tests {
     #[test]
     fn the_rigid_form_column_names_the_full_form_only() {
         assert_eq!(
-            Row::columns(true),
-            Row::columns(Layout::Minimum(HousnerOptions::default()))
+            PointResult::columns(true),
+            PointResult::columns(Layout::Minimum(HousnerOptions::default()))
         );
         for name in ["rigid_form", "rigid_overturning", "rigid_restitution"] {
-            assert!(!Row::columns(true).iter().any(|c| c == name));
+            assert!(!PointResult::columns(true).iter().any(|c| c == name));
         }
-        let columns = Row::columns(Layout::Minimum(full()));
+        let columns = PointResult::columns(Layout::Minimum(full()));
         let at = |name: &str| columns.iter().position(|c| *c == name).unwrap();
         assert_eq!(at("rigid_form"), at("rigid_amplitude_over_g_tan_alpha") + 1);
         assert_eq!(at("rigid_limit_min_overturning"), at("rigid_form") + 1);
-        let row = Row {
+        let row = PointResult {
             status: Status::Ok,
             reason: String::new(),
             outcome: Some(Outcome::Minimum(
@@ -591,7 +597,7 @@ mod tests {
     /// two and the rigid limit's.
     #[test]
     fn housners_choices_add_their_columns_in_order() {
-        let columns = Row::columns(Layout::Minimum(every_choice()));
+        let columns = PointResult::columns(Layout::Minimum(every_choice()));
         let at = |name: &str| columns.iter().position(|c| *c == name).unwrap();
         assert_eq!(at("rigid_form"), at("rigid_amplitude_over_g_tan_alpha") + 1);
         assert_eq!(at("rigid_overturning"), at("rigid_form") + 1);
@@ -600,7 +606,7 @@ mod tests {
             at("rigid_limit_min_overturning"),
             at("rigid_restitution") + 1
         );
-        let row = Row {
+        let row = PointResult {
             status: Status::Ok,
             reason: String::new(),
             outcome: Some(Outcome::Minimum(
@@ -618,7 +624,7 @@ mod tests {
             overturning: RigidOverturning::CannotReturn,
             ..HousnerOptions::default()
         };
-        let columns = Row::columns(Layout::Minimum(only_rule));
+        let columns = PointResult::columns(Layout::Minimum(only_rule));
         assert!(!columns
             .iter()
             .any(|c| c == "rigid_form" || c == "rigid_restitution"));
