@@ -70,8 +70,8 @@ impl<'a> Shaking<'a> {
     /// Where, within [0, `duration`], the floor's vertical acceleration reaches -g, so that a
     /// body on it would be pulled off the floor; None if it never does. A record is linear
     /// between its samples, so checking the samples is exact; another motion is checked at its
-    /// breakpoints and on a grid of [`POINTS_PER_PERIOD`] points per period (or
-    /// [`POINTS_PER_RUN`] over the run), and only when its peak reaches g at all.
+    /// breakpoints and on a grid of 2048 points per period (or 65536 over the run), and only
+    /// when its peak reaches g at all.
     pub fn lift_off(&self, g: f64, duration: f64) -> Option<LiftOff> {
         let v = self.vertical?;
         if v.peak_acceleration() < g {
