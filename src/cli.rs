@@ -510,25 +510,34 @@ pub(crate) struct SweepArgs {
     /// rigid_restitution); flags add to it.
     #[arg(long)]
     pub(crate) sweep_file: Option<PathBuf>,
-    /// Compute only shard K of N (disjoint slices of whole chunks), into OUT/shard-K-of-N; set
-    /// from SLURM_ARRAY_TASK_ID and SLURM_ARRAY_TASK_COUNT in a Slurm job array.
+    #[command(flatten)]
+    pub(crate) store: StoreArgs,
+    #[command(flatten)]
+    pub(crate) set: SetArgs,
+}
+
+/// How a sweep on disk is computed and stored: the flags `sweep` and `fragility` share.
+#[derive(clap::Args)]
+pub(crate) struct StoreArgs {
+    /// Compute only shard K of N of the sweep (disjoint slices of whole chunks), into
+    /// OUT/shard-K-of-N (a fragility study's OUT/sweep/shard-K-of-N); set from
+    /// SLURM_ARRAY_TASK_ID and SLURM_ARRAY_TASK_COUNT in a Slurm job array.
     #[arg(long, value_name = "K/N")]
     pub(crate) shard: Option<String>,
-    /// Points per chunk (what a kill can lose) [default: about 1024 simulations' worth].
+    /// Points per chunk, what a kill can lose (a fragility study's point is a record)
+    /// [default: about 1024 simulations' worth].
     #[arg(long)]
     pub(crate) chunk_size: Option<usize>,
     /// Threads, 1 to 1024 [default: one per core].
     #[arg(long)]
     pub(crate) threads: Option<usize>,
-    /// Replace the results of another sweep (or a damaged result of this one) in the output
+    /// Replace the results of another sweep (or a damaged result of this one) in the sweep's
     /// directory instead of refusing them; only the files a sweep writes are removed.
     #[arg(long)]
     pub(crate) force: bool,
     /// No progress bar.
     #[arg(long)]
     pub(crate) quiet: bool,
-    #[command(flatten)]
-    pub(crate) set: SetArgs,
 }
 
 #[derive(clap::Args)]
@@ -564,22 +573,8 @@ pub(crate) struct FragilityArgs {
     /// Output directory [default: out/<model file stem>-fragility].
     #[arg(long)]
     pub(crate) out: Option<PathBuf>,
-    /// Compute only shard K of N of the sweep (as flexrock sweep --shard); set from
-    /// SLURM_ARRAY_TASK_ID and SLURM_ARRAY_TASK_COUNT in a Slurm job array.
-    #[arg(long, value_name = "K/N")]
-    pub(crate) shard: Option<String>,
-    /// Records per chunk of the sweep (what a kill can lose).
-    #[arg(long)]
-    pub(crate) chunk_size: Option<usize>,
-    /// Threads, 1 to 1024 [default: one per core].
-    #[arg(long)]
-    pub(crate) threads: Option<usize>,
-    /// Replace the results of another sweep in OUT/sweep.
-    #[arg(long)]
-    pub(crate) force: bool,
-    /// No progress bar.
-    #[arg(long)]
-    pub(crate) quiet: bool,
+    #[command(flatten)]
+    pub(crate) store: StoreArgs,
     #[command(flatten)]
     pub(crate) figure: FigureArgs,
     #[command(flatten)]

@@ -35,7 +35,7 @@ fn sweep(args: SweepArgs) -> flexrock::Result<Output> {
     use flexrock::commands::sweep::store;
     use flexrock_core::analysis::sweep::{axis, Request, Sweep};
     // Before anything is read or computed: the threads asked for, or refused.
-    flexrock::commands::sweep::start_threads(args.threads)?;
+    flexrock::commands::sweep::start_threads(args.store.threads)?;
     if let Some(SweepCommand::Merge { dirs, out }) = args.command {
         let report = store::merge(&dirs, &out)?;
         return Ok(Output {
@@ -56,7 +56,7 @@ fn sweep(args: SweepArgs) -> flexrock::Result<Output> {
             settings: args.set.settings_for(&path),
             scan: args.scan,
             tol: args.tol,
-            chunk_size: args.chunk_size,
+            chunk_size: args.store.chunk_size,
             rigid_form: match &args.rigid_form {
                 Some(text) => Some(flexrock_core::bodies::rigid::RigidForm::parse(
                     "rigid_form",
@@ -91,12 +91,12 @@ fn sweep(args: SweepArgs) -> flexrock::Result<Output> {
             .map_err(|e| flexrock::flags::named_by_flags(e, &given, &FemOverrides::default()))
     })()
     .map_err(flexrock::flags::sweep_named_by_flags)?;
-    let shard = match &args.shard {
+    let shard = match &args.store.shard {
         Some(text) => Some(store::Shard::parse(text)?),
         None => store::Shard::from_slurm(|name| std::env::var(name).ok())?,
     };
     let out = args.out.unwrap_or_else(|| default_out_dir(&path, "-sweep"));
-    let bar = if args.quiet {
+    let bar = if args.store.quiet {
         indicatif::ProgressBar::hidden()
     } else {
         indicatif::ProgressBar::with_draw_target(None, indicatif::ProgressDrawTarget::stderr())
@@ -111,7 +111,7 @@ fn sweep(args: SweepArgs) -> flexrock::Result<Output> {
     let target = store::Target {
         out,
         shard,
-        force: args.force,
+        force: args.store.force,
     };
     let report = store::run(&sweep, &target, &ProgressBar(bar.clone()))?;
     bar.finish_and_clear();
@@ -128,14 +128,14 @@ fn sweep(args: SweepArgs) -> flexrock::Result<Output> {
 fn fragility(args: FragilityArgs) -> flexrock::Result<Output> {
     use flexrock::commands::fragility;
     use flexrock::commands::sweep::store;
-    flexrock::commands::sweep::start_threads(args.threads)?;
+    flexrock::commands::sweep::start_threads(args.store.threads)?;
     let measure = flexrock_core::analysis::fragility::Measure::parse("--im", &args.im)?;
     let (_, scale) = flexrock_core::analysis::sweep::axis::parse_interval(&format!(
         "excitation.scale={}",
         args.scale
     ))
     .map_err(|e| e.renamed("find_min excitation.scale", "--scale"))?;
-    let shard = match &args.shard {
+    let shard = match &args.store.shard {
         Some(text) => Some(store::Shard::parse(text)?),
         None => store::Shard::from_slurm(|name| std::env::var(name).ok())?,
     };
@@ -153,13 +153,13 @@ fn fragility(args: FragilityArgs) -> flexrock::Result<Output> {
         tol: args.tol,
         bootstrap: args.bootstrap,
         seed: args.seed,
-        chunk_size: args.chunk_size,
+        chunk_size: args.store.chunk_size,
         shard,
-        force: args.force,
+        force: args.store.force,
         figures: args.figure.options(&[flexrock::figures::page::Format::Svg]),
     };
     options.figures.sizes.check()?;
-    let bar = if args.quiet {
+    let bar = if args.store.quiet {
         indicatif::ProgressBar::hidden()
     } else {
         indicatif::ProgressBar::with_draw_target(None, indicatif::ProgressDrawTarget::stderr())
