@@ -7,9 +7,9 @@ use std::sync::Arc;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use flexrock_core::model::FemOverrides;
-use flexrock_core::integrate::SolverSettings;
 use flexrock_core::analysis::{compare as comparison, converge as convergence, fem_check as fem};
+use flexrock_core::integrate::SolverSettings;
+use flexrock_core::model::FemOverrides;
 
 use crate::interrupt;
 use crate::model::Model;

@@ -15,7 +15,6 @@ use flexrock_core::analysis::fragility::{
 };
 use flexrock_core::analysis::sweep::{Cell, Interval, Request, Sweep};
 
-use crate::interrupt;
 use crate::model::Model;
 use crate::FlexrockError;
 
@@ -78,15 +77,7 @@ pub(crate) fn fragility(
     let sweep = match &state.path {
         Some(path) => {
             let sweep = Sweep::new(path, request, &here);
-            if let Ok(s) = &sweep {
-                if s.plan.model_text != state.text {
-                    return Err(FlexrockError::new_err(format!(
-                        "model file = {}: has changed since the model was read from it: read it \
-                         again with Model.from_file",
-                        path.display()
-                    )));
-                }
-            }
+            crate::sweep::refuse_changed(&sweep, path, &state.text)?;
             sweep
         }
         None => Sweep::from_text(&state.text, &here, request, &here),
@@ -97,30 +88,11 @@ pub(crate) fn fragility(
     // The points, computed on a thread of their own so that Ctrl-C stops them.
     let sweep = Arc::new(sweep);
     let points = sweep.points();
-    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
-    let chunk = sweep.plan.chunk_size.max(4 * cores);
-    let computing = Arc::clone(&sweep);
     let mut rows = Vec::with_capacity(points);
-    interrupt::run_in_parts(
-        py,
-        move |cancel, parts| {
-            let mut start = 0;
-            while start < points {
-                let end = (start + chunk).min(points);
-                let Some(part) = computing.rows_until(start..end, &|| cancel.is_set()) else {
-                    return;
-                };
-                if !parts.send(part) {
-                    return;
-                }
-                start = end;
-            }
-        },
-        |part| {
-            rows.extend(part);
-            Ok(())
-        },
-    )?;
+    crate::sweep::compute_points(py, &sweep, |part| {
+        rows.extend(part);
+        Ok(())
+    })?;
     if rows.len() != points {
         return Err(FlexrockError::new_err(format!(
             "the study stopped after {} of {points} records",

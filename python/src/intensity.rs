@@ -6,9 +6,9 @@ use numpy::PyArray1;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use flexrock_core::floor::RecordedMotion;
 use flexrock_core::bodies::oscillator;
 use flexrock_core::floor::intensity;
+use flexrock_core::floor::RecordedMotion;
 use flexrock_core::model::STANDARD_GRAVITY;
 
 use crate::model::Model;

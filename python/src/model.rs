@@ -322,7 +322,10 @@ fn toml_table(d: &Bound<'_, PyDict>) -> PyResult<toml::Table> {
             ))
         })?;
         let nested = section == "excitation";
-        table.insert(section, toml::Value::Table(dict_values(values, &at, nested)?));
+        table.insert(
+            section,
+            toml::Value::Table(dict_values(values, &at, nested)?),
+        );
     }
     Ok(table)
 }

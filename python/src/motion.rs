@@ -11,11 +11,11 @@ use numpy::{PyArray1, PyReadonlyArray1};
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyTuple};
 
-use flexrock_core::floor::RecordedMotion;
 use flexrock_core::floor::record::{
     acceleration_unit, dt_from_times, read_record as read_record_file, record_from_samples,
     resolve_units, Record, RecordFormat, MAX_RECORD_BYTES, MAX_RECORD_SAMPLES,
 };
+use flexrock_core::floor::RecordedMotion;
 
 use crate::FlexrockError;
 

@@ -11,7 +11,9 @@ use pyo3::types::{PyDict, PyFloat, PyList, PyString};
 
 use flexrock_core::analysis::sweep::axis::MAX_AXIS_VALUES;
 use flexrock_core::analysis::sweep::cell::Kind;
-use flexrock_core::analysis::sweep::{Axis, Cell, Interval, Layout, Plan, Request, PointResult, Sweep};
+use flexrock_core::analysis::sweep::{
+    Axis, Cell, Interval, Layout, Plan, PointResult, Request, Sweep,
+};
 
 use crate::interrupt;
 use crate::model::{short_repr, toml_value, Model};
@@ -334,15 +336,7 @@ pub(crate) fn sweep<'py>(
         }
         (None, Some(path)) => {
             let sweep = Sweep::new(path, request, &here);
-            if let Ok(s) = &sweep {
-                if s.plan.model_text != state.text {
-                    return Err(FlexrockError::new_err(format!(
-                        "model file = {}: has changed since the model was read from it: read it \
-                         again with Model.from_file",
-                        path.display()
-                    )));
-                }
-            }
+            refuse_changed(&sweep, path, &state.text)?;
             sweep
         }
         (None, None) => Sweep::from_text(&state.text, &here, request, &here),
@@ -351,9 +345,45 @@ pub(crate) fn sweep<'py>(
     let mut table = Table::new(py, &sweep.plan)?;
     let sweep = Arc::new(sweep);
     let points = sweep.points();
+    compute_points(py, &sweep, |rows| table.append(py, &sweep.plan, rows))?;
+    if table.len != points {
+        return Err(FlexrockError::new_err(format!(
+            "the sweep stopped after {} of {points} points",
+            table.len
+        )));
+    }
+    table.into_dict(py, &sweep.plan)
+}
+
+/// Refuses a sweep read from the model file `path` when the file has changed since the
+/// model's `text` was read from it.
+pub(crate) fn refuse_changed(
+    sweep: &flexrock_core::Result<Sweep>,
+    path: &std::path::Path,
+    text: &str,
+) -> PyResult<()> {
+    match sweep {
+        Ok(s) if s.plan.model_text != text => Err(FlexrockError::new_err(format!(
+            "model file = {}: has changed since the model was read from it: read it again with \
+             Model.from_file",
+            path.display()
+        ))),
+        _ => Ok(()),
+    }
+}
+
+/// Computes the points of `sweep` on a thread of their own, so that Ctrl-C stops them, in
+/// chunks of at least four points per core, and hands each chunk's results to `take` in order.
+/// Stopped early, fewer points reach `take`: the caller counts them.
+pub(crate) fn compute_points(
+    py: Python<'_>,
+    sweep: &Arc<Sweep>,
+    take: impl FnMut(Vec<PointResult>) -> PyResult<()>,
+) -> PyResult<()> {
+    let points = sweep.points();
     let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
     let chunk = sweep.plan.chunk_size.max(4 * cores);
-    let computing = Arc::clone(&sweep);
+    let computing = Arc::clone(sweep);
     interrupt::run_in_parts(
         py,
         move |cancel, parts| {
@@ -369,13 +399,6 @@ pub(crate) fn sweep<'py>(
                 start = end;
             }
         },
-        |rows| table.append(py, &sweep.plan, rows),
-    )?;
-    if table.len != points {
-        return Err(FlexrockError::new_err(format!(
-            "the sweep stopped after {} of {points} points",
-            table.len
-        )));
-    }
-    table.into_dict(py, &sweep.plan)
+        take,
+    )
 }
