@@ -76,13 +76,7 @@ pub fn search_rigid(
         let model = model_at(value)?;
         let b = &model.body;
         let block = options.apply(RigidBlock::housner(b.height, b.width, b.gravity)?)?;
-        let out = crate::simulate::simulate_rigid(&model, &block)?;
-        Ok(Trial {
-            overturned: out.overturned,
-            t_overturn: out.t_overturn,
-            steps: out.steps,
-            rhs_evaluations: 0,
-        })
+        Trial::of_rigid(&model, &block)
     };
     // A value the model refuses is named as the search's, not as a setting of the user's.
     let outcome = find_min::search(&find, trial).map_err(|(value, e)| {

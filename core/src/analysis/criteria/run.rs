@@ -224,13 +224,7 @@ fn rigid_minimum(
         let model = at(value)?;
         let b = &model.body;
         let block = RigidBlock::housner(b.height, b.width, b.gravity)?.with_form(form);
-        let out = crate::simulate::simulate_rigid(&model, &block)?;
-        Ok(find_min::Trial {
-            overturned: out.overturned,
-            t_overturn: out.t_overturn,
-            steps: 0,
-            rhs_evaluations: 0,
-        })
+        find_min::Trial::of_rigid(&model, &block)
     };
     match find_min::search(find, trial) {
         Ok(outcome) => Ok(outcome.min_overturning),

@@ -107,6 +107,23 @@ pub struct Trial {
     pub rhs_evaluations: usize,
 }
 
+impl Trial {
+    /// The run of the rigid block `block` alone on the floor of `model` (its own steps are
+    /// counted; a search beside the body reports only the block's minimum).
+    pub fn of_rigid(
+        model: &crate::model::Model,
+        block: &RigidBlock,
+    ) -> Result<Trial, crate::error::Error> {
+        let out = crate::simulate::simulate_rigid(model, block)?;
+        Ok(Trial {
+            overturned: out.overturned,
+            t_overturn: out.t_overturn,
+            steps: out.steps,
+            rhs_evaluations: 0,
+        })
+    }
+}
+
 /// Runs the search; `run` simulates the point at a value of the key. The first error (a value
 /// at which the model is invalid or the run fails) ends the search and is returned with its
 /// value.

@@ -245,13 +245,7 @@ impl Sweep {
                         let model = self.model(&at(value))?;
                         let b = &model.body;
                         let block = options.apply(block(b.height, b.width, b.gravity)?)?;
-                        let out = crate::simulate::simulate_rigid(&model, &block)?;
-                        Ok(find_min::Trial {
-                            overturned: out.overturned,
-                            t_overturn: out.t_overturn,
-                            steps: 0,
-                            rhs_evaluations: 0,
-                        })
+                        find_min::Trial::of_rigid(&model, &block)
                     };
                     let min = find_min::search(find, trial)?.min_overturning;
                     let scaled = min
