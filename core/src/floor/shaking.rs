@@ -96,6 +96,21 @@ impl<'a> Shaking<'a> {
         times.sort_by(f64::total_cmp);
         times.dedup();
         let pulls = |t: f64| g + v.acceleration(t) <= 0.0;
+        if v.sample_interval().is_none() && !times.iter().any(|&t| pulls(t)) {
+            // A trough that just reaches -g can fall between grid points: the lowest one's
+            // neighbourhood is searched for its minimum, which then counts as a grid point.
+            let lowest = (0..times.len()).min_by(|&i, &j| {
+                v.acceleration(times[i])
+                    .total_cmp(&v.acceleration(times[j]))
+            })?;
+            let (lo, hi) = (
+                times[lowest.saturating_sub(1)],
+                times[(lowest + 1).min(times.len() - 1)],
+            );
+            let trough = lowest_between(|t| v.acceleration(t), lo, hi);
+            times.push(trough);
+            times.sort_by(f64::total_cmp);
+        }
         let first = times.iter().position(|&t| pulls(t))?;
         let t = if first == 0 {
             times[0]
@@ -125,6 +140,25 @@ impl<'a> Shaking<'a> {
             t_lowest,
         })
     }
+}
+
+/// Where `f` is lowest in [lo, hi], by golden-section search to the resolution of the time
+/// (f taken to have one trough there).
+fn lowest_between(f: impl Fn(f64) -> f64, lo: f64, hi: f64) -> f64 {
+    let ratio = 0.5 * (5f64.sqrt() - 1.0);
+    let (mut a, mut b) = (lo, hi);
+    for _ in 0..200 {
+        let (c, d) = (b - ratio * (b - a), a + ratio * (b - a));
+        if !(a < c && c < d && d < b) {
+            break;
+        }
+        if f(c) <= f(d) {
+            b = d;
+        } else {
+            a = c;
+        }
+    }
+    0.5 * (a + b)
 }
 
 impl Shaking<'_> {
@@ -194,6 +228,15 @@ mod tests {
             found.t
         );
         assert!((found.lowest + amplitude).abs() < 1e-5 * amplitude);
+        // A trough that just reaches -g, between grid points, is found.
+        let grazing = Harmonic {
+            amplitude: -g,
+            period: 0.37,
+        };
+        let found = Shaking::new(&h, Some(&grazing))
+            .lift_off(g, 1.0)
+            .expect("it reaches -g");
+        assert!((found.t - 0.37 / 4.0).abs() < 1e-6, "{}", found.t);
         // Within gravity it never does.
         let gentle = Harmonic {
             amplitude: 0.99 * g,
