@@ -32,7 +32,8 @@ fn backticked(text: &str) -> Vec<&str> {
 pub(crate) fn rule_with_hint(value: &str, rule: &str) -> String {
     let value = value.trim_matches('"');
     match closest(value, quoted(rule)) {
-        Some(hint) if !rule.contains("did you mean") => {
+        // What the value already holds, quoted back in its rule, is no hint.
+        Some(hint) if !value.contains(hint) && !rule.contains("did you mean") => {
             format!("{rule}; did you mean \"{hint}\"?")
         }
         _ => rule.to_string(),
@@ -110,5 +111,8 @@ mod tests {
         assert!(rule_with_hint("\"consistant\"", rule).ends_with("did you mean \"consistent\"?"));
         assert_eq!(rule_with_hint("\"xyz\"", rule), rule);
         assert_eq!(rule_with_hint("3", "must be positive"), "must be positive");
+        // A rule that quotes the value back does not offer it as a hint.
+        let rule = "the key \"a.b.c.d\" must be section.name";
+        assert_eq!(rule_with_hint("a.b.c.d=1", rule), rule);
     }
 }
