@@ -13,7 +13,7 @@ use std::cell::Cell;
 use diffsol::{NalgebraMat, OdeBuilder};
 
 use super::{RigidPhase, RigidState};
-use crate::floor::FloorMotion;
+use crate::floor::{FloorMotion, Shaking};
 use crate::integrate::event_loop::{self, DenseOutput, EventBody, Found, Outcome, StepStart};
 use crate::integrate::monotone::MonotonePieces;
 use crate::integrate::{History, OutputGrid, SolverError};
@@ -30,8 +30,8 @@ pub(super) struct RockingEquation<'a> {
     pub restoring: Restoring,
     /// g, m/s^2.
     pub gravity: f64,
-    /// The floor's vertical acceleration, upwards positive, if any.
-    pub vertical: Option<&'a dyn FloorMotion>,
+    /// The floor's motions: the vertical one, if any, scales gravity.
+    pub shaking: &'a Shaking<'a>,
     /// Relative tolerance of the integration.
     pub rtol: f64,
     /// Absolute tolerance, m.
@@ -71,8 +71,7 @@ impl RockingEquation<'_> {
 
     /// 1 + a_v(t)/g.
     fn gravity_factor(&self, t: f64) -> f64 {
-        self.vertical
-            .map_or(1.0, |v| 1.0 + v.acceleration(t) / self.gravity)
+        self.shaking.gravity_factor(t, self.gravity)
     }
 
     /// q'' rocking on `side` at q at time t under the horizontal floor acceleration `a`.
@@ -181,7 +180,7 @@ pub(super) fn rock(
     let stretch = event_loop::LoopSetup {
         method,
         floor,
-        vertical: full.vertical,
+        vertical: full.shaking.vertical(),
         duration: until,
         history: History::PeaksOnly,
         output_dt: until - t0,

@@ -188,7 +188,7 @@ impl<'a> BlockRun<'a> {
             full: adaptive.then_some(RockingEquation {
                 restoring,
                 gravity: block.gravity(),
-                vertical: shaking.vertical(),
+                shaking,
                 rtol: settings.rtol,
                 atol: settings.atol,
             }),
